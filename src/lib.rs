@@ -1,0 +1,17 @@
+//! # classic-gpgpu
+//!
+//! The GPGPU papers of the 2007 tutorial "General Purpose Computation using Graphics
+//! Processing Units", reproduced through their original graphics-pipeline formulation:
+//! OpenGL (through `glow`), shaders in GLSL, on a headless EGL context.
+//!
+//! Layers, and which way the arrows point: `main.rs` -> [`report`] -> the four paper
+//! modules ([`collide`], [`crowd`], [`mlp`], [`mass`]) -> [`mesh`], [`gl`]. Only [`gl`]
+//! calls OpenGL or EGL, and only [`gl`] holds `unsafe` code.
+
+pub mod collide;
+pub mod crowd;
+pub mod gl;
+pub mod mass;
+pub mod mesh;
+pub mod mlp;
+pub mod report;

@@ -1,0 +1,1 @@
+//! Paper 3: Oh & Jung, "GPU implementation of neural networks", Pattern Recognition 37(6), 2004.
