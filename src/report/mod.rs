@@ -5,6 +5,7 @@
 //! paper module and returns a [`Section`]. The `*-bench` commands and `reproduce` both call it.
 
 pub mod paper_tables;
+pub mod plot;
 
 use serde::Serialize;
 use std::path::PathBuf;
