@@ -17,8 +17,8 @@ pub mod validate;
 
 pub use error::MeshError;
 pub use generate::{
-    cube, cuboid, pipe, teapot, torus, torus_closed, torus_knot, torus_with_triangles, uv_sphere,
-    Pipe, TorusKnot,
+    cube, cuboid, pipe, teapot, teapot_patches, torus, torus_closed, torus_knot,
+    torus_with_triangles, uv_sphere, Pipe, TorusKnot,
 };
 pub use obj::{load_bunny, load_obj, parse_obj, to_obj_string, write_obj};
 pub use retessellate::{retessellate, subdivide};

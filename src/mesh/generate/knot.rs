@@ -25,7 +25,7 @@ pub struct TorusKnot {
 impl Default for TorusKnot {
     /// Paper 4's knot: a trefoil (2, 3) with 120 x 12 = 1440 vertices, 2880 triangles.
     /// The tube is thin enough that the strands never touch (the closest strands of the
-    /// curve are about 0.6 R apart).
+    /// centre line are about 0.83 R apart, the tube is 0.4 R across).
     fn default() -> Self {
         Self {
             p: 2,
