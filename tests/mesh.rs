@@ -462,6 +462,12 @@ l 1 2
     assert_eq!(mesh.vertex_count(), 5);
 }
 
+#[test]
+fn obj_with_crlf_line_ends_and_w_coordinates_loads() {
+    let mesh = parse_obj("v 0 0 0\r\nv 2 0 0 2\r\nv 0 1 0\r\nf 1 2 3\r\n", "crlf.obj").unwrap();
+    assert_eq!(mesh.triangle(0), [Vec3::ZERO, Vec3::X, Vec3::Y]);
+}
+
 fn load_error(test: &str, text: &str) -> (MeshError, String) {
     let path = write_temp(test, "bad.obj", text);
     let err = load_obj(&path).unwrap_err();
@@ -648,4 +654,51 @@ fn bunny_asset_is_closed_genus_0_and_outward() {
     assert_closed_solid("bunny", &bunny, 0);
     let from_file = load_obj(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.obj")).unwrap();
     assert_eq!(from_file, bunny);
+}
+
+#[test]
+fn teapot_faces_point_out_of_every_part() {
+    // Body, lid, spout and handle are oriented independently (they share no edge), so
+    // check each: side walls of the body and the tubes (spout, handle) face away from
+    // their plane of symmetry y = 0 where they are widest; the top of the lid faces up.
+    let n = 4;
+    let pot = teapot(n);
+    let per_patch = 2 * n * n; // patches 0..20 lose no collapsed triangles
+    let normals = pot.face_normals();
+    let centroid = |t: usize| pot.triangle(t).iter().sum::<Vec3>() / 3.0;
+    let part =
+        |patches: std::ops::Range<usize>| (patches.start * per_patch)..(patches.end * per_patch);
+    for (name, patches) in [("body", 4..12), ("handle", 12..16), ("spout", 16..20)] {
+        let tris: Vec<usize> = part(patches).collect();
+        let widest = tris
+            .iter()
+            .map(|&t| centroid(t).y.abs())
+            .fold(0.0, f32::max);
+        let sides: Vec<usize> = tris
+            .iter()
+            .copied()
+            .filter(|&t| centroid(t).y.abs() > 0.9 * widest)
+            .collect();
+        assert!(!sides.is_empty());
+        for t in sides {
+            assert!(
+                normals[t].y * centroid(t).y > 0.0,
+                "{name} triangle {t} faces in"
+            );
+        }
+    }
+    let top: Vec<usize> = (0..pot.triangle_count())
+        .filter(|&t| centroid(t).z > 3.1)
+        .collect();
+    assert!(
+        !top.is_empty() && top.iter().all(|&t| normals[t].z > 0.0),
+        "lid top faces down"
+    );
+    let bottom: Vec<usize> = (0..pot.triangle_count())
+        .filter(|&t| centroid(t).z < 0.01)
+        .collect();
+    assert!(
+        !bottom.is_empty() && bottom.iter().all(|&t| normals[t].z < 0.0),
+        "bottom faces up"
+    );
 }

@@ -6,7 +6,7 @@
 //! - [`validate`]: a report of what is wrong with a mesh (non-finite vertices, indices
 //!   out of range, degenerate triangles) and the closedness (watertightness) query.
 //! - [`generate`]: the test objects of the papers, at the papers' sizes.
-//! - [`retessellate`]: refinement to a requested triangle count.
+//! - [`retessellate`](mod@retessellate): refinement to a requested triangle count.
 //! - [`load_bunny`]: the Stanford bunny shipped in `assets/bunny.obj`.
 
 mod error;

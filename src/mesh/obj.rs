@@ -42,8 +42,12 @@ pub fn parse_obj(text: &str, source: &str) -> Result<Mesh, MeshError> {
         source: source.to_owned(),
         line,
     };
-    // Faces with fewer than three corners are dropped by tobj, which would shift the
-    // ids of every later triangle: reject them first.
+    let models = match run_tobj(text) {
+        Ok(models) => models,
+        Err(e) => return Err(locate_tobj_error(e, text, source)),
+    };
+    // tobj drops faces with fewer than three corners, which would shift the ids of every
+    // later triangle: reject them.
     if let Some((line, content)) = first_short_face(text) {
         return Err(MeshError::Malformed {
             at: at(Some(line)),
@@ -51,10 +55,6 @@ pub fn parse_obj(text: &str, source: &str) -> Result<Mesh, MeshError> {
             text: Some(content.to_owned()),
         });
     }
-    let models = match run_tobj(text) {
-        Ok(models) => models,
-        Err(e) => return Err(locate_tobj_error(e, text, source)),
-    };
     if let Some(err) = first_non_finite_vertex(text, source) {
         return Err(err);
     }
