@@ -324,6 +324,15 @@ fn validation_counts_degenerate_triangles() {
     assert_eq!((r.repeated_index_triangles, r.zero_area_triangles), (1, 2));
     assert_eq!(r.degenerate_triangles(), 3);
     assert_eq!(r.unreferenced_vertices, 0);
+    let text = r.to_string();
+    assert!(
+        text.contains("3 degenerate triangles (1 repeat a vertex, 2 have zero area)"),
+        "{text}"
+    );
+    assert!(load_bunny()
+        .validate()
+        .to_string()
+        .ends_with("closed, genus 0"));
     // A thin but real triangle is not degenerate.
     let sliver = Mesh::new(
         vec![Vec3::ZERO, Vec3::X, Vec3::new(0.5, 1e-4, 0.0)],

@@ -23,7 +23,7 @@ use super::{Mesh, MeshError};
 /// rounding, while thin but real slivers (relative height above ~1e-6) do not.
 pub const ZERO_AREA_RELATIVE: f32 = 4.0 * f32::EPSILON;
 
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct ValidationReport {
     pub vertices: usize,
     pub triangles: usize,
@@ -55,8 +55,57 @@ impl ValidationReport {
     }
 }
 
+impl std::fmt::Display for ValidationReport {
+    /// One line per finding, e.g. for a CLI: counts, then problems, then closedness.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{} vertices, {} triangles",
+            self.vertices, self.triangles
+        )?;
+        if !self.non_finite_vertices.is_empty() {
+            writeln!(
+                f,
+                "{} non-finite vertices (first: {})",
+                self.non_finite_vertices.len(),
+                self.non_finite_vertices[0]
+            )?;
+        }
+        if !self.out_of_range_triangles.is_empty() {
+            let (count, first) = (
+                self.out_of_range_triangles.len(),
+                self.out_of_range_triangles[0],
+            );
+            writeln!(
+                f,
+                "{count} triangles with an index out of range (first: {first})"
+            )?;
+        }
+        writeln!(
+            f,
+            "{} degenerate triangles ({} repeat a vertex, {} have zero area)",
+            self.degenerate_triangles(),
+            self.repeated_index_triangles,
+            self.zero_area_triangles
+        )?;
+        writeln!(f, "{} unreferenced vertices", self.unreferenced_vertices)?;
+        match &self.closedness {
+            Some(c) if c.is_closed() => match c.genus() {
+                Some(g) => write!(f, "closed, genus {g}"),
+                None => write!(f, "closed, {} pieces", c.components),
+            },
+            Some(c) => write!(
+                f,
+                "open: {} boundary, {} non-manifold, {} misoriented edges",
+                c.boundary_edges, c.non_manifold_edges, c.misoriented_edges
+            ),
+            None => write!(f, "closedness unknown (indices out of range)"),
+        }
+    }
+}
+
 /// The edge structure of a mesh after welding identical positions.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct Closedness {
     /// Distinct positions among the referenced vertices.
     pub welded_vertices: usize,
