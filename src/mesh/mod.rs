@@ -15,7 +15,7 @@ pub mod obj;
 pub mod retessellate;
 pub mod validate;
 
-pub use error::MeshError;
+pub use error::{Location, MeshError};
 pub use generate::{
     cube, cuboid, pipe, teapot, teapot_patches, torus, torus_closed, torus_knot,
     torus_with_triangles, uv_sphere, Pipe, TorusKnot,
