@@ -74,6 +74,11 @@ impl Mesh {
         }
     }
 
+    /// The positions as plain float triples, without a copy (for GPU upload).
+    pub fn positions_f32(&self) -> &[[f32; 3]] {
+        bytemuck::cast_slice(&self.positions)
+    }
+
     /// The three corners of triangle `t`.
     pub fn triangle(&self, t: usize) -> [Vec3; 3] {
         self.triangles[t].map(|i| self.positions[i as usize])
