@@ -25,6 +25,9 @@ struct Cli {
 enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
+    /// Check an OBJ file, or write one of the papers' test objects.
+    #[command(subcommand)]
+    Mesh(classic_gpgpu::mesh::cli::MeshCommand),
     /// Regenerate every table and figure of the papers into a report beside the published
     /// numbers (report/index.html, report/results.json, PNG figures).
     Reproduce(report::reproduce::ReproduceArgs),
@@ -74,6 +77,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info => info(&global),
+        Command::Mesh(command) => classic_gpgpu::mesh::cli::run(&command, global.json),
         Command::Reproduce(args) => reproduce(&global, &args),
     };
     match result {
