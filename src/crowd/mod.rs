@@ -1,1 +1,33 @@
-//! Paper 2: Kang & Han, "Real-Time Animation of Large Crowds", ICEC 2006.
+//! Paper 2: Kang & Han, "Real-Time Animation of Large Crowds", ICEC 2006 (LNCS 4161).
+//!
+//! Skinning of large crowds in a pixel shader [section 2, Fig. 1-2]: vertex data and
+//! per-frame bone matrices live in float textures; one draw call over a render target of
+//! n characters x m vertices skins every vertex of every character (pass 1); the target
+//! is copied into a vertex buffer through a pixel buffer object (render-to-VBO); pass 2
+//! draws every character from that buffer with a shared index buffer. Section 3 adds
+//! three LOD meshes (1,084, 544, 312 polygons), sprites and view-frustum culling, and
+//! compares with skinning in the vertex shader (Table 1).
+//!
+//! The paper's notation is kept: n characters, m vertices per character, a 3x4 bone
+//! matrix stored as three rows. One file per step:
+//!
+//! - characters: [`skeleton`], [`animation`], [`body_part`], [`soldier`], [`horse`],
+//!   [`character`]; LODs and their selection: [`lod`];
+//! - correctness: [`validate`] (weights and bone indices), [`cpu_skinning`] (f64 reference);
+//! - the crowd: [`steering`] (behaviour), [`culling`] (frustum culling and LOD choice).
+
+pub mod animation;
+pub mod body_part;
+pub mod character;
+pub mod cpu_skinning;
+pub mod culling;
+pub mod horse;
+pub mod lod;
+pub mod skeleton;
+pub mod soldier;
+pub mod steering;
+pub mod validate;
+
+pub use character::{CharacterModel, ModelKind};
+pub use lod::{Level, LodPolicy, LOD_TRIANGLES};
+pub use validate::{SkinError, SkinnedMesh};
