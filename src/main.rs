@@ -24,6 +24,10 @@ struct Cli {
 enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
+    /// Paper 2: render a skinned crowd off-screen (two-pass or vertex-shader skinning).
+    Crowd(classic_gpgpu::crowd::cli::CrowdArgs),
+    /// Paper 2: Table 1 and the LOD runs beside the paper's numbers.
+    CrowdBench(classic_gpgpu::crowd::cli::BenchArgs),
 }
 
 /// What every command gets.
@@ -51,6 +55,12 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info => info(&global),
+        Command::Crowd(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::crowd::cli::run(&a, &c, global.json)),
+        Command::CrowdBench(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::crowd::cli::run_bench(&a, &c, global.json)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

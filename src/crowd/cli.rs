@@ -78,7 +78,15 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     } else {
         scene::table1_scene(args.model, args.characters, aspect, args.seed)
     };
-    let stats = scene::run(ctx, &mut renderer, &target, &mut scene, args.method, args.frames, 1.0 / 30.0)?;
+    let stats = scene::run(
+        ctx,
+        &mut renderer,
+        &target,
+        &mut scene,
+        args.method,
+        args.frames,
+        1.0 / 30.0,
+    )?;
     if let Some(path) = &args.png {
         dump::texture_png(target.color(0), path, dump::DumpRange::Auto)
             .with_context(|| format!("writing the snapshot {}", path.display()))?;
@@ -106,9 +114,16 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
         s.characters,
         s.model,
         s.method,
-        if s.lod_and_culling { "LOD + sprites + culling" } else { "full detail, no culling" }
+        if s.lod_and_culling {
+            "LOD + sprites + culling"
+        } else {
+            "full detail, no culling"
+        }
     );
-    println!("frame           {:.2} ms wall clock, {:.1} FPS over {} frames", s.frame_ms, s.fps, s.frames);
+    println!(
+        "frame           {:.2} ms wall clock, {:.1} FPS over {} frames",
+        s.frame_ms, s.fps, s.frames
+    );
     println!(
         "drawn           {} skinned (LOD {} / {} / {}), {} sprites, {} culled, {} triangles",
         p.skinned, s.per_lod[0], s.per_lod[1], s.per_lod[2], p.sprites, s.culled, p.triangles
@@ -120,7 +135,10 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
         println!("render-to-VBO   {:.2} ms (GL timer)", p.copy_ms);
         println!("pass 2 drawing  {:.2} ms (GL timer)", p.pass2_ms);
     } else {
-        println!("VS skinning     {:.2} ms (GL timer, {batch} characters per draw)", p.vertex_shader_ms);
+        println!(
+            "VS skinning     {:.2} ms (GL timer, {batch} characters per draw)",
+            p.vertex_shader_ms
+        );
     }
     if p.sprites > 0 {
         println!("sprites         {:.2} ms (GL timer)", p.sprites_ms);
@@ -168,10 +186,17 @@ pub fn run_bench(args: &BenchArgs, ctx: &Context, json: bool) -> anyhow::Result<
             Some(false) => "does not hold",
             None => "not judged",
         };
-        println!("- {}\n  paper: {}\n  here:  {} ({verdict})", claim.claim, claim.paper, claim.measured);
+        println!(
+            "- {}\n  paper: {}\n  here:  {} ({verdict})",
+            claim.claim, claim.paper, claim.measured
+        );
     }
     for figure in &section.figures {
-        println!("figure: {} ({})", args.out.join(&figure.file).display(), figure.caption);
+        println!(
+            "figure: {} ({})",
+            args.out.join(&figure.file).display(),
+            figure.caption
+        );
     }
     Ok(())
 }

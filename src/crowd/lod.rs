@@ -96,7 +96,7 @@ pub fn tessellate_to_budget(
             .map(|p| scaled(p, step as f64 / 100.0))
             .collect();
         let t = total(&candidate);
-        if t <= target && best.as_ref().map_or(true, |b| total(b) < t) {
+        if t <= target && best.as_ref().is_none_or(|b| total(b) < t) {
             best = Some(candidate);
         }
     }

@@ -14,20 +14,35 @@
 //! - characters: [`skeleton`], [`animation`], [`body_part`], [`soldier`], [`horse`],
 //!   [`character`]; LODs and their selection: [`lod`];
 //! - correctness: [`validate`] (weights and bone indices), [`cpu_skinning`] (f64 reference);
-//! - the crowd: [`steering`] (behaviour), [`culling`] (frustum culling and LOD choice).
+//! - the crowd: [`steering`] (behaviour), [`culling`] (frustum culling and LOD choice);
+//! - on the GPU: [`vertex_textures`] and [`bone_textures`] (Fig. 1), [`pass1_skinning`]
+//!   (Fig. 2), [`render_to_vbo`], [`pass2_draw`], the baseline [`vertex_shader_skinning`],
+//!   [`sprites`]; a frame of either method: [`renderer`]; the measured scenes: [`scene`];
+//!   the commands: [`cli`].
 
 pub mod animation;
 pub mod body_part;
+pub mod bone_textures;
 pub mod character;
+pub mod cli;
 pub mod cpu_skinning;
 pub mod culling;
 pub mod horse;
 pub mod lod;
+pub mod pass1_skinning;
+pub mod pass2_draw;
+pub mod render_to_vbo;
+pub mod renderer;
+pub mod scene;
 pub mod skeleton;
 pub mod soldier;
+pub mod sprites;
 pub mod steering;
 pub mod validate;
+pub mod vertex_shader_skinning;
+pub mod vertex_textures;
 
 pub use character::{CharacterModel, ModelKind};
 pub use lod::{Level, LodPolicy, LOD_TRIANGLES};
+pub use renderer::{CrowdRenderer, Method};
 pub use validate::{SkinError, SkinnedMesh};

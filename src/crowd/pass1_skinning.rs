@@ -20,7 +20,8 @@ impl SkinningTarget {
     pub fn new(ctx: &Context, characters: u32, vertices: u32) -> Result<Self, GlError> {
         let texture = || Texture::new_2d(ctx, characters, vertices, TextureFormat::Rgba32F);
         let (positions, normals) = (texture()?, texture()?);
-        let framebuffer = Framebuffer::new(ctx, "crowd render target", &[&positions, &normals], None)?;
+        let framebuffer =
+            Framebuffer::new(ctx, "crowd render target", &[&positions, &normals], None)?;
         Ok(Self {
             framebuffer,
             characters,
@@ -56,7 +57,9 @@ impl Pass1 {
                 vertices.vertices, target.characters, target.vertices, bones.capacity
             )));
         }
-        let mut pass = target.framebuffer.pass(&self.program, "crowd pass 1 (skinning)")?;
+        let mut pass = target
+            .framebuffer
+            .pass(&self.program, "crowd pass 1 (skinning)")?;
         pass.texture("u_position", &vertices.position)
             .texture("u_normal", &vertices.normal)
             .texture("u_bone_index", &vertices.bone_index)

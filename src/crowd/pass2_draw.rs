@@ -6,8 +6,8 @@
 use glam::{Mat4, Vec3};
 
 use crate::gl::{
-    Buffer, Compare, Context, DepthTest, DrawState, Face, Framebuffer, GlError, Primitive,
-    Program, VertexArray,
+    Buffer, Compare, Context, DepthTest, DrawState, Face, Framebuffer, GlError, Primitive, Program,
+    VertexArray,
 };
 use crate::shader;
 

@@ -12,6 +12,9 @@ use super::pass1_skinning::SkinningTarget;
 
 const TEXEL_BYTES: usize = 16;
 
+/// One character's skinned vertices read back: positions and normals, xyzw each.
+pub type SkinnedColumn = (Vec<[f32; 4]>, Vec<[f32; 4]>);
+
 /// The vertex buffer pass 2 draws from.
 pub struct SkinnedVbo {
     pub buffer: Buffer,
@@ -44,7 +47,9 @@ impl SkinnedVbo {
             )));
         }
         let all = Rect::sized(self.characters, self.vertices);
-        target.framebuffer.read_into_buffer(0, all, &self.buffer, 0)?;
+        target
+            .framebuffer
+            .read_into_buffer(0, all, &self.buffer, 0)?;
         target
             .framebuffer
             .read_into_buffer(1, all, &self.buffer, self.positions_bytes())
@@ -66,7 +71,7 @@ impl SkinnedVbo {
     }
 
     /// Reads back character `c`'s skinned positions and normals (xyzw each), for tests.
-    pub fn read_character(&self, c: u32) -> Result<(Vec<[f32; 4]>, Vec<[f32; 4]>), GlError> {
+    pub fn read_character(&self, c: u32) -> Result<SkinnedColumn, GlError> {
         let all: Vec<[f32; 4]> = self.buffer.read()?;
         let (w, m) = (self.characters as usize, self.vertices as usize);
         let at = |base: usize, v: usize| all[base + v * w + c as usize];

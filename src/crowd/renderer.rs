@@ -15,7 +15,7 @@ use super::character::{CharacterModel, ModelKind};
 use super::culling::{Camera, FramePlan};
 use super::pass1_skinning::{Pass1, SkinningTarget};
 use super::pass2_draw::{CharacterArrays, Pass2, Shading};
-use super::render_to_vbo::SkinnedVbo;
+use super::render_to_vbo::{SkinnedColumn, SkinnedVbo};
 use super::sprites::Sprites;
 use super::vertex_shader_skinning::VertexShaderSkinning;
 use super::vertex_textures::VertexTextures;
@@ -73,7 +73,13 @@ struct SkinBatch {
 }
 
 impl SkinBatch {
-    fn new(ctx: &Context, bones: u32, vertices: u32, capacity: u32, indices: &Buffer) -> Result<Self, GlError> {
+    fn new(
+        ctx: &Context,
+        bones: u32,
+        vertices: u32,
+        capacity: u32,
+        indices: &Buffer,
+    ) -> Result<Self, GlError> {
         let vbo = SkinnedVbo::new(ctx, capacity, vertices)?;
         Ok(Self {
             bones: BoneTextures::new(ctx, bones, capacity)?,
@@ -134,7 +140,13 @@ impl CrowdRenderer {
             .collect::<Result<Vec<_>, GlError>>()?;
         let light = Vec3::new(0.4, 0.8, 0.45).normalize();
         let colour = colour_of(model.kind);
-        let sprites = Sprites::new(ctx, &model, &lods[lods.len() - 1].vertex_shader, colour, light)?;
+        let sprites = Sprites::new(
+            ctx,
+            &model,
+            &lods[lods.len() - 1].vertex_shader,
+            colour,
+            light,
+        )?;
         Ok(Self {
             ctx: ctx.clone(),
             pass1: Pass1::new(ctx)?,
@@ -155,6 +167,14 @@ impl CrowdRenderer {
     /// The impostor atlas (for figures).
     pub fn sprites(&self) -> &Sprites {
         &self.sprites
+    }
+
+    /// The pass-1 render target (positions) of LOD `lod`'s first batch, once it exists.
+    pub fn render_target(&self, lod: usize) -> Option<&crate::gl::Texture> {
+        self.lods[lod]
+            .batches
+            .first()
+            .map(|b| b.target.framebuffer.color(0))
     }
 
     /// Most characters one pass-1 draw can hold (the render target's width limit).
@@ -182,10 +202,19 @@ impl CrowdRenderer {
         let needed = n.div_ceil(limit);
         for b in 0..needed {
             let count = (n - b * limit).min(limit);
-            let fits = resources.batches.get(b).is_some_and(|x| x.target.characters as usize >= count);
+            let fits = resources
+                .batches
+                .get(b)
+                .is_some_and(|x| x.target.characters as usize >= count);
             if !fits {
                 let capacity = count.next_power_of_two().min(limit) as u32;
-                let batch = SkinBatch::new(&self.ctx, bones, resources.textures.vertices, capacity, &resources.indices)?;
+                let batch = SkinBatch::new(
+                    &self.ctx,
+                    bones,
+                    resources.textures.vertices,
+                    capacity,
+                    &resources.indices,
+                )?;
                 if b < resources.batches.len() {
                     resources.batches[b] = batch;
                 } else {
@@ -223,10 +252,20 @@ impl CrowdRenderer {
             stats.skinned += ids.len();
             stats.triangles += ids.len() * self.lods[lod].triangles;
             match method {
-                Method::TwoPass => self.two_pass(lod, scene, &shading, &matrices, ids.len(), timing, &mut stats)?,
+                Method::TwoPass => self.two_pass(
+                    lod,
+                    scene,
+                    &shading,
+                    &matrices,
+                    ids.len(),
+                    timing,
+                    &mut stats,
+                )?,
                 Method::VertexShader => {
                     let vs = &self.lods[lod].vertex_shader;
-                    stats.vertex_shader_ms += timed(&self.ctx, timing, || vs.draw(scene, &shading, &matrices, None))?;
+                    stats.vertex_shader_ms += timed(&self.ctx, timing, || {
+                        vs.draw(scene, &shading, &matrices, None)
+                    })?;
                 }
             }
         }
@@ -261,14 +300,22 @@ impl CrowdRenderer {
             let first = b * limit;
             let count = (n - first).min(limit);
             let started = Instant::now();
-            batch.bones.upload(&matrices[first * bones..(first + count) * bones])?;
+            batch
+                .bones
+                .upload(&matrices[first * bones..(first + count) * bones])?;
             stats.upload_ms += started.elapsed().as_secs_f64() * 1e3;
             stats.pass1_ms += timed(&self.ctx, timing, || {
-                self.pass1.run(&batch.target, &resources.textures, &batch.bones, count as u32)
+                self.pass1.run(
+                    &batch.target,
+                    &resources.textures,
+                    &batch.bones,
+                    count as u32,
+                )
             })?;
             stats.copy_ms += timed(&self.ctx, timing, || batch.vbo.copy_from(&batch.target))?;
             stats.pass2_ms += timed(&self.ctx, timing, || {
-                self.pass2.draw(scene, shading, &batch.arrays, count, resources.index_count)
+                self.pass2
+                    .draw(scene, shading, &batch.arrays, count, resources.index_count)
             })?;
         }
         Ok(())
@@ -276,30 +323,42 @@ impl CrowdRenderer {
 
     /// Runs pass 1 and the copy for characters `ids` of LOD `lod` and reads back the VBO
     /// (tests: the skinned vertices of each character, positions and normals).
-    #[allow(clippy::type_complexity)]
     pub fn skin_to_vbo(
         &mut self,
         lod: usize,
         instances: &Instances,
         ids: &[usize],
-    ) -> Result<Vec<(Vec<[f32; 4]>, Vec<[f32; 4]>)>, GlError> {
+    ) -> Result<Vec<SkinnedColumn>, GlError> {
         let limit = self.batch_limit();
         if ids.len() > limit {
-            return Err(GlError::Invalid(format!("skin_to_vbo takes at most {limit} characters")));
+            return Err(GlError::Invalid(format!(
+                "skin_to_vbo takes at most {limit} characters"
+            )));
         }
         let matrices = self.bone_matrices(instances, ids);
         self.reserve(lod, ids.len())?;
         let resources = &self.lods[lod];
         let batch = &resources.batches[0];
         batch.bones.upload(&matrices)?;
-        self.pass1.run(&batch.target, &resources.textures, &batch.bones, ids.len() as u32)?;
+        self.pass1.run(
+            &batch.target,
+            &resources.textures,
+            &batch.bones,
+            ids.len() as u32,
+        )?;
         batch.vbo.copy_from(&batch.target)?;
-        (0..ids.len() as u32).map(|c| batch.vbo.read_character(c)).collect()
+        (0..ids.len() as u32)
+            .map(|c| batch.vbo.read_character(c))
+            .collect()
     }
 }
 
 /// Runs `work`, inside a GL timer query when `timing` (returns its milliseconds, else 0).
-fn timed(ctx: &Context, timing: bool, work: impl FnOnce() -> Result<(), GlError>) -> Result<f64, GlError> {
+fn timed(
+    ctx: &Context,
+    timing: bool,
+    work: impl FnOnce() -> Result<(), GlError>,
+) -> Result<f64, GlError> {
     if timing {
         Ok(query::time_gpu(ctx, work)?.1)
     } else {

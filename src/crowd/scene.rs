@@ -46,7 +46,8 @@ pub fn table1_scene(kind: ModelKind, n: usize, aspect: f32, seed: u64) -> Scene 
     let crowd = Crowd::new(n, spacing, pace, seed);
     let half = crowd.params.bounds.1.x;
     let fov_y = 45f32.to_radians();
-    let field_radius = half * std::f32::consts::SQRT_2 + 2.5;
+    // The field's corners plus most of a character beyond them.
+    let field_radius = half * std::f32::consts::SQRT_2 + 0.6 * spacing;
     let distance = field_radius / (0.5 * fov_y.min(fov_y * aspect)).sin();
     let target = Vec3::new(0.0, 0.8, 0.0);
     let eye = target + Vec3::new(0.3, 0.7, -1.0).normalize() * distance;

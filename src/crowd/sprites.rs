@@ -38,7 +38,10 @@ const INSTANCE_FLOATS: usize = 6;
 pub fn view_column(heading: f64, to_eye: DVec3) -> u32 {
     let towards_eye = to_eye.x.atan2(to_eye.z);
     let step = std::f64::consts::TAU / VIEWS as f64;
-    ((heading - towards_eye) / step).round().rem_euclid(VIEWS as f64) as u32 % VIEWS
+    ((heading - towards_eye) / step)
+        .round()
+        .rem_euclid(VIEWS as f64) as u32
+        % VIEWS
 }
 
 /// Atlas row for animation phase `phase` (cycles).
@@ -58,7 +61,12 @@ impl Sprites {
         let (w, h) = (VIEWS * TILE, FRAMES * TILE);
         let colour_texture = Texture::new_2d(ctx, w, h, TextureFormat::Rgba8)?;
         let depth = Texture::new_2d(ctx, w, h, TextureFormat::Depth32F)?;
-        let atlas = Framebuffer::new(ctx, "crowd impostor atlas", &[&colour_texture], Some(&depth))?;
+        let atlas = Framebuffer::new(
+            ctx,
+            "crowd impostor atlas",
+            &[&colour_texture],
+            Some(&depth),
+        )?;
         atlas.clear_colors([0.0; 4])?;
         atlas.clear_depth_stencil(1.0, 0)?;
         let c = model.bound_centre.as_dvec3();

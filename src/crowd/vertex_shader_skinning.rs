@@ -13,8 +13,8 @@ use crate::shader;
 
 use super::bone_textures::matrix_row;
 use super::pass2_draw::{scene_state, Shading};
-use super::vertex_textures;
 use super::validate::SkinnedMesh;
+use super::vertex_textures;
 
 /// vec4 uniforms left for everything but the bone rows (the view-projection matrix and
 /// what the driver reserves).
@@ -36,7 +36,12 @@ pub struct VertexShaderSkinning {
 }
 
 impl VertexShaderSkinning {
-    pub fn new(ctx: &Context, mesh: &SkinnedMesh, indices: &Buffer, bones: u32) -> Result<Self, GlError> {
+    pub fn new(
+        ctx: &Context,
+        mesh: &SkinnedMesh,
+        indices: &Buffer,
+        bones: u32,
+    ) -> Result<Self, GlError> {
         let batch = batch_size(bones, ctx.info().limits.max_vertex_uniform_components);
         let defines = format!("#define BONES {bones}\n#define BATCH {batch}\n");
         let header = ShaderSource {
@@ -50,9 +55,14 @@ impl VertexShaderSkinning {
         )?;
         let texels = vertex_textures::pack(mesh);
         let mut vertices = VertexArray::new(ctx)?;
-        for (location, data) in [texels.position, texels.normal, texels.bone_index, texels.bone_weight]
-            .iter()
-            .enumerate()
+        for (location, data) in [
+            texels.position,
+            texels.normal,
+            texels.bone_index,
+            texels.bone_weight,
+        ]
+        .iter()
+        .enumerate()
         {
             let buffer = Buffer::from_slice(ctx, data, BufferUsage::Static)?;
             vertices.float_attribute(location as u32, &buffer, 4, 16, 0, 0)?;
@@ -96,7 +106,13 @@ impl VertexShaderSkinning {
             }
             let characters = chunk.len() / self.bones as usize;
             pass.uniform("u_bone_rows", &rows[..]);
-            pass.draw_elements_instanced(&self.vertices, Primitive::Triangles, 0, self.index_count, characters)?;
+            pass.draw_elements_instanced(
+                &self.vertices,
+                Primitive::Triangles,
+                0,
+                self.index_count,
+                characters,
+            )?;
         }
         Ok(())
     }
