@@ -31,6 +31,7 @@ fn lods_have_the_papers_polygon_counts() {
             "{:?} vertex counts {m:?}",
             model.kind
         );
+        eprintln!("{:?}: vertices per LOD {m:?}", model.kind);
     }
 }
 

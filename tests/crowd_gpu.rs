@@ -47,22 +47,29 @@ fn pass1_vbo_matches_cpu_linear_blend_skinning_in_f64() {
     for kind in ModelKind::ALL {
         let model = CharacterModel::build(kind).unwrap();
         let mut renderer = CrowdRenderer::new(&ctx, model.clone()).unwrap();
-        let (models, phases) = scattered(7);
+        let (models, phases) = scattered(300);
         let instances = Instances {
             models: &models,
             phases: &phases,
         };
-        for lod in [0, 2] {
-            // Not every character, and out of order: column c holds character ids[c].
-            let ids = [6, 0, 3, 5, 1];
+        // A few characters, out of order (slot s holds character ids[s]), at two LODs;
+        // then 300 characters, which fill three blocks of 128-character rows.
+        let many: Vec<usize> = (0..300).rev().collect();
+        for (lod, ids, checked) in [
+            (0, vec![6, 0, 3, 5, 1], vec![0, 1, 2, 3, 4]),
+            (2, vec![6, 0, 3, 5, 1], vec![0, 1, 2, 3, 4]),
+            (2, many, vec![0, 1, 127, 128, 200, 255, 256, 299]),
+        ] {
             let gpu = renderer.skin_to_vbo(lod, &instances, &ids).unwrap();
+            assert_eq!(gpu.len(), ids.len());
             let mesh = &model.lods[lod];
             let mut worst: f64 = 0.0;
-            for (column, &id) in ids.iter().enumerate() {
+            for &slot in &checked {
+                let id = ids[slot];
                 let pose = model.clip.sample(&model.skeleton, phases[id]);
                 let bones = model.skeleton.skinning_matrices(&pose, models[id]);
                 let cpu = cpu_skinning::skin(mesh, &bones);
-                let (positions, normals) = &gpu[column];
+                let (positions, normals) = &gpu[slot];
                 assert_eq!(positions.len(), mesh.vertex_count());
                 for v in 0..mesh.vertex_count() {
                     let p = positions[v];
@@ -71,17 +78,23 @@ fn pass1_vbo_matches_cpu_linear_blend_skinning_in_f64() {
                         .abs()
                         .max_element();
                     let tol = tolerance(q.abs().max_element());
-                    assert!(err <= tol, "{kind:?} LOD {lod} character {id} vertex {v}: {p:?} vs {q} (err {err:e} > {tol:e})");
+                    assert!(
+                        err <= tol,
+                        "{kind:?} LOD {lod} character {id} vertex {v}: {p:?} vs {q} (err {err:e} > {tol:e})"
+                    );
                     assert_eq!(p[3], 1.0);
                     worst = worst.max(err / tol);
                     let n = normals[v];
                     let m = cpu.normals[v];
                     let nerr = (DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64) - m).length();
-                    // Normals are unit vectors: a few ulp after the blend and normalize.
+                    // Unit normals: a few ulp after the blend and the normalisation.
                     assert!(nerr < 1e-5, "{kind:?} LOD {lod} normal {v}: {n:?} vs {m}");
                 }
             }
-            eprintln!("{kind:?} LOD {lod}: worst error {worst:.3} of the tolerance");
+            eprintln!(
+                "{kind:?} LOD {lod}, {} characters: worst error {worst:.3} of the tolerance",
+                ids.len()
+            );
         }
     }
 }

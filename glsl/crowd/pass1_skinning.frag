@@ -1,8 +1,10 @@
 #version 330 core
 // Pass 1 of Kang & Han 2006 (section 2, Fig. 1-2): linear blend skinning in a pixel shader.
-// The render target holds n characters x m vertices: column c is a character, row v a
+// The render target holds n characters x m vertices: a column is a character, a row a
 // vertex index, so every fragment of a row fetches the same vertex texels (cached after
-// the first character) and only the bone matrices differ along the row.
+// the first character) and only the bone matrices differ along the row. Rows hold at most
+// u_row_characters characters (the vertex buffer's stride limit, see render_to_vbo.rs);
+// further characters continue in another block of m rows below.
 // Output 0: the skinned position (world coordinates, w = 1); output 1: the skinned normal.
 
 uniform sampler1D u_position;    // m texels: bind-pose position, w = 1
@@ -13,13 +15,16 @@ uniform sampler1D u_bone_weight; // m texels: their weights, summing to one
 uniform sampler2D u_row0;
 uniform sampler2D u_row1;
 uniform sampler2D u_row2;
+uniform int u_vertices;       // m
+uniform int u_row_characters; // characters per row
 
 layout(location = 0) out vec4 o_position;
 layout(location = 1) out vec4 o_normal;
 
 void main() {
-    int c = int(gl_FragCoord.x); // character
-    int v = int(gl_FragCoord.y); // vertex index
+    int block = int(gl_FragCoord.y) / u_vertices;
+    int v = int(gl_FragCoord.y) - block * u_vertices;            // vertex index
+    int c = block * u_row_characters + int(gl_FragCoord.x);      // character
     vec4 p = texelFetch(u_position, v, 0);
     vec3 n = texelFetch(u_normal, v, 0).xyz;
     vec4 index = texelFetch(u_bone_index, v, 0);

@@ -13,7 +13,7 @@ use crate::gl::{query, Buffer, BufferUsage, Context, Framebuffer, GlError};
 use super::bone_textures::BoneTextures;
 use super::character::{CharacterModel, ModelKind};
 use super::culling::{Camera, FramePlan};
-use super::pass1_skinning::{Pass1, SkinningTarget};
+use super::pass1_skinning::{self, Pass1, SkinningTarget};
 use super::pass2_draw::{CharacterArrays, Pass2, Shading};
 use super::render_to_vbo::{SkinnedColumn, SkinnedVbo};
 use super::sprites::Sprites;
@@ -80,11 +80,12 @@ impl SkinBatch {
         capacity: u32,
         indices: &Buffer,
     ) -> Result<Self, GlError> {
-        let vbo = SkinnedVbo::new(ctx, capacity, vertices)?;
+        let target = SkinningTarget::new(ctx, capacity, vertices)?;
+        let vbo = SkinnedVbo::new(ctx, &target)?;
         Ok(Self {
             bones: BoneTextures::new(ctx, bones, capacity)?,
-            target: SkinningTarget::new(ctx, capacity, vertices)?,
             arrays: CharacterArrays::new(ctx, &vbo, indices)?,
+            target,
             vbo,
         })
     }
@@ -177,9 +178,10 @@ impl CrowdRenderer {
             .map(|b| b.target.framebuffer.color(0))
     }
 
-    /// Most characters one pass-1 draw can hold (the render target's width limit).
-    fn batch_limit(&self) -> usize {
-        self.ctx.info().limits.max_texture_size as usize
+    /// Most characters one pass-1 draw can hold for LOD `lod` (the render target's size
+    /// limit).
+    fn batch_limit(&self, lod: usize) -> usize {
+        pass1_skinning::max_characters(&self.ctx, self.lods[lod].textures.vertices) as usize
     }
 
     /// Skinning matrices of the characters `ids`, `bones` per character, in order.
@@ -196,7 +198,7 @@ impl CrowdRenderer {
     /// Makes sure LOD `lod` has pass-1 batches for `n` characters (capacity grows in powers
     /// of two so a varying count does not rebuild every frame).
     fn reserve(&mut self, lod: usize, n: usize) -> Result<(), GlError> {
-        let limit = self.batch_limit();
+        let limit = self.batch_limit(lod);
         let bones = self.model.bone_count() as u32;
         let resources = &mut self.lods[lod];
         let needed = n.div_ceil(limit);
@@ -293,7 +295,7 @@ impl CrowdRenderer {
         stats: &mut FrameStats,
     ) -> Result<(), GlError> {
         self.reserve(lod, n)?;
-        let limit = self.batch_limit();
+        let limit = self.batch_limit(lod);
         let bones = self.model.bone_count();
         let resources = &self.lods[lod];
         for (b, batch) in resources.batches.iter().enumerate().take(n.div_ceil(limit)) {
@@ -312,7 +314,9 @@ impl CrowdRenderer {
                     count as u32,
                 )
             })?;
-            stats.copy_ms += timed(&self.ctx, timing, || batch.vbo.copy_from(&batch.target))?;
+            stats.copy_ms += timed(&self.ctx, timing, || {
+                batch.vbo.copy_from(&batch.target, count as u32)
+            })?;
             stats.pass2_ms += timed(&self.ctx, timing, || {
                 self.pass2
                     .draw(scene, shading, &batch.arrays, count, resources.index_count)
@@ -329,7 +333,7 @@ impl CrowdRenderer {
         instances: &Instances,
         ids: &[usize],
     ) -> Result<Vec<SkinnedColumn>, GlError> {
-        let limit = self.batch_limit();
+        let limit = self.batch_limit(lod);
         if ids.len() > limit {
             return Err(GlError::Invalid(format!(
                 "skin_to_vbo takes at most {limit} characters"
@@ -346,10 +350,11 @@ impl CrowdRenderer {
             &batch.bones,
             ids.len() as u32,
         )?;
-        batch.vbo.copy_from(&batch.target)?;
-        (0..ids.len() as u32)
-            .map(|c| batch.vbo.read_character(c))
-            .collect()
+        batch.vbo.copy_from(&batch.target, ids.len() as u32)?;
+        let all: Vec<[f32; 4]> = batch.vbo.buffer.read()?;
+        Ok((0..ids.len() as u32)
+            .map(|c| batch.vbo.column_of(&all, c))
+            .collect())
     }
 }
 
