@@ -129,19 +129,21 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
         p.skinned, s.per_lod[0], s.per_lod[1], s.per_lod[2], p.sprites, s.culled, p.triangles
     );
     println!("bone matrices   {:.2} ms (CPU)", p.bones_ms);
+    let (g, w) = (&p.gl_timer, &p.wall);
+    let line = |name: &str, gl: f64, wall: f64| {
+        println!("{name:<15} {wall:.2} ms wall clock with glFinish, {gl:.2} ms GL timer query");
+    };
     if s.method == Method::TwoPass.name() {
         println!("bone upload     {:.2} ms (CPU)", p.upload_ms);
-        println!("pass 1 skinning {:.2} ms (GL timer)", p.pass1_ms);
-        println!("render-to-VBO   {:.2} ms (GL timer)", p.copy_ms);
-        println!("pass 2 drawing  {:.2} ms (GL timer)", p.pass2_ms);
+        line("pass 1 skinning", g.pass1, w.pass1);
+        line("render-to-VBO", g.copy, w.copy);
+        line("pass 2 drawing", g.pass2, w.pass2);
     } else {
-        println!(
-            "VS skinning     {:.2} ms (GL timer, {batch} characters per draw)",
-            p.vertex_shader_ms
-        );
+        line("VS skinning", g.vertex_shader, w.vertex_shader);
+        println!("                ({batch} characters per draw call)");
     }
     if p.sprites > 0 {
-        println!("sprites         {:.2} ms (GL timer)", p.sprites_ms);
+        line("sprites", g.sprites, w.sprites);
     }
     if let Some(path) = png {
         println!("snapshot        {}", path.display());

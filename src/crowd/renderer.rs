@@ -1,7 +1,10 @@
 //! One frame of crowd rendering, either method: bone matrices on the CPU (both methods),
 //! then pass 1 + render-to-VBO + pass 2 per LOD ("two-pass"), or vertex-shader skinning
-//! ("vertex-shader"); sprites for the far field. Each stage can be timed with GL timer
-//! queries.
+//! ("vertex-shader"); sprites for the far field. Each stage can be timed twice: with a GL
+//! timer query, and by wall clock between `glFinish` calls. Both are kept because a
+//! software renderer such as llvmpipe runs vertex shaders on the CPU while the draw call
+//! is made, outside the span its timer queries measure (they then read ~0 for the
+//! vertex-shader method), while on a GPU the timer query is the precise one.
 
 use std::time::Instant;
 
@@ -46,22 +49,62 @@ pub struct Instances<'a> {
     pub phases: &'a [f64],
 }
 
-/// What one frame cost. GPU times (ms) are filled only when timing was asked for.
+/// Times of the GPU stages of a frame, in milliseconds.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct PassTimes {
+    pub pass1: f64,
+    pub copy: f64,
+    pub pass2: f64,
+    pub vertex_shader: f64,
+    pub sprites: f64,
+}
+
+/// A GPU stage of a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    Pass1,
+    Copy,
+    Pass2,
+    VertexShader,
+    Sprites,
+}
+
+impl PassTimes {
+    fn add(&mut self, stage: Stage, ms: f64) {
+        let slot = match stage {
+            Stage::Pass1 => &mut self.pass1,
+            Stage::Copy => &mut self.copy,
+            Stage::Pass2 => &mut self.pass2,
+            Stage::VertexShader => &mut self.vertex_shader,
+            Stage::Sprites => &mut self.sprites,
+        };
+        *slot += ms;
+    }
+}
+
+/// What one frame cost. Stage times are filled only when timing was asked for.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct FrameStats {
     /// CPU: animation sampling and bone matrices (both methods).
     pub bones_ms: f64,
-    /// Upload of the bone row textures (two-pass) or uniforms (inside `vertex_shader_ms`).
+    /// CPU: upload of the bone row textures (two-pass; the VS method's uniform uploads are
+    /// part of its stage).
     pub upload_ms: f64,
-    pub pass1_ms: f64,
-    pub copy_ms: f64,
-    pub pass2_ms: f64,
-    pub vertex_shader_ms: f64,
-    pub sprites_ms: f64,
+    /// GL timer queries around each stage.
+    pub gl_timer: PassTimes,
+    /// Wall clock around each stage, with `glFinish` before and after.
+    pub wall: PassTimes,
     /// Characters drawn with a skinned mesh, and with a sprite.
     pub skinned: usize,
     pub sprites: usize,
     pub triangles: usize,
+}
+
+impl FrameStats {
+    fn record(&mut self, stage: Stage, (gl, wall): (f64, f64)) {
+        self.gl_timer.add(stage, gl);
+        self.wall.add(stage, wall);
+    }
 }
 
 /// Pass-1 resources for up to `capacity` characters of one LOD.
@@ -265,9 +308,12 @@ impl CrowdRenderer {
                 )?,
                 Method::VertexShader => {
                     let vs = &self.lods[lod].vertex_shader;
-                    stats.vertex_shader_ms += timed(&self.ctx, timing, || {
-                        vs.draw(scene, &shading, &matrices, None)
-                    })?;
+                    stats.record(
+                        Stage::VertexShader,
+                        timed(&self.ctx, timing, || {
+                            vs.draw(scene, &shading, &matrices, None)
+                        })?,
+                    );
                 }
             }
         }
@@ -275,9 +321,12 @@ impl CrowdRenderer {
             stats.sprites = plan.sprites.len();
             let sprites = &self.sprites;
             let model = &self.model;
-            stats.sprites_ms += timed(&self.ctx, timing, || {
-                sprites.draw(scene, camera, model, instances, &plan.sprites)
-            })?;
+            stats.record(
+                Stage::Sprites,
+                timed(&self.ctx, timing, || {
+                    sprites.draw(scene, camera, model, instances, &plan.sprites)
+                })?,
+            );
         }
         Ok(stats)
     }
@@ -306,21 +355,30 @@ impl CrowdRenderer {
                 .bones
                 .upload(&matrices[first * bones..(first + count) * bones])?;
             stats.upload_ms += started.elapsed().as_secs_f64() * 1e3;
-            stats.pass1_ms += timed(&self.ctx, timing, || {
-                self.pass1.run(
-                    &batch.target,
-                    &resources.textures,
-                    &batch.bones,
-                    count as u32,
-                )
-            })?;
-            stats.copy_ms += timed(&self.ctx, timing, || {
-                batch.vbo.copy_from(&batch.target, count as u32)
-            })?;
-            stats.pass2_ms += timed(&self.ctx, timing, || {
-                self.pass2
-                    .draw(scene, shading, &batch.arrays, count, resources.index_count)
-            })?;
+            stats.record(
+                Stage::Pass1,
+                timed(&self.ctx, timing, || {
+                    self.pass1.run(
+                        &batch.target,
+                        &resources.textures,
+                        &batch.bones,
+                        count as u32,
+                    )
+                })?,
+            );
+            stats.record(
+                Stage::Copy,
+                timed(&self.ctx, timing, || {
+                    batch.vbo.copy_from(&batch.target, count as u32)
+                })?,
+            );
+            stats.record(
+                Stage::Pass2,
+                timed(&self.ctx, timing, || {
+                    self.pass2
+                        .draw(scene, shading, &batch.arrays, count, resources.index_count)
+                })?,
+            );
         }
         Ok(())
     }
@@ -358,15 +416,22 @@ impl CrowdRenderer {
     }
 }
 
-/// Runs `work`, inside a GL timer query when `timing` (returns its milliseconds, else 0).
+/// Runs `work`; when `timing`, inside a GL timer query and between `glFinish` calls, and
+/// returns (timer query ms, wall-clock ms), else (0, 0).
 fn timed(
     ctx: &Context,
     timing: bool,
     work: impl FnOnce() -> Result<(), GlError>,
-) -> Result<f64, GlError> {
-    if timing {
-        Ok(query::time_gpu(ctx, work)?.1)
-    } else {
-        work().map(|()| 0.0)
+) -> Result<(f64, f64), GlError> {
+    if !timing {
+        return work().map(|()| (0.0, 0.0));
     }
+    ctx.finish_all();
+    let started = Instant::now();
+    let ((), gl_ms) = query::time_gpu(ctx, || {
+        work()?;
+        ctx.finish_all();
+        Ok(())
+    })?;
+    Ok((gl_ms, started.elapsed().as_secs_f64() * 1e3))
 }
