@@ -39,6 +39,10 @@ pub struct CrowdArgs {
     /// Write the last frame here as PNG.
     #[arg(long)]
     pub png: Option<PathBuf>,
+    /// Characters per draw call of the vertex-shader method (default: as many as the
+    /// uniforms hold; 1 is how the paper's hardware generation ran it).
+    #[arg(long)]
+    pub vs_batch: Option<u32>,
     /// Seed of the crowd's placement and wandering.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -71,6 +75,12 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     }
     let model = CharacterModel::build(args.model).context("building the character model")?;
     let mut renderer = CrowdRenderer::new(ctx, model).context("setting up the crowd renderer")?;
+    if let Some(batch) = args.vs_batch {
+        if batch == 0 {
+            bail!("--vs-batch must be at least 1");
+        }
+        renderer.set_vertex_shader_batch(batch);
+    }
     let target = scene::scene_target(ctx, w, h)?;
     let aspect = w as f32 / h as f32;
     let mut scene = if args.lod {

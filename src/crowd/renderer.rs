@@ -208,6 +208,14 @@ impl CrowdRenderer {
         self.lods[0].vertex_shader.batch()
     }
 
+    /// Limits the vertex-shader baseline to `batch` characters per draw call (see
+    /// [`VertexShaderSkinning::set_batch`]); `u32::MAX` restores the most that fit.
+    pub fn set_vertex_shader_batch(&mut self, batch: u32) {
+        for lod in &mut self.lods {
+            lod.vertex_shader.set_batch(batch);
+        }
+    }
+
     /// The impostor atlas (for figures).
     pub fn sprites(&self) -> &Sprites {
         &self.sprites

@@ -102,10 +102,13 @@ pub const SKY: [f32; 4] = [0.62, 0.72, 0.85, 1.0];
 pub struct RunStats {
     pub model: String,
     pub method: String,
+    /// Characters per draw call of the vertex-shader method.
+    pub vertex_shader_batch: u32,
     pub characters: usize,
     pub lod_and_culling: bool,
     pub frames: usize,
-    /// Wall clock per frame (culling, bone matrices, GPU passes, glFinish).
+    /// Wall clock per frame (culling, bone matrices, GPU passes, glFinish): the median
+    /// over the timed frames, so that a frame slowed by another process does not count.
     pub frame_ms: f64,
     pub fps: f64,
     /// Per-pass breakdown of one frame measured with GL timer queries.
@@ -154,6 +157,16 @@ fn clear(target: &Framebuffer) -> Result<(), GlError> {
     target.clear_depth_stencil(1.0, 0)
 }
 
+/// The median of `values` (the mean of the middle two for an even count).
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    match values.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => values[n / 2],
+        n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
+    }
+}
+
 /// Runs one warm-up frame, `frames` wall-clock-timed frames and one frame with timer
 /// queries. The crowd walks `dt` seconds per frame.
 pub fn run(
@@ -169,23 +182,24 @@ pub fn run(
     clear(target)?;
     render_frame(renderer, target, scene, method, false)?;
     ctx.finish_all();
-    let mut total_ms = 0.0;
+    let mut times_ms = Vec::with_capacity(frames);
     for _ in 0..frames {
         scene.crowd.step(dt, stride);
         let started = Instant::now();
         clear(target)?;
         render_frame(renderer, target, scene, method, false)?;
         ctx.finish_all();
-        total_ms += started.elapsed().as_secs_f64() * 1e3;
+        times_ms.push(started.elapsed().as_secs_f64() * 1e3);
     }
     scene.crowd.step(dt, stride);
     clear(target)?;
     let (passes, plan) = render_frame(renderer, target, scene, method, true)?;
     ctx.finish_all();
-    let frame_ms = total_ms / frames.max(1) as f64;
+    let frame_ms = median(&mut times_ms);
     Ok(RunStats {
         model: renderer.model.kind.name().to_string(),
         method: method.name().to_string(),
+        vertex_shader_batch: renderer.vertex_shader_batch(),
         characters: scene.crowd.agents.len(),
         lod_and_culling: scene.lod.is_some(),
         frames,

@@ -32,6 +32,9 @@ pub struct VertexShaderSkinning {
     vertices: VertexArray,
     index_count: usize,
     bones: u32,
+    /// Characters whose matrices fit the uniform array (its compiled size).
+    capacity: u32,
+    /// Characters per draw call, at most `capacity`.
     batch: u32,
 }
 
@@ -73,6 +76,7 @@ impl VertexShaderSkinning {
             vertices,
             index_count: mesh.triangle_count() * 3,
             bones,
+            capacity: batch,
             batch,
         })
     }
@@ -80,6 +84,13 @@ impl VertexShaderSkinning {
     /// Characters skinned per draw call on this renderer.
     pub fn batch(&self) -> u32 {
         self.batch
+    }
+
+    /// Skins at most `batch` characters per draw call (clamped to 1..=what the uniforms
+    /// hold). One per draw is how the paper's generation of hardware ran this method: a
+    /// few hundred constant registers and no instancing in OpenGL 2.
+    pub fn set_batch(&mut self, batch: u32) {
+        self.batch = batch.clamp(1, self.capacity);
     }
 
     /// Skins and draws characters whose skinning matrices are `matrices` (`bones` each),
