@@ -48,7 +48,10 @@ pub fn table1_scene(kind: ModelKind, n: usize, aspect: f32, seed: u64) -> Scene 
     let fov_y = 45f32.to_radians();
     // The field's corners plus most of a character beyond them.
     let field_radius = half * std::f32::consts::SQRT_2 + 0.6 * spacing;
-    let distance = field_radius / (0.5 * fov_y.min(fov_y * aspect)).sin();
+    let half_fov = (0.5 * fov_y).tan().min((0.5 * fov_y).tan() * aspect);
+    // The sphere around the field is a loose fit for a square seen at a slant: 0.8 of the
+    // distance that fits the sphere still shows (nearly) the whole field.
+    let distance = 0.8 * field_radius / half_fov;
     let target = Vec3::new(0.0, 0.8, 0.0);
     let eye = target + Vec3::new(0.3, 0.7, -1.0).normalize() * distance;
     Scene {
@@ -167,8 +170,25 @@ fn median(values: &mut [f64]) -> f64 {
     }
 }
 
-/// Runs one warm-up frame, `frames` wall-clock-timed frames and one frame with timer
-/// queries. The crowd walks `dt` seconds per frame.
+/// How one measured configuration renders: the method, and for the vertex-shader method
+/// how many characters go in one draw call (`u32::MAX`: as many as the uniforms hold).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Config {
+    pub method: Method,
+    pub vertex_shader_batch: u32,
+}
+
+impl Config {
+    pub fn new(method: Method) -> Self {
+        Self {
+            method,
+            vertex_shader_batch: u32::MAX,
+        }
+    }
+}
+
+/// Runs one warm-up frame, `frames` wall-clock-timed frames and one frame with per-stage
+/// timing. The crowd walks `dt` seconds per frame.
 pub fn run(
     ctx: &Context,
     renderer: &mut CrowdRenderer,
@@ -178,35 +198,71 @@ pub fn run(
     frames: usize,
     dt: f32,
 ) -> Result<RunStats, GlError> {
-    let stride = renderer.model.clip.stride;
-    clear(target)?;
-    render_frame(renderer, target, scene, method, false)?;
-    ctx.finish_all();
-    let mut times_ms = Vec::with_capacity(frames);
-    for _ in 0..frames {
-        scene.crowd.step(dt, stride);
-        let started = Instant::now();
-        clear(target)?;
-        render_frame(renderer, target, scene, method, false)?;
-        ctx.finish_all();
-        times_ms.push(started.elapsed().as_secs_f64() * 1e3);
-    }
-    scene.crowd.step(dt, stride);
-    clear(target)?;
-    let (passes, plan) = render_frame(renderer, target, scene, method, true)?;
-    ctx.finish_all();
-    let frame_ms = median(&mut times_ms);
-    Ok(RunStats {
-        model: renderer.model.kind.name().to_string(),
-        method: method.name().to_string(),
-        vertex_shader_batch: renderer.vertex_shader_batch(),
-        characters: scene.crowd.agents.len(),
-        lod_and_culling: scene.lod.is_some(),
+    let configs = [Config::new(method)];
+    let mut runs = run_side_by_side(
+        ctx,
+        renderer,
+        target,
+        std::slice::from_mut(scene),
+        &configs,
         frames,
-        frame_ms,
-        fps: 1e3 / frame_ms,
-        passes,
-        culled: plan.culled,
-        per_lod: [0, 1, 2].map(|l| plan.lods[l].len()),
-    })
+        dt,
+    )?;
+    Ok(runs.remove(0))
+}
+
+/// Measures several configurations side by side: frame by frame in turn, each on its own
+/// copy of the scene, so that whatever else the machine is doing slows them alike. Each
+/// gets one warm-up frame, `frames` timed frames (median reported) and one frame with
+/// per-stage timing.
+pub fn run_side_by_side(
+    ctx: &Context,
+    renderer: &mut CrowdRenderer,
+    target: &Framebuffer,
+    scenes: &mut [Scene],
+    configs: &[Config],
+    frames: usize,
+    dt: f32,
+) -> Result<Vec<RunStats>, GlError> {
+    assert_eq!(scenes.len(), configs.len(), "one scene per configuration");
+    let stride = renderer.model.clip.stride;
+    let mut times_ms = vec![Vec::with_capacity(frames); configs.len()];
+    let frame = |renderer: &mut CrowdRenderer, scene: &Scene, config: &Config, timing: bool| {
+        renderer.set_vertex_shader_batch(config.vertex_shader_batch);
+        clear(target)?;
+        let result = render_frame(renderer, target, scene, config.method, timing);
+        ctx.finish_all();
+        result
+    };
+    for (scene, config) in scenes.iter().zip(configs) {
+        frame(renderer, scene, config, false)?;
+    }
+    for _ in 0..frames {
+        for ((scene, config), times) in scenes.iter_mut().zip(configs).zip(&mut times_ms) {
+            scene.crowd.step(dt, stride);
+            let started = Instant::now();
+            frame(renderer, scene, config, false)?;
+            times.push(started.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    let mut out = Vec::with_capacity(configs.len());
+    for ((scene, config), times) in scenes.iter_mut().zip(configs).zip(&mut times_ms) {
+        scene.crowd.step(dt, stride);
+        let (passes, plan) = frame(renderer, scene, config, true)?;
+        let frame_ms = median(times);
+        out.push(RunStats {
+            model: renderer.model.kind.name().to_string(),
+            method: config.method.name().to_string(),
+            vertex_shader_batch: renderer.vertex_shader_batch(),
+            characters: scene.crowd.agents.len(),
+            lod_and_culling: scene.lod.is_some(),
+            frames,
+            frame_ms,
+            fps: 1e3 / frame_ms,
+            passes,
+            culled: plan.culled,
+            per_lod: [0, 1, 2].map(|l| plan.lods[l].len()),
+        });
+    }
+    Ok(out)
 }

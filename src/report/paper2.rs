@@ -11,7 +11,7 @@ use anyhow::Context as _;
 use serde_json::json;
 
 use crate::crowd::renderer::{CrowdRenderer, Method};
-use crate::crowd::scene::{self, RunStats};
+use crate::crowd::scene::{self, Config, RunStats};
 use crate::crowd::{sprites, CharacterModel, ModelKind};
 use crate::gl::dump::{self, DumpRange};
 use crate::report::{paper_tables, BenchOptions, Claim, Fidelity, Figure, Section, Table};
@@ -75,7 +75,7 @@ fn frames_for(n: usize, quick: bool) -> usize {
     match (quick, n) {
         (true, _) => 3,
         (false, 0..=64) => 21,
-        (false, 65..=1024) => 7,
+        (false, 65..=1024) => 9,
         _ => 5,
     }
 }
@@ -408,22 +408,26 @@ fn measure(
         let model = CharacterModel::build(kind)?;
         let mut renderer = CrowdRenderer::new(ctx, model)?;
         for &n in counts {
-            for variant in Variant::ALL {
-                bar.set_message(format!("{} x {n}, {}", kind.name(), variant.label()));
-                renderer.set_vertex_shader_batch(variant.batch());
-                let mut scene = scene::table1_scene(kind, n, aspect, 1);
-                let frames = frames_for(n, opts.quick);
-                table1.push(scene::run(
-                    ctx,
-                    &mut renderer,
-                    &target,
-                    &mut scene,
-                    variant.method(),
-                    frames,
-                    1.0 / 30.0,
-                )?);
-                bar.inc(1);
-            }
+            bar.set_message(format!("{} x {n}", kind.name()));
+            let mut scenes: Vec<_> = Variant::ALL
+                .iter()
+                .map(|_| scene::table1_scene(kind, n, aspect, 1))
+                .collect();
+            let configs = Variant::ALL.map(|v| Config {
+                method: v.method(),
+                vertex_shader_batch: v.batch(),
+            });
+            let frames = frames_for(n, opts.quick);
+            table1.extend(scene::run_side_by_side(
+                ctx,
+                &mut renderer,
+                &target,
+                &mut scenes,
+                &configs,
+                frames,
+                1.0 / 30.0,
+            )?);
+            bar.inc(Variant::ALL.len() as u64);
             if kind == ModelKind::Soldier && n == fig3_n {
                 figure(
                     target.color(0),
@@ -457,21 +461,26 @@ fn measure(
         )?;
         for run in lod_runs.iter().filter(|r| r.kind == kind) {
             let n = run.characters / lod_scale;
-            for method in [Method::VertexShader, Method::TwoPass] {
-                bar.set_message(format!("{} x {n} with LOD, {}", kind.name(), method.name()));
-                let mut scene = scene::lod_scene(kind, n, aspect, 1);
-                let frames = if opts.quick { 2 } else { 3 };
-                lod.push(scene::run(
-                    ctx,
-                    &mut renderer,
-                    &target,
-                    &mut scene,
-                    method,
-                    frames,
-                    1.0 / 30.0,
-                )?);
-                bar.inc(1);
-            }
+            bar.set_message(format!("{} x {n} with LOD", kind.name()));
+            let mut scenes = [
+                scene::lod_scene(kind, n, aspect, 1),
+                scene::lod_scene(kind, n, aspect, 1),
+            ];
+            let configs = [
+                Config::new(Method::VertexShader),
+                Config::new(Method::TwoPass),
+            ];
+            let frames = if opts.quick { 2 } else { 5 };
+            lod.extend(scene::run_side_by_side(
+                ctx,
+                &mut renderer,
+                &target,
+                &mut scenes,
+                &configs,
+                frames,
+                1.0 / 30.0,
+            )?);
+            bar.inc(2);
             let number = run.figure.trim_start_matches("Fig. ");
             figure(
                 target.color(0),
