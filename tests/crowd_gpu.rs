@@ -354,3 +354,42 @@ fn crowd_command_reports_json_and_rejects_bad_input() {
         );
     }
 }
+
+#[test]
+fn crowd_bench_quick_reports_table1_beside_the_paper() {
+    let out_dir = std::env::temp_dir().join("classic_gpgpu_crowd_bench_test");
+    let out = classic_gpgpu(&[
+        "crowd-bench",
+        "--quick",
+        "--json",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let section: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(section["id"], "paper2");
+    let table1 = &section["tables"][0];
+    assert_eq!(
+        table1["rows"].as_array().unwrap().len(),
+        3,
+        "quick mode: n = 1, 16, 64"
+    );
+    // The paper's numbers sit beside ours: n = 16, soldier VS paper = 580.
+    assert_eq!(table1["rows"][1][0], "16");
+    assert_eq!(table1["rows"][1][1], "580");
+    let measured: f64 = table1["rows"][1][2].as_str().unwrap().parse().unwrap();
+    assert!(measured > 0.0);
+    assert_eq!(section["claims"].as_array().unwrap().len(), 2);
+    for figure in section["figures"].as_array().unwrap() {
+        let file = out_dir.join(figure["file"].as_str().unwrap());
+        assert!(file.exists(), "{}", file.display());
+    }
+    // Every measured run is in the machine-readable results, with its stage times.
+    let runs = section["results"]["table1"].as_array().unwrap();
+    assert_eq!(runs.len(), 2 * 3 * 3);
+    assert!(runs.iter().all(|r| r["fps"].as_f64().unwrap() > 0.0));
+}

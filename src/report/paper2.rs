@@ -14,6 +14,7 @@ use crate::crowd::renderer::{CrowdRenderer, Method};
 use crate::crowd::scene::{self, Config, RunStats};
 use crate::crowd::{sprites, CharacterModel, ModelKind};
 use crate::gl::dump::{self, DumpRange};
+use crate::report::plot::{Plot, Series};
 use crate::report::{paper_tables, BenchOptions, Claim, Fidelity, Figure, Section, Table};
 
 /// Character counts measured in quick mode (the paper's first three rows).
@@ -325,6 +326,48 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
         ]);
     }
 
+    let mut figures = measured.figures.clone();
+    for (kind, vs_key, tp_key) in models {
+        let paper_series = |key: &str| -> Vec<(f64, f64)> {
+            paper_counts
+                .iter()
+                .filter_map(|&n| paper_fps(key, n).map(|f| (n as f64, f)))
+                .collect()
+        };
+        let here = |v: Variant| -> Vec<(f64, f64)> {
+            counts
+                .iter()
+                .map(|&n| (n as f64, measured.fps(kind, n, v)))
+                .collect()
+        };
+        let plot = Plot {
+            title: format!(
+                "Table 1, {}: frames per second against crowd size",
+                kind.name()
+            ),
+            x_label: "characters".into(),
+            y_label: "frames per second".into(),
+            log_x: true,
+            log_y: true,
+            series: vec![
+                Series::new("VS, paper (GeForce 7800 GTX)", paper_series(vs_key)),
+                Series::new("2-pass, paper (GeForce 7800 GTX)", paper_series(tp_key)),
+                Series::new("VS, here", here(Variant::VertexShader)),
+                Series::new("VS 1/draw, here", here(Variant::VertexShaderSingle)),
+                Series::new("2-pass, here", here(Variant::TwoPass)),
+            ],
+        };
+        let file = format!("table1_{}.png", kind.name());
+        plot.write_png(&opts.out_dir.join(&file))?;
+        figures.push(Figure {
+            file,
+            caption: format!(
+                "Table 1 as a plot, {}: the paper's frame rates and this renderer's ({renderer_name})",
+                kind.name()
+            ),
+        });
+    }
+
     let claims = vec![
         crossover_claim(&counts, &measured, Variant::VertexShader, &renderer_name),
         crossover_claim(
@@ -360,7 +403,7 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
         summary,
         tables: vec![fps_table, ratio_table, pass_table, lod_table],
         claims,
-        figures: measured.figures,
+        figures,
         fidelity: fidelity_rows(),
         results: json!({
             "renderer": renderer_name,
