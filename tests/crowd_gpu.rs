@@ -383,7 +383,7 @@ fn crowd_bench_quick_reports_table1_beside_the_paper() {
     assert_eq!(table1["rows"][1][1], "580");
     let measured: f64 = table1["rows"][1][2].as_str().unwrap().parse().unwrap();
     assert!(measured > 0.0);
-    assert_eq!(section["claims"].as_array().unwrap().len(), 2);
+    assert_eq!(section["claims"].as_array().unwrap().len(), 3);
     for figure in section["figures"].as_array().unwrap() {
         let file = out_dir.join(figure["file"].as_str().unwrap());
         assert!(file.exists(), "{}", file.display());
