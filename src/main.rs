@@ -31,6 +31,10 @@ enum Command {
     /// Regenerate every table and figure of the papers into a report beside the published
     /// numbers (report/index.html, report/results.json, PNG figures).
     Reproduce(report::reproduce::ReproduceArgs),
+    /// Paper 2: render a skinned crowd off-screen (two-pass or vertex-shader skinning).
+    Crowd(classic_gpgpu::crowd::cli::CrowdArgs),
+    /// Paper 2: Table 1 and the LOD runs beside the paper's numbers.
+    CrowdBench(classic_gpgpu::crowd::cli::BenchArgs),
 }
 
 /// What every command gets.
@@ -79,6 +83,12 @@ fn main() -> ExitCode {
         Command::Info => info(&global),
         Command::Mesh(command) => classic_gpgpu::mesh::cli::run(&command, global.json),
         Command::Reproduce(args) => reproduce(&global, &args),
+        Command::Crowd(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::crowd::cli::run(&a, &c, global.json)),
+        Command::CrowdBench(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::crowd::cli::run_bench(&a, &c, global.json)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
