@@ -74,6 +74,8 @@ pub struct Limits {
     pub max_vertex_texture_image_units: u32,
     pub max_vertex_uniform_components: u32,
     pub max_fragment_uniform_components: u32,
+    /// The largest vertex attribute stride in bytes (GL 4.4; 2048, the 4.4 minimum, before).
+    pub max_vertex_attrib_stride: u32,
     pub stencil_bits: u32,
     pub samples_passed_counter_bits: u32,
     pub time_elapsed_counter_bits: u32,
@@ -380,6 +382,11 @@ unsafe fn read_info(
         max_vertex_texture_image_units: int(glow::MAX_VERTEX_TEXTURE_IMAGE_UNITS),
         max_vertex_uniform_components: int(glow::MAX_VERTEX_UNIFORM_COMPONENTS),
         max_fragment_uniform_components: int(glow::MAX_FRAGMENT_UNIFORM_COMPONENTS),
+        max_vertex_attrib_stride: if gl_version >= (4, 4) {
+            int(glow::MAX_VERTEX_ATTRIB_STRIDE)
+        } else {
+            2048
+        },
         stencil_bits: stencil_bits(gl),
         samples_passed_counter_bits: counter_bits(glow::SAMPLES_PASSED),
         time_elapsed_counter_bits: counter_bits(glow::TIME_ELAPSED),
