@@ -1,1 +1,21 @@
-//! Paper 3: Oh & Jung, "GPU implementation of neural networks", Pattern Recognition 37(6), 2004.
+//! Paper 3: Oh & Jung, "GPU implementation of neural networks", Pattern Recognition 37(6),
+//! 2004: a multilayer perceptron evaluated as render passes, applied to text detection.
+//!
+//! Each layer computes `R = sigmoid(W x X + B)` (section 3, eq. 1-3): W (M x N) holds the
+//! weights into the M output nodes, X (N x L) holds L accumulated input vectors as columns,
+//! B repeats the bias b_i along row i. The code keeps this notation (W, X, B, M, N, L, R).
+//! On the CPU a batch is stored L x N, row j being the paper's column X_j.
+//!
+//! One file per step: [`network`] (the network and input files), [`cpu`] (the CPU baselines
+//! and references), [`window`] (the 11 x 11 input windows of section 4), [`synth`]
+//! (synthetic training images), [`train`] (backpropagation), [`detect`] (classifying every
+//! pixel of an image).
+
+pub mod cpu;
+pub mod detect;
+pub mod network;
+pub mod synth;
+pub mod train;
+pub mod window;
+
+pub use network::{Activation, FormatError, Layer, Network};
