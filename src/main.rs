@@ -3,8 +3,19 @@ use clap::Parser;
 /// The classic GPGPU papers of a 2007 tutorial, reproduced on a headless OpenGL context.
 #[derive(Parser)]
 #[command(version, about)]
-struct Cli {}
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
 
-fn main() {
-    let _ = Cli::parse();
+#[derive(clap::Subcommand)]
+enum Command {
+    /// Paper 3 (Oh & Jung 2004): a multilayer perceptron as render passes, text detection.
+    Mlp(classic_gpgpu::mlp::cli::MlpArgs),
+}
+
+fn main() -> anyhow::Result<()> {
+    match Cli::parse().command {
+        Command::Mlp(args) => classic_gpgpu::mlp::cli::run(args),
+    }
 }

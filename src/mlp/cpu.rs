@@ -189,7 +189,9 @@ mod tests {
 
     #[test]
     fn plain_and_optimised_agree_within_the_bound() {
-        let w = Array2::from_shape_fn((7, 33), |(i, k)| ((i * 31 + k * 17) % 13) as f32 / 6.5 - 1.0);
+        let w = Array2::from_shape_fn((7, 33), |(i, k)| {
+            ((i * 31 + k * 17) % 13) as f32 / 6.5 - 1.0
+        });
         let net = Network::new(vec![Layer {
             weights: w,
             bias: Array1::from_shape_fn(7, |i| i as f32 / 7.0),

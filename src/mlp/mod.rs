@@ -11,6 +11,7 @@
 //! (synthetic training images), [`train`] (backpropagation), [`detect`] (classifying every
 //! pixel of an image).
 
+pub mod cli;
 pub mod cpu;
 pub mod detect;
 pub mod network;

@@ -235,11 +235,7 @@ fn check_layer(l: usize, layer: &Layer) -> Result<(), FormatError> {
             expected: layer.outputs(),
         });
     }
-    if let Some(((i, j), &value)) = layer
-        .weights
-        .indexed_iter()
-        .find(|(_, v)| !v.is_finite())
-    {
+    if let Some(((i, j), &value)) = layer.weights.indexed_iter().find(|(_, v)| !v.is_finite()) {
         return Err(FormatError::NonFinite {
             layer: l,
             what: format!("weights[{i}][{j}]"),
@@ -345,10 +341,12 @@ mod tests {
 
     #[test]
     fn ragged_rows_are_named() {
-        let e = error_of(
-            r#"{"layers":[{"weights":[[1,2],[3]],"bias":[0,0],"activation":"sigmoid"}]}"#,
+        let e =
+            error_of(r#"{"layers":[{"weights":[[1,2],[3]],"bias":[0,0],"activation":"sigmoid"}]}"#);
+        assert!(
+            e.contains("layer 0") && e.contains("row 1 has 1 values"),
+            "{e}"
         );
-        assert!(e.contains("layer 0") && e.contains("row 1 has 1 values"), "{e}");
     }
 
     #[test]
@@ -357,7 +355,10 @@ mod tests {
             r#"{"layers":[{"weights":[[1,2],[3,4]],"bias":[0,0],"activation":"sigmoid"},
                           {"weights":[[1,2,3]],"bias":[0],"activation":"sigmoid"}]}"#,
         );
-        assert!(e.contains("layer 1 takes 3 inputs") && e.contains("2 outputs"), "{e}");
+        assert!(
+            e.contains("layer 1 takes 3 inputs") && e.contains("2 outputs"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -369,7 +370,10 @@ mod tests {
     #[test]
     fn unknown_activation_lists_the_known_ones() {
         let e = error_of(r#"{"layers":[{"weights":[[1]],"bias":[0],"activation":"relu"}]}"#);
-        assert!(e.contains("relu") && e.contains("sigmoid") && e.contains("identity"), "{e}");
+        assert!(
+            e.contains("relu") && e.contains("sigmoid") && e.contains("identity"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -395,7 +399,10 @@ mod tests {
         assert_eq!(x[[1, 0]], 4.0);
         let e = parse_inputs("[[1,2,3],[4,5]]", 3).unwrap_err().to_string();
         assert!(e.contains("input vector 1 has 2 values"), "{e}");
-        assert!(parse_inputs("[]", 3).unwrap_err().to_string().contains("no input"));
+        assert!(parse_inputs("[]", 3)
+            .unwrap_err()
+            .to_string()
+            .contains("no input"));
         assert!(parse_inputs("[[1e40,0,0]]", 3).is_err());
     }
 }

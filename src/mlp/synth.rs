@@ -135,7 +135,7 @@ fn draw_text_line(rng: &mut impl Rng, canvas: &mut [f32], text: &mut [bool], n: 
     for (p, value) in canvas.iter_mut().enumerate() {
         let (dx, dy) = ((p % n) as f32 - origin.0, (p / n) as f32 - origin.1);
         let (u, v) = ((dx * c + dy * s) / scale, (-dx * s + dy * c) / scale);
-        if u < 0.0 || v < 0.0 || v >= 8.0 || u >= 8.0 * length as f32 {
+        if !(0.0..8.0 * length as f32).contains(&u) || !(0.0..8.0).contains(&v) {
             continue;
         }
         let (cell, gx, gy) = ((u / 8.0) as usize, (u as u32) % 8, v as u32);

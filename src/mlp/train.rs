@@ -36,10 +36,10 @@ impl Default for TrainConfig {
     fn default() -> Self {
         TrainConfig {
             seed: 2004,
-            images: 800,
+            images: 2000,
             windows_per_class: 30,
             hidden: 30,
-            epochs: 12,
+            epochs: 20,
             learning_rate: 0.01,
             momentum: 0.9,
         }
@@ -221,7 +221,10 @@ impl Mlp2 {
                 activation: Activation::Sigmoid,
             },
             Layer {
-                weights: self.w2.into_shape_with_order((1, hidden)).expect("1 x hidden"),
+                weights: self
+                    .w2
+                    .into_shape_with_order((1, hidden))
+                    .expect("1 x hidden"),
                 bias: Array1::from(vec![self.b2]),
                 activation: Activation::Sigmoid,
             },
@@ -258,7 +261,11 @@ mod tests {
         let b = train(&config, &set);
         assert_eq!(a.network, b.network);
         assert_eq!(a.loss_per_epoch, b.loss_per_epoch);
-        assert!(a.loss_per_epoch[2] < a.loss_per_epoch[0], "{:?}", a.loss_per_epoch);
+        assert!(
+            a.loss_per_epoch[2] < a.loss_per_epoch[0],
+            "{:?}",
+            a.loss_per_epoch
+        );
     }
 
     #[test]

@@ -36,12 +36,7 @@ pub fn window_batch(image: &GrayImage, rows: std::ops::Range<u32>) -> Array2<f32
     let mut batch = Array2::zeros((rows.len() * width, WINDOW_INPUTS));
     for (j, mut row) in batch.outer_iter_mut().enumerate() {
         let (x, y) = ((j % width) as u32, rows.start + (j / width) as u32);
-        window_vector(
-            image,
-            x,
-            y,
-            row.as_slice_mut().expect("standard layout"),
-        );
+        window_vector(image, x, y, row.as_slice_mut().expect("standard layout"));
     }
     batch
 }
