@@ -2,9 +2,11 @@
 //! network in one batch; the output compared with a threshold gives the classified image,
 //! where a black pixel is a text pixel.
 
+use super::chain::GpuNetwork;
 use super::cpu::{forward, CpuProduct};
 use super::network::{FormatError, Network};
 use super::window::window_batch;
+use crate::gl::GlError;
 use image::GrayImage;
 
 /// The output above which a pixel is text.
@@ -36,6 +38,29 @@ pub fn classify_cpu(
         y = end;
     }
     outputs
+}
+
+/// The network output of every pixel on the GPU: the windows of a band of rows accumulated
+/// into one batch (tiled to the texture size by [`GpuNetwork::forward`]). Also returns the
+/// summed step times.
+pub fn classify_gpu(
+    net: &GpuNetwork,
+    image: &GrayImage,
+    max_batch: usize,
+) -> Result<(Vec<f32>, super::chain::StepTimes), GlError> {
+    let rows_per_band = (max_batch / image.width().max(1) as usize).max(1) as u32;
+    let mut outputs = Vec::with_capacity((image.width() * image.height()) as usize);
+    let mut times = super::chain::StepTimes::default();
+    let mut y = 0;
+    while y < image.height() {
+        let end = (y + rows_per_band).min(image.height());
+        let batch = window_batch(image, y..end);
+        let result = net.forward(batch.view(), None)?;
+        outputs.extend(result.outputs.column(0).iter());
+        times.add(&result.times);
+        y = end;
+    }
+    Ok((outputs, times))
 }
 
 /// The classified image: black where the output exceeds `threshold` (text), white elsewhere.
