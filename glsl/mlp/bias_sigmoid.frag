@@ -12,6 +12,6 @@ in float v_bias;
 layout(location = 0) out float o_result; // R, L wide, M high: the next layer's texture X
 
 void main() {
-    float m = texelFetch(u_product, ivec2(v_product), 0).r + texelFetch(u_bias, int(v_bias), 0).r;
+    float m = texture(u_product, v_product).r + texture(u_bias, v_bias).r;
     o_result = u_sigmoid ? 1.0 / (1.0 + exp(-m)) : m;
 }

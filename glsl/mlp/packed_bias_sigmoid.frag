@@ -8,9 +8,9 @@ uniform sampler2D u_product2;
 uniform sampler2D u_product3;
 uniform sampler1D u_bias; // M/4 texels, RGBA32F: texel i' = b_4i'..4i'+3
 uniform bool u_sigmoid;
+uniform vec2 u_viewport;  // L/4 x M/4 (set by Pass::draw_rect)
 
-in vec2 v_product; // texel (j', i') (glsl/mlp/bias_sigmoid.vert)
-in float v_bias;   // texel i'
+in vec2 v_texel; // (j' + 1/2, i' + 1/2), glsl/mlp/packed.vert
 
 layout(location = 0) out vec4 o_0;
 layout(location = 1) out vec4 o_1;
@@ -22,10 +22,10 @@ vec4 activate(vec4 m) {
 }
 
 void main() {
-    ivec2 texel = ivec2(v_product);
-    vec4 b = texelFetch(u_bias, int(v_bias), 0);
-    o_0 = activate(texelFetch(u_product0, texel, 0) + b);
-    o_1 = activate(texelFetch(u_product1, texel, 0) + b);
-    o_2 = activate(texelFetch(u_product2, texel, 0) + b);
-    o_3 = activate(texelFetch(u_product3, texel, 0) + b);
+    vec2 st = v_texel / u_viewport;
+    vec4 b = texture(u_bias, st.y);
+    o_0 = activate(texture(u_product0, st) + b);
+    o_1 = activate(texture(u_product1, st) + b);
+    o_2 = activate(texture(u_product2, st) + b);
+    o_3 = activate(texture(u_product3, st) + b);
 }

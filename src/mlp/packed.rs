@@ -1,12 +1,13 @@
 //! The packed formulation, the faster variant kept beside the faithful one: four values per
 //! RGBA32F texel and a 4 x 4 block of outputs per fragment through four render targets
-//! (layouts in `glsl/mlp/packed_product.frag`). Eight texture fetches feed 64 multiply-adds,
-//! where the faithful pass fetches twice per multiply-add. Sizes are padded to multiples of
+//! (layouts in `glsl/mlp/packed_product.frag`). Eight texture lookups feed 64 multiply-adds,
+//! where the faithful pass looks up twice per multiply-add. Sizes are padded to multiples of
 //! four with zero weights, so padding never reaches a real output.
 
 use super::network::{Activation, Layer};
 use crate::gl::{Context, Framebuffer, GlError, Program, Texture, TextureFormat};
 use crate::shader;
+use glam::Vec2;
 use ndarray::{Array2, ArrayView2};
 
 /// Values per texel, and input vectors (columns) per fragment.
@@ -44,12 +45,12 @@ impl PackedPrograms {
         Ok(PackedPrograms {
             product: Program::new(
                 ctx,
-                &[shader!("glsl/mlp/product.vert")],
+                &[shader!("glsl/mlp/packed.vert")],
                 &[shader!("glsl/mlp/packed_product.frag")],
             )?,
             activation: Program::new(
                 ctx,
-                &[shader!("glsl/mlp/bias_sigmoid.vert")],
+                &[shader!("glsl/mlp/packed.vert")],
                 &[shader!("glsl/mlp/packed_bias_sigmoid.frag")],
             )?,
         })
@@ -133,7 +134,14 @@ pub fn packed_product_pass(
         .texture("u_x2", &x[2])
         .texture("u_x3", &x[3])
         .uniform("u_n4", layer.n4 as i32)
+        .uniform("u_w_texel", texel_size(&layer.w))
+        .uniform("u_x_texel", texel_size(&x[0]))
         .draw_full()
+}
+
+/// The size of one texel in texture coordinates, for nearest lookups at texel centres.
+fn texel_size(t: &Texture) -> Vec2 {
+    Vec2::new(1.0 / t.width() as f32, 1.0 / t.height() as f32)
 }
 
 /// Draws `sigmoid(W x X + B)` on the packed layout into `target`.
