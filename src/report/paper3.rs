@@ -65,7 +65,10 @@ struct Measurement {
     tiles: usize,
     times_ms: StepTimes,
     total_ms: f64,
+    /// From the median product time.
     matmul_gflops: f64,
+    /// From the fastest product time: the renderer's capability when the machine is shared.
+    best_matmul_gflops: f64,
     max_abs_diff_vs_cpu_plain: f32,
 }
 
@@ -77,7 +80,7 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
         .context("decoding assets/mlp/text.png")?
         .to_luma8();
     let cases = cases(ctx, &photo, opts.quick)?;
-    let repeats = if opts.quick { 1 } else { 3 };
+    let repeats = if opts.quick { 1 } else { 5 };
     let bar = opts.progress.add(indicatif::ProgressBar::new(
         (cases.len() * Method::ALL.len()) as u64,
     ));
@@ -109,11 +112,17 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
     let get = |m: Method| paper_row.iter().find(|r| r.method == m).expect("measured");
     let speedup = get(Method::CpuPlain).total_ms / get(Method::GpuFaithful).total_ms;
     let software = renderer.contains("llvmpipe") || renderer.contains("softpipe");
-    let packed_best = measurements
-        .iter()
-        .filter(|m| m.method == Method::GpuPacked)
-        .map(|m| m.matmul_gflops)
-        .fold(0.0, f64::max);
+    let packed = |f: fn(&Measurement) -> f64| {
+        measurements
+            .iter()
+            .filter(|m| m.method == Method::GpuPacked)
+            .map(f)
+            .fold(0.0, f64::max)
+    };
+    let (packed_median, packed_best) = (
+        packed(|m| m.matmul_gflops),
+        packed(|m| m.best_matmul_gflops),
+    );
     Ok(Section {
         id: "paper3".into(),
         title: "Paper 3: Oh & Jung 2004, GPU implementation of neural networks".into(),
@@ -164,8 +173,15 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
             Claim {
                 claim: "The packed product reaches 10 GFLOP/s on the project's 2-core machine (issue 7 target)".into(),
                 paper: "not in the paper".into(),
-                measured: format!("best packed matrix product: {packed_best:.2} GFLOP/s"),
-                holds: if software { Some(packed_best >= 10.0) } else { None },
+                measured: format!(
+                    "packed matrix product, best case: {packed_median:.2} GFLOP/s (median run), \
+                     {packed_best:.2} GFLOP/s (fastest run)"
+                ),
+                holds: if software {
+                    Some(packed_median >= 10.0)
+                } else {
+                    None
+                },
             },
         ],
         figures: detection.figures.clone(),
@@ -287,6 +303,10 @@ fn measure(
         readback: median(|t| t.readback),
     };
     let flops = case.network.flops_per_input() * case.batch.nrows() as f64;
+    let fastest = runs
+        .iter()
+        .map(|r| r.0.matmul)
+        .fold(f64::INFINITY, f64::min);
     let diff = runs[0]
         .2
         .iter()
@@ -306,6 +326,7 @@ fn measure(
         tiles: runs[0].1,
         total_ms: times.texture_creation + times.matmul + times.activation + times.readback,
         matmul_gflops: flops / (times.matmul * 1e-3) / 1e9,
+        best_matmul_gflops: flops / (fastest * 1e-3) / 1e9,
         times_ms: times,
         max_abs_diff_vs_cpu_plain: diff,
     })
@@ -389,7 +410,8 @@ fn table1_beside_paper(row: &[Measurement], paper: &dyn Fn(&str) -> f64) -> Tabl
 fn gflops_table(measurements: &[Measurement]) -> Table {
     Table {
         caption: "Matrix product throughput, the four methods side by side (GFLOP/s = 2 M N L / \
-                  product time; max |diff| against the CPU plain loop's outputs)"
+                  median product time; best = fastest run; max |diff| against the CPU plain \
+                  loop's outputs)"
             .into(),
         header: [
             "case",
@@ -400,6 +422,7 @@ fn gflops_table(measurements: &[Measurement]) -> Table {
             "sigmoid ms",
             "total ms",
             "GFLOP/s",
+            "best GFLOP/s",
             "max |diff|",
         ]
         .map(String::from)
@@ -416,6 +439,7 @@ fn gflops_table(measurements: &[Measurement]) -> Table {
                     ms(m.times_ms.activation),
                     ms(m.total_ms),
                     format!("{:.2}", m.matmul_gflops),
+                    format!("{:.2}", m.best_matmul_gflops),
                     format!("{:.1e}", m.max_abs_diff_vs_cpu_plain),
                 ]
             })
