@@ -3,6 +3,7 @@
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use classic_gpgpu::gl::{self, Renderer};
+use classic_gpgpu::report;
 use std::process::ExitCode;
 
 /// The classic GPGPU papers of a 2007 tutorial, reproduced on a headless OpenGL context.
@@ -24,6 +25,9 @@ struct Cli {
 enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
+    /// Regenerate every table and figure of the papers into a report beside the published
+    /// numbers (report/index.html, report/results.json, PNG figures).
+    Reproduce(report::reproduce::ReproduceArgs),
     /// Paper 3 (Oh & Jung 2004): a multilayer perceptron as render passes, text detection.
     Mlp(classic_gpgpu::mlp::cli::MlpArgs),
     /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
@@ -55,6 +59,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info => info(&global),
+        Command::Reproduce(args) => reproduce(&global, &args),
         Command::Mlp(args) => classic_gpgpu::mlp::cli::run(args, global.json, || global.context()),
         Command::MlpBench(args) => {
             classic_gpgpu::mlp::cli::bench(args, global.json, || global.context())
@@ -108,4 +113,43 @@ fn info(global: &Global) -> anyhow::Result<()> {
         l.max_vertex_uniform_components, l.max_fragment_uniform_components
     );
     Ok(())
+}
+
+fn reproduce(global: &Global, args: &report::reproduce::ReproduceArgs) -> anyhow::Result<()> {
+    let ctx = global.context()?;
+    let report = report::reproduce::reproduce(&ctx, args, !global.json)?;
+    if global.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
+    print_sections(&report.sections);
+    println!(
+        "report written to {} ({:.0} s, renderer: {})",
+        args.out.join("index.html").display(),
+        report.elapsed_s,
+        ctx.info().renderer_line()
+    );
+    Ok(())
+}
+
+/// The tables and claims of report sections, as text.
+fn print_sections(sections: &[report::Section]) {
+    for section in sections {
+        println!("== {} ==", section.title);
+        for table in &section.tables {
+            println!("{}", table.to_text());
+        }
+        for claim in &section.claims {
+            let holds = match claim.holds {
+                Some(true) => "holds",
+                Some(false) => "does not hold",
+                None => "not judged",
+            };
+            println!(
+                "- {} [{holds}]: paper: {}; here: {}",
+                claim.claim, claim.paper, claim.measured
+            );
+        }
+        println!();
+    }
 }
