@@ -2,6 +2,7 @@
 //! regenerated beside the published numbers, GFLOP/s of both GPU formulations against both CPU
 //! baselines measured side by side in one run, and Fig. 2 (the classified text image).
 
+use super::plot::{Plot, Series};
 use super::{BenchOptions, Claim, Fidelity, Figure, Section, Table};
 use crate::gl::Context;
 use crate::mlp::cpu::{forward, CpuProduct};
@@ -99,6 +100,8 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
     }
     bar.finish_and_clear();
     let detection = detect_photo(opts, &gpu, &photo)?;
+    let mut figures = detection.figures.clone();
+    figures.push(gflops_plot(opts, &measurements)?);
     let renderer = ctx.info().renderer_line();
     let paper = crate::report::paper_tables::load();
     let table1 = &paper["paper3"]["table1"];
@@ -184,7 +187,7 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
                 },
             },
         ],
-        figures: detection.figures.clone(),
+        figures,
         fidelity: fidelity(),
         results: serde_json::json!({
             "renderer": renderer,
@@ -445,6 +448,37 @@ fn gflops_table(measurements: &[Measurement]) -> Table {
             })
             .collect(),
     }
+}
+
+/// GFLOP/s of the detector's product against the batch size, the four methods.
+fn gflops_plot(opts: &BenchOptions, measurements: &[Measurement]) -> anyhow::Result<Figure> {
+    let file = "paper3_gflops.png";
+    let series = Method::ALL
+        .iter()
+        .map(|&method| {
+            let points = measurements
+                .iter()
+                .filter(|m| m.method == method && m.layers.len() == 2)
+                .map(|m| (m.vectors as f64, m.matmul_gflops))
+                .collect();
+            Series::new(method.label(), points)
+        })
+        .collect();
+    Plot {
+        title: "121-30-1 text detector: matrix product throughput".into(),
+        x_label: "input vectors L".into(),
+        y_label: "GFLOP/s (median run)".into(),
+        log_x: true,
+        log_y: true,
+        series,
+    }
+    .write_png(&opts.out_dir.join(file))?;
+    Ok(Figure {
+        file: file.into(),
+        caption: "Matrix product GFLOP/s of the detector network against the batch size L, GPU \
+                  passes (faithful, packed) and CPU baselines (plain loop, sgemm), one run"
+            .into(),
+    })
 }
 
 struct Detection {
