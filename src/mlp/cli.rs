@@ -192,8 +192,12 @@ fn run_network(
     if json {
         let report = serde_json::json!({
             "renderer": result.renderer,
-            "formulation": args.engine.cpu.map_or(args.engine.formulation, |_| Formulation::Faithful),
-            "on_cpu": args.engine.cpu.is_some(),
+            "evaluated_by": match args.engine.cpu {
+                Some(CpuChoice::Plain) => "cpu-plain",
+                Some(CpuChoice::Optimised) => "cpu-optimised",
+                None if args.engine.formulation == Formulation::Packed => "gpu-packed",
+                None => "gpu-faithful",
+            },
             "tiles": result.tiles,
             "outputs": outputs,
             "timings_ms": timings_json(&result),
