@@ -103,6 +103,7 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
     let mut figures = detection.figures.clone();
     figures.push(gflops_plot(opts, &measurements)?);
     let renderer = ctx.info().renderer_line();
+    let load = load_average();
     let paper = crate::report::paper_tables::load();
     let table1 = &paper["paper3"]["table1"];
     let number = |key: &str| {
@@ -137,7 +138,11 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
              packed variant (RGBA texels, 4 x 4 outputs per fragment), the plain CPU loop the \
              paper compared with, and matrixmultiply's sgemm. GPU passes are timed with GL timer \
              queries, texture creation and CPU work with the wall clock; each figure is the \
-             median of {repeats} run(s) after a warm-up run.{} The batches are windows of scikit-image's text.png.",
+             median of {repeats} run(s) after a warm-up run; {} cores, load average {} at \
+             the end (a software renderer shares the CPU with whatever else runs).{} The \
+             batches are windows of scikit-image's text.png.",
+            std::thread::available_parallelism().map_or(0, usize::from),
+            load.map_or("unknown".to_string(), |l| format!("{l:.1}")),
             if opts.quick {
                 " QUICK MODE: reduced sizes."
             } else {
@@ -193,10 +198,17 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
             "renderer": renderer,
             "quick": opts.quick,
             "repeats": repeats,
+            "load_average_1min": load,
             "measurements": measurements,
             "detection": detection.results,
         }),
     })
+}
+
+/// The 1-minute load average (Linux), to read software-renderer timings against.
+fn load_average() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/loadavg").ok()?;
+    text.split_whitespace().next()?.parse().ok()
 }
 
 /// The cases: the paper's shape (one 2048-vector texture), one texture at this renderer's
