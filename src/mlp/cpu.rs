@@ -37,7 +37,7 @@ pub struct CpuForward {
     pub activation: Duration,
 }
 
-/// `W x X` for a batch: out[j][i] = W_i . X_j, L x M.
+/// `W x X` for a batch: `out[j][i] = W_i . X_j`, L x M.
 pub fn product(kind: CpuProduct, weights: ArrayView2<f32>, batch: ArrayView2<f32>) -> Array2<f32> {
     assert_eq!(weights.ncols(), batch.ncols(), "N of W and X");
     match kind {
