@@ -198,3 +198,33 @@ fn bench_quick_reports_table_1_beside_the_paper() {
     }
     assert!(dir.join("paper3_fig2b_mask.png").exists());
 }
+
+/// The shipped detector is what `mlp train` writes (about 15 s in release; run with
+/// `cargo test --release -- --ignored`).
+#[test]
+#[ignore = "trains the full detector"]
+fn mlp_train_reproduces_the_shipped_weights() {
+    let dir = scratch("train");
+    let out = dir.join("detector.json");
+    let result = classic_gpgpu(&[
+        "mlp",
+        "train",
+        "--out",
+        &out.display().to_string(),
+        "--json",
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let shipped = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/mlp/text_detector.json"
+    ))
+    .unwrap();
+    assert!(
+        std::fs::read(&out).unwrap() == shipped,
+        "retrained weights differ from assets/mlp/text_detector.json"
+    );
+}
