@@ -35,6 +35,10 @@ enum Command {
     Crowd(classic_gpgpu::crowd::cli::CrowdArgs),
     /// Paper 2: Table 1 and the LOD runs beside the paper's numbers.
     CrowdBench(classic_gpgpu::crowd::cli::BenchArgs),
+    /// Paper 3 (Oh & Jung 2004): a multilayer perceptron as render passes, text detection.
+    Mlp(classic_gpgpu::mlp::cli::MlpArgs),
+    /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
+    MlpBench(classic_gpgpu::mlp::cli::BenchArgs),
 }
 
 /// What every command gets.
@@ -89,6 +93,10 @@ fn main() -> ExitCode {
         Command::CrowdBench(a) => global
             .context()
             .and_then(|c| classic_gpgpu::crowd::cli::run_bench(&a, &c, global.json)),
+        Command::Mlp(args) => classic_gpgpu::mlp::cli::run(args, global.json, || global.context()),
+        Command::MlpBench(args) => {
+            classic_gpgpu::mlp::cli::bench(args, global.json, || global.context())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
