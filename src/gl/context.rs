@@ -275,6 +275,9 @@ impl Context {
                 platform: platform_state,
             }),
         };
+        if version >= (3, 3) {
+            ctx.warm_up_timer_queries()?;
+        }
         if version < (3, 3) {
             return Err(GlError::Context(format!(
                 "OpenGL {}.{} is too old: classic-gpgpu needs OpenGL 3.3 core ({}). \
@@ -285,6 +288,18 @@ impl Context {
             )));
         }
         Ok(ctx)
+    }
+
+    /// llvmpipe answers the first TIME_ELAPSED query of a context that has drawn nothing
+    /// with its uptime. One throw-away query around a clear takes that answer.
+    fn warm_up_timer_queries(&self) -> Result<(), GlError> {
+        let target = super::Texture::new_2d(self, 1, 1, super::TextureFormat::R8)?;
+        let framebuffer = super::Framebuffer::new(self, "timer warm-up", &[&target], None)?;
+        let query = super::TimerQuery::new(self)?;
+        query.begin();
+        framebuffer.clear_colors([0.0; 4])?;
+        query.end();
+        query.nanoseconds().map(|_| ())
     }
 
     /// Vendor, renderer, version, platform and limits.

@@ -77,7 +77,6 @@ impl GpuMlp {
             activation: activation_program(ctx)?,
             packed: PackedPrograms::new(ctx)?,
         };
-        discard_first_timer_query(ctx, &mlp.product)?;
         Ok(mlp)
     }
 
@@ -113,22 +112,6 @@ impl GpuMlp {
             upload_ms: start.elapsed().as_secs_f64() * 1e3,
         })
     }
-}
-
-/// On llvmpipe (Mesa 22.3) the first TIME_ELAPSED query of a context that contains a draw
-/// reads as the machine's uptime (its start stamp is zero); one timed 1 x 1 draw first makes
-/// the real measurements sane.
-fn discard_first_timer_query(ctx: &Context, program: &Program) -> Result<(), GlError> {
-    let target = float_target(ctx, "mlp timer warm-up", 1, 1)?;
-    let query = TimerQuery::new(ctx)?;
-    query.begin();
-    let drawn = target
-        .pass(program, "mlp timer warm-up")?
-        .uniform("u_n", 0) // an empty inner product: no texture is read
-        .draw_full();
-    query.end();
-    drawn?;
-    query.nanoseconds().map(|_| ())
 }
 
 /// Timer queries around the passes, read once everything has been drawn.
