@@ -150,12 +150,14 @@ fn info(global: &Global) -> anyhow::Result<()> {
 
 fn reproduce(global: &Global, args: &report::reproduce::ReproduceArgs) -> anyhow::Result<()> {
     let ctx = global.context()?;
-    let report = report::reproduce::reproduce(&ctx, args, !global.json)?;
+    let report = report::reproduce::reproduce(&ctx, args, report::progress_bars(global.json))?;
     if global.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
-    print_sections(&report.sections);
+    for section in &report.sections {
+        println!("{}", section.to_text());
+    }
     println!(
         "report written to {} ({:.0} s, renderer: {})",
         args.out.join("index.html").display(),
@@ -163,26 +165,4 @@ fn reproduce(global: &Global, args: &report::reproduce::ReproduceArgs) -> anyhow
         ctx.info().renderer_line()
     );
     Ok(())
-}
-
-/// The tables and claims of report sections, as text.
-fn print_sections(sections: &[report::Section]) {
-    for section in sections {
-        println!("== {} ==", section.title);
-        for table in &section.tables {
-            println!("{}", table.to_text());
-        }
-        for claim in &section.claims {
-            let holds = match claim.holds {
-                Some(true) => "holds",
-                Some(false) => "does not hold",
-                None => "not judged",
-            };
-            println!(
-                "- {} [{holds}]: paper: {}; here: {}",
-                claim.claim, claim.paper, claim.measured
-            );
-        }
-        println!();
-    }
 }

@@ -8,7 +8,7 @@ use anyhow::{bail, Context as _};
 use serde_json::json;
 
 use crate::gl::{dump, Context};
-use crate::report::{self, BenchOptions};
+use crate::report;
 
 use super::character::{CharacterModel, ModelKind};
 use super::renderer::{CrowdRenderer, Method};
@@ -173,42 +173,5 @@ pub struct BenchArgs {
 
 /// Runs `crowd-bench`: Table 1 and the LOD runs beside the paper's numbers.
 pub fn run_bench(args: &BenchArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
-    let progress = indicatif::MultiProgress::new();
-    if json {
-        progress.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    let opts = BenchOptions {
-        gl: ctx,
-        quick: args.quick,
-        out_dir: args.out.clone(),
-        progress,
-    };
-    let section = report::paper2::run(&opts)?;
-    if json {
-        println!("{}", serde_json::to_string_pretty(&section)?);
-        return Ok(());
-    }
-    println!("{}\n\n{}\n", section.title, section.summary);
-    for table in &section.tables {
-        println!("{}", table.to_text());
-    }
-    for claim in &section.claims {
-        let verdict = match claim.holds {
-            Some(true) => "holds",
-            Some(false) => "does not hold",
-            None => "not judged",
-        };
-        println!(
-            "- {}\n  paper: {}\n  here:  {} ({verdict})",
-            claim.claim, claim.paper, claim.measured
-        );
-    }
-    for figure in &section.figures {
-        println!(
-            "figure: {} ({})",
-            args.out.join(&figure.file).display(),
-            figure.caption
-        );
-    }
-    Ok(())
+    report::bench_command(ctx, report::paper2::run, args.quick, &args.out, json)
 }

@@ -336,7 +336,7 @@ pub struct BenchArgs {
     #[arg(long)]
     quick: bool,
     /// Where figures are written.
-    #[arg(long, default_value = "report")]
+    #[arg(long, default_value = "target/mlp-bench")]
     out_dir: PathBuf,
 }
 
@@ -347,37 +347,11 @@ pub fn bench(
     context: impl FnOnce() -> anyhow::Result<Context>,
 ) -> anyhow::Result<()> {
     let ctx = context()?;
-    std::fs::create_dir_all(&args.out_dir)
-        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
-    let progress = indicatif::MultiProgress::new();
-    if json || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-        progress.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    let opts = crate::report::BenchOptions {
-        gl: &ctx,
-        quick: args.quick,
-        out_dir: args.out_dir,
-        progress,
-    };
-    let section = crate::report::paper3::run(&opts)?;
-    if json {
-        println!("{}", serde_json::to_string_pretty(&section)?);
-    } else {
-        println!("{}\n\n{}\n", section.title, section.summary);
-        for table in &section.tables {
-            println!("{}", table.to_text());
-        }
-        for claim in &section.claims {
-            let verdict = match claim.holds {
-                Some(true) => "holds",
-                Some(false) => "does not hold",
-                None => "not judged here",
-            };
-            println!(
-                "- {} (paper: {}; here: {}): {verdict}",
-                claim.claim, claim.paper, claim.measured
-            );
-        }
-    }
-    Ok(())
+    crate::report::bench_command(
+        &ctx,
+        crate::report::paper3::run,
+        args.quick,
+        &args.out_dir,
+        json,
+    )
 }

@@ -89,6 +89,84 @@ pub struct Fidelity {
     pub code: String,
 }
 
+impl Fidelity {
+    pub fn new(feature: &str, paper: &str, code: &str) -> Fidelity {
+        Fidelity {
+            feature: feature.into(),
+            paper: paper.into(),
+            code: code.into(),
+        }
+    }
+}
+
+impl Claim {
+    /// "holds", "does not hold" or "not judged here".
+    pub fn verdict(&self) -> &'static str {
+        match self.holds {
+            Some(true) => "holds",
+            Some(false) => "does not hold",
+            None => "not judged here",
+        }
+    }
+}
+
+impl Section {
+    /// Plain-text rendering: title, summary, tables, claims.
+    pub fn to_text(&self) -> String {
+        let mut out = format!("== {} ==\n{}\n\n", self.title, self.summary);
+        for table in &self.tables {
+            out.push_str(&table.to_text());
+            out.push('\n');
+        }
+        for claim in &self.claims {
+            out.push_str(&format!(
+                "- {} [{}]\n  paper: {}\n  here:  {}\n",
+                claim.claim,
+                claim.verdict(),
+                claim.paper,
+                claim.measured
+            ));
+        }
+        out
+    }
+}
+
+/// Progress bars on stderr, hidden for `--json` or when stderr is not a terminal.
+pub fn progress_bars(json: bool) -> indicatif::MultiProgress {
+    if json || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden())
+    } else {
+        indicatif::MultiProgress::new()
+    }
+}
+
+/// A `*-bench` command: run one paper's section with its figures in `out_dir`, then print
+/// its tables and claims, or the whole section as JSON.
+pub fn bench_command(
+    gl: &crate::gl::Context,
+    run: fn(&BenchOptions) -> anyhow::Result<Section>,
+    quick: bool,
+    out_dir: &std::path::Path,
+    json: bool,
+) -> anyhow::Result<()> {
+    use anyhow::Context as _;
+    std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
+    let opts = BenchOptions {
+        gl,
+        quick,
+        out_dir: out_dir.to_path_buf(),
+        progress: progress_bars(json),
+    };
+    let section = run(&opts)?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&section)?);
+    } else {
+        println!("{}", section.to_text());
+        println!("figures in {}", out_dir.display());
+    }
+    Ok(())
+}
+
 impl Table {
     /// Plain-text rendering for the `*-bench` commands.
     pub fn to_text(&self) -> String {

@@ -625,11 +625,7 @@ fn stage_claim(counts: &[usize], measured: &Measured, renderer: &str) -> Option<
 }
 
 fn fidelity_rows() -> Vec<Fidelity> {
-    let row = |feature: &str, paper: &str, code: &str| Fidelity {
-        feature: feature.into(),
-        paper: paper.into(),
-        code: code.into(),
-    };
+    let row = Fidelity::new;
     vec![
         row(
             "Vertex data in 1D float textures",

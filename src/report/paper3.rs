@@ -574,11 +574,7 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
 }
 
 fn fidelity() -> Vec<Fidelity> {
-    let row = |feature: &str, paper: &str, code: &str| Fidelity {
-        feature: feature.into(),
-        paper: paper.into(),
-        code: code.into(),
-    };
+    let row = Fidelity::new;
     vec![
         row(
             "Matrix product as one rectangle (Moravanszky): each vertex carries the row of W and the column of X, each pixel takes one inner product",

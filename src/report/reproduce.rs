@@ -5,7 +5,7 @@
 use super::{html, BenchOptions, Report, Section};
 use crate::gl;
 use anyhow::{bail, Context as _};
-use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -47,7 +47,7 @@ pub struct ReproduceArgs {
 pub fn reproduce(
     ctx: &gl::Context,
     args: &ReproduceArgs,
-    show_progress: bool,
+    progress: MultiProgress,
 ) -> anyhow::Result<Report> {
     let all = stages();
     for id in &args.only {
@@ -64,11 +64,6 @@ pub fn reproduce(
         .filter(|s| args.only.is_empty() || args.only.iter().any(|o| o == s.id))
         .collect();
     let staging = staging_dir(&args.out)?;
-    let progress = if show_progress {
-        MultiProgress::new()
-    } else {
-        MultiProgress::with_draw_target(ProgressDrawTarget::hidden())
-    };
     let result = run_stages(ctx, args, &chosen, &staging, progress);
     match result {
         Ok(report) => {
