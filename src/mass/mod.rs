@@ -34,6 +34,8 @@ pub mod assemble;
 pub mod buoyancy;
 pub mod clip;
 pub mod closed_form;
+pub mod cpu_reference;
+pub mod framing;
 pub mod integrals;
 pub mod surface;
 
