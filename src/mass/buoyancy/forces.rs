@@ -1,7 +1,9 @@
 //! The forces of section 5: gravity at the centre of mass, Archimedes' buoyant force
 //! `ρ_w g V` at the centre of buoyancy [eq. 7], a viscous drag at the centre of buoyancy
-//! proportional to the submerged volume and the squared velocity [5.3], and a rotational
-//! damping proportional to the submerged fraction.
+//! proportional to the submerged volume and the squared velocity [5.3], plus a linear term
+//! and a rotational damping proportional to the submerged part. The quadratic drag alone
+//! lets small oscillations die out only as 1/t; real floating bodies also lose energy to
+//! the waves they radiate, which still water does not model, so the linear term stands in.
 
 use super::rigid_body::{RigidBody, Wrench};
 use glam::DVec3;
@@ -18,6 +20,8 @@ pub struct Water {
     pub gravity: f64,
     /// Drag coefficient `c` (1/m): `F = −c ρ_w V_sub |v_B| v_B`.
     pub drag: f64,
+    /// Linear drag rate `k` (1/s): `F = −k ρ_w V_sub v_B`.
+    pub linear_drag: f64,
     /// Rotational damping rate (1/s) when fully submerged: `τ = −k (V_sub / V) I ω`.
     pub angular_damping: f64,
 }
@@ -29,6 +33,7 @@ impl Default for Water {
             density: 1000.0,
             gravity: 9.81,
             drag: 1.0,
+            linear_drag: 2.0,
             angular_damping: 1.0,
         }
     }
@@ -53,7 +58,7 @@ pub fn wrench(body: &RigidBody, body_volume: f64, sub: Submerged, water: &Water)
     }
     let buoyant = DVec3::new(0.0, 0.0, water.density * water.gravity * sub.volume);
     let v_b = body.point_velocity(sub.center);
-    let drag = -water.drag * water.density * sub.volume * v_b.length() * v_b;
+    let drag = -water.density * sub.volume * (water.drag * v_b.length() + water.linear_drag) * v_b;
     let fraction = (sub.volume / body_volume).clamp(0.0, 1.0);
     let damping = Wrench {
         force: DVec3::ZERO,

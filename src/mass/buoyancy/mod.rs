@@ -2,5 +2,7 @@
 //! volume and centre of buoyancy of every body come from the n + 2 rendering passes of 5.2,
 //! and the CPU integrates the rigid bodies under gravity, buoyancy and drag.
 
+pub mod analytic;
 pub mod forces;
 pub mod rigid_body;
+pub mod simulation;
