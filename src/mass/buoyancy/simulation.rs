@@ -24,7 +24,7 @@ impl Shape {
     /// Errors when the mesh does not enclose a positive volume.
     pub fn new(name: &str, mesh: &Mesh) -> Result<Self, String> {
         let whole = MassProperties::from_integrals(&analytic::volume_integrals(mesh), 1.0);
-        if !(whole.volume > 0.0) {
+        if whole.volume.is_nan() || whole.volume <= 0.0 {
             return Err(format!(
                 "shape {name}: the mesh encloses volume {} (inside out or open?)",
                 whole.volume
