@@ -4,8 +4,10 @@
 // Ported from GLSL 1.10 to GLSL 330 line for line: `varying` becomes `in`, and the
 // built-in gl_FragData[i] (gone from the core profile) becomes the output array FragData[i]
 // bound to render targets 0, 1, 2. The listing's closing brace, lost in print, is restored.
-// The `#version` line comes first from glsl/mass/peel_prelude.frag, which also renames this
-// main() so that the peel of section 3.2 can wrap it (glsl/mass/peel_main.frag).
+// Compiled on its own it is a complete shader; in the pipeline glsl/mass/peel_prelude.frag
+// comes first and renames this main() to integrands(), so that the peel test of section 3.2
+// (glsl/mass/peel_main.frag) can run before it.
+#version 330 core
 layout(location = 0) out vec4 FragData[3];
 
 // homogeneous coordinate of a point on the surface

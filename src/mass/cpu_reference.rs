@@ -49,6 +49,17 @@ pub fn integrate(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> VolumeIn
     (sum * area).translated(framing.center)
 }
 
+/// The most surface crossings of any pixel centre's line (below `water` when given): the
+/// number of peels the GPU needs.
+pub fn layers(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> usize {
+    let level = water.map(|l| l - framing.center.z).unwrap_or(f64::INFINITY);
+    crossings_per_pixel(mesh, framing)
+        .iter()
+        .map(|hits| hits.iter().filter(|h| h.z <= level).count())
+        .max()
+        .unwrap_or(0)
+}
+
 /// The integrands of eq. 4 and 6 at one crossing, with their 1/2 and 1/3 factors.
 fn integrand(x: f64, y: f64, z: f64, sign: f64) -> VolumeIntegrals {
     let c = sign * z;

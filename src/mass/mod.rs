@@ -27,6 +27,8 @@
 //! | the part below a plane, for the analytic `--below` | [`clip`] |
 //! | closed / open surface check | [`surface`] |
 //! | closed forms for tests | [`closed_form`] |
+//! | the whole method for one body | [`gpu`] |
+//! | the GPU path's CPU reference | [`cpu_reference`] |
 //! | buoyancy [5] | [`buoyancy`] |
 
 pub mod analytic;
@@ -36,7 +38,11 @@ pub mod clip;
 pub mod closed_form;
 pub mod cpu_reference;
 pub mod framing;
+pub mod gpu;
 pub mod integrals;
+pub mod integrands;
+pub mod peel;
+pub mod reduce;
 pub mod surface;
 
 pub use assemble::MassProperties;

@@ -1,0 +1,238 @@
+//! The peeling driver [section 3.2, and the n + 2 passes of 5.2]: every body of a batch is
+//! drawn into its own tile (viewport) of one set of render targets, so one peel pass, one
+//! occlusion query and one reduction serve them all.
+//!
+//! - Pass 0 (with water): the fluid surface's depth into `T_dw`.
+//! - Passes 1..n: the GL layer's depth peeler draws every body with the listing wrapped by
+//!   the peel test (and the water test), until the occlusion query counts no fragment;
+//!   each peel is added into the running sums.
+//! - Pass n + 1 (with water): the fluid surface where the first peel faced down (`T_w`),
+//!   added straight into the sums (one quad: at most one fragment per pixel).
+
+use super::framing::Framing;
+use super::integrals::VolumeIntegrals;
+use super::integrands::{self, Soup, TARGETS};
+use super::reduce::Accumulator;
+use crate::gl::dump::{self, DumpRange};
+use crate::gl::peel::{DepthPeeler, PeelOptions};
+use crate::gl::{
+    Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, Pass, Primitive, Program,
+    Rect, Texture, TextureFormat,
+};
+use glam::{Mat4, Vec3};
+use std::path::{Path, PathBuf};
+
+/// One body of a batch: which mesh of the soup, where it is, how it is framed, and where
+/// its tile lies in the render targets.
+#[derive(Clone, Copy, Debug)]
+pub struct Job {
+    pub mesh: usize,
+    /// Body frame -> world.
+    pub model: Mat4,
+    pub framing: Framing,
+    /// Its viewport: `framing.resolution` square, at a multiple of the tile block.
+    pub tile: Rect,
+}
+
+/// What a batch produced.
+#[derive(Clone, Debug)]
+pub struct BatchResult {
+    /// The ten integrals of each job, world coordinates.
+    pub integrals: Vec<VolumeIntegrals>,
+    /// The number of peels (n): the deepest body's.
+    pub peels: usize,
+}
+
+/// Render targets and programs for batches of up to `width x height` pixels.
+pub struct Peeler {
+    ctx: Context,
+    peel_program: Program,
+    water_depth_program: Program,
+    water_patch_program: Program,
+    /// The current peel's integrands (`T_k`) and faces-down mark.
+    peel_targets: Vec<Texture>,
+    /// `T_dw`.
+    water: Framebuffer,
+    peeler: DepthPeeler,
+    accumulator: Accumulator,
+    /// Tiles are reduced in aligned blocks of this side (a power of two); `None` reduces
+    /// the whole target (one body).
+    block: Option<u32>,
+    max_layers: usize,
+}
+
+impl Peeler {
+    /// Targets of `width x height`, reduced per `block x block` tile (`None`: as a whole).
+    pub fn new(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        block: Option<u32>,
+    ) -> Result<Peeler, GlError> {
+        let mut peel_targets = Vec::new();
+        for _ in 0..TARGETS {
+            peel_targets.push(Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F)?);
+        }
+        peel_targets.push(Texture::new_2d(ctx, width, height, TextureFormat::R32F)?);
+        let water_depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
+        Ok(Peeler {
+            ctx: ctx.clone(),
+            peel_program: integrands::peel_program(ctx)?,
+            water_depth_program: integrands::water_depth_program(ctx)?,
+            water_patch_program: integrands::water_patch_program(ctx)?,
+            peel_targets,
+            water: Framebuffer::new(
+                ctx,
+                "mass: fluid surface depth T_dw",
+                &[],
+                Some(&water_depth),
+            )?,
+            peeler: DepthPeeler::new(ctx, width, height)?,
+            accumulator: Accumulator::new(ctx, width, height)?,
+            block,
+            max_layers: 64,
+        })
+    }
+
+    /// The ten integrals of every job's body (below `water`, the level of a flat fluid
+    /// surface, when given). `dump` receives the colour-encoded integrands of each peel.
+    pub fn run(
+        &self,
+        soup: &Soup,
+        jobs: &[Job],
+        water: Option<f64>,
+        dump: Option<&Path>,
+    ) -> Result<BatchResult, GlError> {
+        self.accumulator.clear()?;
+        self.water_depth_pass(jobs, water)?;
+        let peels = self.peel_passes(soup, jobs, dump)?;
+        if let Some(level) = water {
+            self.water_patch_pass(jobs, level)?;
+        }
+        let sums = self.accumulator.reduce(self.block)?;
+        let integrals = jobs
+            .iter()
+            .map(|job| {
+                let index = match self.block {
+                    Some(b) => {
+                        let columns = self.peeler.width().div_ceil(b);
+                        ((job.tile.y / b) * columns + job.tile.x / b) as usize
+                    }
+                    None => 0,
+                };
+                integrands::decode(sums[index], &job.framing)
+            })
+            .collect();
+        Ok(BatchResult { integrals, peels })
+    }
+
+    /// Pass 0: `T_dw`, cleared to 0 (nothing is above the water) and, with water, the
+    /// fluid surface drawn over every tile.
+    fn water_depth_pass(&self, jobs: &[Job], water: Option<f64>) -> Result<(), GlError> {
+        self.water.clear_depth_stencil(0.0, 0)?;
+        let Some(level) = water else { return Ok(()) };
+        let mut pass = self.water.pass(
+            &self.water_depth_program,
+            "mass: pass 0, fluid surface depth",
+        )?;
+        pass.state(DrawState {
+            depth: Some(DepthTest {
+                func: Compare::Always,
+                write: true,
+            }),
+            color_write: false,
+            ..DrawState::default()
+        });
+        for job in jobs {
+            water_quad(&mut pass, job, level)?;
+        }
+        Ok(())
+    }
+
+    /// Passes 1..n: peel until nothing is drawn; each peel goes into the sums.
+    fn peel_passes(
+        &self,
+        soup: &Soup,
+        jobs: &[Job],
+        dump: Option<&Path>,
+    ) -> Result<usize, GlError> {
+        let colors: Vec<&Texture> = self.peel_targets.iter().collect();
+        let options = PeelOptions {
+            max_layers: self.max_layers,
+            ..PeelOptions::default()
+        };
+        let water_depth = self.water.depth().expect("T_dw has a depth attachment");
+        self.peeler.peel(
+            &colors,
+            &self.peel_program,
+            options,
+            |pass| {
+                pass.texture("water_depth", water_depth);
+                for job in jobs {
+                    let (first, count) = soup.ranges[job.mesh];
+                    pass.viewport(job.tile)
+                        .uniform("model", job.model)
+                        .uniform("frame_center", job.framing.center.as_vec3())
+                        .uniform("projection", job.framing.projection());
+                    pass.draw_arrays(&soup.vertices, Primitive::Triangles, first, count)?;
+                }
+                Ok(())
+            },
+            |layer, _| {
+                if let Some(dir) = dump {
+                    self.dump_peel(dir, layer)?;
+                }
+                self.accumulator.add_peel(&self.peel_targets, layer == 0)
+            },
+        )
+    }
+
+    /// The last pass: the fluid surface inside each body, added into the sums.
+    fn water_patch_pass(&self, jobs: &[Job], level: f64) -> Result<(), GlError> {
+        let target = self.accumulator.sums_target();
+        let mut pass = target.pass(
+            &self.water_patch_program,
+            "mass: pass n+1, fluid surface patch",
+        )?;
+        pass.state(DrawState {
+            blend: Some(Blend::Add),
+            ..DrawState::default()
+        })
+        .texture(
+            "first_peel_faces_down",
+            self.accumulator.first_peel_faces_down(),
+        );
+        for job in jobs {
+            water_quad(&mut pass, job, level)?;
+        }
+        Ok(())
+    }
+
+    /// Fig. 10: each target of peel `layer` as a PNG, each channel mapped to [0, 255].
+    fn dump_peel(&self, dir: &Path, layer: usize) -> Result<(), GlError> {
+        for (i, texture) in self.peel_targets.iter().take(TARGETS).enumerate() {
+            let path: PathBuf = dir.join(format!("peel{}_target{i}.png", layer + 1));
+            dump::texture_png(texture, &path, DumpRange::Auto)?;
+        }
+        Ok(())
+    }
+
+    pub fn context(&self) -> &Context {
+        &self.ctx
+    }
+}
+
+/// Draws the fluid surface quad over `job`'s tile.
+fn water_quad(pass: &mut Pass, job: &Job, level: f64) -> Result<(), GlError> {
+    pass.viewport(job.tile)
+        .uniform("frame_center", job.framing.center.as_vec3())
+        .uniform("projection", job.framing.projection())
+        .uniform("half_width", job.framing.half_width as f32)
+        .uniform("water_level", level as f32);
+    pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)
+}
+
+/// Convenience for callers that place a body by position and rotation.
+pub fn model_matrix(rotation: glam::Quat, translation: Vec3) -> Mat4 {
+    Mat4::from_rotation_translation(rotation, translation)
+}
