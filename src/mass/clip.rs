@@ -131,7 +131,7 @@ fn boundary_edges(mesh: &Mesh) -> Vec<(u32, u32)> {
     let mut edges: Vec<(u32, u32)> = count
         .into_iter()
         .filter(|&(_, c)| c > 0)
-        .flat_map(|(e, c)| std::iter::repeat(e).take(c as usize))
+        .flat_map(|(e, c)| (0..c).map(move |_| e))
         .collect();
     edges.sort_unstable();
     edges
