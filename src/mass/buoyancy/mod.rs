@@ -3,6 +3,7 @@
 //! and the CPU integrates the rigid bodies under gravity, buoyancy and drag.
 
 pub mod analytic;
+pub mod batch;
 pub mod forces;
 pub mod rigid_body;
 pub mod simulation;
