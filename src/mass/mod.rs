@@ -34,6 +34,7 @@
 pub mod analytic;
 pub mod assemble;
 pub mod buoyancy;
+pub mod cli;
 pub mod clip;
 pub mod closed_form;
 pub mod cpu_reference;
@@ -41,9 +42,23 @@ pub mod framing;
 pub mod gpu;
 pub mod integrals;
 pub mod integrands;
+pub mod models;
 pub mod peel;
 pub mod reduce;
 pub mod surface;
 
 pub use assemble::MassProperties;
+
+/// A progress bar for long runs, hidden under `--json` or when stderr is not a terminal.
+pub fn progress_bar(len: u64, hidden: bool, message: &'static str) -> indicatif::ProgressBar {
+    if hidden {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) = indicatif::ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} [{elapsed}<{eta}]") {
+        bar.set_style(style);
+    }
+    bar.set_message(message);
+    bar
+}
 pub use integrals::VolumeIntegrals;

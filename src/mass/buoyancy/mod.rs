@@ -4,6 +4,8 @@
 
 pub mod analytic;
 pub mod batch;
+pub mod render;
+pub mod scene;
 pub mod forces;
 pub mod rigid_body;
 pub mod simulation;
