@@ -24,6 +24,12 @@ struct Cli {
 enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
+    /// Paper 4: mass properties by depth peeling and reduction, beside Mirtich's method.
+    Mass(classic_gpgpu::mass::cli::MassArgs),
+    /// Paper 4: rigid bodies floating on still water (section 5).
+    Buoyancy(classic_gpgpu::mass::cli::BuoyancyArgs),
+    /// Paper 4: Table 1, Fig. 4 and Fig. 5 regenerated, and the buoyancy steps per second.
+    MassBench(classic_gpgpu::report::paper4::BenchArgs),
 }
 
 /// What every command gets.
@@ -51,6 +57,15 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info => info(&global),
+        Command::Mass(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::mass::cli::run_mass(&a, &c, global.json)),
+        Command::Buoyancy(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::mass::cli::run_buoyancy(&a, &c, global.json)),
+        Command::MassBench(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::report::paper4::run_cli(&a, &c, global.json)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

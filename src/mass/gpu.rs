@@ -45,8 +45,10 @@ impl GpuMass {
     ) -> Result<GpuResult, GlError> {
         let framing = Framing::fit(mesh, self.resolution).map_err(GlError::Invalid)?;
         let soup = Soup::new(self.peeler.context(), &[mesh])?;
+        let indices: Vec<u32> = soup.all_triangles(0).collect();
+        soup.set_indices(&indices)?;
         let job = Job {
-            mesh: 0,
+            indices: (0, indices.len()),
             model: Mat4::IDENTITY,
             framing,
             tile: Rect::sized(self.resolution, self.resolution),

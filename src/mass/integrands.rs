@@ -46,12 +46,16 @@ pub fn water_patch_program(ctx: &Context) -> Result<Program, GlError> {
     Program::new(ctx, &[WATER_VERTEX], &[PRELUDE, LISTING, WATER_PATCH])
 }
 
-/// Several meshes in one vertex buffer, unindexed: per vertex its position and its
-/// triangle's unit normal (body frame), 6 floats.
+/// Several meshes in one vertex buffer, each triangle with its own three vertices: per
+/// vertex its position and its triangle's unit normal (body frame), 6 floats. An index
+/// buffer, rewritten per batch, selects the triangles to draw (all of them, or those
+/// that reach below the water).
 pub struct Soup {
     pub vertices: VertexArray,
-    /// (first vertex, vertex count) of each mesh.
+    /// (first vertex, vertex count) of each mesh; triangle t of mesh m is vertices
+    /// `ranges[m].0 + 3t ..+ 3`.
     pub ranges: Vec<(usize, usize)>,
+    indices: Buffer,
 }
 
 impl Soup {
@@ -70,10 +74,32 @@ impl Soup {
             ranges.push((first, data.len() - first));
         }
         let buffer = Buffer::from_slice(ctx, &data, BufferUsage::Static)?;
+        let indices = Buffer::from_slice(ctx, &[0u32; 3], BufferUsage::Dynamic)?;
         let mut vertices = VertexArray::new(ctx)?;
         vertices.float_attribute(0, &buffer, 3, 24, 0, 0)?;
         vertices.float_attribute(1, &buffer, 3, 24, 12, 0)?;
-        Ok(Soup { vertices, ranges })
+        vertices.set_index_buffer(&indices)?;
+        Ok(Soup {
+            vertices,
+            ranges,
+            indices,
+        })
+    }
+
+    /// Every triangle of mesh `m`, as indices.
+    pub fn all_triangles(&self, m: usize) -> impl Iterator<Item = u32> {
+        let (first, count) = self.ranges[m];
+        (first as u32)..(first + count) as u32
+    }
+
+    /// The index list the next batch draws from.
+    /// Rewritten in place when it fits (no reallocation per step), else grown.
+    pub fn set_indices(&self, indices: &[u32]) -> Result<(), GlError> {
+        if std::mem::size_of_val(indices) <= self.indices.len_bytes() {
+            self.indices.write(0, indices)
+        } else {
+            self.indices.replace(indices)
+        }
     }
 }
 

@@ -55,7 +55,9 @@ pub fn progress_bar(len: u64, hidden: bool, message: &'static str) -> indicatif:
         return indicatif::ProgressBar::hidden();
     }
     let bar = indicatif::ProgressBar::new(len);
-    if let Ok(style) = indicatif::ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} [{elapsed}<{eta}]") {
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} [{elapsed}<{eta}]")
+    {
         bar.set_style(style);
     }
     bar.set_message(message);

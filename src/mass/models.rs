@@ -37,7 +37,9 @@ pub fn load(model: &str) -> Result<Mesh, String> {
         return Err(format!("model '{model}': the file has no triangles"));
     }
     if mesh.positions.iter().any(|p| !p.is_finite()) {
-        return Err(format!("model '{model}': a vertex has a non-finite coordinate"));
+        return Err(format!(
+            "model '{model}': a vertex has a non-finite coordinate"
+        ));
     }
     Ok(mesh)
 }

@@ -3,9 +3,11 @@
 //! occlusion query and one reduction serve them all.
 //!
 //! - Pass 0 (with water): the fluid surface's depth into `T_dw`.
-//! - Passes 1..n: the GL layer's depth peeler draws every body with the listing wrapped by
-//!   the peel test (and the water test), until the occlusion query counts no fragment;
-//!   each peel is added into the running sums.
+//! - Passes 1..n: every body is drawn with the listing wrapped by the peel test (the GL
+//!   layer's `peel_discard`, against the previous layer's depth) and the water test. Each
+//!   body has its own occlusion query: a body whose layer drew nothing is done and is not
+//!   drawn again, and peeling ends when every body is done. Each peel is added into the
+//!   running sums.
 //! - Pass n + 1 (with water): the fluid surface where the first peel faced down (`T_w`),
 //!   added straight into the sums (one quad: at most one fragment per pixel).
 
@@ -14,19 +16,20 @@ use super::integrals::VolumeIntegrals;
 use super::integrands::{self, Soup, TARGETS};
 use super::reduce::Accumulator;
 use crate::gl::dump::{self, DumpRange};
-use crate::gl::peel::{DepthPeeler, PeelOptions};
 use crate::gl::{
-    Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, Pass, Primitive, Program,
-    Rect, Texture, TextureFormat,
+    Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, OcclusionQuery, Pass,
+    Primitive, Program, Rect, Texture, TextureFormat,
 };
 use glam::{Mat4, Vec3};
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
-/// One body of a batch: which mesh of the soup, where it is, how it is framed, and where
-/// its tile lies in the render targets.
+/// One body of a batch: which triangles of the soup (a range of its index buffer), where
+/// it is, how it is framed, and where its tile lies in the render targets.
 #[derive(Clone, Copy, Debug)]
 pub struct Job {
-    pub mesh: usize,
+    /// (first index, index count) in [`Soup::set_indices`]'s list.
+    pub indices: (usize, usize),
     /// Body frame -> world.
     pub model: Mat4,
     pub framing: Framing,
@@ -53,7 +56,11 @@ pub struct Peeler {
     peel_targets: Vec<Texture>,
     /// `T_dw`.
     water: Framebuffer,
-    peeler: DepthPeeler,
+    /// The peel targets with depth `T_d(k)` for even and odd k (ping-pong).
+    layers: [Framebuffer; 2],
+    /// One occlusion query per body (grown on demand).
+    queries: RefCell<Vec<OcclusionQuery>>,
+    width: u32,
     accumulator: Accumulator,
     /// Tiles are reduced in aligned blocks of this side (a power of two); `None` reduces
     /// the whole target (one body).
@@ -75,6 +82,12 @@ impl Peeler {
         }
         peel_targets.push(Texture::new_2d(ctx, width, height, TextureFormat::R32F)?);
         let water_depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
+        let colors: Vec<&Texture> = peel_targets.iter().collect();
+        let layer = |name| -> Result<Framebuffer, GlError> {
+            let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
+            Framebuffer::new(ctx, name, &colors, Some(&depth))
+        };
+        let layers = [layer("mass: peels (even)")?, layer("mass: peels (odd)")?];
         Ok(Peeler {
             ctx: ctx.clone(),
             peel_program: integrands::peel_program(ctx)?,
@@ -87,7 +100,9 @@ impl Peeler {
                 &[],
                 Some(&water_depth),
             )?,
-            peeler: DepthPeeler::new(ctx, width, height)?,
+            layers,
+            queries: RefCell::new(Vec::new()),
+            width,
             accumulator: Accumulator::new(ctx, width, height)?,
             block,
             max_layers: 64,
@@ -115,7 +130,7 @@ impl Peeler {
             .map(|job| {
                 let index = match self.block {
                     Some(b) => {
-                        let columns = self.peeler.width().div_ceil(b);
+                        let columns = self.width.div_ceil(b);
                         ((job.tile.y / b) * columns + job.tile.x / b) as usize
                     }
                     None => 0,
@@ -149,42 +164,71 @@ impl Peeler {
         Ok(())
     }
 
-    /// Passes 1..n: peel until nothing is drawn; each peel goes into the sums.
+    /// Passes 1..n: peel until no body draws anything; each peel goes into the sums.
     fn peel_passes(
         &self,
         soup: &Soup,
         jobs: &[Job],
         dump: Option<&Path>,
     ) -> Result<usize, GlError> {
-        let colors: Vec<&Texture> = self.peel_targets.iter().collect();
-        let options = PeelOptions {
-            max_layers: self.max_layers,
-            ..PeelOptions::default()
-        };
+        let mut queries = self.queries.borrow_mut();
+        while queries.len() < jobs.len() {
+            queries.push(OcclusionQuery::new(&self.ctx)?);
+        }
         let water_depth = self.water.depth().expect("T_dw has a depth attachment");
-        self.peeler.peel(
-            &colors,
-            &self.peel_program,
-            options,
-            |pass| {
-                pass.texture("water_depth", water_depth);
-                for job in jobs {
-                    let (first, count) = soup.ranges[job.mesh];
+        let state = DrawState {
+            depth: Some(DepthTest {
+                func: Compare::Less,
+                write: true,
+            }),
+            ..DrawState::default()
+        };
+        let mut active: Vec<bool> = vec![true; jobs.len()];
+        for layer in 0..self.max_layers {
+            let target = &self.layers[layer % 2];
+            target.clear_colors([0.0; 4])?;
+            target.clear_depth_stencil(1.0, 0)?;
+            {
+                let mut pass = target.pass(&self.peel_program, "mass: depth peel")?;
+                pass.state(state)
+                    .texture(
+                        "u_peel_depth",
+                        self.layers[(layer + 1) % 2].depth().expect("depth"),
+                    )
+                    .texture("water_depth", water_depth)
+                    .uniform("u_peel_layer", layer as i32);
+                for (k, job) in jobs.iter().enumerate().filter(|(k, _)| active[*k]) {
+                    let (first, count) = job.indices;
                     pass.viewport(job.tile)
                         .uniform("model", job.model)
                         .uniform("frame_center", job.framing.center.as_vec3())
                         .uniform("projection", job.framing.projection());
-                    pass.draw_arrays(&soup.vertices, Primitive::Triangles, first, count)?;
+                    queries[k].begin();
+                    let drawn = pass.draw_elements_instanced(
+                        &soup.vertices,
+                        Primitive::Triangles,
+                        first,
+                        count,
+                        1,
+                    );
+                    queries[k].end();
+                    drawn?;
                 }
-                Ok(())
-            },
-            |layer, _| {
-                if let Some(dir) = dump {
-                    self.dump_peel(dir, layer)?;
+            }
+            for (k, a) in active.iter_mut().enumerate() {
+                if *a {
+                    *a = queries[k].samples()? > 0;
                 }
-                self.accumulator.add_peel(&self.peel_targets, layer == 0)
-            },
-        )
+            }
+            if !active.iter().any(|&a| a) {
+                return Ok(layer);
+            }
+            if let Some(dir) = dump {
+                self.dump_peel(dir, layer)?;
+            }
+            self.accumulator.add_peel(&self.peel_targets, layer == 0)?;
+        }
+        Ok(self.max_layers)
     }
 
     /// The last pass: the fluid surface inside each body, added into the sums.

@@ -4,6 +4,7 @@
 //! Each paper plugs in through one file, `report/paperN.rs`, whose `run` measures with the
 //! paper module and returns a [`Section`]. The `*-bench` commands and `reproduce` both call it.
 
+pub mod paper4;
 pub mod paper_tables;
 
 use serde::Serialize;

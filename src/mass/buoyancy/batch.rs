@@ -54,18 +54,43 @@ impl GpuSolver {
         (self.columns * self.block, rows * self.block)
     }
 
-    /// The job of body `k`: framed by its world bounding box, in tile `k`.
-    fn job(&self, k: usize, shape: &Shape, body: &Body) -> Result<Job, GlError> {
+    /// The job of body `k`: framed by its world bounding box, in tile `k`, drawing only
+    /// the triangles that reach below the water (appended to `indices`): the others could
+    /// only make fragments the water test discards, and skipping them halves the vertex
+    /// work of a floating body.
+    fn job(
+        &self,
+        k: usize,
+        shape: &Shape,
+        body: &Body,
+        level: f64,
+        indices: &mut Vec<u32>,
+    ) -> Result<Job, GlError> {
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        for p in &shape.mesh.positions {
-            let w = body.rigid.to_world(p.as_dvec3());
+        let world: Vec<DVec3> = shape
+            .mesh
+            .positions
+            .iter()
+            .map(|p| body.rigid.to_world(p.as_dvec3()))
+            .collect();
+        for &w in &world {
             lo = lo.min(w);
             hi = hi.max(w);
+        }
+        // A hair of slack keeps triangles touching the surface (fp32 depths).
+        let keep_below = level + 1e-5 * (hi - lo).max_element().max(1.0);
+        let first = indices.len();
+        let (soup_first, _) = self.soup.ranges[body.shape];
+        for (t, tri) in shape.mesh.triangles.iter().enumerate() {
+            if tri.iter().any(|&i| world[i as usize].z <= keep_below) {
+                let v = (soup_first + 3 * t) as u32;
+                indices.extend([v, v + 1, v + 2]);
+            }
         }
         let framing = Framing::fit_box(lo, hi, self.resolution).map_err(GlError::Invalid)?;
         let (col, row) = (k as u32 % self.columns, k as u32 / self.columns);
         Ok(Job {
-            mesh: body.shape,
+            indices: (first, indices.len() - first),
             model: Mat4::from_rotation_translation(
                 body.rigid.orientation.as_quat(),
                 body.rigid.position.as_vec3(),
@@ -96,11 +121,13 @@ impl SubmergedSolver for GpuSolver {
             ));
         }
         let run = || -> Result<_, GlError> {
+            let mut indices = Vec::new();
             let jobs = bodies
                 .iter()
                 .enumerate()
-                .map(|(k, b)| self.job(k, &shapes[b.shape], b))
+                .map(|(k, b)| self.job(k, &shapes[b.shape], b, water.level, &mut indices))
                 .collect::<Result<Vec<_>, _>>()?;
+            self.soup.set_indices(&indices)?;
             self.peeler.run(&self.soup, &jobs, Some(water.level), None)
         };
         let batch = run().map_err(|e| e.to_string())?;

@@ -4,8 +4,8 @@
 
 pub mod analytic;
 pub mod batch;
-pub mod render;
-pub mod scene;
 pub mod forces;
+pub mod render;
 pub mod rigid_body;
+pub mod scene;
 pub mod simulation;

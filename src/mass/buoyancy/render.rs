@@ -34,7 +34,12 @@ pub struct FrameRenderer {
 }
 
 impl FrameRenderer {
-    pub fn new(ctx: &Context, shapes: &[Shape], width: u32, height: u32) -> Result<FrameRenderer, GlError> {
+    pub fn new(
+        ctx: &Context,
+        shapes: &[Shape],
+        width: u32,
+        height: u32,
+    ) -> Result<FrameRenderer, GlError> {
         let color = Texture::new_2d(ctx, width, height, TextureFormat::Rgba8)?;
         let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
         let meshes: Vec<_> = shapes.iter().map(|s| &s.mesh).collect();
@@ -121,10 +126,19 @@ impl FrameRenderer {
             .uniform("color", Vec4::new(0.1, 0.35, 0.6, 0.45));
             pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)?;
         }
-        let pixels = self.target.read_u8(0, Rect::sized(self.width, self.height))?;
+        let pixels = self
+            .target
+            .read_u8(0, Rect::sized(self.width, self.height))?;
         let row = self.width as usize * 4;
         let flipped: Vec<u8> = pixels.chunks_exact(row).rev().flatten().copied().collect();
-        image::save_buffer(path, &flipped, self.width, self.height, image::ColorType::Rgba8).map_err(|e| GlError::Io {
+        image::save_buffer(
+            path,
+            &flipped,
+            self.width,
+            self.height,
+            image::ColorType::Rgba8,
+        )
+        .map_err(|e| GlError::Io {
             path: path.display().to_string(),
             message: e.to_string(),
         })
@@ -142,17 +156,25 @@ impl FrameRenderer {
             let sub = body.submerged;
             if sub.volume > 0.0 {
                 let f = sim.water.density * g * sub.volume;
-                buoyancy.extend(arrow(sub.center.as_vec3(), Vec3::Z * scale(f, body.rigid.mass)));
+                buoyancy.extend(arrow(
+                    sub.center.as_vec3(),
+                    Vec3::Z * scale(f, body.rigid.mass),
+                ));
             }
         }
-        for (segments, color) in [(gravity, Vec4::new(0.1, 0.2, 1.0, 1.0)), (buoyancy, Vec4::new(1.0, 0.9, 0.1, 1.0))] {
+        for (segments, color) in [
+            (gravity, Vec4::new(0.1, 0.2, 1.0, 1.0)),
+            (buoyancy, Vec4::new(1.0, 0.9, 0.1, 1.0)),
+        ] {
             if segments.is_empty() {
                 continue;
             }
             let buffer = Buffer::from_slice(&self.ctx, &segments, BufferUsage::Dynamic)?;
             let mut vertices = VertexArray::new(&self.ctx)?;
             vertices.float_attribute(0, &buffer, 3, 12, 0, 0)?;
-            let mut pass = self.target.pass(&self.lines, "buoyancy frame: force arrows")?;
+            let mut pass = self
+                .target
+                .pass(&self.lines, "buoyancy frame: force arrows")?;
             pass.uniform("view_projection", vp).uniform("color", color);
             pass.draw_arrays(&vertices, Primitive::Lines, 0, segments.len())?;
         }

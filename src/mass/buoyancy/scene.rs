@@ -10,24 +10,38 @@ use glam::{DQuat, DVec3, Vec3};
 /// Densities (kg/m³, water 1000) of the ten bodies of each kind, in placement order.
 const DENSITIES: [[f64; 10]; 5] = [
     // spheres
-    [200.0, 300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 900.0, 350.0, 650.0],
+    [
+        200.0, 300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 900.0, 350.0, 650.0,
+    ],
     // boxes: the last three sink
-    [250.0, 350.0, 450.0, 550.0, 650.0, 750.0, 850.0, 1300.0, 1600.0, 2000.0],
+    [
+        250.0, 350.0, 450.0, 550.0, 650.0, 750.0, 850.0, 1300.0, 1600.0, 2000.0,
+    ],
     // tori
-    [300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 450.0, 550.0, 650.0, 750.0],
+    [
+        300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 450.0, 550.0, 650.0, 750.0,
+    ],
     // teapots
-    [300.0, 400.0, 500.0, 600.0, 700.0, 350.0, 450.0, 550.0, 650.0, 750.0],
+    [
+        300.0, 400.0, 500.0, 600.0, 700.0, 350.0, 450.0, 550.0, 650.0, 750.0,
+    ],
     // bunnies
-    [300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 350.0, 450.0, 550.0, 650.0],
+    [
+        300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 350.0, 450.0, 550.0, 650.0,
+    ],
 ];
 
 /// The five shapes, each about a metre across.
 pub fn paper_shapes() -> Result<Vec<Shape>, String> {
     let fit = |m: Mesh, size: f32| -> Mesh {
-        let (lo, hi) = crate::mass::framing::bounds(m.positions.iter().copied()).expect("non-empty");
+        let (lo, hi) =
+            crate::mass::framing::bounds(m.positions.iter().copied()).expect("non-empty");
         let scale = size / (hi - lo).max_element();
         let c = (lo + hi) / 2.0;
-        Mesh::new(m.positions.iter().map(|p| (*p - c) * scale).collect(), m.triangles)
+        Mesh::new(
+            m.positions.iter().map(|p| (*p - c) * scale).collect(),
+            m.triangles,
+        )
     };
     Ok(vec![
         Shape::new("sphere", &mesh::uv_sphere(0.5, 30, 15))?,
@@ -54,7 +68,8 @@ pub fn paper_scene(bodies: usize, dt: f64) -> Result<Simulation, String> {
         );
         // Orientations from a fixed low-discrepancy sequence, so runs are reproducible.
         let a = k as f64 * 2.399_963;
-        let orientation = DQuat::from_euler(glam::EulerRot::ZXY, a, 0.4 * a.sin(), 0.3 * (1.7 * a).cos());
+        let orientation =
+            DQuat::from_euler(glam::EulerRot::ZXY, a, 0.4 * a.sin(), 0.3 * (1.7 * a).cos());
         sim.add(kind, DENSITIES[kind][nth], position, orientation);
     }
     Ok(sim)

@@ -124,14 +124,19 @@ impl Simulation {
     /// One step: buoyancy of every body from `solver`, then the rigid-body step.
     pub fn step(&mut self, solver: &mut dyn SubmergedSolver) -> Result<(), String> {
         let subs = solver.submerged(&self.shapes, &self.bodies, &self.water)?;
-        for (body, sub) in self.bodies.iter_mut().zip(subs) {
+        self.apply(&subs);
+        Ok(())
+    }
+
+    /// The rigid-body half of a step, given every body's submerged part.
+    pub fn apply(&mut self, subs: &[Submerged]) {
+        for (body, &sub) in self.bodies.iter_mut().zip(subs) {
             let volume = self.shapes[body.shape].unit.volume;
             let w = forces::wrench(&body.rigid, volume, sub, &self.water);
             body.rigid.step(w, self.dt);
             body.submerged = sub;
         }
         self.time += self.dt;
-        Ok(())
     }
 
     /// Kinetic + gravitational + buoyant potential energy of every body, with the
