@@ -3,6 +3,7 @@
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use classic_gpgpu::gl::{self, Renderer};
+use classic_gpgpu::report;
 use std::process::ExitCode;
 
 /// The classic GPGPU papers of a 2007 tutorial, reproduced on a headless OpenGL context.
@@ -30,6 +31,9 @@ enum Command {
     Buoyancy(classic_gpgpu::mass::cli::BuoyancyArgs),
     /// Paper 4: Table 1, Fig. 4 and Fig. 5 regenerated, and the buoyancy steps per second.
     MassBench(classic_gpgpu::report::paper4::BenchArgs),
+    /// Regenerate every table and figure of the papers into a report beside the published
+    /// numbers (report/index.html, report/results.json, PNG figures).
+    Reproduce(report::reproduce::ReproduceArgs),
 }
 
 /// What every command gets.
@@ -66,6 +70,7 @@ fn main() -> ExitCode {
         Command::MassBench(a) => global
             .context()
             .and_then(|c| classic_gpgpu::report::paper4::run_cli(&a, &c, global.json)),
+        Command::Reproduce(args) => reproduce(&global, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -115,4 +120,43 @@ fn info(global: &Global) -> anyhow::Result<()> {
         l.max_vertex_uniform_components, l.max_fragment_uniform_components
     );
     Ok(())
+}
+
+fn reproduce(global: &Global, args: &report::reproduce::ReproduceArgs) -> anyhow::Result<()> {
+    let ctx = global.context()?;
+    let report = report::reproduce::reproduce(&ctx, args, !global.json)?;
+    if global.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
+    print_sections(&report.sections);
+    println!(
+        "report written to {} ({:.0} s, renderer: {})",
+        args.out.join("index.html").display(),
+        report.elapsed_s,
+        ctx.info().renderer_line()
+    );
+    Ok(())
+}
+
+/// The tables and claims of report sections, as text.
+fn print_sections(sections: &[report::Section]) {
+    for section in sections {
+        println!("== {} ==", section.title);
+        for table in &section.tables {
+            println!("{}", table.to_text());
+        }
+        for claim in &section.claims {
+            let holds = match claim.holds {
+                Some(true) => "holds",
+                Some(false) => "does not hold",
+                None => "not judged",
+            };
+            println!(
+                "- {} [{holds}]: paper: {}; here: {}",
+                claim.claim, claim.paper, claim.measured
+            );
+        }
+        println!();
+    }
 }
