@@ -3,8 +3,9 @@
 //! Mirtich's analytic method) and the buoyancy scene's steps per second (section 5.3), each
 //! beside the published numbers of `assets/paper_tables.toml` `[paper4]`.
 
+use super::plot::{Plot, Series};
 use super::{BenchOptions, Claim, Fidelity, Figure, Section, Table};
-use crate::gl::{dump, Context};
+use crate::gl::Context;
 use crate::mass::buoyancy::{
     batch::GpuSolver, render::FrameRenderer, scene, simulation::SubmergedSolver,
 };
@@ -206,6 +207,76 @@ fn measure_buoyancy(opts: &BenchOptions, steps: usize) -> anyhow::Result<serde_j
     }))
 }
 
+/// Fig. 4 (one plot per quantity) and Fig. 5 as PNG line plots.
+fn error_and_time_plots(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<Vec<Figure>> {
+    let mut figures = Vec::new();
+    for (k, quantity) in ["mass", "Ixx", "Iyy", "Izz"].iter().enumerate() {
+        let plot = Plot {
+            title: format!("Fig. 4: relative error of {quantity}"),
+            x_label: "resolution (pixels per side)".into(),
+            y_label: "relative error".into(),
+            log_x: true,
+            log_y: true,
+            series: objects
+                .iter()
+                .map(|o| {
+                    Series::new(
+                        o.name,
+                        o.rows
+                            .iter()
+                            .map(|r| (r.0 as f64, r.2[k].max(1e-9)))
+                            .collect(),
+                    )
+                })
+                .collect(),
+        };
+        let file = format!("fig4_{}.png", quantity.to_lowercase());
+        plot.write_png(&opts.out_dir.join(&file))?;
+        figures.push(Figure {
+            file,
+            caption: format!(
+                "Fig. 4: relative error of {quantity} against resolution, each object"
+            ),
+        });
+    }
+    let mut series: Vec<Series> = objects
+        .iter()
+        .map(|o| {
+            Series::new(
+                format!("{} GPU", o.name),
+                o.rows.iter().map(|r| (r.0 as f64, r.4)).collect(),
+            )
+        })
+        .collect();
+    for o in objects {
+        let (lo, hi) = (
+            o.rows.first().map(|r| r.0).unwrap_or(8),
+            o.rows.last().map(|r| r.0).unwrap_or(512),
+        );
+        series.push(Series::new(
+            format!("{} analytic", o.name),
+            vec![(lo as f64, o.analytic_ms), (hi as f64, o.analytic_ms)],
+        ));
+    }
+    let plot = Plot {
+        title: format!(
+            "Fig. 5: time against resolution ({})",
+            opts.gl.info().renderer
+        ),
+        x_label: "resolution (pixels per side)".into(),
+        y_label: "milliseconds (wall clock)".into(),
+        log_x: true,
+        log_y: true,
+        series,
+    };
+    plot.write_png(&opts.out_dir.join("fig5_time.png"))?;
+    figures.push(Figure {
+        file: "fig5_time.png".into(),
+        caption: "Fig. 5: GPU path (wall clock per call) against resolution; flat lines: Mirtich's analytic method".into(),
+    });
+    Ok(figures)
+}
+
 /// The section: tables beside the paper, claims, figures.
 pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
     let ctx = opts.gl;
@@ -250,9 +321,9 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
             .unwrap_or_else(|| "-".into())
     };
     let mut table1 = Table {
-        caption: "Table 1: test objects (paper beside ours; peels = depth layers at 32x32)".into(),
+        caption: "Table 1: test objects (paper beside ours; peels = depth layers under the view down -z, which depend on orientation and resolution)".into(),
         header: [
-            "object", "vertices", "paper", "faces", "paper", "peels", "paper", "closed",
+            "object", "vertices", "paper", "faces", "paper", "peels (32x32)", "peels (finest)", "paper", "closed",
         ]
         .map(String::from)
         .to_vec(),
@@ -268,6 +339,10 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
             o.mesh.triangles.len().to_string(),
             int(r, "faces"),
             peels32.to_string(),
+            o.rows
+                .last()
+                .map(|r| format!("{} ({}x{})", r.1, r.0, r.0))
+                .unwrap_or_default(),
             int(r, "peels"),
             if o.closed {
                 "yes".into()
@@ -354,11 +429,13 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
         claim: "32x32 is enough for 5% error in mass and principal moments".into(),
         paper: "every object within 5% at 32x32 (Fig. 4)".into(),
         measured: format!(
-            "worst relative error at 32x32: {:.2}% over all objects, {:.2}% over the closed ones",
-            100.0 * worst32,
-            100.0 * worst32_closed
+            "worst relative error at 32x32: {:.2}% over the closed objects; {:.2}% with the open \
+             teapot, whose analytic reference is unreliable (Newell's surface has gaps), so it is \
+             not judged",
+            100.0 * worst32_closed,
+            100.0 * worst32
         ),
-        holds: Some(worst32 < 0.05),
+        holds: Some(worst32_closed < 0.05),
     }];
     for name in ["bunny", "pipe"] {
         if let Some((gpu, ana)) = at64(name) {
@@ -420,20 +497,17 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
     // Fig. 10: the integrands of each peel of the bunny.
     let bunny = models::paper_object("bunny").expect("bunny");
     let dump_dir = opts.out_dir.join("fig10_bunny");
-    GpuMass::new(ctx, 128)?.integrate(&bunny, None, Some(&dump_dir))?;
-    let mut figures = vec![Figure {
+    let bunny_peels = GpuMass::new(ctx, 128)?
+        .integrate(&bunny, None, Some(&dump_dir))?
+        .peels;
+    let mut figures = error_and_time_plots(opts, &objects)?;
+    figures.push(Figure {
         file: buoyancy["frame"].as_str().unwrap_or("").into(),
         caption:
             "Fig. 9: the 50-body scene after the benchmark run (gravity blue, buoyancy yellow)"
                 .into(),
-    }];
-    for k in 1..=objects
-        .iter()
-        .find(|o| o.name == "bunny")
-        .and_then(|o| o.rows.iter().find(|r| r.0 == 32))
-        .map(|r| r.1)
-        .unwrap_or(0)
-    {
+    });
+    for k in 1..=bunny_peels {
         figures.push(Figure {
             file: format!("fig10_bunny/peel{k}_target0.png"),
             caption: format!(
@@ -441,7 +515,6 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
             ),
         });
     }
-    let _ = dump::DumpRange::Auto; // the dumps above use the GL layer's documented mapping
 
     let results = json!({
         "renderer": renderer,

@@ -75,7 +75,7 @@ impl FrameRenderer {
             .map(|b| b.rigid.position.truncate().length() as f32)
             .fold(1.0, f32::max)
             + 2.0;
-        let eye = Vec3::new(0.0, -1.6 * extent, 1.1 * extent);
+        let eye = Vec3::new(0.0, -1.1 * extent, 0.7 * extent);
         let view = Mat4::look_at_rh(eye, Vec3::new(0.0, 0.0, -0.5), Vec3::Z);
         let aspect = self.width as f32 / self.height as f32;
         Mat4::perspective_rh_gl(0.8, aspect, 0.1, 10.0 * extent) * view
@@ -123,7 +123,7 @@ impl FrameRenderer {
             .uniform("view_projection", vp)
             .uniform("water_level", sim.water.level as f32)
             .uniform("extent", 1000.0f32)
-            .uniform("color", Vec4::new(0.1, 0.35, 0.6, 0.45));
+            .uniform("color", Vec4::new(0.05, 0.22, 0.42, 0.55));
             pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)?;
         }
         let pixels = self
