@@ -21,7 +21,7 @@ pub struct MassArgs {
     #[arg(long, default_value_t = 32)]
     pub resolution: u32,
     /// Density ρ; mass and inertia scale with it.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub density: f64,
     /// Only the part below the horizontal plane z = Z (section 5.2, the submerged part).
     #[arg(long, value_name = "Z", allow_hyphen_values = true)]
