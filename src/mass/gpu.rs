@@ -45,7 +45,9 @@ impl GpuMass {
     ) -> Result<GpuResult, GlError> {
         let framing = Framing::fit(mesh, self.resolution).map_err(GlError::Invalid)?;
         let soup = Soup::new(self.peeler.context(), &[mesh])?;
-        let indices: Vec<u32> = soup.all_triangles(0).collect();
+        let world: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let mut indices = Vec::new();
+        soup.push_triangles(0, &world, |_| true, &mut indices);
         soup.set_indices(&indices)?;
         let job = Job {
             indices: (0, indices.len()),

@@ -46,50 +46,68 @@ pub fn water_patch_program(ctx: &Context) -> Result<Program, GlError> {
     Program::new(ctx, &[WATER_VERTEX], &[PRELUDE, LISTING, WATER_PATCH])
 }
 
-/// Several meshes in one vertex buffer, each triangle with its own three vertices: per
-/// vertex its position and its triangle's unit normal (body frame), 6 floats. An index
-/// buffer, rewritten per batch, selects the triangles to draw (all of them, or those
-/// that reach below the water).
+/// Several meshes in one vertex buffer, drawn through an index buffer rewritten per batch.
+///
+/// The listing needs `n_z` to have its triangle's sign at every fragment; with shared
+/// vertices that is impossible where up- and down-facing triangles meet. So each mesh is
+/// stored twice, once with `n_z = +1` and once with `n_z = -1` at every vertex, and each
+/// triangle's indices point into the copy of its facing under the current pose (the sign
+/// of the z component of its world normal, computed on the CPU from the posed vertices).
+/// Shared vertices are then shaded once per copy instead of once per triangle corner,
+/// which is most of the vertex work on a software rasterizer.
 pub struct Soup {
     pub vertices: VertexArray,
-    /// (first vertex, vertex count) of each mesh; triangle t of mesh m is vertices
-    /// `ranges[m].0 + 3t ..+ 3`.
+    /// (first vertex, vertex count V) of each mesh: its `n_z = +1` copy is vertices
+    /// `first .. first + V`, its `n_z = -1` copy `first + V .. first + 2V`.
     pub ranges: Vec<(usize, usize)>,
+    triangles: Vec<Vec<[u32; 3]>>,
     indices: Buffer,
 }
 
 impl Soup {
     pub fn new(ctx: &Context, meshes: &[&Mesh]) -> Result<Soup, GlError> {
-        let mut data: Vec<[f32; 6]> = Vec::new();
+        let mut data: Vec<[f32; 4]> = Vec::new();
         let mut ranges = Vec::new();
         for mesh in meshes {
             let first = data.len();
-            for t in 0..mesh.triangles.len() {
-                let [a, b, c] = mesh.triangle(t);
-                let n = (b - a).cross(c - a).normalize_or_zero();
-                for v in [a, b, c] {
-                    data.push([v.x, v.y, v.z, n.x, n.y, n.z]);
-                }
+            for sign in [1.0, -1.0] {
+                data.extend(mesh.positions.iter().map(|p| [p.x, p.y, p.z, sign]));
             }
-            ranges.push((first, data.len() - first));
+            ranges.push((first, mesh.positions.len()));
         }
         let buffer = Buffer::from_slice(ctx, &data, BufferUsage::Static)?;
         let indices = Buffer::from_slice(ctx, &[0u32; 3], BufferUsage::Dynamic)?;
         let mut vertices = VertexArray::new(ctx)?;
-        vertices.float_attribute(0, &buffer, 3, 24, 0, 0)?;
-        vertices.float_attribute(1, &buffer, 3, 24, 12, 0)?;
+        vertices.float_attribute(0, &buffer, 3, 16, 0, 0)?;
+        vertices.float_attribute(1, &buffer, 1, 16, 12, 0)?;
         vertices.set_index_buffer(&indices)?;
         Ok(Soup {
             vertices,
             ranges,
+            triangles: meshes.iter().map(|m| m.triangles.clone()).collect(),
             indices,
         })
     }
 
-    /// Every triangle of mesh `m`, as indices.
-    pub fn all_triangles(&self, m: usize) -> impl Iterator<Item = u32> {
+    /// Appends the indices of mesh `m`'s triangles posed at `world` (its vertices in
+    /// world coordinates) for which `keep` holds, each into the copy of its facing.
+    /// Returns the number of indices appended.
+    pub fn push_triangles(
+        &self,
+        m: usize,
+        world: &[glam::DVec3],
+        mut keep: impl FnMut(&[u32; 3]) -> bool,
+        out: &mut Vec<u32>,
+    ) -> usize {
         let (first, count) = self.ranges[m];
-        (first as u32)..(first + count) as u32
+        let before = out.len();
+        for tri in self.triangles[m].iter().filter(|t| keep(t)) {
+            let [a, b, c] = tri.map(|i| world[i as usize]);
+            let n_z = (b - a).truncate().perp_dot((c - a).truncate());
+            let copy = if n_z >= 0.0 { first } else { first + count } as u32;
+            out.extend(tri.map(|i| copy + i));
+        }
+        out.len() - before
     }
 
     /// The index list the next batch draws from.

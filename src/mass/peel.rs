@@ -186,7 +186,7 @@ impl Peeler {
         let mut active: Vec<bool> = vec![true; jobs.len()];
         for layer in 0..self.max_layers {
             let target = &self.layers[layer % 2];
-            target.clear_colors([0.0; 4])?;
+            // Only the depth: the accumulation ignores pixels this peel did not reach.
             target.clear_depth_stencil(1.0, 0)?;
             {
                 let mut pass = target.pass(&self.peel_program, "mass: depth peel")?;
@@ -226,7 +226,15 @@ impl Peeler {
             if let Some(dir) = dump {
                 self.dump_peel(dir, layer)?;
             }
-            self.accumulator.add_peel(&self.peel_targets, layer == 0)?;
+            let tiles: Vec<Rect> = jobs
+                .iter()
+                .zip(&active)
+                .filter(|(_, &a)| a)
+                .map(|(job, _)| job.tile)
+                .collect();
+            let depth = target.depth().expect("peel targets have depth");
+            self.accumulator
+                .add_peel(&self.peel_targets, depth, layer == 0, &tiles)?;
         }
         Ok(self.max_layers)
     }

@@ -80,13 +80,8 @@ impl GpuSolver {
         // A hair of slack keeps triangles touching the surface (fp32 depths).
         let keep_below = level + 1e-5 * (hi - lo).max_element().max(1.0);
         let first = indices.len();
-        let (soup_first, _) = self.soup.ranges[body.shape];
-        for (t, tri) in shape.mesh.triangles.iter().enumerate() {
-            if tri.iter().any(|&i| world[i as usize].z <= keep_below) {
-                let v = (soup_first + 3 * t) as u32;
-                indices.extend([v, v + 1, v + 2]);
-            }
-        }
+        let below = |tri: &[u32; 3]| tri.iter().any(|&i| world[i as usize].z <= keep_below);
+        self.soup.push_triangles(body.shape, &world, below, indices);
         let framing = Framing::fit_box(lo, hi, self.resolution).map_err(GlError::Invalid)?;
         let (col, row) = (k as u32 % self.columns, k as u32 / self.columns);
         Ok(Job {

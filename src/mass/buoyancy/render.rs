@@ -7,7 +7,6 @@ use crate::gl::{
     Blend, Buffer, BufferUsage, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
     Primitive, Program, Rect, Texture, TextureFormat, VertexArray,
 };
-use crate::mass::integrands::Soup;
 use crate::shader;
 use glam::{Mat4, Vec3, Vec4};
 use std::path::Path;
@@ -25,7 +24,7 @@ const COLORS: [Vec3; 5] = [
 pub struct FrameRenderer {
     ctx: Context,
     target: Framebuffer,
-    soup: Soup,
+    meshes: FlatMeshes,
     bodies: Program,
     water: Program,
     lines: Program,
@@ -46,7 +45,7 @@ impl FrameRenderer {
         Ok(FrameRenderer {
             ctx: ctx.clone(),
             target: Framebuffer::new(ctx, "buoyancy frame", &[&color], Some(&depth))?,
-            soup: Soup::new(ctx, &meshes)?,
+            meshes: FlatMeshes::new(ctx, &meshes)?,
             bodies: Program::new(
                 ctx,
                 &[shader!("glsl/mass/render_body.vert")],
@@ -99,14 +98,14 @@ impl FrameRenderer {
                 .uniform("view_projection", vp)
                 .uniform("water_level", sim.water.level as f32);
             for body in &sim.bodies {
-                let (first, count) = self.soup.ranges[body.shape];
+                let (first, count) = self.meshes.ranges[body.shape];
                 let model = Mat4::from_rotation_translation(
                     body.rigid.orientation.as_quat(),
                     body.rigid.position.as_vec3(),
                 );
                 pass.uniform("model", model)
                     .uniform("color", COLORS[body.shape % COLORS.len()]);
-                pass.draw_arrays(&self.soup.vertices, Primitive::Triangles, first, count)?;
+                pass.draw_arrays(&self.meshes.vertices, Primitive::Triangles, first, count)?;
             }
         }
         self.draw_arrows(sim, vp)?;
@@ -179,6 +178,34 @@ impl FrameRenderer {
             pass.draw_arrays(&vertices, Primitive::Lines, 0, segments.len())?;
         }
         Ok(())
+    }
+}
+
+/// The shapes for flat shading: every triangle corner with its face normal.
+struct FlatMeshes {
+    vertices: VertexArray,
+    /// (first vertex, vertex count) of each shape.
+    ranges: Vec<(usize, usize)>,
+}
+
+impl FlatMeshes {
+    fn new(ctx: &Context, meshes: &[&crate::mesh::Mesh]) -> Result<FlatMeshes, GlError> {
+        let mut data: Vec<[f32; 6]> = Vec::new();
+        let mut ranges = Vec::new();
+        for mesh in meshes {
+            let first = data.len();
+            for t in 0..mesh.triangles.len() {
+                let [a, b, c] = mesh.triangle(t);
+                let n = (b - a).cross(c - a).normalize_or_zero();
+                data.extend([a, b, c].map(|v| [v.x, v.y, v.z, n.x, n.y, n.z]));
+            }
+            ranges.push((first, data.len() - first));
+        }
+        let buffer = Buffer::from_slice(ctx, &data, BufferUsage::Static)?;
+        let mut vertices = VertexArray::new(ctx)?;
+        vertices.float_attribute(0, &buffer, 3, 24, 0, 0)?;
+        vertices.float_attribute(1, &buffer, 3, 24, 12, 0)?;
+        Ok(FlatMeshes { vertices, ranges })
     }
 }
 
