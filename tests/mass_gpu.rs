@@ -90,6 +90,9 @@ fn relative_errors(got: &MassProperties, want: &MassProperties) -> [f64; 4] {
     ]
 }
 
+/// Measured on llvmpipe for this tilted torus (relative error of mass / worst of Ixx, Iyy,
+/// Izz): 32x32 1.4e-3 / 1.1e-3, 128x128 3.4e-4 / 4.8e-4, 512x512 1.9e-6 / 4.2e-6. The
+/// asserted bounds are the paper's 5% at 32x32, a decrease, and 0.2% at 512x512.
 #[test]
 fn gpu_converges_to_the_analytic_result() {
     let ctx = context();
