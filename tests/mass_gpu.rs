@@ -53,6 +53,13 @@ fn every_mass_shader_compiles() {
     integrands::water_depth_program(&ctx).unwrap();
     integrands::water_patch_program(&ctx).unwrap();
     classic_gpgpu::mass::reduce::Accumulator::new(&ctx, 8, 8).unwrap();
+    // The frame renderer's body, water and arrow programs.
+    let shape = classic_gpgpu::mass::buoyancy::simulation::Shape::new(
+        "box",
+        &cuboid(Vec3::ONE, Vec3::ZERO),
+    )
+    .unwrap();
+    classic_gpgpu::mass::buoyancy::render::FrameRenderer::new(&ctx, &[shape], 16, 16).unwrap();
 }
 
 /// The GPU's pixel sums equal the CPU's at the same pixel centres. fp32 per fragment

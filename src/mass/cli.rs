@@ -336,6 +336,7 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         "resolution": args.resolution,
         "dt": args.dt,
         "mean_step_ms": mean,
+        "step_ms": step_ms,
         "steps_per_second": steps_per_s,
         "max_peels": peels.iter().max(),
         "state": bodies,
