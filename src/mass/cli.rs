@@ -76,6 +76,9 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
             report.open_edges, report.inconsistent_edges
         ));
     }
+    if args.below.is_some() && want.volume == 0.0 {
+        warnings.push("nothing of the model lies below the plane".into());
+    }
     if got.volume < 0.0 || want.volume < 0.0 {
         warnings.push(
             "the volume is negative: the mesh is inside out (its triangles run clockwise seen from outside); flip them".into(),

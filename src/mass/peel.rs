@@ -1,6 +1,7 @@
 //! The peeling driver [section 3.2, and the n + 2 passes of 5.2]: every body of a batch is
-//! drawn into its own tile (viewport) of one set of render targets, so one peel pass, one
-//! occlusion query and one reduction serve them all.
+//! drawn into its own tile (viewport) of one set of render targets, so each peel is one
+//! pass for all bodies and one reduction serves them all. (One body alone is a batch of
+//! one whose tile is the whole target.)
 //!
 //! - Pass 0 (with water): the fluid surface's depth into `T_dw`.
 //! - Passes 1..n: every body is drawn with the listing wrapped by the peel test (the GL
@@ -20,7 +21,7 @@ use crate::gl::{
     Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, OcclusionQuery, Pass,
     Primitive, Program, Rect, Texture, TextureFormat,
 };
-use glam::{Mat4, Vec3};
+use glam::Mat4;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
@@ -282,9 +283,4 @@ fn water_quad(pass: &mut Pass, job: &Job, level: f64) -> Result<(), GlError> {
         .uniform("half_width", job.framing.half_width as f32)
         .uniform("water_level", level as f32);
     pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)
-}
-
-/// Convenience for callers that place a body by position and rotation.
-pub fn model_matrix(rotation: glam::Quat, translation: Vec3) -> Mat4 {
-    Mat4::from_rotation_translation(rotation, translation)
 }
