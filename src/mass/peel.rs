@@ -59,9 +59,12 @@ pub struct Peeler {
     water: Framebuffer,
     /// The peel targets with depth `T_d(k)` for even and odd k (ping-pong).
     layers: [Framebuffer; 2],
+    /// Per body, the tile and framing the water passes read (`glsl/mass/water_surface.vert`).
+    tile_data: RefCell<Option<Texture>>,
     /// One occlusion query per body (grown on demand).
     queries: RefCell<Vec<OcclusionQuery>>,
     width: u32,
+    height: u32,
     accumulator: Accumulator,
     /// Tiles are reduced in aligned blocks of this side (a power of two); `None` reduces
     /// the whole target (one body).
@@ -102,8 +105,10 @@ impl Peeler {
                 Some(&water_depth),
             )?,
             layers,
+            tile_data: RefCell::new(None),
             queries: RefCell::new(Vec::new()),
             width,
+            height,
             accumulator: Accumulator::new(ctx, width, height)?,
             block,
             max_layers: 64,
@@ -147,6 +152,7 @@ impl Peeler {
     fn water_depth_pass(&self, jobs: &[Job], water: Option<f64>) -> Result<(), GlError> {
         self.water.clear_depth_stencil(0.0, 0)?;
         let Some(level) = water else { return Ok(()) };
+        self.upload_tile_data(jobs)?;
         let mut pass = self.water.pass(
             &self.water_depth_program,
             "mass: pass 0, fluid surface depth",
@@ -159,10 +165,7 @@ impl Peeler {
             color_write: false,
             ..DrawState::default()
         });
-        for job in jobs {
-            water_quad(&mut pass, job, level)?;
-        }
-        Ok(())
+        self.water_quads(&mut pass, jobs.len(), level)
     }
 
     /// Passes 1..n: peel until no body draws anything; each peel goes into the sums.
@@ -187,8 +190,12 @@ impl Peeler {
         let mut active: Vec<bool> = vec![true; jobs.len()];
         for layer in 0..self.max_layers {
             let target = &self.layers[layer % 2];
-            // Only the depth: the accumulation ignores pixels this peel did not reach.
+            // Only the depth: the accumulation ignores pixels this peel did not reach
+            // (the colours too when they are to be looked at).
             target.clear_depth_stencil(1.0, 0)?;
+            if dump.is_some() {
+                target.clear_colors([0.0; 4])?;
+            }
             {
                 let mut pass = target.pass(&self.peel_program, "mass: depth peel")?;
                 pass.state(state)
@@ -227,12 +234,12 @@ impl Peeler {
             if let Some(dir) = dump {
                 self.dump_peel(dir, layer)?;
             }
-            let tiles: Vec<Rect> = jobs
-                .iter()
-                .zip(&active)
-                .filter(|(_, &a)| a)
-                .map(|(job, _)| job.tile)
-                .collect();
+            let tiles = row_runs(
+                jobs.iter()
+                    .zip(&active)
+                    .filter(|(_, &a)| a)
+                    .map(|(j, _)| j.tile),
+            );
             let depth = target.depth().expect("peel targets have depth");
             self.accumulator
                 .add_peel(&self.peel_targets, depth, layer == 0, &tiles)?;
@@ -255,10 +262,57 @@ impl Peeler {
             "first_peel_faces_down",
             self.accumulator.first_peel_faces_down(),
         );
-        for job in jobs {
-            water_quad(&mut pass, job, level)?;
+        self.water_quads(&mut pass, jobs.len(), level)
+    }
+
+    /// Every body's tile and framing as rows of a small float texture, so that the water
+    /// quads of all bodies are one instanced draw.
+    fn upload_tile_data(&self, jobs: &[Job]) -> Result<(), GlError> {
+        let mut slot = self.tile_data.borrow_mut();
+        if slot
+            .as_ref()
+            .map_or(true, |t| (t.height() as usize) < jobs.len())
+        {
+            let rows = jobs.len().next_power_of_two().max(16) as u32;
+            *slot = Some(Texture::new_2d(&self.ctx, 3, rows, TextureFormat::Rgba32F)?);
         }
-        Ok(())
+        let data: Vec<f32> = jobs
+            .iter()
+            .flat_map(|j| {
+                let (t, f) = (j.tile, j.framing);
+                let c = f.center.as_vec3();
+                [
+                    t.x as f32,
+                    t.y as f32,
+                    t.w as f32,
+                    0.0,
+                    c.x,
+                    c.y,
+                    c.z,
+                    f.half_width as f32,
+                    f.half_depth as f32,
+                    0.0,
+                    0.0,
+                    0.0,
+                ]
+            })
+            .collect();
+        slot.as_ref()
+            .expect("made above")
+            .upload_region_f32(0, 0, 3, jobs.len() as u32, &data)
+    }
+
+    /// The fluid surface quads of `bodies` bodies, one instanced draw over the whole target.
+    fn water_quads(&self, pass: &mut Pass, bodies: usize, level: f64) -> Result<(), GlError> {
+        let slot = self.tile_data.borrow();
+        let tiles = slot.as_ref().expect("tile data uploaded in pass 0");
+        pass.texture("tiles", tiles)
+            .uniform(
+                "target_size",
+                glam::Vec2::new(self.width as f32, self.height as f32),
+            )
+            .uniform("water_level", level as f32);
+        pass.draw_attributeless(Primitive::TriangleStrip, 4, bodies)
     }
 
     /// Fig. 10: each target of peel `layer` as a PNG, each channel mapped to [0, 255].
@@ -275,12 +329,17 @@ impl Peeler {
     }
 }
 
-/// Draws the fluid surface quad over `job`'s tile.
-fn water_quad(pass: &mut Pass, job: &Job, level: f64) -> Result<(), GlError> {
-    pass.viewport(job.tile)
-        .uniform("frame_center", job.framing.center.as_vec3())
-        .uniform("projection", job.framing.projection())
-        .uniform("half_width", job.framing.half_width as f32)
-        .uniform("water_level", level as f32);
-    pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)
+/// The rectangles covering `tiles` row by row: one per row of tiles, from its leftmost to
+/// its rightmost tile (pixels in between add nothing, the accumulation being masked by the
+/// peel's depth), so a peel's accumulation is a few draws, not one per body.
+fn row_runs(tiles: impl Iterator<Item = Rect>) -> Vec<Rect> {
+    let mut rows: std::collections::BTreeMap<(u32, u32), (u32, u32)> = Default::default();
+    for t in tiles {
+        let span = rows.entry((t.y, t.h)).or_insert((t.x, t.x + t.w));
+        span.0 = span.0.min(t.x);
+        span.1 = span.1.max(t.x + t.w);
+    }
+    rows.into_iter()
+        .map(|((y, h), (x0, x1))| Rect::new(x0, y, x1 - x0, h))
+        .collect()
 }
