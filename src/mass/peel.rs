@@ -269,10 +269,8 @@ impl Peeler {
     /// quads of all bodies are one instanced draw.
     fn upload_tile_data(&self, jobs: &[Job]) -> Result<(), GlError> {
         let mut slot = self.tile_data.borrow_mut();
-        if slot
-            .as_ref()
-            .map_or(true, |t| (t.height() as usize) < jobs.len())
-        {
+        let fits = matches!(slot.as_ref(), Some(t) if t.height() as usize >= jobs.len());
+        if !fits {
             let rows = jobs.len().next_power_of_two().max(16) as u32;
             *slot = Some(Texture::new_2d(&self.ctx, 3, rows, TextureFormat::Rgba32F)?);
         }
