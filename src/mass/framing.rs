@@ -66,6 +66,26 @@ impl Framing {
         )
     }
 
+    /// Whether a triangle with world corners `corners` can produce a fragment: GL makes one
+    /// only where a pixel centre lies inside, so a triangle whose bounding box holds no
+    /// pixel centre (most triangles of a detailed mesh seen at 32 x 32) can be skipped
+    /// without changing any sum. Conservative by a thousandth of a pixel.
+    pub fn may_cover_pixel_centre(&self, corners: [DVec3; 3]) -> bool {
+        let s = self.pixel_size();
+        let to_pixel = |v: f64, c: f64| (v - c + self.half_width) / s - 0.5;
+        let has_centre = |axis: usize| {
+            let c = self.center[axis];
+            let (lo, hi) = corners
+                .iter()
+                .map(|p| to_pixel(p[axis], c))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(v), hi.max(v))
+                });
+            (lo - 1e-3).ceil() <= (hi + 1e-3).floor()
+        };
+        has_centre(0) && has_centre(1)
+    }
+
     /// Clip-space transform of framing-relative coordinates: x, y onto [-1, 1], and the
     /// depth range so that higher z is nearer (depth 0 at the top, looking down -z).
     pub fn projection(&self) -> Mat4 {

@@ -47,7 +47,8 @@ impl GpuMass {
         let soup = Soup::new(self.peeler.context(), &[mesh])?;
         let world: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
         let mut indices = Vec::new();
-        soup.push_triangles(0, &world, |_| true, &mut indices);
+        let keep = |tri: &[u32; 3]| framing.may_cover_pixel_centre(tri.map(|i| world[i as usize]));
+        soup.push_triangles(0, &world, keep, &mut indices);
         soup.set_indices(&indices)?;
         let job = Job {
             indices: (0, indices.len()),

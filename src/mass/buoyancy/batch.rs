@@ -77,12 +77,15 @@ impl GpuSolver {
             lo = lo.min(w);
             hi = hi.max(w);
         }
+        let framing = Framing::fit_box(lo, hi, self.resolution).map_err(GlError::Invalid)?;
         // A hair of slack keeps triangles touching the surface (fp32 depths).
         let keep_below = level + 1e-5 * (hi - lo).max_element().max(1.0);
         let first = indices.len();
-        let below = |tri: &[u32; 3]| tri.iter().any(|&i| world[i as usize].z <= keep_below);
-        self.soup.push_triangles(body.shape, &world, below, indices);
-        let framing = Framing::fit_box(lo, hi, self.resolution).map_err(GlError::Invalid)?;
+        let keep = |tri: &[u32; 3]| {
+            let corners = tri.map(|i| world[i as usize]);
+            corners.iter().any(|c| c.z <= keep_below) && framing.may_cover_pixel_centre(corners)
+        };
+        self.soup.push_triangles(body.shape, &world, keep, indices);
         let (col, row) = (k as u32 % self.columns, k as u32 / self.columns);
         Ok(Job {
             indices: (first, indices.len() - first),
