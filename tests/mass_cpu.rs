@@ -386,3 +386,33 @@ mod pixel_sums {
         }
     }
 }
+
+/// The pixel-centre cull never drops a triangle that holds a pixel centre.
+#[test]
+fn pixel_centre_cull_keeps_every_triangle_that_makes_a_fragment() {
+    use classic_gpgpu::mass::framing::Framing;
+    let framing = Framing::fit_box(DVec3::splat(-1.0), DVec3::splat(1.0), 32).unwrap();
+    let mut rng = rng();
+    let (mut kept, mut dropped) = (0, 0);
+    for _ in 0..20_000 {
+        let c = DVec3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), 0.0);
+        let size = rng.gen_range(0.001..0.12);
+        let corners: [DVec3; 3] = std::array::from_fn(|_| {
+            c + DVec3::new(rng.gen_range(-size..size), rng.gen_range(-size..size), rng.gen_range(-1.0..1.0))
+        });
+        let holds_centre = (0..32).any(|j| {
+            (0..32).any(|i| {
+                let (x, y) = framing.pixel_center(i, j);
+                let p = glam::DVec2::new(x, y) + framing.center.truncate();
+                let [a, b, c] = corners.map(|v| v.truncate());
+                let d = |u: glam::DVec2, v: glam::DVec2| (v - u).perp_dot(p - u);
+                let (d0, d1, d2) = (d(a, b), d(b, c), d(c, a));
+                (d0 >= 0.0 && d1 >= 0.0 && d2 >= 0.0) || (d0 <= 0.0 && d1 <= 0.0 && d2 <= 0.0)
+            })
+        });
+        let keep = framing.may_cover_pixel_centre(corners);
+        assert!(keep || !holds_centre, "dropped a triangle holding a pixel centre: {corners:?}");
+        if keep { kept += 1 } else { dropped += 1 }
+    }
+    assert!(dropped > 1000 && kept > 1000, "kept {kept}, dropped {dropped}");
+}
