@@ -398,7 +398,11 @@ fn pixel_centre_cull_keeps_every_triangle_that_makes_a_fragment() {
         let c = DVec3::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), 0.0);
         let size = rng.gen_range(0.001..0.12);
         let corners: [DVec3; 3] = std::array::from_fn(|_| {
-            c + DVec3::new(rng.gen_range(-size..size), rng.gen_range(-size..size), rng.gen_range(-1.0..1.0))
+            c + DVec3::new(
+                rng.gen_range(-size..size),
+                rng.gen_range(-size..size),
+                rng.gen_range(-1.0..1.0),
+            )
         });
         let holds_centre = (0..32).any(|j| {
             (0..32).any(|i| {
@@ -411,8 +415,18 @@ fn pixel_centre_cull_keeps_every_triangle_that_makes_a_fragment() {
             })
         });
         let keep = framing.may_cover_pixel_centre(corners);
-        assert!(keep || !holds_centre, "dropped a triangle holding a pixel centre: {corners:?}");
-        if keep { kept += 1 } else { dropped += 1 }
+        assert!(
+            keep || !holds_centre,
+            "dropped a triangle holding a pixel centre: {corners:?}"
+        );
+        if keep {
+            kept += 1
+        } else {
+            dropped += 1
+        }
     }
-    assert!(dropped > 1000 && kept > 1000, "kept {kept}, dropped {dropped}");
+    assert!(
+        dropped > 1000 && kept > 1000,
+        "kept {kept}, dropped {dropped}"
+    );
 }

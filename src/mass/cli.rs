@@ -31,10 +31,14 @@ pub struct MassArgs {
     pub dump: Option<PathBuf>,
 }
 
+/// The largest framebuffer side the commands accept: ten RGBA32F targets of 2048² are
+/// 640 MiB, and the paper stops at 512.
+const MAX_RESOLUTION: u32 = 2048;
+
 fn check_resolution(ctx: &Context, resolution: u32) -> anyhow::Result<()> {
-    let max = ctx.info().limits.max_texture_size;
+    let max = ctx.info().limits.max_texture_size.min(MAX_RESOLUTION);
     if resolution < 4 || resolution > max {
-        bail!("--resolution {resolution}: must be between 4 and this renderer's maximum texture size {max}");
+        bail!("--resolution {resolution}: must be between 4 and {max}");
     }
     Ok(())
 }
@@ -280,12 +284,14 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     let mut gpu = if args.cpu {
         None
     } else {
-        Some(GpuSolver::new(
-            ctx,
-            &sim.shapes,
-            sim.bodies.len(),
-            args.resolution,
-        )?)
+        let solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)
+            .with_context(|| {
+                format!(
+                    "--bodies {} at --resolution {}: every body's tile must fit one render target",
+                    args.bodies, args.resolution
+                )
+            })?;
+        Some(solver)
     };
     let renderer = match frames {
         Some(_) => Some(render::FrameRenderer::new(ctx, &sim.shapes, 640, 400)?),
