@@ -21,11 +21,12 @@ pub struct Stage {
 
 /// Every stage, in report order. Each paper adds its line here.
 pub fn stages() -> Vec<Stage> {
-    vec![Stage {
-        id: "blocks",
-        title: "building blocks",
-        run: super::blocks::run,
-    }]
+    let stage = |id, title, run| Stage { id, title, run };
+    vec![
+        stage("blocks", "building blocks", super::blocks::run),
+        stage("paper2", "paper 2: crowd skinning", super::paper2::run),
+        stage("paper3", "paper 3: neural networks", super::paper3::run),
+    ]
 }
 
 /// The `reproduce` options.
