@@ -29,7 +29,9 @@
 //! | closed forms for tests | [`closed_form`] |
 //! | the whole method for one body | [`gpu`] |
 //! | the GPU path's CPU reference | [`cpu_reference`] |
-//! | buoyancy [5] | [`buoyancy`] |
+//! | the paper's test objects [Table 1], OBJ files | [`models`] |
+//! | the `mass` and `buoyancy` commands | [`cli`] |
+//! | buoyancy (section 5) | [`buoyancy`] |
 
 pub mod analytic;
 pub mod assemble;
