@@ -200,6 +200,7 @@ fn measure_buoyancy(opts: &BenchOptions, steps: usize) -> anyhow::Result<serde_j
         bar.inc(1);
     }
     bar.finish_and_clear();
+    let cpu_steps_per_s = cpu_solver_rate(settle, steps)?;
     let (batched_ms, one_by_one_ms) =
         batching_gain(ctx, &sim, &mut solver, if steps > 50 { 20 } else { 5 })?;
     let frame = "buoyancy_frame.png";
@@ -214,6 +215,7 @@ fn measure_buoyancy(opts: &BenchOptions, steps: usize) -> anyhow::Result<serde_j
         "buoyancy_share": buoyancy_ms / total,
         "max_peels": max_peels,
         "mean_peels": sum_peels as f64 / steps as f64,
+        "cpu_solver_steps_per_second": cpu_steps_per_s,
         "batched_ms": batched_ms,
         "one_body_at_a_time_ms": one_by_one_ms,
         "frame": frame,
@@ -288,6 +290,20 @@ fn error_and_time_plots(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::R
         caption: "Fig. 5: GPU path (wall clock per call) against resolution; flat lines: Mirtich's analytic method".into(),
     });
     Ok(figures)
+}
+
+/// Steps per second of the same scene with the CPU reference solver (clip + Mirtich).
+fn cpu_solver_rate(settle: usize, steps: usize) -> anyhow::Result<f64> {
+    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+    let mut cpu = crate::mass::buoyancy::simulation::AnalyticSolver;
+    for _ in 0..settle {
+        sim.step(&mut cpu).map_err(anyhow::Error::msg)?;
+    }
+    let start = Instant::now();
+    for _ in 0..steps {
+        sim.step(&mut cpu).map_err(anyhow::Error::msg)?;
+    }
+    Ok(steps as f64 / start.elapsed().as_secs_f64())
 }
 
 /// The submerged parts of the scene's current state, all bodies as tiles of one target
@@ -510,6 +526,16 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
                 "steps per second".into(),
                 format!("{sps:.1}"),
                 format!("{paper_fps}"),
+            ],
+            vec![
+                "steps per second, CPU reference solver (clip + Mirtich)".into(),
+                format!(
+                    "{:.1}",
+                    buoyancy["cpu_solver_steps_per_second"]
+                        .as_f64()
+                        .unwrap_or(0.0)
+                ),
+                "-".into(),
             ],
             vec![
                 "share of step time in buoyancy".into(),
