@@ -315,25 +315,23 @@ fn batching_gain(
     reps: usize,
 ) -> anyhow::Result<(f64, f64)> {
     let mut single = GpuSolver::new(ctx, &sim.shapes, 1, 32)?;
-    let start = Instant::now();
+    // Interleaved, so that a change of load on a shared machine hits both alike.
+    let (mut batched_ms, mut single_ms) = (0.0, 0.0);
     for _ in 0..reps {
+        let start = Instant::now();
         batched
             .submerged(&sim.shapes, &sim.bodies, &sim.water)
             .map_err(anyhow::Error::msg)?;
-    }
-    let batched_ms = start.elapsed().as_secs_f64() * 1e3 / reps as f64;
-    let start = Instant::now();
-    for _ in 0..reps {
+        batched_ms += start.elapsed().as_secs_f64() * 1e3;
+        let start = Instant::now();
         for body in &sim.bodies {
             single
                 .submerged(&sim.shapes, std::slice::from_ref(body), &sim.water)
                 .map_err(anyhow::Error::msg)?;
         }
+        single_ms += start.elapsed().as_secs_f64() * 1e3;
     }
-    Ok((
-        batched_ms,
-        start.elapsed().as_secs_f64() * 1e3 / reps as f64,
-    ))
+    Ok((batched_ms / reps as f64, single_ms / reps as f64))
 }
 
 /// The section: tables beside the paper, claims, figures.
