@@ -25,6 +25,12 @@ struct Cli {
 enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
+    /// Paper 4: mass properties by depth peeling and reduction, beside Mirtich's method.
+    Mass(classic_gpgpu::mass::cli::MassArgs),
+    /// Paper 4: rigid bodies floating on still water (section 5).
+    Buoyancy(classic_gpgpu::mass::cli::BuoyancyArgs),
+    /// Paper 4: Table 1, Fig. 4 and Fig. 5 regenerated, and the buoyancy steps per second.
+    MassBench(classic_gpgpu::report::paper4::BenchArgs),
     /// Check an OBJ file, or write one of the papers' test objects.
     #[command(subcommand)]
     Mesh(classic_gpgpu::mesh::cli::MeshCommand),
@@ -85,6 +91,15 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info => info(&global),
+        Command::Mass(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::mass::cli::run_mass(&a, &c, global.json)),
+        Command::Buoyancy(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::mass::cli::run_buoyancy(&a, &c, global.json)),
+        Command::MassBench(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::report::paper4::run_cli(&a, &c, global.json)),
         Command::Mesh(command) => classic_gpgpu::mesh::cli::run(&command, global.json),
         Command::Reproduce(args) => reproduce(&global, &args),
         Command::Crowd(a) => global

@@ -8,6 +8,7 @@ pub mod blocks;
 mod html;
 pub mod paper2;
 pub mod paper3;
+pub mod paper4;
 pub mod paper_tables;
 pub mod plot;
 pub mod reproduce;

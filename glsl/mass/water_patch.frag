@@ -1,0 +1,13 @@
+// The last of the n + 2 passes [paper 4, section 5.2, Fig. 8]: the fluid surface inside
+// the body, drawn only where the first peel below the surface faced down (the body is
+// there at the water line). Compiled after cg_ports/mass_integrands.frag.
+#undef main
+
+// faces_down of pass 1.
+uniform sampler2D first_peel_faces_down;
+
+void main()
+{
+    if (texelFetch(first_peel_faces_down, ivec2(gl_FragCoord.xy), 0).r < 0.5) discard;
+    integrands();
+}

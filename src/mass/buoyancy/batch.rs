@@ -1,0 +1,148 @@
+//! Batching [section 5.2 for many bodies]: every body gets its own `R x R` viewport (the
+//! paper's 32 x 32) as a tile of one render target, so each of the n + 2 passes is one
+//! pass for all bodies, one occlusion query decides when peeling is done, and one
+//! reduction per target brings every tile to one texel: a handful of passes and three small
+//! read-backs per step, whatever the number of bodies.
+
+use super::forces::{Submerged, Water};
+use super::simulation::{Body, Shape, SubmergedSolver};
+use crate::gl::{Context, GlError, Rect};
+use crate::mass::framing::Framing;
+use crate::mass::integrands::Soup;
+use crate::mass::peel::{Job, Peeler};
+use glam::{DVec3, Mat4};
+
+/// The GPU solver: the n + 2 passes for all bodies at once.
+pub struct GpuSolver {
+    peeler: Peeler,
+    soup: Soup,
+    resolution: u32,
+    /// Tile side, the resolution rounded up to a power of two (reduction blocks).
+    block: u32,
+    columns: u32,
+    capacity: usize,
+    /// Peels of the last step (the deepest body's n).
+    pub last_peels: usize,
+}
+
+impl GpuSolver {
+    /// Targets for up to `capacity` bodies of `shapes` at `resolution` x `resolution` each.
+    pub fn new(
+        ctx: &Context,
+        shapes: &[Shape],
+        capacity: usize,
+        resolution: u32,
+    ) -> Result<GpuSolver, GlError> {
+        let block = resolution.next_power_of_two();
+        let columns = (capacity.max(1) as f64).sqrt().ceil() as u32;
+        let rows = (capacity.max(1) as u32).div_ceil(columns);
+        let meshes: Vec<_> = shapes.iter().map(|s| &s.mesh).collect();
+        Ok(GpuSolver {
+            peeler: Peeler::new(ctx, columns * block, rows * block, Some(block))?,
+            soup: Soup::new(ctx, &meshes)?,
+            resolution,
+            block,
+            columns,
+            capacity,
+            last_peels: 0,
+        })
+    }
+
+    /// Size of the whole target (pixels).
+    pub fn target_size(&self) -> (u32, u32) {
+        let rows = (self.capacity.max(1) as u32).div_ceil(self.columns);
+        (self.columns * self.block, rows * self.block)
+    }
+
+    /// The job of body `k`: framed by its world bounding box, in tile `k`, drawing only
+    /// the triangles that reach below the water (appended to `indices`): the others could
+    /// only make fragments the water test discards, and skipping them halves the vertex
+    /// work of a floating body.
+    fn job(
+        &self,
+        k: usize,
+        shape: &Shape,
+        body: &Body,
+        level: f64,
+        indices: &mut Vec<u32>,
+    ) -> Result<Job, GlError> {
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        let world: Vec<DVec3> = shape
+            .mesh
+            .positions
+            .iter()
+            .map(|p| body.rigid.to_world(p.as_dvec3()))
+            .collect();
+        for &w in &world {
+            lo = lo.min(w);
+            hi = hi.max(w);
+        }
+        let framing = Framing::fit_box(lo, hi, self.resolution).map_err(GlError::Invalid)?;
+        // A hair of slack keeps triangles touching the surface (fp32 depths).
+        let keep_below = level + 1e-5 * (hi - lo).max_element().max(1.0);
+        let first = indices.len();
+        let keep = |tri: &[u32; 3]| {
+            let corners = tri.map(|i| world[i as usize]);
+            corners.iter().any(|c| c.z <= keep_below) && framing.may_cover_pixel_centre(corners)
+        };
+        self.soup.push_triangles(body.shape, &world, keep, indices);
+        let (col, row) = (k as u32 % self.columns, k as u32 / self.columns);
+        Ok(Job {
+            indices: (first, indices.len() - first),
+            model: Mat4::from_rotation_translation(
+                body.rigid.orientation.as_quat(),
+                body.rigid.position.as_vec3(),
+            ),
+            framing,
+            tile: Rect::new(
+                col * self.block,
+                row * self.block,
+                self.resolution,
+                self.resolution,
+            ),
+        })
+    }
+}
+
+impl SubmergedSolver for GpuSolver {
+    fn submerged(
+        &mut self,
+        shapes: &[Shape],
+        bodies: &[Body],
+        water: &Water,
+    ) -> Result<Vec<Submerged>, String> {
+        if bodies.len() > self.capacity {
+            return Err(format!(
+                "{} bodies for a solver made for {}",
+                bodies.len(),
+                self.capacity
+            ));
+        }
+        let run = || -> Result<_, GlError> {
+            let mut indices = Vec::new();
+            let jobs = bodies
+                .iter()
+                .enumerate()
+                .map(|(k, b)| self.job(k, &shapes[b.shape], b, water.level, &mut indices))
+                .collect::<Result<Vec<_>, _>>()?;
+            self.soup.set_indices(&indices)?;
+            self.peeler.run(&self.soup, &jobs, Some(water.level), None)
+        };
+        let batch = run().map_err(|e| e.to_string())?;
+        self.last_peels = batch.peels;
+        Ok(batch
+            .integrals
+            .iter()
+            .map(|i| {
+                if i.v > 0.0 {
+                    Submerged {
+                        volume: i.v,
+                        center: i.first() / i.v,
+                    }
+                } else {
+                    Submerged::default()
+                }
+            })
+            .collect())
+    }
+}

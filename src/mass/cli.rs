@@ -1,0 +1,388 @@
+//! The `mass` and `buoyancy` commands.
+
+use super::assemble::MassProperties;
+use super::buoyancy::{batch::GpuSolver, render, scene, simulation};
+use super::framing::Framing;
+use super::gpu::{GpuMass, GpuResult};
+use super::{analytic, clip, models, surface};
+use crate::gl::Context;
+use anyhow::{bail, Context as _};
+use serde_json::json;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Mass properties of a model on the GPU [paper 4, sections 2-4], beside Mirtich's
+/// analytic method.
+#[derive(clap::Args, Debug)]
+pub struct MassArgs {
+    /// An OBJ file, or one of the paper's objects: cube, sphere, teapot, torus, knot, bunny, pipe.
+    pub model: String,
+    /// Framebuffer resolution N (N x N); the paper found 32 enough for 5%.
+    #[arg(long, default_value_t = 32)]
+    pub resolution: u32,
+    /// Density ρ; mass and inertia scale with it.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub density: f64,
+    /// Only the part below the horizontal plane z = Z (section 5.2, the submerged part).
+    #[arg(long, value_name = "Z", allow_hyphen_values = true)]
+    pub below: Option<f64>,
+    /// Write the colour-encoded integrand buffers of each peel here as PNG (Fig. 10).
+    #[arg(long, value_name = "DIR")]
+    pub dump: Option<PathBuf>,
+}
+
+/// The largest framebuffer side the commands accept: ten RGBA32F targets of 2048² are
+/// 640 MiB, and the paper stops at 512.
+const MAX_RESOLUTION: u32 = 2048;
+
+fn check_resolution(ctx: &Context, resolution: u32) -> anyhow::Result<()> {
+    let max = ctx.info().limits.max_texture_size.min(MAX_RESOLUTION);
+    if resolution < 4 || resolution > max {
+        bail!("--resolution {resolution}: must be between 4 and {max}");
+    }
+    Ok(())
+}
+
+/// `classic-gpgpu mass`.
+pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
+    check_resolution(ctx, args.resolution)?;
+    if !(args.density.is_finite() && args.density > 0.0) {
+        bail!("--density {}: must be a positive number", args.density);
+    }
+    if args.below.is_some_and(|z| !z.is_finite()) {
+        bail!("--below: must be a finite height");
+    }
+    let mesh = models::load(&args.model).map_err(anyhow::Error::msg)?;
+    let report = surface::check(&mesh);
+    Framing::fit(&mesh, args.resolution)
+        .map_err(|e| anyhow::anyhow!("model '{}': {e}", args.model))?;
+
+    let gpu = GpuMass::new(ctx, args.resolution).context("setting up the GPU passes")?;
+    // The first run compiles and allocates on the driver side; time the second.
+    gpu.integrate(&mesh, args.below, None)?;
+    let start = Instant::now();
+    let result = gpu.integrate(&mesh, args.below, args.dump.as_deref())?;
+    let gpu_wall_ms = start.elapsed().as_secs_f64() * 1e3;
+
+    let start = Instant::now();
+    let exact = match args.below {
+        Some(z) => analytic::volume_integrals(&clip::below_plane(&mesh, z as f32)),
+        None => analytic::volume_integrals(&mesh),
+    };
+    let analytic_ms = start.elapsed().as_secs_f64() * 1e3;
+
+    let got = MassProperties::from_integrals(&result.integrals, args.density);
+    let want = MassProperties::from_integrals(&exact, args.density);
+    let mut warnings = Vec::new();
+    if !report.is_closed() {
+        warnings.push(format!(
+            "the mesh is open ({} open edges, {} inconsistent): the GPU result assumes the holes are small; the analytic result is unreliable",
+            report.open_edges, report.inconsistent_edges
+        ));
+    }
+    if args.below.is_some() && want.volume == 0.0 {
+        warnings.push("nothing of the model lies below the plane".into());
+    }
+    if got.volume < 0.0 || want.volume < 0.0 {
+        warnings.push(
+            "the volume is negative: the mesh is inside out (its triangles run clockwise seen from outside); flip them".into(),
+        );
+    }
+    for w in &warnings {
+        eprintln!("warning: model '{}': {w}", args.model);
+    }
+    let output = MassOutput {
+        model: &args.model,
+        vertices: mesh.positions.len(),
+        triangles: mesh.triangles.len(),
+        closed: report.is_closed(),
+        renderer: ctx.info().renderer_line(),
+        density: args.density,
+        below: args.below,
+        result: &result,
+        got,
+        want,
+        gpu_wall_ms,
+        analytic_ms,
+        warnings,
+    };
+    if json_out {
+        println!("{}", serde_json::to_string_pretty(&output.json())?);
+    } else {
+        print!("{}", output.text());
+    }
+    Ok(())
+}
+
+struct MassOutput<'a> {
+    model: &'a str,
+    vertices: usize,
+    triangles: usize,
+    closed: bool,
+    renderer: String,
+    density: f64,
+    below: Option<f64>,
+    result: &'a GpuResult,
+    got: MassProperties,
+    want: MassProperties,
+    gpu_wall_ms: f64,
+    analytic_ms: f64,
+    warnings: Vec<String>,
+}
+
+impl MassOutput<'_> {
+    fn json(&self) -> serde_json::Value {
+        let f = &self.result.framing;
+        json!({
+            "model": self.model,
+            "vertices": self.vertices,
+            "triangles": self.triangles,
+            "closed": self.closed,
+            "renderer": self.renderer,
+            "resolution": f.resolution,
+            "density": self.density,
+            "below": self.below,
+            "peels": self.result.peels,
+            "volume": self.got.volume,
+            "mass": self.got.mass,
+            "center_of_mass": self.got.center_of_mass.to_array(),
+            "inertia": self.got.inertia_rows(),
+            "analytic": {
+                "volume": self.want.volume,
+                "mass": self.want.mass,
+                "center_of_mass": self.want.center_of_mass.to_array(),
+                "inertia": self.want.inertia_rows(),
+                "reliable": self.closed,
+            },
+            "framing": {
+                "center": f.center.to_array(),
+                "half_width": f.half_width,
+                "half_depth": f.half_depth,
+                "pixel_size": f.pixel_size(),
+            },
+            "timings_ms": {
+                "gpu": self.result.gpu_ms,
+                "gpu_wall": self.gpu_wall_ms,
+                "analytic": self.analytic_ms,
+            },
+            "warnings": self.warnings,
+        })
+    }
+
+    fn text(&self) -> String {
+        let f = &self.result.framing;
+        let c = f.center;
+        let mut s = format!(
+            "model           {} ({} vertices, {} triangles, {})\nrenderer        {}\n",
+            self.model,
+            self.vertices,
+            self.triangles,
+            if self.closed { "closed" } else { "OPEN" },
+            self.renderer
+        );
+        s += &format!(
+            "framing         {n}x{n} pixels of {:.4e}, window centred on ({:.4}, {:.4}), half-width {:.4}, depth {:.4} +- {:.4}\n",
+            f.pixel_size(),
+            c.x,
+            c.y,
+            f.half_width,
+            c.z,
+            f.half_depth,
+            n = f.resolution
+        );
+        if let Some(z) = self.below {
+            s += &format!("below           z = {z}\n");
+        }
+        s += &format!("peels           {}\n", self.result.peels);
+        s += &format!(
+            "{:16}{:>16}{:>16}{:>12}\n",
+            "", "GPU", "analytic", "rel. error"
+        );
+        // Relative errors of values that are ~0 next to their kind's scale (a centre
+        // coordinate on a symmetry plane, a vanishing product of inertia) mean nothing.
+        let row = |name: &str, g: f64, w: f64, scale: f64| {
+            let err = if w.abs() > 1e-3 * scale {
+                format!("{:.2e}", ((g - w) / w).abs())
+            } else {
+                "~0".into()
+            };
+            format!("{name:16}{g:>16.6}{w:>16.6}{err:>12}\n")
+        };
+        s += &row("volume", self.got.volume, self.want.volume, 0.0);
+        s += &row("mass", self.got.mass, self.want.mass, 0.0);
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            s += &row(
+                &format!("centre {axis}"),
+                self.got.center_of_mass[k],
+                self.want.center_of_mass[k],
+                f.half_width,
+            );
+        }
+        let (gi, wi) = (self.got.inertia_rows(), self.want.inertia_rows());
+        let scale = (0..3).map(|k| wi[k][k].abs()).fold(0.0, f64::max);
+        for (r, a) in ["x", "y", "z"].iter().enumerate() {
+            for (col, b) in ["x", "y", "z"].iter().enumerate().skip(r) {
+                s += &row(&format!("I[{a}{b}]"), gi[r][col], wi[r][col], scale);
+            }
+        }
+        s += &format!(
+            "time (ms)       GPU {:.3} (timer query), {:.3} wall; analytic {:.3}\n",
+            self.result.gpu_ms, self.gpu_wall_ms, self.analytic_ms
+        );
+        for w in &self.warnings {
+            s += &format!("warning         {w}\n");
+        }
+        s
+    }
+}
+
+/// Hydrostatic buoyancy of rigid bodies on still water [paper 4, section 5].
+#[derive(clap::Args, Debug)]
+pub struct BuoyancyArgs {
+    /// Number of bodies (the paper's scene has 50: spheres, boxes, tori, teapots, bunnies).
+    #[arg(long, default_value_t = 50)]
+    pub bodies: usize,
+    /// Simulation steps.
+    #[arg(long, default_value_t = 300)]
+    pub steps: usize,
+    /// Per-body framebuffer resolution (the paper's 32).
+    #[arg(long, default_value_t = 32)]
+    pub resolution: u32,
+    /// Time step (s).
+    #[arg(long, default_value_t = 1.0 / 60.0)]
+    pub dt: f64,
+    /// Write every K-th frame into DIR as PNG.
+    #[arg(long, num_args = 2, value_names = ["K", "DIR"])]
+    pub png_every: Option<Vec<String>>,
+    /// Compute the submerged parts on the CPU (clip + Mirtich) instead of the GPU.
+    #[arg(long)]
+    pub cpu: bool,
+}
+
+/// `classic-gpgpu buoyancy`.
+pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
+    check_resolution(ctx, args.resolution)?;
+    if args.bodies == 0 || args.bodies > 10_000 {
+        bail!("--bodies {}: must be between 1 and 10000", args.bodies);
+    }
+    if !(args.dt.is_finite() && args.dt > 0.0 && args.dt <= 0.1) {
+        bail!("--dt {}: must be in (0, 0.1] seconds", args.dt);
+    }
+    let frames = match &args.png_every {
+        None => None,
+        Some(v) => {
+            let k: usize = v[0].parse().ok().filter(|&k| k > 0).with_context(|| {
+                format!("--png-every {}: K must be a positive whole number", v[0])
+            })?;
+            let dir = PathBuf::from(&v[1]);
+            std::fs::create_dir_all(&dir)
+                .with_context(|| format!("--png-every: creating {}", dir.display()))?;
+            Some((k, dir))
+        }
+    };
+    let mut sim = scene::paper_scene(args.bodies, args.dt).map_err(anyhow::Error::msg)?;
+    let mut gpu = if args.cpu {
+        None
+    } else {
+        let solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)
+            .with_context(|| {
+                format!(
+                    "--bodies {} at --resolution {}: every body's tile must fit one render target",
+                    args.bodies, args.resolution
+                )
+            })?;
+        Some(solver)
+    };
+    let renderer = match frames {
+        Some(_) => Some(render::FrameRenderer::new(ctx, &sim.shapes, 640, 400)?),
+        None => None,
+    };
+    let progress = crate::mass::progress_bar(args.steps as u64, json_out, "buoyancy steps");
+    let mut step_ms = Vec::with_capacity(args.steps);
+    let mut peels = Vec::with_capacity(args.steps);
+    for step in 0..args.steps {
+        let start = Instant::now();
+        match gpu.as_mut() {
+            Some(solver) => {
+                sim.step(solver).map_err(anyhow::Error::msg)?;
+                peels.push(solver.last_peels);
+            }
+            None => sim
+                .step(&mut simulation::AnalyticSolver)
+                .map_err(anyhow::Error::msg)?,
+        }
+        step_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        if let (Some((k, dir)), Some(r)) = (&frames, &renderer) {
+            if step % k == 0 {
+                r.write_png(&sim, &dir.join(format!("frame{step:05}.png")))?;
+            }
+        }
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    let total: f64 = step_ms.iter().sum();
+    let mean = total / step_ms.len().max(1) as f64;
+    let steps_per_s = 1e3 / mean;
+    let bodies: Vec<_> = sim
+        .bodies
+        .iter()
+        .map(|b| {
+            json!({
+                "shape": sim.shapes[b.shape].name,
+                "density": b.density,
+                "position": b.rigid.position.to_array(),
+                "orientation_xyzw": b.rigid.orientation.to_array(),
+                "submerged_volume": b.submerged.volume,
+                "volume": sim.shapes[b.shape].unit.volume,
+            })
+        })
+        .collect();
+    let out = json!({
+        "renderer": ctx.info().renderer_line(),
+        "solver": if args.cpu { "cpu (clip + Mirtich)" } else { "gpu (n+2 passes, tiles)" },
+        "bodies": sim.bodies.len(),
+        "steps": args.steps,
+        "resolution": args.resolution,
+        "dt": args.dt,
+        "mean_step_ms": mean,
+        "step_ms": step_ms,
+        "steps_per_second": steps_per_s,
+        "max_peels": peels.iter().max(),
+        "state": bodies,
+    });
+    if json_out {
+        println!("{}", serde_json::to_string_pretty(&out)?);
+        return Ok(());
+    }
+    println!("renderer        {}", ctx.info().renderer_line());
+    println!(
+        "scene           {} bodies, {} steps of {:.4} s, {}x{} per body, {}",
+        sim.bodies.len(),
+        args.steps,
+        args.dt,
+        args.resolution,
+        args.resolution,
+        out["solver"].as_str().unwrap_or("")
+    );
+    println!(
+        "per step        {mean:.2} ms ({steps_per_s:.1} steps/s), deepest peel {}",
+        peels.iter().max().unwrap_or(&0)
+    );
+    println!(
+        "{:>4} {:>8} {:>8} {:>28} {:>10}",
+        "body", "shape", "density", "position", "submerged"
+    );
+    for (k, b) in sim.bodies.iter().enumerate() {
+        let p = b.rigid.position;
+        println!(
+            "{k:>4} {:>8} {:>8.0} ({:>7.3}, {:>7.3}, {:>7.3}) {:>9.1}%",
+            sim.shapes[b.shape].name,
+            b.density,
+            p.x,
+            p.y,
+            p.z,
+            100.0 * b.submerged.volume / sim.shapes[b.shape].unit.volume
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,223 @@
+//! The `mass`, `buoyancy` and `mass-bench` commands as a user meets them.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn run(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn json_of(args: &[&str]) -> serde_json::Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("classic-gpgpu-mass-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write_obj(dir: &std::path::Path, name: &str, faces: &str) -> String {
+    let verts =
+        "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n";
+    let path = dir.join(name);
+    std::fs::write(&path, format!("{verts}{faces}")).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+/// A 2x2x2 cube, counter-clockwise outward (1-based OBJ indices).
+const CUBE_FACES: &str = "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+
+#[test]
+fn mass_json_has_every_documented_field() {
+    let dir = scratch("fields");
+    let cube = write_obj(&dir, "cube.obj", CUBE_FACES);
+    let v = json_of(&[
+        "mass",
+        &cube,
+        "--resolution",
+        "32",
+        "--density",
+        "3",
+        "--json",
+    ]);
+    assert!(v["renderer"].as_str().is_some_and(|r| !r.is_empty()));
+    assert_eq!(v["resolution"], 32);
+    assert_eq!(v["peels"], 2);
+    // An axis-aligned box on pixel boundaries is exact up to fp32: V = 8, m = 24,
+    // I = m (b² + c²) / 12 = 16.
+    assert!((v["volume"].as_f64().unwrap() - 8.0).abs() < 1e-4);
+    assert!((v["mass"].as_f64().unwrap() - 24.0).abs() < 1e-3);
+    let inertia = &v["inertia"];
+    assert!(
+        (inertia[0][0].as_f64().unwrap() - 16.0).abs() < 0.05,
+        "{inertia}"
+    );
+    assert!((v["analytic"]["inertia"][2][2].as_f64().unwrap() - 16.0).abs() < 1e-4);
+    assert_eq!(v["center_of_mass"].as_array().unwrap().len(), 3);
+    assert!(v["timings_ms"]["gpu"].as_f64().is_some());
+    assert!(v["timings_ms"]["analytic"].as_f64().is_some());
+    assert!(v["framing"]["pixel_size"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["analytic"]["reliable"], true);
+}
+
+#[test]
+fn mass_below_a_plane_uses_the_submerged_part() {
+    let v = json_of(&["mass", "cube", "--below", "-0.5", "--json"]);
+    // The paper's cube (edge 2) below z = -0.5: a 2 x 2 x 0.5 slab.
+    assert!(
+        (v["volume"].as_f64().unwrap() - 2.0).abs() < 1e-3,
+        "{}",
+        v["volume"]
+    );
+    assert!((v["analytic"]["volume"].as_f64().unwrap() - 2.0).abs() < 1e-6);
+    assert!((v["center_of_mass"][2].as_f64().unwrap() + 0.75).abs() < 1e-3);
+}
+
+#[test]
+fn inverted_mesh_is_reported_never_a_silent_positive_mass() {
+    let dir = scratch("inverted");
+    let flipped: String = CUBE_FACES
+        .lines()
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            format!("f {} {} {}\n", f[1], f[3], f[2])
+        })
+        .collect();
+    let cube = write_obj(&dir, "inside_out.obj", &flipped);
+    let out = run(&["mass", &cube, "--json"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["mass"].as_f64().unwrap() < 0.0);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("inside out"), "{err}");
+}
+
+#[test]
+fn open_mesh_is_reported_and_its_analytic_result_marked_unreliable() {
+    let dir = scratch("open");
+    let open: String = CUBE_FACES
+        .lines()
+        .skip(2)
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let mesh = write_obj(&dir, "open.obj", &open);
+    let out = run(&["mass", &mesh, "--json"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["closed"], false);
+    assert_eq!(v["analytic"]["reliable"], false);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("open"));
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    for (args, needle) in [
+        (vec!["mass", "no-such-model.obj"], "no-such-model.obj"),
+        (vec!["mass", "cube", "--resolution", "1"], "--resolution 1"),
+        (vec!["mass", "cube", "--density", "-2"], "--density"),
+        (vec!["buoyancy", "--bodies", "0"], "--bodies 0"),
+        (
+            vec!["buoyancy", "--png-every", "x", "/tmp"],
+            "--png-every x",
+        ),
+    ] {
+        let out = run(&args);
+        assert!(!out.status.success(), "{args:?} should fail");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    let dir = scratch("garbage");
+    let path = dir.join("garbage.obj");
+    std::fs::write(&path, "v 0 0 0\nf 1 2 9\n").unwrap();
+    let out = run(&["mass", path.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("garbage.obj"));
+}
+
+#[test]
+fn dump_writes_the_integrands_of_each_peel() {
+    let dir = scratch("dump");
+    let v = json_of(&[
+        "mass",
+        "torus",
+        "--resolution",
+        "16",
+        "--dump",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    let peels = v["peels"].as_u64().unwrap();
+    for k in 1..=peels {
+        for t in 0..3 {
+            assert!(
+                dir.join(format!("peel{k}_target{t}.png")).is_file(),
+                "peel {k} target {t}"
+            );
+        }
+    }
+}
+
+#[test]
+fn buoyancy_runs_and_writes_frames() {
+    let dir = scratch("frames");
+    let v = json_of(&[
+        "buoyancy",
+        "--bodies",
+        "5",
+        "--steps",
+        "4",
+        "--resolution",
+        "16",
+        "--png-every",
+        "2",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(v["bodies"], 5);
+    assert_eq!(v["state"].as_array().unwrap().len(), 5);
+    assert!(v["steps_per_second"].as_f64().unwrap() > 0.0);
+    assert!(v["state"][0]["orientation_xyzw"].as_array().unwrap().len() == 4);
+    assert!(dir.join("frame00000.png").is_file() && dir.join("frame00002.png").is_file());
+}
+
+#[test]
+fn mass_bench_quick_regenerates_the_tables_and_figures() {
+    let dir = scratch("bench");
+    let v = json_of(&[
+        "mass-bench",
+        "--quick",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(v["id"], "paper4");
+    let tables = v["tables"].as_array().unwrap();
+    assert!(tables.len() >= 4);
+    assert_eq!(
+        tables[0]["rows"].as_array().unwrap().len(),
+        7,
+        "Table 1 has the seven objects"
+    );
+    for f in v["figures"].as_array().unwrap() {
+        assert!(dir.join(f["file"].as_str().unwrap()).is_file(), "{f}");
+    }
+    assert!(
+        v["results"]["buoyancy"]["steps_per_second"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
+}
