@@ -12,7 +12,10 @@ pub struct Mesh {
 
 impl Mesh {
     pub fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Self {
-        Self { positions, triangles }
+        Self {
+            positions,
+            triangles,
+        }
     }
 
     /// The three corners of triangle `t`.
