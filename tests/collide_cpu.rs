@@ -42,9 +42,9 @@ fn streaming_caps_cpu(x: &AabbStream, px: &[Vec3], y: &AabbStream, py: &[Vec3]) 
     let bx = x.slot_boxes(px);
     let by = y.slot_boxes(py);
     let mut caps = Vec::new();
-    for i in 0..x.len() {
-        for j in 0..y.len() {
-            if x.stencil[i] == 1 && y.stencil[j] == 1 && bx[i].overlaps(&by[j]) {
+    for (i, bi) in bx.iter().enumerate() {
+        for (j, bj) in by.iter().enumerate() {
+            if x.stencil[i] == 1 && y.stencil[j] == 1 && bi.overlaps(bj) {
                 caps.push((x.slot_leaf[i], y.slot_leaf[j]));
             }
         }

@@ -87,7 +87,7 @@ impl Deforming {
             Deformation::Wavy(w) if !rest.positions.is_empty() => {
                 let mut rng = SplitMix64(w.seed);
                 (0..w.bumps)
-                    .map(|_| rest.positions[(rng.next() % rest.positions.len() as u64) as usize])
+                    .map(|_| rest.positions[(rng.next_u64() % rest.positions.len() as u64) as usize])
                     .collect()
             }
             _ => Vec::new(),
@@ -159,7 +159,7 @@ pub fn vertex_normals(mesh: &Mesh) -> Vec<Vec3> {
 pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
-    pub fn next(&mut self) -> u64 {
+    pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -169,7 +169,7 @@ impl SplitMix64 {
 
     /// Uniform in `[0, 1)`.
     pub fn unit(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
     }
 }
 

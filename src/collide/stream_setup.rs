@@ -245,7 +245,7 @@ mod tests {
         for n in [1, 2, 3, 7] {
             let mesh = strip(37);
             let s = AabbStream::build(&mesh, n).unwrap();
-            let mut seen = vec![0; 37];
+            let mut seen = [0; 37];
             for leaf in &s.leaves {
                 assert!(leaf.triangles.len() <= n && !leaf.triangles.is_empty());
                 for &t in &leaf.triangles {
