@@ -17,9 +17,12 @@ pub mod aabb;
 pub mod brute_force;
 pub mod deform;
 pub mod global_test;
+pub mod reduction;
 pub mod solid;
 pub mod stream_setup;
+pub mod tiles;
 pub mod tri_test;
+pub mod vertex_textures;
 
 pub use aabb::Aabb;
 pub use stream_setup::{AabbStream, Leaf};
