@@ -1,10 +1,103 @@
-use clap::Parser;
+//! The `classic-gpgpu` command line: `info`, each paper's commands, and `reproduce`.
+
+use anyhow::Context as _;
+use clap::{Parser, Subcommand};
+use classic_gpgpu::gl::{self, Renderer};
+use std::process::ExitCode;
 
 /// The classic GPGPU papers of a 2007 tutorial, reproduced on a headless OpenGL context.
 #[derive(Parser)]
 #[command(version, about)]
-struct Cli {}
+struct Cli {
+    /// Which platform provides OpenGL (default: the CLASSIC_GPGPU_RENDERER variable, else auto:
+    /// EGL device, then EGL surfaceless, then OSMesa).
+    #[arg(long, global = true, value_enum)]
+    renderer: Option<Renderer>,
+    /// Print one JSON object instead of text.
+    #[arg(long, global = true)]
+    json: bool,
+    #[command(subcommand)]
+    command: Command,
+}
 
-fn main() {
-    let _ = Cli::parse();
+#[derive(Subcommand)]
+enum Command {
+    /// The renderer in use, why it was chosen, and the limits the papers depend on.
+    Info,
+}
+
+/// What every command gets.
+pub struct Global {
+    pub renderer: Option<Renderer>,
+    pub json: bool,
+}
+
+impl Global {
+    /// The GL context chosen by `--renderer`, else by the environment.
+    pub fn context(&self) -> anyhow::Result<gl::Context> {
+        let ctx = match self.renderer {
+            Some(r) => gl::Context::new(r),
+            None => gl::Context::from_env(),
+        };
+        ctx.context("creating the OpenGL context")
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let global = Global {
+        renderer: cli.renderer,
+        json: cli.json,
+    };
+    let result = match cli.command {
+        Command::Info => info(&global),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn info(global: &Global) -> anyhow::Result<()> {
+    let ctx = global.context()?;
+    let info = ctx.info();
+    if global.json {
+        println!("{}", serde_json::to_string_pretty(info)?);
+        return Ok(());
+    }
+    let l = &info.limits;
+    println!("platform        {} ({})", info.platform, info.why);
+    println!("vendor          {}", info.vendor);
+    println!("renderer        {}", info.renderer);
+    println!("version         {}", info.version);
+    println!("GLSL            {}", info.glsl_version);
+    println!(
+        "max texture     {} x {}",
+        l.max_texture_size, l.max_texture_size
+    );
+    println!(
+        "max viewport    {} x {}",
+        l.max_viewport_dims[0], l.max_viewport_dims[1]
+    );
+    println!(
+        "draw buffers    {} (colour attachments {})",
+        l.max_draw_buffers, l.max_color_attachments
+    );
+    println!("stencil bits    {}", l.stencil_bits);
+    println!(
+        "query bits      samples passed {}, time elapsed {}",
+        l.samples_passed_counter_bits, l.time_elapsed_counter_bits
+    );
+    println!(
+        "texture units   fragment {}, vertex {}",
+        l.max_texture_image_units, l.max_vertex_texture_image_units
+    );
+    println!(
+        "uniforms        vertex {}, fragment {} components",
+        l.max_vertex_uniform_components, l.max_fragment_uniform_components
+    );
+    Ok(())
 }

@@ -1,4 +1,77 @@
-//! The only module that calls OpenGL or EGL (placeholder until the foundation lands).
+//! The only module that calls OpenGL or EGL. Everything the papers need from the graphics
+//! pipeline is here as safe RAII types: a headless [`Context`], [`Texture`]s (1D and 2D, float
+//! and integer formats), [`Framebuffer`]s with several colour targets (MRT) and depth/stencil,
+//! [`Buffer`]s usable as vertex, index and pixel buffers (the PBO-to-VBO copy of paper 2),
+//! [`Program`]s built from shader files, occlusion and timer [`query`] objects, and a [`Pass`]
+//! that draws rectangles or meshes into a framebuffer with a [`DrawState`].
+//!
+//! On top of them sit the two GPGPU building blocks the papers share: ping-pong
+//! [`reduce`]tion and depth [`peel`]ing. [`dump`] writes any texture to PNG, the tutorial's
+//! first debugging tip.
+//!
+//! GL errors and framebuffer completeness are checked after every pass when
+//! [`Context::checks`] is on: always in debug builds, and in tests (which call
+//! [`Context::set_checks`]) or with `CLASSIC_GPGPU_GL_CHECKS=1`.
 
-/// A headless OpenGL context.
-pub struct Context {}
+mod buffer;
+mod context;
+pub mod dump;
+mod framebuffer;
+mod mesh_buffers;
+mod pass;
+pub mod peel;
+mod program;
+pub mod query;
+pub mod reduce;
+mod texture;
+
+pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
+pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
+pub use framebuffer::{Framebuffer, Rect};
+pub use mesh_buffers::MeshBuffers;
+pub use pass::{
+    Blend, Compare, DepthTest, DrawState, Face, Pass, Primitive, StencilOp, StencilTest,
+};
+pub use program::{Program, ShaderError, ShaderSource};
+pub use query::{OcclusionQuery, TimerQuery};
+pub use texture::{Texture, TextureFormat, Wrap};
+
+/// Everything that can go wrong in the GL layer, each naming what was being done.
+#[derive(Debug, thiserror::Error)]
+pub enum GlError {
+    /// No context could be made, or it is too old.
+    #[error("{0}")]
+    Context(String),
+    /// glGetError reported an error after a pass.
+    #[error("GL error after {what}: {error}")]
+    Gl { what: String, error: &'static str },
+    /// A framebuffer is not complete; `status` is the GL status name.
+    #[error("framebuffer {name} is incomplete: {status}")]
+    Incomplete { name: String, status: &'static str },
+    /// A shader failed to compile: file, line, driver log and the source around it.
+    #[error("{0}")]
+    Shader(#[from] ShaderError),
+    /// A program failed to link.
+    #[error("program ({files}) failed to link:\n{log}")]
+    Link { files: String, log: String },
+    /// A request beyond the context's limits (texture size, draw buffers, ...).
+    #[error("{0}")]
+    Limit(String),
+    /// Bad arguments: sizes that do not match, a missing attachment, ...
+    #[error("{0}")]
+    Invalid(String),
+    /// Writing a dump.
+    #[error("writing {path}: {message}")]
+    Io { path: String, message: String },
+}
+
+/// A shader file compiled into the binary: `shader!("glsl/reduce.frag")`.
+#[macro_export]
+macro_rules! shader {
+    ($path:literal) => {
+        $crate::gl::ShaderSource {
+            name: $path,
+            source: include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path)),
+        }
+    };
+}

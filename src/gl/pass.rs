@@ -1,0 +1,436 @@
+//! A render pass: one program drawing into one framebuffer with a given fixed-function
+//! state. This is where the papers' GL features meet: the stencil test (paper 1), MRT (papers
+//! 1 and 4), the depth test of depth peeling (paper 4), MIN/MAX blending, clip planes.
+
+use super::program::Uniform;
+use super::{Context, Framebuffer, GlError, MeshBuffers, Program, Rect, Texture, VertexArray};
+use glam::{Vec2, Vec4};
+use glow::HasContext;
+
+/// A comparison function (depth and stencil tests).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Compare {
+    Never,
+    Less,
+    Equal,
+    LessEqual,
+    Greater,
+    NotEqual,
+    GreaterEqual,
+    Always,
+}
+
+impl Compare {
+    fn gl(self) -> u32 {
+        match self {
+            Compare::Never => glow::NEVER,
+            Compare::Less => glow::LESS,
+            Compare::Equal => glow::EQUAL,
+            Compare::LessEqual => glow::LEQUAL,
+            Compare::Greater => glow::GREATER,
+            Compare::NotEqual => glow::NOTEQUAL,
+            Compare::GreaterEqual => glow::GEQUAL,
+            Compare::Always => glow::ALWAYS,
+        }
+    }
+}
+
+/// The depth test, and whether passing fragments write their depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthTest {
+    pub func: Compare,
+    pub write: bool,
+}
+
+/// What the stencil test does to the stored value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StencilOp {
+    Keep,
+    Zero,
+    Replace,
+    Increment,
+    IncrementWrap,
+    Decrement,
+    DecrementWrap,
+    Invert,
+}
+
+impl StencilOp {
+    fn gl(self) -> u32 {
+        match self {
+            StencilOp::Keep => glow::KEEP,
+            StencilOp::Zero => glow::ZERO,
+            StencilOp::Replace => glow::REPLACE,
+            StencilOp::Increment => glow::INCR,
+            StencilOp::IncrementWrap => glow::INCR_WRAP,
+            StencilOp::Decrement => glow::DECR,
+            StencilOp::DecrementWrap => glow::DECR_WRAP,
+            StencilOp::Invert => glow::INVERT,
+        }
+    }
+}
+
+/// The stencil test: pass when `(reference & read_mask) func (stored & read_mask)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StencilTest {
+    pub func: Compare,
+    pub reference: i32,
+    pub read_mask: u32,
+    /// Applied when the stencil test fails.
+    pub fail: StencilOp,
+    /// Applied when the stencil test passes and the depth test fails.
+    pub depth_fail: StencilOp,
+    /// Applied when both pass.
+    pub pass: StencilOp,
+    pub write_mask: u32,
+}
+
+impl StencilTest {
+    /// Draw only where the stored stencil equals `reference`; leave the stencil as it is.
+    pub fn equal(reference: i32) -> StencilTest {
+        StencilTest {
+            func: Compare::Equal,
+            reference,
+            read_mask: 0xff,
+            fail: StencilOp::Keep,
+            depth_fail: StencilOp::Keep,
+            pass: StencilOp::Keep,
+            write_mask: 0,
+        }
+    }
+
+    /// Draw everywhere and write `reference` where fragments land.
+    pub fn write(reference: i32) -> StencilTest {
+        StencilTest {
+            func: Compare::Always,
+            reference,
+            read_mask: 0xff,
+            fail: StencilOp::Keep,
+            depth_fail: StencilOp::Keep,
+            pass: StencilOp::Replace,
+            write_mask: 0xff,
+        }
+    }
+}
+
+/// How a fragment's colour combines with the stored one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Blend {
+    /// stored + fragment (accumulation).
+    Add,
+    /// min(stored, fragment), per component.
+    Min,
+    /// max(stored, fragment), per component.
+    Max,
+    /// Ordinary transparency: src * a + stored * (1 - a).
+    Alpha,
+}
+
+/// Which faces are culled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Face {
+    Back,
+    Front,
+}
+
+/// The fixed-function state of a draw. The default is plain: no depth, stencil, blending or
+/// culling, colour written.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DrawState {
+    pub depth: Option<DepthTest>,
+    pub stencil: Option<StencilTest>,
+    pub blend: Option<Blend>,
+    pub color_write: bool,
+    pub cull: Option<Face>,
+    /// How many `gl_ClipDistance[i]` the vertex shader writes (clip planes).
+    pub clip_distances: u32,
+    /// Polygon offset (factor, units), for coplanar surfaces.
+    pub polygon_offset: Option<(f32, f32)>,
+}
+
+impl Default for DrawState {
+    fn default() -> Self {
+        DrawState {
+            depth: None,
+            stencil: None,
+            blend: None,
+            color_write: true,
+            cull: None,
+            clip_distances: 0,
+            polygon_offset: None,
+        }
+    }
+}
+
+/// Primitive types for mesh draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Primitive {
+    Points,
+    Lines,
+    LineStrip,
+    Triangles,
+    TriangleStrip,
+}
+
+impl Primitive {
+    fn gl(self) -> u32 {
+        match self {
+            Primitive::Points => glow::POINTS,
+            Primitive::Lines => glow::LINES,
+            Primitive::LineStrip => glow::LINE_STRIP,
+            Primitive::Triangles => glow::TRIANGLES,
+            Primitive::TriangleStrip => glow::TRIANGLE_STRIP,
+        }
+    }
+}
+
+/// One program drawing into one framebuffer. Made by [`Framebuffer::pass`]; configure it with
+/// the builder methods, then draw. Each draw is checked for GL errors when checks are on.
+pub struct Pass<'a> {
+    ctx: &'a Context,
+    target: &'a Framebuffer,
+    program: &'a Program,
+    name: &'a str,
+    viewport: Rect,
+    state: DrawState,
+    textures: Vec<(u32, Texture)>,
+    error: Option<GlError>,
+}
+
+impl<'a> Pass<'a> {
+    pub(crate) fn begin(
+        target: &'a Framebuffer,
+        program: &'a Program,
+        name: &'a str,
+    ) -> Result<Pass<'a>, GlError> {
+        let ctx = target.context();
+        if ctx.checks() {
+            target.check_complete()?;
+        }
+        Ok(Pass {
+            ctx,
+            target,
+            program,
+            name,
+            viewport: target.rect(),
+            state: DrawState::default(),
+            textures: Vec::new(),
+            error: None,
+        })
+    }
+
+    /// Draw into `rect` of the framebuffer only; rectangles are then relative to it.
+    pub fn viewport(&mut self, rect: Rect) -> &mut Self {
+        self.viewport = rect;
+        self
+    }
+
+    pub fn state(&mut self, state: DrawState) -> &mut Self {
+        self.state = state;
+        self
+    }
+
+    /// Bind `texture` to the sampler uniform `sampler` (the next free texture unit).
+    pub fn texture(&mut self, sampler: &str, texture: &Texture) -> &mut Self {
+        let unit = self.textures.len() as u32;
+        if unit >= self.ctx.info().limits.max_texture_image_units {
+            self.error.get_or_insert(GlError::Limit(format!(
+                "pass {} binds more textures than the {} units of this renderer",
+                self.name,
+                self.ctx.info().limits.max_texture_image_units
+            )));
+            return self;
+        }
+        self.program.set(sampler, unit as i32);
+        self.textures.push((unit, texture.clone()));
+        self
+    }
+
+    /// Set a uniform of the pass's program.
+    pub fn uniform<U: Uniform>(&mut self, name: &str, value: U) -> &mut Self {
+        self.program.set(name, value);
+        self
+    }
+
+    /// Draw the rectangle `rect` (pixels, relative to the viewport) with the rectangle vertex
+    /// shader ([`Program::rect`]): one fragment per covered pixel.
+    pub fn draw_rect(&mut self, rect: Rect) -> Result<(), GlError> {
+        let (x0, y0) = (rect.x as f32, rect.y as f32);
+        self.draw_rect_f32(x0, y0, x0 + rect.w as f32, y0 + rect.h as f32)
+    }
+
+    /// Draw the whole viewport.
+    pub fn draw_full(&mut self) -> Result<(), GlError> {
+        self.draw_rect(Rect::sized(self.viewport.w, self.viewport.h))
+    }
+
+    /// Draw a rectangle with fractional pixel corners.
+    pub fn draw_rect_f32(&mut self, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<(), GlError> {
+        self.program.set("u_rect", Vec4::new(x0, y0, x1, y1));
+        self.program.set(
+            "u_viewport",
+            Vec2::new(self.viewport.w as f32, self.viewport.h as f32),
+        );
+        self.draw_attributeless(Primitive::TriangleStrip, 4, 1)
+    }
+
+    /// Draw `count` vertices with no vertex buffer (the shader builds them from
+    /// `gl_VertexID` / `gl_InstanceID`), `instances` times.
+    pub fn draw_attributeless(
+        &mut self,
+        primitive: Primitive,
+        count: usize,
+        instances: usize,
+    ) -> Result<(), GlError> {
+        let vao = self.ctx.inner.empty_vao;
+        self.draw(vao, |gl| unsafe {
+            gl.draw_arrays_instanced(primitive.gl(), 0, count as i32, instances as i32)
+        })
+    }
+
+    /// Draw `count` vertices from `first` of `vertices`.
+    pub fn draw_arrays(
+        &mut self,
+        vertices: &VertexArray,
+        primitive: Primitive,
+        first: usize,
+        count: usize,
+    ) -> Result<(), GlError> {
+        self.draw_arrays_instanced(vertices, primitive, first, count, 1)
+    }
+
+    /// Draw `count` vertices from `first` of `vertices`, `instances` times.
+    pub fn draw_arrays_instanced(
+        &mut self,
+        vertices: &VertexArray,
+        primitive: Primitive,
+        first: usize,
+        count: usize,
+        instances: usize,
+    ) -> Result<(), GlError> {
+        self.draw(vertices.id(), |gl| unsafe {
+            gl.draw_arrays_instanced(primitive.gl(), first as i32, count as i32, instances as i32)
+        })
+    }
+
+    /// Draw `count` indices from index `first` of the vertex array's index buffer, `instances`
+    /// times.
+    pub fn draw_elements_instanced(
+        &mut self,
+        vertices: &VertexArray,
+        primitive: Primitive,
+        first: usize,
+        count: usize,
+        instances: usize,
+    ) -> Result<(), GlError> {
+        if !vertices.has_indices() {
+            return Err(GlError::Invalid(format!(
+                "pass {}: draw_elements on a vertex array without an index buffer",
+                self.name
+            )));
+        }
+        self.draw(vertices.id(), |gl| unsafe {
+            gl.draw_elements_instanced(
+                primitive.gl(),
+                count as i32,
+                glow::UNSIGNED_INT,
+                (first * 4) as i32,
+                instances as i32,
+            )
+        })
+    }
+
+    /// Draw every triangle of `mesh`.
+    pub fn draw_mesh(&mut self, mesh: &MeshBuffers) -> Result<(), GlError> {
+        self.draw_elements_instanced(
+            mesh.vertex_array(),
+            Primitive::Triangles,
+            0,
+            mesh.index_count(),
+            1,
+        )
+    }
+
+    fn draw(
+        &mut self,
+        vao: glow::VertexArray,
+        call: impl FnOnce(&glow::Context),
+    ) -> Result<(), GlError> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        let gl = self.ctx.gl();
+        self.target.bind();
+        self.program.bind();
+        unsafe {
+            let v = self.viewport;
+            gl.viewport(v.x as i32, v.y as i32, v.w as i32, v.h as i32);
+            for (unit, texture) in &self.textures {
+                gl.active_texture(glow::TEXTURE0 + unit);
+                gl.bind_texture(texture.target(), Some(texture.id()));
+            }
+            apply_state(gl, &self.state);
+            gl.bind_vertex_array(Some(vao));
+            call(gl);
+            gl.bind_vertex_array(None);
+        }
+        self.ctx.check(&format!("pass {}", self.name))
+    }
+}
+
+unsafe fn apply_state(gl: &glow::Context, s: &DrawState) {
+    let toggle = |cap, on: bool| {
+        if on {
+            gl.enable(cap)
+        } else {
+            gl.disable(cap)
+        }
+    };
+    toggle(glow::DEPTH_TEST, s.depth.is_some());
+    match s.depth {
+        Some(d) => {
+            gl.depth_func(d.func.gl());
+            gl.depth_mask(d.write);
+        }
+        None => gl.depth_mask(false),
+    }
+    toggle(glow::STENCIL_TEST, s.stencil.is_some());
+    if let Some(st) = s.stencil {
+        gl.stencil_func(st.func.gl(), st.reference, st.read_mask);
+        gl.stencil_op(st.fail.gl(), st.depth_fail.gl(), st.pass.gl());
+        gl.stencil_mask(st.write_mask);
+    }
+    toggle(glow::BLEND, s.blend.is_some());
+    if let Some(b) = s.blend {
+        match b {
+            Blend::Add => {
+                gl.blend_equation(glow::FUNC_ADD);
+                gl.blend_func(glow::ONE, glow::ONE);
+            }
+            Blend::Min => gl.blend_equation(glow::MIN),
+            Blend::Max => gl.blend_equation(glow::MAX),
+            Blend::Alpha => {
+                gl.blend_equation(glow::FUNC_ADD);
+                gl.blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
+            }
+        }
+    }
+    let c = s.color_write;
+    gl.color_mask(c, c, c, c);
+    toggle(glow::CULL_FACE, s.cull.is_some());
+    if let Some(face) = s.cull {
+        gl.cull_face(match face {
+            Face::Back => glow::BACK,
+            Face::Front => glow::FRONT,
+        });
+    }
+    for i in 0..8 {
+        toggle(glow::CLIP_DISTANCE0 + i, i < s.clip_distances);
+    }
+    toggle(glow::POLYGON_OFFSET_FILL, s.polygon_offset.is_some());
+    if let Some((factor, units)) = s.polygon_offset {
+        gl.polygon_offset(factor, units);
+    }
+    // Shaders may set gl_PointSize (point-sprite passes).
+    gl.enable(glow::PROGRAM_POINT_SIZE);
+}

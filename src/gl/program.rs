@@ -1,0 +1,374 @@
+//! Programs built from shader files. Several files can make one stage (a shared snippet
+//! followed by the shader that uses it); each is numbered with `#line 1 N`, so a compile error
+//! names the file and line it is really on, with the source lines around it.
+
+use super::{Context, GlError};
+use glam::{IVec2, IVec4, Mat3, Mat4, Vec2, Vec3, Vec4};
+use glow::HasContext;
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::fmt;
+
+/// A shader file and its text; [`crate::shader!`] makes one at compile time.
+#[derive(Clone, Copy, Debug)]
+pub struct ShaderSource<'a> {
+    /// The path as written in the repository, e.g. `glsl/gl/reduce.frag`.
+    pub name: &'a str,
+    pub source: &'a str,
+}
+
+/// A shader that failed to compile.
+#[derive(Debug)]
+pub struct ShaderError {
+    pub stage: &'static str,
+    /// The file the first error is in.
+    pub file: String,
+    /// The line of the first error in that file, when the driver said.
+    pub line: Option<u32>,
+    /// The driver's log, with source numbers replaced by file names.
+    pub log: String,
+    /// The numbered source lines around the error.
+    pub excerpt: String,
+}
+
+impl fmt::Display for ShaderError {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(
+                f,
+                "{} shader {}:{line} failed to compile",
+                self.stage, self.file
+            )?,
+            None => write!(f, "{} shader {} failed to compile", self.stage, self.file)?,
+        }
+        write!(f, "\n{}", self.log.trim_end())?;
+        if !self.excerpt.is_empty() {
+            write!(f, "\n{}", self.excerpt.trim_end())?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for ShaderError {}
+
+/// A linked program. Uniform locations are looked up once and cached.
+pub struct Program {
+    ctx: Context,
+    id: glow::Program,
+    files: String,
+    locations: RefCell<HashMap<String, Option<glow::UniformLocation>>>,
+}
+
+impl Drop for Program {
+    fn drop(&mut self) {
+        unsafe { self.ctx.gl().delete_program(self.id) };
+    }
+}
+
+/// The vertex shader of every rectangle pass ([`super::Pass::draw_rect`]).
+pub(crate) const RECT_VERTEX: ShaderSource<'static> = crate::shader!("glsl/gl/rect.vert");
+
+impl Program {
+    /// Compile and link a program whose vertex stage is the concatenation of `vertex` and
+    /// whose fragment stage is the concatenation of `fragment`. The first file of each stage
+    /// carries the `#version` line.
+    pub fn new(
+        ctx: &Context,
+        vertex: &[ShaderSource],
+        fragment: &[ShaderSource],
+    ) -> Result<Program, GlError> {
+        let gl = ctx.gl();
+        let files: Vec<&str> = vertex.iter().chain(fragment).map(|s| s.name).collect();
+        let files = files.join(", ");
+        let id = unsafe { gl.create_program() }.map_err(GlError::Invalid)?;
+        let program = Program {
+            ctx: ctx.clone(),
+            id,
+            files,
+            locations: RefCell::new(HashMap::new()),
+        };
+        let shaders = [
+            compile(ctx, glow::VERTEX_SHADER, "vertex", vertex),
+            compile(ctx, glow::FRAGMENT_SHADER, "fragment", fragment),
+        ];
+        let mut compiled = Vec::new();
+        let mut first_error = None;
+        for s in shaders {
+            match s {
+                Ok(s) => compiled.push(s),
+                Err(e) => first_error = first_error.or(Some(e)),
+            }
+        }
+        if let Some(e) = first_error {
+            unsafe { compiled.into_iter().for_each(|s| gl.delete_shader(s)) };
+            return Err(e);
+        }
+        unsafe {
+            for &s in &compiled {
+                gl.attach_shader(id, s);
+            }
+            gl.link_program(id);
+            for s in compiled {
+                gl.detach_shader(id, s);
+                gl.delete_shader(s);
+            }
+            if !gl.get_program_link_status(id) {
+                return Err(GlError::Link {
+                    files: program.files.clone(),
+                    log: gl.get_program_info_log(id),
+                });
+            }
+        }
+        ctx.check_now(&format!("linking {}", program.files))?;
+        Ok(program)
+    }
+
+    /// A program for rectangle passes: the built-in rectangle vertex shader (which passes
+    /// `v_uv`, 0..1 across the rectangle) and the given fragment stage.
+    pub fn rect(ctx: &Context, fragment: &[ShaderSource]) -> Result<Program, GlError> {
+        Program::new(ctx, &[RECT_VERTEX], fragment)
+    }
+
+    /// The files this program was built from.
+    pub fn files(&self) -> &str {
+        &self.files
+    }
+
+    pub(crate) fn bind(&self) {
+        unsafe { self.ctx.gl().use_program(Some(self.id)) };
+    }
+
+    /// Set a uniform by name. A uniform the compiler removed (unused) is silently skipped,
+    /// as GL itself does for location -1.
+    pub fn set<U: Uniform>(&self, name: &str, value: U) {
+        let location = self.location(name);
+        if let Some(location) = location {
+            self.bind();
+            unsafe { value.apply(self.ctx.gl(), &location) };
+        }
+    }
+
+    /// Whether the linked program uses uniform `name`.
+    pub fn has_uniform(&self, name: &str) -> bool {
+        self.location(name).is_some()
+    }
+
+    fn location(&self, name: &str) -> Option<glow::UniformLocation> {
+        let mut cache = self.locations.borrow_mut();
+        cache
+            .entry(name.to_string())
+            .or_insert_with(|| unsafe { self.ctx.gl().get_uniform_location(self.id, name) })
+            .as_ref()
+            .copied()
+    }
+}
+
+/// Join the files of one stage, each numbered as its own source string.
+fn assemble(parts: &[ShaderSource]) -> String {
+    let version = parts
+        .iter()
+        .flat_map(|p| p.source.lines())
+        .find(|l| l.trim_start().starts_with("#version"))
+        .unwrap_or("#version 330 core");
+    let mut out = format!("{}\n", version.trim());
+    for (i, part) in parts.iter().enumerate() {
+        out.push_str(&format!("#line 1 {i}\n"));
+        for line in part.source.lines() {
+            // The version line stays in place as a blank line, so line numbers keep matching.
+            if !line.trim_start().starts_with("#version") {
+                out.push_str(line);
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
+fn compile(
+    ctx: &Context,
+    kind: u32,
+    stage: &'static str,
+    parts: &[ShaderSource],
+) -> Result<glow::Shader, GlError> {
+    if parts.is_empty() {
+        return Err(GlError::Invalid(format!(
+            "a program needs a {stage} shader"
+        )));
+    }
+    let gl = ctx.gl();
+    unsafe {
+        let shader = gl.create_shader(kind).map_err(GlError::Invalid)?;
+        gl.shader_source(shader, &assemble(parts));
+        gl.compile_shader(shader);
+        if gl.get_shader_compile_status(shader) {
+            return Ok(shader);
+        }
+        let log = gl.get_shader_info_log(shader);
+        gl.delete_shader(shader);
+        Err(GlError::Shader(explain(stage, parts, &log)))
+    }
+}
+
+/// Turn a driver log into an error naming the file and line, with an excerpt.
+fn explain(stage: &'static str, parts: &[ShaderSource], log: &str) -> ShaderError {
+    let located = log.lines().find_map(parse_location);
+    let (file_index, line) = match located {
+        Some((source, line)) if (source as usize) < parts.len() => (source as usize, Some(line)),
+        _ => (0, None),
+    };
+    let log = log
+        .lines()
+        .map(|l| match parse_location(l) {
+            Some((source, line)) if (source as usize) < parts.len() => {
+                format!("{}:{line}: {}", parts[source as usize].name, message_of(l))
+            }
+            _ => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let excerpt = line
+        .map(|line| excerpt(parts[file_index].source, line, 2))
+        .unwrap_or_default();
+    ShaderError {
+        stage,
+        file: parts[file_index].name.to_string(),
+        line,
+        log,
+        excerpt,
+    }
+}
+
+/// `0:12(5): error ...` (Mesa) or `0(12) : error ...` (NVIDIA): the source number and line.
+fn parse_location(line: &str) -> Option<(u32, u32)> {
+    let line = line.trim_start();
+    let source_end = line.find(|c: char| !c.is_ascii_digit())?;
+    let source: u32 = line[..source_end].parse().ok()?;
+    let rest = &line[source_end..];
+    let rest = rest.strip_prefix(':').or_else(|| rest.strip_prefix('('))?;
+    let line_end = rest.find(|c: char| !c.is_ascii_digit())?;
+    let number: u32 = rest[..line_end].parse().ok()?;
+    Some((source, number))
+}
+
+/// The log line without its location prefix.
+fn message_of(line: &str) -> &str {
+    match line.find("): ").or_else(|| line.find(") : ")) {
+        Some(i) => line[i + 1..].trim_start_matches([':', ' ']),
+        None => line,
+    }
+}
+
+/// The lines `line - context ..= line + context` of `source`, numbered, the error marked.
+fn excerpt(source: &str, line: u32, context: u32) -> String {
+    let first = line.saturating_sub(context).max(1);
+    source
+        .lines()
+        .enumerate()
+        .map(|(i, text)| (i as u32 + 1, text))
+        .filter(|(n, _)| *n >= first && *n <= line + context)
+        .map(|(n, text)| {
+            let mark = if n == line { '>' } else { ' ' };
+            format!("{mark}{n:5} | {text}\n")
+        })
+        .collect()
+}
+
+/// A value that can be assigned to a GLSL uniform.
+pub trait Uniform {
+    /// # Safety
+    /// The program owning `location` must be current.
+    unsafe fn apply(&self, gl: &glow::Context, location: &glow::UniformLocation);
+}
+
+macro_rules! uniform {
+    ($t:ty, |$v:ident, $gl:ident, $l:ident| $body:expr) => {
+        impl Uniform for $t {
+            unsafe fn apply(&self, $gl: &glow::Context, $l: &glow::UniformLocation) {
+                let $v = self;
+                $body
+            }
+        }
+    };
+}
+
+uniform!(f32, |v, gl, l| gl.uniform_1_f32(Some(l), *v));
+uniform!(i32, |v, gl, l| gl.uniform_1_i32(Some(l), *v));
+uniform!(u32, |v, gl, l| gl.uniform_1_u32(Some(l), *v));
+uniform!(bool, |v, gl, l| gl.uniform_1_i32(Some(l), *v as i32));
+uniform!(Vec2, |v, gl, l| gl.uniform_2_f32(Some(l), v.x, v.y));
+uniform!(Vec3, |v, gl, l| gl.uniform_3_f32(Some(l), v.x, v.y, v.z));
+uniform!(Vec4, |v, gl, l| gl.uniform_4_f32(
+    Some(l),
+    v.x,
+    v.y,
+    v.z,
+    v.w
+));
+uniform!(IVec2, |v, gl, l| gl.uniform_2_i32(Some(l), v.x, v.y));
+uniform!(IVec4, |v, gl, l| gl.uniform_4_i32(
+    Some(l),
+    v.x,
+    v.y,
+    v.z,
+    v.w
+));
+uniform!(Mat3, |v, gl, l| gl.uniform_matrix_3_f32_slice(
+    Some(l),
+    false,
+    &v.to_cols_array()
+));
+uniform!(Mat4, |v, gl, l| gl.uniform_matrix_4_f32_slice(
+    Some(l),
+    false,
+    &v.to_cols_array()
+));
+uniform!(&[f32], |v, gl, l| gl.uniform_1_f32_slice(Some(l), v));
+uniform!(&[i32], |v, gl, l| gl.uniform_1_i32_slice(Some(l), v));
+uniform!(&[Vec4], |v, gl, l| gl
+    .uniform_4_f32_slice(Some(l), bytemuck::cast_slice(v)));
+uniform!(&[Mat4], |v, gl, l| gl.uniform_matrix_4_f32_slice(
+    Some(l),
+    false,
+    bytemuck::cast_slice(v)
+));
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn locations_of_mesa_and_nvidia_logs() {
+        assert_eq!(
+            parse_location("0:12(5): error: syntax error"),
+            Some((0, 12))
+        );
+        assert_eq!(
+            parse_location("1(7) : error C0000: syntax error"),
+            Some((1, 7))
+        );
+        assert_eq!(parse_location("error: no location"), None);
+    }
+
+    #[test]
+    fn assembled_sources_keep_line_numbers() {
+        let a = ShaderSource {
+            name: "a",
+            source: "#version 330 core\nfloat a;\n",
+        };
+        let b = ShaderSource {
+            name: "b",
+            source: "float b;\n",
+        };
+        let text = assemble(&[a, b]);
+        assert_eq!(
+            text,
+            "#version 330 core\n#line 1 0\n\nfloat a;\n#line 1 1\nfloat b;\n"
+        );
+    }
+
+    #[test]
+    fn excerpt_marks_the_line() {
+        let text = excerpt("l1\nl2\nl3\nl4\nl5\nl6", 4, 1);
+        assert_eq!(text, "     3 | l3\n>    4 | l4\n     5 | l5\n");
+    }
+}

@@ -1,0 +1,115 @@
+//! Occlusion queries (how many samples passed: paper 4's "until no fragment", CULLIDE's
+//! visibility test) and timer queries (the GPU time of a pass).
+
+use super::{Context, GlError};
+use glow::HasContext;
+
+struct Query {
+    ctx: Context,
+    id: glow::Query,
+    target: u32,
+}
+
+impl Drop for Query {
+    fn drop(&mut self) {
+        unsafe { self.ctx.gl().delete_query(self.id) };
+    }
+}
+
+impl Query {
+    fn new(ctx: &Context, target: u32) -> Result<Query, GlError> {
+        let id = unsafe { ctx.gl().create_query() }.map_err(GlError::Invalid)?;
+        Ok(Query {
+            ctx: ctx.clone(),
+            id,
+            target,
+        })
+    }
+    fn begin(&self) {
+        unsafe { self.ctx.gl().begin_query(self.target, self.id) };
+    }
+    fn end(&self) {
+        unsafe { self.ctx.gl().end_query(self.target) };
+    }
+    /// Wait for the result.
+    fn result(&self, what: &str) -> Result<u64, GlError> {
+        let mut value: u64 = 0;
+        // SAFETY: no query buffer is ever bound, so glow's "offset" is the address written to.
+        unsafe {
+            self.ctx.gl().get_query_parameter_u64_with_offset(
+                self.id,
+                glow::QUERY_RESULT,
+                &mut value as *mut u64 as usize,
+            )
+        };
+        self.ctx.check(what)?;
+        Ok(value)
+    }
+    fn available(&self) -> bool {
+        unsafe {
+            self.ctx
+                .gl()
+                .get_query_parameter_u32(self.id, glow::QUERY_RESULT_AVAILABLE)
+                != 0
+        }
+    }
+}
+
+/// Counts the samples that pass the depth and stencil tests between `begin` and `end`.
+pub struct OcclusionQuery(Query);
+
+impl OcclusionQuery {
+    pub fn new(ctx: &Context) -> Result<OcclusionQuery, GlError> {
+        Query::new(ctx, glow::SAMPLES_PASSED).map(OcclusionQuery)
+    }
+    pub fn begin(&self) {
+        self.0.begin()
+    }
+    pub fn end(&self) {
+        self.0.end()
+    }
+    /// The number of samples that passed (waits for the GPU).
+    pub fn samples(&self) -> Result<u64, GlError> {
+        self.0.result("reading an occlusion query")
+    }
+    /// Whether [`OcclusionQuery::samples`] would return without waiting.
+    pub fn available(&self) -> bool {
+        self.0.available()
+    }
+}
+
+/// Measures the GPU time of the commands between `begin` and `end`. Timer queries do not nest.
+pub struct TimerQuery(Query);
+
+impl TimerQuery {
+    pub fn new(ctx: &Context) -> Result<TimerQuery, GlError> {
+        Query::new(ctx, glow::TIME_ELAPSED).map(TimerQuery)
+    }
+    pub fn begin(&self) {
+        self.0.begin()
+    }
+    pub fn end(&self) {
+        self.0.end()
+    }
+    /// Elapsed GPU time in nanoseconds (waits for the GPU).
+    pub fn nanoseconds(&self) -> Result<u64, GlError> {
+        self.0.result("reading a timer query")
+    }
+    /// Elapsed GPU time in milliseconds (waits for the GPU).
+    pub fn milliseconds(&self) -> Result<f64, GlError> {
+        Ok(self.nanoseconds()? as f64 * 1e-6)
+    }
+}
+
+/// Run `work` inside a timer query: its result and its GPU time in milliseconds.
+pub fn time_gpu<T>(
+    ctx: &Context,
+    work: impl FnOnce() -> Result<T, GlError>,
+) -> Result<(T, f64), GlError> {
+    let query = TimerQuery::new(ctx)?;
+    query.begin();
+    let result = work();
+    query.end();
+    let value = result?;
+    Ok((value, query.milliseconds()?))
+}

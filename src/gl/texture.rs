@@ -1,0 +1,422 @@
+//! 1D and 2D textures: the GPGPU programmer's arrays.
+
+use super::{Context, GlError};
+use glow::HasContext;
+use std::rc::Rc;
+
+/// The texel formats the papers use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TextureFormat {
+    /// Four 32-bit floats: the workhorse of every paper.
+    Rgba32F,
+    /// One 32-bit float.
+    R32F,
+    /// One normalised byte.
+    R8,
+    /// Four normalised bytes (images).
+    Rgba8,
+    /// 32-bit float depth (depth peeling).
+    Depth32F,
+    /// 24-bit depth and an 8-bit stencil (paper 1's stencil mask, paper 4's stencil bit).
+    Depth24Stencil8,
+}
+
+impl TextureFormat {
+    /// (internal format, pixel format, pixel type).
+    pub(crate) fn gl(self) -> (u32, u32, u32) {
+        match self {
+            TextureFormat::Rgba32F => (glow::RGBA32F, glow::RGBA, glow::FLOAT),
+            TextureFormat::R32F => (glow::R32F, glow::RED, glow::FLOAT),
+            TextureFormat::R8 => (glow::R8, glow::RED, glow::UNSIGNED_BYTE),
+            TextureFormat::Rgba8 => (glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE),
+            TextureFormat::Depth32F => {
+                (glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT)
+            }
+            TextureFormat::Depth24Stencil8 => (
+                glow::DEPTH24_STENCIL8,
+                glow::DEPTH_STENCIL,
+                glow::UNSIGNED_INT_24_8,
+            ),
+        }
+    }
+
+    /// Values per texel in the upload/download arrays.
+    pub fn components(self) -> usize {
+        match self {
+            TextureFormat::Rgba32F | TextureFormat::Rgba8 => 4,
+            _ => 1,
+        }
+    }
+
+    /// Bytes per texel in the upload/download arrays.
+    pub fn bytes_per_texel(self) -> usize {
+        match self {
+            TextureFormat::Rgba32F => 16,
+            TextureFormat::R8 => 1,
+            _ => 4,
+        }
+    }
+
+    /// The scalar type of the upload/download arrays.
+    pub fn is_float(self) -> bool {
+        matches!(
+            self,
+            TextureFormat::Rgba32F | TextureFormat::R32F | TextureFormat::Depth32F
+        )
+    }
+
+    pub fn is_depth(self) -> bool {
+        matches!(
+            self,
+            TextureFormat::Depth32F | TextureFormat::Depth24Stencil8
+        )
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            TextureFormat::Rgba32F => "RGBA32F",
+            TextureFormat::R32F => "R32F",
+            TextureFormat::R8 => "R8",
+            TextureFormat::Rgba8 => "RGBA8",
+            TextureFormat::Depth32F => "DEPTH_COMPONENT32F",
+            TextureFormat::Depth24Stencil8 => "DEPTH24_STENCIL8",
+        }
+    }
+}
+
+/// Texture coordinate wrapping. Paper 1 reads its AABB textures periodically (`Repeat`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Wrap {
+    ClampToEdge,
+    Repeat,
+}
+
+/// A 1D or 2D texture with nearest filtering (GPGPU reads texels, never blends them).
+/// Cloning is cheap and shares the GL object, which is freed when the last clone drops.
+#[derive(Clone)]
+pub struct Texture {
+    obj: Rc<TextureObject>,
+}
+
+struct TextureObject {
+    ctx: Context,
+    id: glow::Texture,
+    target: u32,
+    width: u32,
+    height: u32,
+    format: TextureFormat,
+}
+
+impl Drop for TextureObject {
+    fn drop(&mut self) {
+        unsafe { self.ctx.gl().delete_texture(self.id) };
+    }
+}
+
+impl Texture {
+    /// A 1D texture of `width` texels, contents undefined until uploaded or drawn.
+    pub fn new_1d(ctx: &Context, width: u32, format: TextureFormat) -> Result<Texture, GlError> {
+        Self::create(ctx, glow::TEXTURE_1D, width, 1, format)
+    }
+
+    /// A 2D texture of `width x height` texels, contents undefined until uploaded or drawn.
+    pub fn new_2d(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        format: TextureFormat,
+    ) -> Result<Texture, GlError> {
+        Self::create(ctx, glow::TEXTURE_2D, width, height, format)
+    }
+
+    /// A 2D RGBA32F or R32F texture holding `data` (row by row from the bottom).
+    pub fn from_f32(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        format: TextureFormat,
+        data: &[f32],
+    ) -> Result<Texture, GlError> {
+        let t = Self::new_2d(ctx, width, height, format)?;
+        t.upload_f32(data)?;
+        Ok(t)
+    }
+
+    fn create(
+        ctx: &Context,
+        target: u32,
+        width: u32,
+        height: u32,
+        format: TextureFormat,
+    ) -> Result<Texture, GlError> {
+        let max = ctx.info().limits.max_texture_size;
+        if width == 0 || height == 0 || width > max || height > max {
+            return Err(GlError::Limit(format!(
+                "a {width}x{height} {} texture does not fit this renderer: each side must be \
+                 between 1 and GL_MAX_TEXTURE_SIZE = {max}",
+                format.name()
+            )));
+        }
+        let gl = ctx.gl();
+        let (internal, pixel_format, pixel_type) = format.gl();
+        let id = unsafe { gl.create_texture() }.map_err(GlError::Invalid)?;
+        let texture = Texture {
+            obj: Rc::new(TextureObject {
+                ctx: ctx.clone(),
+                id,
+                target,
+                width,
+                height,
+                format,
+            }),
+        };
+        unsafe {
+            gl.bind_texture(target, Some(id));
+            let empty = glow::PixelUnpackData::Slice(None);
+            if target == glow::TEXTURE_1D {
+                gl.tex_image_1d(
+                    target,
+                    0,
+                    internal as i32,
+                    width as i32,
+                    0,
+                    pixel_format,
+                    pixel_type,
+                    empty,
+                );
+            } else {
+                gl.tex_image_2d(
+                    target,
+                    0,
+                    internal as i32,
+                    width as i32,
+                    height as i32,
+                    0,
+                    pixel_format,
+                    pixel_type,
+                    empty,
+                );
+            }
+            gl.tex_parameter_i32(target, glow::TEXTURE_MIN_FILTER, glow::NEAREST as i32);
+            gl.tex_parameter_i32(target, glow::TEXTURE_MAG_FILTER, glow::NEAREST as i32);
+            gl.tex_parameter_i32(target, glow::TEXTURE_MAX_LEVEL, 0);
+        }
+        texture.set_wrap(Wrap::ClampToEdge);
+        // Out of memory shows up here, whatever the checks setting.
+        ctx.check_now(&format!(
+            "creating a {width}x{height} {} texture",
+            format.name()
+        ))?;
+        Ok(texture)
+    }
+
+    pub fn width(&self) -> u32 {
+        self.obj.width
+    }
+    pub fn height(&self) -> u32 {
+        self.obj.height
+    }
+    pub fn format(&self) -> TextureFormat {
+        self.obj.format
+    }
+    pub fn is_1d(&self) -> bool {
+        self.obj.target == glow::TEXTURE_1D
+    }
+    pub(crate) fn id(&self) -> glow::Texture {
+        self.obj.id
+    }
+    pub(crate) fn target(&self) -> u32 {
+        self.obj.target
+    }
+    pub fn context(&self) -> &Context {
+        &self.obj.ctx
+    }
+    /// Texel count.
+    pub fn len(&self) -> usize {
+        self.obj.width as usize * self.obj.height as usize
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// How texture coordinates outside [0, 1] wrap (both axes).
+    pub fn set_wrap(&self, wrap: Wrap) {
+        let mode = match wrap {
+            Wrap::ClampToEdge => glow::CLAMP_TO_EDGE,
+            Wrap::Repeat => glow::REPEAT,
+        } as i32;
+        let gl = self.obj.ctx.gl();
+        unsafe {
+            gl.bind_texture(self.obj.target, Some(self.obj.id));
+            gl.tex_parameter_i32(self.obj.target, glow::TEXTURE_WRAP_S, mode);
+            gl.tex_parameter_i32(self.obj.target, glow::TEXTURE_WRAP_T, mode);
+        }
+    }
+
+    /// Replace the whole texture with float data (RGBA32F, R32F, DEPTH32F).
+    pub fn upload_f32(&self, data: &[f32]) -> Result<(), GlError> {
+        self.upload_region_f32(0, 0, self.width(), self.height(), data)
+    }
+
+    /// Replace a `w x h` region at (`x`, `y`) with float data.
+    pub fn upload_region_f32(
+        &self,
+        x: u32,
+        y: u32,
+        w: u32,
+        h: u32,
+        data: &[f32],
+    ) -> Result<(), GlError> {
+        self.expect_kind(true, "upload_f32")?;
+        self.upload_bytes(x, y, w, h, bytemuck::cast_slice(data))
+    }
+
+    /// Replace the whole texture with byte data (R8, RGBA8).
+    pub fn upload_u8(&self, data: &[u8]) -> Result<(), GlError> {
+        if !matches!(self.format(), TextureFormat::R8 | TextureFormat::Rgba8) {
+            return Err(self.wrong_kind("upload_u8"));
+        }
+        self.upload_bytes(0, 0, self.width(), self.height(), data)
+    }
+
+    /// Replace the whole texture with packed 32-bit words (DEPTH24_STENCIL8: depth << 8 | stencil).
+    pub fn upload_u32(&self, data: &[u32]) -> Result<(), GlError> {
+        if self.format() != TextureFormat::Depth24Stencil8 {
+            return Err(self.wrong_kind("upload_u32"));
+        }
+        self.upload_bytes(
+            0,
+            0,
+            self.width(),
+            self.height(),
+            bytemuck::cast_slice(data),
+        )
+    }
+
+    fn upload_bytes(&self, x: u32, y: u32, w: u32, h: u32, bytes: &[u8]) -> Result<(), GlError> {
+        if x + w > self.width() || y + h > self.height() {
+            return Err(GlError::Invalid(format!(
+                "region {w}x{h} at ({x}, {y}) lies outside a {}x{} texture",
+                self.width(),
+                self.height()
+            )));
+        }
+        let expected = w as usize * h as usize * self.format().bytes_per_texel();
+        if bytes.len() != expected {
+            return Err(GlError::Invalid(format!(
+                "{} bytes given for a {w}x{h} {} region, which needs {expected}",
+                bytes.len(),
+                self.format().name()
+            )));
+        }
+        let gl = self.obj.ctx.gl();
+        let (_, pixel_format, pixel_type) = self.format().gl();
+        unsafe {
+            gl.bind_buffer(glow::PIXEL_UNPACK_BUFFER, None);
+            gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
+            gl.bind_texture(self.obj.target, Some(self.obj.id));
+            if self.is_1d() {
+                let sub_image_1d =
+                    self.obj.ctx.inner.extra.tex_sub_image_1d.ok_or_else(|| {
+                        GlError::Context("this OpenGL has no glTexSubImage1D".into())
+                    })?;
+                sub_image_1d(
+                    self.obj.target,
+                    0,
+                    x as i32,
+                    w as i32,
+                    pixel_format,
+                    pixel_type,
+                    bytes.as_ptr().cast(),
+                );
+            } else {
+                gl.tex_sub_image_2d(
+                    self.obj.target,
+                    0,
+                    x as i32,
+                    y as i32,
+                    w as i32,
+                    h as i32,
+                    pixel_format,
+                    pixel_type,
+                    glow::PixelUnpackData::Slice(Some(bytes)),
+                );
+            }
+        }
+        self.obj.ctx.check("texture upload")
+    }
+
+    /// The whole texture as floats (RGBA32F, R32F, DEPTH32F), row by row from the bottom.
+    pub fn download_f32(&self) -> Result<Vec<f32>, GlError> {
+        self.expect_kind(true, "download_f32")?;
+        let mut out = vec![0f32; self.len() * self.format().components()];
+        self.download_bytes(bytemuck::cast_slice_mut(&mut out))?;
+        Ok(out)
+    }
+
+    /// The whole texture as bytes (R8, RGBA8).
+    pub fn download_u8(&self) -> Result<Vec<u8>, GlError> {
+        if !matches!(self.format(), TextureFormat::R8 | TextureFormat::Rgba8) {
+            return Err(self.wrong_kind("download_u8"));
+        }
+        let mut out = vec![0u8; self.len() * self.format().components()];
+        self.download_bytes(&mut out)?;
+        Ok(out)
+    }
+
+    /// The whole texture as packed words (DEPTH24_STENCIL8: depth << 8 | stencil).
+    pub fn download_u32(&self) -> Result<Vec<u32>, GlError> {
+        if self.format() != TextureFormat::Depth24Stencil8 {
+            return Err(self.wrong_kind("download_u32"));
+        }
+        let mut out = vec![0u32; self.len()];
+        self.download_bytes(bytemuck::cast_slice_mut(&mut out))?;
+        Ok(out)
+    }
+
+    fn download_bytes(&self, out: &mut [u8]) -> Result<(), GlError> {
+        let gl = self.obj.ctx.gl();
+        let (_, pixel_format, pixel_type) = self.format().gl();
+        unsafe {
+            gl.bind_buffer(glow::PIXEL_PACK_BUFFER, None);
+            gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+            gl.bind_texture(self.obj.target, Some(self.obj.id));
+            gl.get_tex_image(
+                self.obj.target,
+                0,
+                pixel_format,
+                pixel_type,
+                glow::PixelPackData::Slice(Some(out)),
+            );
+        }
+        self.obj.ctx.check("texture download")
+    }
+
+    fn expect_kind(&self, float: bool, what: &str) -> Result<(), GlError> {
+        if self.format().is_float() == float {
+            Ok(())
+        } else {
+            Err(self.wrong_kind(what))
+        }
+    }
+
+    fn wrong_kind(&self, what: &str) -> GlError {
+        GlError::Invalid(format!(
+            "{what} does not apply to a {} texture",
+            self.format().name()
+        ))
+    }
+}
+
+impl std::fmt::Debug for Texture {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let dims = if self.is_1d() { "1D" } else { "2D" };
+        write!(
+            f,
+            "Texture({dims} {}x{} {})",
+            self.width(),
+            self.height(),
+            self.format().name()
+        )
+    }
+}
