@@ -24,6 +24,10 @@ struct Cli {
 enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
+    /// Paper 1: every intersecting triangle pair of two meshes, with streaming AABBs.
+    Collide(classic_gpgpu::collide::cli::CollideArgs),
+    /// Paper 1: a deforming scene of Table III, frame by frame.
+    CollideScene(classic_gpgpu::collide::cli::SceneArgs),
 }
 
 /// What every command gets.
@@ -51,6 +55,12 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info => info(&global),
+        Command::Collide(a) => global
+            .context()
+            .and_then(|ctx| classic_gpgpu::collide::cli::run_collide(&a, &ctx, global.json)),
+        Command::CollideScene(a) => global
+            .context()
+            .and_then(|ctx| classic_gpgpu::collide::cli::run_scene(&a, &ctx, global.json)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -87,7 +87,9 @@ impl Deforming {
             Deformation::Wavy(w) if !rest.positions.is_empty() => {
                 let mut rng = SplitMix64(w.seed);
                 (0..w.bumps)
-                    .map(|_| rest.positions[(rng.next_u64() % rest.positions.len() as u64) as usize])
+                    .map(|_| {
+                        rest.positions[(rng.next_u64() % rest.positions.len() as u64) as usize]
+                    })
                     .collect()
             }
             _ => Vec::new(),

@@ -14,12 +14,19 @@
 //! the reference answer).
 
 pub mod aabb;
+pub mod aabb_textures;
 pub mod brute_force;
+pub mod cli;
 pub mod deform;
 pub mod global_test;
+pub mod pipeline;
 pub mod reduction;
+pub mod reduction_gpu;
+pub mod scenes;
 pub mod solid;
 pub mod stream_setup;
+pub mod stream_update;
+pub mod streaming_test;
 pub mod tiles;
 pub mod tri_test;
 pub mod vertex_textures;

@@ -46,10 +46,24 @@ pub fn hierarchy_sizes(w: usize, h: usize) -> [(usize, usize); HIER_LEVELS + 1] 
 /// Reads rectangles of the levels back from wherever they live (GPU framebuffers, or CPU
 /// arrays in tests). Rows are returned bottom-up from `y`, `w` texels each.
 pub trait LevelReader {
+    type Error;
     /// Red channel of level `level` (0 = `P0`, 1..=3 = `P1..P3`): 4 bytes per texel.
-    fn read_red(&mut self, level: usize, x: usize, y: usize, w: usize, h: usize) -> Vec<f32>;
+    fn read_red(
+        &mut self,
+        level: usize,
+        x: usize,
+        y: usize,
+        w: usize,
+        h: usize,
+    ) -> Result<Vec<f32>, Self::Error>;
     /// RGBA of the reduced level `P1'`: 16 bytes per texel.
-    fn read_reduced(&mut self, x: usize, y: usize, w: usize, h: usize) -> Vec<[f32; 4]>;
+    fn read_reduced(
+        &mut self,
+        x: usize,
+        y: usize,
+        w: usize,
+        h: usize,
+    ) -> Result<Vec<[f32; 4]>, Self::Error>;
 }
 
 /// What a decode found and what it cost in readback.
@@ -64,7 +78,16 @@ pub struct Decoded {
 }
 
 impl Decoded {
-    fn read_red(&mut self, r: &mut dyn LevelReader, l: usize, x: usize, y: usize, w: usize, h: usize) -> Vec<f32> {
+    #[allow(clippy::too_many_arguments)]
+    fn read_red<R: LevelReader>(
+        &mut self,
+        r: &mut R,
+        l: usize,
+        x: usize,
+        y: usize,
+        w: usize,
+        h: usize,
+    ) -> Result<Vec<f32>, R::Error> {
         self.bytes += (w * h * 4) as u64;
         self.reads += 1;
         r.read_red(l, x, y, w, h)
@@ -72,22 +95,30 @@ impl Decoded {
 }
 
 /// Full readback: all of `P0`.
-pub fn decode_full(reader: &mut dyn LevelReader, w: usize, h: usize) -> Decoded {
+pub fn decode_full<R: LevelReader>(
+    reader: &mut R,
+    w: usize,
+    h: usize,
+) -> Result<Decoded, R::Error> {
     let mut out = Decoded::default();
-    let p0 = out.read_red(reader, 0, 0, 0, w, h);
+    let p0 = out.read_red(reader, 0, 0, 0, w, h)?;
     for (k, &v) in p0.iter().enumerate() {
         if v != 0.0 {
             out.caps.push(((k / w) as u32, (k % w) as u32));
         }
     }
-    out
+    Ok(out)
 }
 
 /// Reduced readback: all of `P1'`, each texel's four 16-bit channels are rows `2c, 2c+1`
 /// of its 8x8 block.
-pub fn decode_reduced(reader: &mut dyn LevelReader, w: usize, h: usize) -> Decoded {
+pub fn decode_reduced<R: LevelReader>(
+    reader: &mut R,
+    w: usize,
+    h: usize,
+) -> Result<Decoded, R::Error> {
     let (rw, rh) = encoded_size(w, h, REDUCED_BLOCK);
-    let texels = reader.read_reduced(0, 0, rw, rh);
+    let texels = reader.read_reduced(0, 0, rw, rh)?;
     let mut out = Decoded {
         bytes: (rw * rh * 16) as u64,
         reads: 1,
@@ -103,15 +134,19 @@ pub fn decode_reduced(reader: &mut dyn LevelReader, w: usize, h: usize) -> Decod
         }
     }
     out.caps.sort_unstable();
-    out
+    Ok(out)
 }
 
 /// Hierarchical readback: all of `P3`, then top down the blocks that set bits point to.
-pub fn decode_hierarchical(reader: &mut dyn LevelReader, w: usize, h: usize) -> Decoded {
+pub fn decode_hierarchical<R: LevelReader>(
+    reader: &mut R,
+    w: usize,
+    h: usize,
+) -> Result<Decoded, R::Error> {
     let sizes = hierarchy_sizes(w, h);
     let mut out = Decoded::default();
     let (tw, th) = sizes[HIER_LEVELS];
-    let top = out.read_red(reader, HIER_LEVELS, 0, 0, tw, th);
+    let top = out.read_red(reader, HIER_LEVELS, 0, 0, tw, th)?;
     let mut frontier: Vec<(usize, usize, f32)> = top
         .iter()
         .enumerate()
@@ -125,11 +160,20 @@ pub fn decode_hierarchical(reader: &mut dyn LevelReader, w: usize, h: usize) -> 
         let mut next = Vec::new();
         for &(px, py, mask) in &frontier {
             let bits: Vec<usize> = set_bits(mask).collect();
-            let (ax, ay) = (bits.iter().map(|b| b % 4).min().unwrap(), bits.iter().map(|b| b / 4).min().unwrap());
-            let (bx, by) = (bits.iter().map(|b| b % 4).max().unwrap(), bits.iter().map(|b| b / 4).max().unwrap());
+            let (ax, ay) = (
+                bits.iter().map(|b| b % 4).min().unwrap(),
+                bits.iter().map(|b| b / 4).min().unwrap(),
+            );
+            let (bx, by) = (
+                bits.iter().map(|b| b % 4).max().unwrap(),
+                bits.iter().map(|b| b / 4).max().unwrap(),
+            );
             let (x0, y0) = (px * 4 + ax, py * 4 + ay);
-            let (rw, rh) = ((px * 4 + bx + 1).min(lw) - x0, (py * 4 + by + 1).min(lh) - y0);
-            let block = out.read_red(reader, level, x0, y0, rw, rh);
+            let (rw, rh) = (
+                (px * 4 + bx + 1).min(lw) - x0,
+                (py * 4 + by + 1).min(lh) - y0,
+            );
+            let block = out.read_red(reader, level, x0, y0, rw, rh)?;
             for &b in &bits {
                 let (cx, cy) = (px * 4 + b % 4, py * 4 + b / 4);
                 let v = block[(cy - y0) * rw + (cx - x0)];
@@ -143,11 +187,12 @@ pub fn decode_hierarchical(reader: &mut dyn LevelReader, w: usize, h: usize) -> 
     // The masks of P1 are the P0 pixels.
     for &(px, py, mask) in &frontier {
         for b in set_bits(mask) {
-            out.caps.push(((py * 4 + b / 4) as u32, (px * 4 + b % 4) as u32));
+            out.caps
+                .push(((py * 4 + b / 4) as u32, (px * 4 + b % 4) as u32));
         }
     }
     out.caps.sort_unstable();
-    out
+    Ok(out)
 }
 
 /// The set bits of a mask stored as an exact integer in a float.
@@ -220,14 +265,29 @@ fn cut<T: Copy>(data: &[T], stride: usize, x: usize, y: usize, w: usize, h: usiz
 }
 
 impl LevelReader for CpuLevels {
-    fn read_red(&mut self, level: usize, x: usize, y: usize, w: usize, h: usize) -> Vec<f32> {
+    type Error = std::convert::Infallible;
+
+    fn read_red(
+        &mut self,
+        level: usize,
+        x: usize,
+        y: usize,
+        w: usize,
+        h: usize,
+    ) -> Result<Vec<f32>, Self::Error> {
         let (data, stride) = &self.levels[level];
-        cut(data, *stride, x, y, w, h)
+        Ok(cut(data, *stride, x, y, w, h))
     }
 
-    fn read_reduced(&mut self, x: usize, y: usize, w: usize, h: usize) -> Vec<[f32; 4]> {
+    fn read_reduced(
+        &mut self,
+        x: usize,
+        y: usize,
+        w: usize,
+        h: usize,
+    ) -> Result<Vec<[f32; 4]>, Self::Error> {
         let (data, stride) = &self.reduced;
-        cut(data, *stride, x, y, w, h)
+        Ok(cut(data, *stride, x, y, w, h))
     }
 }
 
@@ -251,9 +311,9 @@ mod tests {
                     .map(|k| ((k / w) as u32, (k % w) as u32))
                     .collect();
                 let mut levels = CpuLevels::encode(&p0, w, h);
-                let full = decode_full(&mut levels, w, h);
-                let reduced = decode_reduced(&mut levels, w, h);
-                let hier = decode_hierarchical(&mut levels, w, h);
+                let full = decode_full(&mut levels, w, h).unwrap();
+                let reduced = decode_reduced(&mut levels, w, h).unwrap();
+                let hier = decode_hierarchical(&mut levels, w, h).unwrap();
                 assert_eq!(full.caps, expected);
                 assert_eq!(reduced.caps, expected);
                 assert_eq!(hier.caps, expected, "{w}x{h} eta {eta}");
@@ -267,9 +327,14 @@ mod tests {
         let (w, h) = (2048, 2048);
         let p0 = random_p0(w, h, 0.0005, 5);
         let mut levels = CpuLevels::encode(&p0, w, h);
-        let hier = decode_hierarchical(&mut levels, w, h);
-        let full = decode_full(&mut levels, w, h);
+        let hier = decode_hierarchical(&mut levels, w, h).unwrap();
+        let full = decode_full(&mut levels, w, h).unwrap();
         assert_eq!(hier.caps, full.caps);
-        assert!(hier.bytes * 100 < full.bytes, "{} vs {}", hier.bytes, full.bytes);
+        assert!(
+            hier.bytes * 100 < full.bytes,
+            "{} vs {}",
+            hier.bytes,
+            full.bytes
+        );
     }
 }

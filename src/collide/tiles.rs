@@ -23,7 +23,9 @@ impl TileLayout {
     /// than `max_tile` (the texture limit, or smaller when forced).
     pub fn new(len_x: usize, len_y: usize, max_tile: usize) -> Result<TileLayout, CollideError> {
         if max_tile == 0 {
-            return Err(CollideError::BadInput("the tile size must be at least 1".into()));
+            return Err(CollideError::BadInput(
+                "the tile size must be at least 1".into(),
+            ));
         }
         let max_tile = prev_power_of_two(max_tile);
         let tile = max_tile.min(len_x.max(len_y));

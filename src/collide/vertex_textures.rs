@@ -5,6 +5,7 @@
 //! than `n_max` vertices.
 
 use super::stream_setup::AabbStream;
+use crate::gl::{Context, GlError, Texture, TextureFormat};
 use glam::Vec3;
 
 /// Marks an empty texel in [`VertexLayout::vertex`].
@@ -52,5 +53,53 @@ impl VertexLayout {
                 [p.x, p.y, p.z, 1.0]
             }
         }));
+    }
+}
+
+/// The vertex texture of one segment on the GPU, refilled every frame.
+pub struct VertexTexture {
+    pub layout: VertexLayout,
+    /// RGBA32F, `width x n_max`.
+    pub texture: Texture,
+    texels: Vec<[f32; 4]>,
+}
+
+impl VertexTexture {
+    pub fn new(
+        ctx: &Context,
+        stream: &AabbStream,
+        range: std::ops::Range<usize>,
+    ) -> Result<VertexTexture, GlError> {
+        let layout = VertexLayout::new(stream, range);
+        let limit = ctx.info().limits.max_texture_size as usize;
+        if layout.height > limit {
+            return Err(GlError::Limit(format!(
+                "a leaf holds {} vertices, more than the {limit} rows a vertex texture can have \
+                 on this renderer; use a smaller leaf size",
+                layout.height
+            )));
+        }
+        let texture = Texture::new_2d(
+            ctx,
+            layout.width as u32,
+            layout.height as u32,
+            TextureFormat::Rgba32F,
+        )?;
+        Ok(VertexTexture {
+            layout,
+            texture,
+            texels: Vec::new(),
+        })
+    }
+
+    /// Texture download (CPU to GPU): the deformed vertices of every leaf.
+    pub fn upload(&mut self, positions: &[Vec3]) -> Result<(), GlError> {
+        self.layout.pack(positions, &mut self.texels);
+        self.texture.upload_f32(self.texels.as_flattened())
+    }
+
+    /// Bytes sent per frame.
+    pub fn bytes(&self) -> usize {
+        self.layout.width * self.layout.height * 16
     }
 }
