@@ -17,6 +17,7 @@ pub mod aabb;
 pub mod aabb_textures;
 pub mod brute_force;
 pub mod cli;
+pub mod cullide;
 pub mod deform;
 pub mod global_test;
 pub mod pipeline;
