@@ -139,8 +139,10 @@ impl Cullide {
         self.x.buffers.update_positions(&flat(positions_x))?;
         self.y.buffers.update_positions(&flat(positions_y))?;
         // Object level, sub-object (leaf) level, triangle level.
-        let mut pcs_x = vec![0..self.x.order.len()];
-        let mut pcs_y = vec![0..self.y.order.len()];
+        // Object level: each model is one sub-object.
+        let whole = |n: usize| -> Vec<Range<usize>> { std::iter::once(0..n).collect() };
+        let mut pcs_x = whole(self.x.order.len());
+        let mut pcs_y = whole(self.y.order.len());
         for level in 0..3 {
             if level > 0 {
                 pcs_x = refine(&pcs_x, &self.x.groups, level);
