@@ -3,6 +3,7 @@
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use classic_gpgpu::gl::{self, Renderer};
+use classic_gpgpu::report;
 use std::process::ExitCode;
 
 /// The classic GPGPU papers of a 2007 tutorial, reproduced on a headless OpenGL context.
@@ -28,6 +29,9 @@ enum Command {
     Collide(classic_gpgpu::collide::cli::CollideArgs),
     /// Paper 1: a deforming scene of Table III, frame by frame.
     CollideScene(classic_gpgpu::collide::cli::SceneArgs),
+    /// Regenerate every table and figure of the papers into a report beside the published
+    /// numbers (report/index.html, report/results.json, PNG figures).
+    Reproduce(report::reproduce::ReproduceArgs),
 }
 
 /// What every command gets.
@@ -61,6 +65,7 @@ fn main() -> ExitCode {
         Command::CollideScene(a) => global
             .context()
             .and_then(|ctx| classic_gpgpu::collide::cli::run_scene(&a, &ctx, global.json)),
+        Command::Reproduce(args) => reproduce(&global, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -110,4 +115,43 @@ fn info(global: &Global) -> anyhow::Result<()> {
         l.max_vertex_uniform_components, l.max_fragment_uniform_components
     );
     Ok(())
+}
+
+fn reproduce(global: &Global, args: &report::reproduce::ReproduceArgs) -> anyhow::Result<()> {
+    let ctx = global.context()?;
+    let report = report::reproduce::reproduce(&ctx, args, !global.json)?;
+    if global.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
+    print_sections(&report.sections);
+    println!(
+        "report written to {} ({:.0} s, renderer: {})",
+        args.out.join("index.html").display(),
+        report.elapsed_s,
+        ctx.info().renderer_line()
+    );
+    Ok(())
+}
+
+/// The tables and claims of report sections, as text.
+fn print_sections(sections: &[report::Section]) {
+    for section in sections {
+        println!("== {} ==", section.title);
+        for table in &section.tables {
+            println!("{}", table.to_text());
+        }
+        for claim in &section.claims {
+            let holds = match claim.holds {
+                Some(true) => "holds",
+                Some(false) => "does not hold",
+                None => "not judged",
+            };
+            println!(
+                "- {} [{holds}]: paper: {}; here: {}",
+                claim.claim, claim.paper, claim.measured
+            );
+        }
+        println!();
+    }
 }

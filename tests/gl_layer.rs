@@ -7,6 +7,7 @@ use classic_gpgpu::gl::{
     Framebuffer, GlError, MeshBuffers, OcclusionQuery, Primitive, Program, Rect, ShaderSource,
     StencilOp, StencilTest, Texture, TextureFormat, VertexArray,
 };
+use classic_gpgpu::mesh;
 use classic_gpgpu::shader;
 use glam::{Vec3, Vec4};
 use rand::{Rng, SeedableRng};
@@ -412,42 +413,6 @@ fn block_reduction_sums_each_tile() {
     }
 }
 
-/// A closed tube of radius `r` around the closed curve `curve(t)`, t in [0, 1).
-fn tube(
-    curve: impl Fn(f32) -> Vec3,
-    r: f32,
-    along: u32,
-    around: u32,
-) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let mut positions = Vec::new();
-    for i in 0..along {
-        let t = i as f32 / along as f32;
-        let tangent = (curve(t + 1e-3) - curve(t - 1e-3)).normalize();
-        let normal = tangent.cross(Vec3::Z).try_normalize().unwrap_or(Vec3::X);
-        let binormal = tangent.cross(normal);
-        for j in 0..around {
-            let a = j as f32 / around as f32 * std::f32::consts::TAU;
-            let p = curve(t) + r * (a.cos() * normal + a.sin() * binormal);
-            positions.push(p.to_array());
-        }
-    }
-    let index = |i: u32, j: u32| (i % along) * around + (j % around);
-    let mut triangles = Vec::new();
-    for i in 0..along {
-        for j in 0..around {
-            let (a, b, c, d) = (
-                index(i, j),
-                index(i + 1, j),
-                index(i + 1, j + 1),
-                index(i, j + 1),
-            );
-            triangles.push([a, b, c]);
-            triangles.push([a, c, d]);
-        }
-    }
-    (positions, triangles)
-}
-
 /// Layers per pixel by casting a ray down -z through each pixel centre, on the GPU's own
 /// sub-pixel grid (8 bits) so that pixels near an edge are decided the same way.
 fn ray_cast_counts(
@@ -552,35 +517,18 @@ fn check_peeling(
     );
 }
 
-/// A torus tilted so that its hole and its sides give 2 and 4 layers.
+/// A torus tilted so that its hole and its sides give up to 4 layers.
 fn tilted_torus() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let tilt = glam::Quat::from_euler(glam::EulerRot::XYZ, 0.9, 0.3, 0.0);
-    tube(
-        |t| {
-            tilt * Vec3::new(
-                (t * std::f32::consts::TAU).cos(),
-                (t * std::f32::consts::TAU).sin(),
-                0.0,
-            )
-        },
-        0.35,
-        48,
-        16,
-    )
+    let tilt =
+        glam::Affine3A::from_quat(glam::Quat::from_euler(glam::EulerRot::XYZ, 0.9, 0.3, 0.0));
+    let torus = mesh::torus_closed(1.0, 0.35, 48, 16).transformed(&tilt);
+    (torus.positions_f32().to_vec(), torus.triangles)
 }
 
-/// A (2, 3) torus knot: up to 6 layers where its strands cross.
+/// A (2, 3) torus knot: up to 4 layers where its strands cross.
 fn trefoil() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    tube(
-        |t| {
-            let a = t * std::f32::consts::TAU;
-            let r = 2.0 + (3.0 * a).cos();
-            Vec3::new(r * (2.0 * a).cos(), r * (2.0 * a).sin(), -(3.0 * a).sin())
-        },
-        0.45,
-        120,
-        12,
-    )
+    let knot = mesh::torus_knot(&mesh::TorusKnot::default());
+    (knot.positions_f32().to_vec(), knot.triangles)
 }
 
 #[test]

@@ -426,10 +426,7 @@ fn obj_round_trip_keeps_every_triangle() {
     let path = temp_dir("round_trip").join("knot.obj");
     write_obj(&original, &path).unwrap();
     let back = load_obj(&path).unwrap();
-    assert_counts(&back, original.vertex_count(), original.triangle_count());
-    for t in 0..original.triangle_count() {
-        assert_eq!(back.triangle(t), original.triangle(t), "triangle {t}"); // bit-exact
-    }
+    assert_eq!(back, original); // same ids, bit-exact positions
     let text = to_obj_string(&original, "made by a test\nsecond line");
     assert!(text.starts_with("# made by a test\n# second line\nv "));
     assert_eq!(parse_obj(&text, "inline").unwrap(), back);
@@ -467,14 +464,32 @@ l 1 2
     for (t, want) in expected.iter().enumerate() {
         assert_eq!(&mesh.triangle(t), want, "triangle {t}");
     }
-    // One shared vertex list across objects: five positions, not one set per object.
-    assert_eq!(mesh.vertex_count(), 5);
+    // One shared vertex list across objects, in file order, unused ones kept.
+    assert_eq!(
+        mesh.positions,
+        vec![p(0., 0.), p(1., 0.), p(1., 1.), p(0., 1.), p(0.5, 1.5)]
+    );
+    assert_eq!(mesh.triangles[..2], [[0, 1, 2], [0, 2, 3]]);
+    let unused = parse_obj(
+        "v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 2 3 4\n",
+        "unused.obj",
+    )
+    .unwrap();
+    assert_eq!((unused.vertex_count(), unused.triangles[0]), (4, [1, 2, 3]));
+    assert_eq!(unused.validate().unreferenced_vertices, 1);
 }
 
 #[test]
 fn obj_with_crlf_line_ends_and_w_coordinates_loads() {
     let mesh = parse_obj("v 0 0 0\r\nv 2 0 0 2\r\nv 0 1 0\r\nf 1 2 3\r\n", "crlf.obj").unwrap();
     assert_eq!(mesh.triangle(0), [Vec3::ZERO, Vec3::X, Vec3::Y]);
+    // Faces listing vertices out of order still get the file's numbering.
+    let mixed = parse_obj(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 4 2 3\nf -1 -4 -3\n",
+        "mixed.obj",
+    )
+    .unwrap();
+    assert_eq!(mixed.triangles, vec![[3, 1, 2], [3, 0, 1]]);
 }
 
 fn load_error(test: &str, text: &str) -> (MeshError, String) {
@@ -661,6 +676,10 @@ fn bunny_asset_is_closed_genus_0_and_outward() {
     let bunny = load_bunny();
     assert_counts(&bunny, 1839, 3674);
     assert_closed_solid("bunny", &bunny, 0);
+    // Paper 4's bunny (Table 1: 2557 vertices, 5110 faces) is ours refined.
+    let paper_4 = retessellate(&bunny, 5110).unwrap();
+    assert_counts(&paper_4, 2557, 5110);
+    assert_closed_solid("paper 4 bunny", &paper_4, 0);
     let from_file = load_obj(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.obj")).unwrap();
     assert_eq!(from_file, bunny);
 }

@@ -470,10 +470,14 @@ fn client_extensions(egl: &EglInstance) -> String {
 fn egl_device_context() -> Result<(glow::Context, Platform), String> {
     let egl = egl_instance()?;
     let extensions = client_extensions(egl);
-    for needed in ["EGL_EXT_platform_device", "EGL_EXT_device_enumeration"] {
-        if !extensions.contains(needed) {
-            return Err(format!("{needed} is not offered"));
-        }
+    if !extensions.contains("EGL_EXT_platform_device") {
+        return Err("EGL_EXT_platform_device is not offered".into());
+    }
+    // NVIDIA offers EGL_EXT_device_base, which includes device enumeration.
+    if !extensions.contains("EGL_EXT_device_enumeration")
+        && !extensions.contains("EGL_EXT_device_base")
+    {
+        return Err("neither EGL_EXT_device_enumeration nor EGL_EXT_device_base is offered".into());
     }
     let query_devices: QueryDevicesExt = unsafe {
         std::mem::transmute(

@@ -15,7 +15,7 @@ pub mod obj;
 pub mod retessellate;
 pub mod validate;
 
-pub use error::MeshError;
+pub use error::{Location, MeshError};
 pub use generate::{
     cube, cuboid, pipe, teapot, teapot_patches, torus, torus_closed, torus_knot,
     torus_with_triangles, uv_sphere, Pipe, TorusKnot,
@@ -72,6 +72,11 @@ impl Mesh {
             positions,
             triangles,
         }
+    }
+
+    /// The positions as plain float triples, without a copy (for GPU upload).
+    pub fn positions_f32(&self) -> &[[f32; 3]] {
+        bytemuck::cast_slice(&self.positions)
     }
 
     /// The three corners of triangle `t`.

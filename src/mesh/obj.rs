@@ -3,9 +3,9 @@
 //! Reading keeps the file's face order: triangle `t` of the mesh is the `t`-th triangle
 //! of the file's `f` lines, each polygon fanned from its first corner (`1 2 3 4` gives
 //! `1 2 3` and `1 3 4`), so ids match the file. All objects and groups of a file become
-//! one mesh. Vertices are renumbered in the order faces first use them (that is how
-//! `tobj` indexes them); vertices no face uses are dropped. Texture coordinates,
-//! normals, materials and `l`/`p` elements are ignored.
+//! one mesh, and vertex `k` of the mesh is the file's `k`-th `v` line (vertices no face
+//! uses are kept; [`Mesh::validate`] counts them). Texture coordinates, normals,
+//! materials and `l`/`p` elements are ignored.
 //!
 //! Errors name the file and, where it can be found, the line: `tobj` reports what is
 //! wrong but not where, so on failure the text is scanned again for the first line with
@@ -58,8 +58,21 @@ pub fn parse_obj(text: &str, source: &str) -> Result<Mesh, MeshError> {
     if let Some(err) = first_non_finite_vertex(text, source) {
         return Err(err);
     }
+    let mesh = in_file_vertex_order(&models, text).unwrap_or_else(|| merge_models(&models));
+    if mesh.triangles.is_empty() || mesh.positions.is_empty() {
+        return Err(MeshError::Empty {
+            at: at(None),
+            vertices: vertex_lines(text).count(),
+            triangles: mesh.triangles.len(),
+        });
+    }
+    Ok(mesh)
+}
+
+/// tobj's models as one mesh, in tobj's vertex numbering.
+fn merge_models(models: &[tobj::Model]) -> Mesh {
     let mut mesh = Mesh::default();
-    for model in &models {
+    for model in models {
         let base = mesh.positions.len() as u32;
         let m = &model.mesh;
         mesh.positions.extend(
@@ -73,14 +86,70 @@ pub fn parse_obj(text: &str, source: &str) -> Result<Mesh, MeshError> {
                 .map(|t| [t[0], t[1], t[2]].map(|i| i + base)),
         );
     }
-    if mesh.triangles.is_empty() || mesh.positions.is_empty() {
-        return Err(MeshError::Empty {
-            at: at(None),
-            vertices: vertex_lines(text).count(),
-            triangles: mesh.triangles.len(),
-        });
+    mesh
+}
+
+/// tobj's triangles over the file's own vertex list, so that vertex `k` is the file's
+/// `k`-th `v` line (unused ones included). tobj numbers vertices in the order faces
+/// first use them; replaying that order maps its numbers back to the file's. `None` if
+/// the replay does not agree with tobj (then its numbering is kept).
+fn in_file_vertex_order(models: &[tobj::Model], text: &str) -> Option<Mesh> {
+    let [model] = models else { return None };
+    let file_positions: Vec<Vec3> = vertex_lines(text)
+        .map(|(_, args)| vertex_position(&args))
+        .collect();
+    let mut first_use: Vec<u32> = Vec::new();
+    let mut seen = vec![false; file_positions.len()];
+    let mut defined = 0usize;
+    for (_, keyword, args, _) in records(text) {
+        match keyword {
+            "v" => defined += 1,
+            "f" => {
+                for index in args.iter().filter_map(|c| parse_corner(c)) {
+                    let k = if index < 0 {
+                        defined as i64 + index
+                    } else {
+                        index - 1
+                    };
+                    let k = usize::try_from(k).ok().filter(|&k| k < seen.len())?;
+                    if !std::mem::replace(&mut seen[k], true) {
+                        first_use.push(k as u32);
+                    }
+                }
+            }
+            _ => {}
+        }
     }
-    Ok(mesh)
+    let tobj_positions = &model.mesh.positions;
+    let agrees = first_use.len() * 3 == tobj_positions.len()
+        && first_use
+            .iter()
+            .zip(tobj_positions.chunks_exact(3))
+            .all(|(&k, p)| {
+                file_positions[k as usize].to_array().map(f32::to_bits)
+                    == [p[0], p[1], p[2]].map(f32::to_bits)
+            });
+    if !agrees {
+        return None;
+    }
+    let triangles = model
+        .mesh
+        .indices
+        .chunks_exact(3)
+        .map(|t| [t[0], t[1], t[2]].map(|i| first_use[i as usize]))
+        .collect();
+    Some(Mesh::new(file_positions, triangles))
+}
+
+/// The position of a valid `v` line, divided by its `w` if it has one (as tobj does).
+fn vertex_position(args: &[&str]) -> Vec3 {
+    let number = |k: usize| args.get(k).and_then(|a| a.parse::<f32>().ok());
+    let mut xyz = [0, 1, 2].map(|k| number(k).unwrap_or(f32::NAN));
+    if args.len() == 4 {
+        let w = number(3).unwrap_or(1.0);
+        xyz.iter_mut().for_each(|c| *c /= w);
+    }
+    Vec3::from(xyz)
 }
 
 /// Writes `mesh` as OBJ: one `v` line per position (shortest text that reads back to

@@ -4,7 +4,11 @@
 //! Each paper plugs in through one file, `report/paperN.rs`, whose `run` measures with the
 //! paper module and returns a [`Section`]. The `*-bench` commands and `reproduce` both call it.
 
+pub mod blocks;
+mod html;
 pub mod paper_tables;
+pub mod plot;
+pub mod reproduce;
 
 use serde::Serialize;
 use std::path::PathBuf;
@@ -18,6 +22,17 @@ pub struct BenchOptions<'a> {
     pub out_dir: PathBuf,
     /// Progress bars for long stages (hidden under `--json` or when not a terminal).
     pub progress: indicatif::MultiProgress,
+}
+
+/// The whole report, as written to `results.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub renderer: crate::gl::ContextInfo,
+    pub cpu: String,
+    pub date: String,
+    pub quick: bool,
+    pub elapsed_s: f64,
+    pub sections: Vec<Section>,
 }
 
 /// One paper's part of the report.

@@ -1,4 +1,5 @@
-//! The test objects of the papers, built at the papers' sizes.
+//! The test objects of the papers, built at the papers' sizes (paper 4, Table 1; paper 1,
+//! section 7.2).
 //!
 //! Every generator is deterministic and returns triangles counter-clockwise seen from
 //! outside. The z axis is "up" (the teapot's own convention, kept for all shapes):

@@ -1,0 +1,190 @@
+//! Line plots as PNG (plotters), for the papers' figures: one or more series of (x, y)
+//! points, optional log axes, a legend.
+
+use anyhow::{bail, Context as _};
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// One curve of a plot.
+#[derive(Clone, Debug, Default)]
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Series {
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
+        Series {
+            name: name.into(),
+            points,
+        }
+    }
+}
+
+/// A plot: title, axis labels, log axes, curves.
+#[derive(Clone, Debug, Default)]
+pub struct Plot {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub log_x: bool,
+    pub log_y: bool,
+    pub series: Vec<Series>,
+}
+
+const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+const SIZE: (u32, u32) = (900, 560);
+
+fn register_font() {
+    static REGISTER: Once = Once::new();
+    REGISTER.call_once(|| {
+        // The font is part of the source; a failure here is a bug caught by the plot test.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+impl Plot {
+    /// Write the plot to `path` (PNG).
+    pub fn write_png(&self, path: &Path) -> anyhow::Result<()> {
+        register_font();
+        let points: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().copied())
+            .filter(|&(x, y)| self.usable(x, y))
+            .collect();
+        if points.is_empty() {
+            bail!("plot '{}' has no finite points to draw", self.title);
+        }
+        let range = |values: Vec<f64>, log: bool| {
+            let (lo, hi) = values
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+            if log {
+                let (lo, hi) = (
+                    lo.log10().floor(),
+                    hi.log10().ceil().max(lo.log10().floor() + 1.0),
+                );
+                (10f64.powf(lo), 10f64.powf(hi))
+            } else if hi > lo {
+                let pad = (hi - lo) * 0.05;
+                (lo - pad, hi + pad)
+            } else {
+                (lo - 1.0, hi + 1.0)
+            }
+        };
+        let x = range(points.iter().map(|p| p.0).collect(), self.log_x);
+        let y = range(points.iter().map(|p| p.1).collect(), self.log_y);
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        }
+        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+        root.fill(&WHITE)?;
+        match (self.log_x, self.log_y) {
+            (false, false) => self.draw(&root, x.0..x.1, y.0..y.1),
+            (true, false) => self.draw(&root, (x.0..x.1).log_scale(), y.0..y.1),
+            (false, true) => self.draw(&root, x.0..x.1, (y.0..y.1).log_scale()),
+            (true, true) => self.draw(&root, (x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
+        }
+        .with_context(|| format!("drawing {}", path.display()))?;
+        root.present()
+            .with_context(|| format!("writing {}", path.display()))?;
+        Ok(())
+    }
+
+    fn usable(&self, x: f64, y: f64) -> bool {
+        x.is_finite() && y.is_finite() && (!self.log_x || x > 0.0) && (!self.log_y || y > 0.0)
+    }
+
+    fn draw<X, Y>(
+        &self,
+        root: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+        x: X,
+        y: Y,
+    ) -> anyhow::Result<()>
+    where
+        X: plotters::coord::ranged1d::AsRangedCoord<Value = f64>,
+        Y: plotters::coord::ranged1d::AsRangedCoord<Value = f64>,
+        X::CoordDescType: plotters::coord::ranged1d::ValueFormatter<f64>,
+        Y::CoordDescType: plotters::coord::ranged1d::ValueFormatter<f64>,
+    {
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 22))
+            .margin(12)
+            .margin_right(36)
+            .x_label_area_size(44)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x, y)
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        chart
+            .configure_mesh()
+            .x_desc(self.x_label.as_str())
+            .y_desc(self.y_label.as_str())
+            .label_style(("sans-serif", 14))
+            .draw()
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        for (i, series) in self.series.iter().enumerate() {
+            let colour = Palette99::pick(i).to_rgba();
+            let points: Vec<(f64, f64)> = series
+                .points
+                .iter()
+                .copied()
+                .filter(|&(x, y)| self.usable(x, y))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
+                .map_err(|e| anyhow::anyhow!("{e}"))?
+                .label(series.name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+                });
+            chart
+                .draw_series(
+                    points
+                        .into_iter()
+                        .map(|p| Circle::new(p, 3, colour.filled())),
+                )
+                .map_err(|e| anyhow::anyhow!("{e}"))?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 14))
+            .draw()
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn writes_a_png_with_log_axes() {
+        let dir = std::env::temp_dir().join(format!("classic-gpgpu-plot-{}", std::process::id()));
+        let path = dir.join("plot.png");
+        let plot = Plot {
+            title: "test".into(),
+            x_label: "n".into(),
+            y_label: "ms".into(),
+            log_x: true,
+            log_y: true,
+            series: vec![
+                Series::new("a", vec![(1.0, 1.0), (10.0, 5.0), (100.0, 80.0)]),
+                Series::new("b", vec![(1.0, 2.0), (100.0, 0.0)]), // 0 is dropped on a log axis
+            ],
+        };
+        plot.write_png(&path).unwrap();
+        let image = image::open(&path).unwrap();
+        assert_eq!((image.width(), image.height()), SIZE);
+        std::fs::remove_dir_all(dir).ok();
+        let empty = Plot {
+            title: "empty".into(),
+            ..Plot::default()
+        };
+        assert!(empty.write_png(&path).is_err());
+    }
+}

@@ -1,0 +1,226 @@
+//! `classic-gpgpu reproduce`: every paper's benchmark, one report. The report is written into
+//! a staging folder beside the target and swapped in only when every section succeeded, so a
+//! failed run never leaves a half-written report where a good one was.
+
+use super::{html, BenchOptions, Report, Section};
+use crate::gl;
+use anyhow::{bail, Context as _};
+use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Names a section that fails on purpose (tests of the report's atomic replacement).
+pub const FAIL_SECTION_ENV: &str = "CLASSIC_GPGPU_FAIL_SECTION";
+
+/// A section of the report and the function that measures it.
+pub struct Stage {
+    pub id: &'static str,
+    pub title: &'static str,
+    pub run: fn(&BenchOptions) -> anyhow::Result<Section>,
+}
+
+/// Every stage, in report order. Each paper adds its line here.
+pub fn stages() -> Vec<Stage> {
+    vec![Stage {
+        id: "blocks",
+        title: "building blocks",
+        run: super::blocks::run,
+    }]
+}
+
+/// The `reproduce` options.
+#[derive(Clone, Debug, clap::Args)]
+pub struct ReproduceArgs {
+    /// Small sizes, for CI and smoke tests; the report says so.
+    #[arg(long)]
+    pub quick: bool,
+    /// Only these sections (comma separated ids: blocks, paper1, paper2, paper3, paper4).
+    #[arg(long, value_delimiter = ',')]
+    pub only: Vec<String>,
+    /// Where the report goes.
+    #[arg(long, default_value = "report")]
+    pub out: PathBuf,
+}
+
+/// Run the stages and write the report to `args.out`; returns the report.
+pub fn reproduce(
+    ctx: &gl::Context,
+    args: &ReproduceArgs,
+    show_progress: bool,
+) -> anyhow::Result<Report> {
+    let all = stages();
+    for id in &args.only {
+        if !all.iter().any(|s| s.id == id) {
+            let known: Vec<&str> = all.iter().map(|s| s.id).collect();
+            bail!(
+                "--only: unknown section '{id}' (known: {})",
+                known.join(", ")
+            );
+        }
+    }
+    let chosen: Vec<&Stage> = all
+        .iter()
+        .filter(|s| args.only.is_empty() || args.only.iter().any(|o| o == s.id))
+        .collect();
+    let staging = staging_dir(&args.out)?;
+    let progress = if show_progress {
+        MultiProgress::new()
+    } else {
+        MultiProgress::with_draw_target(ProgressDrawTarget::hidden())
+    };
+    let result = run_stages(ctx, args, &chosen, &staging, progress);
+    match result {
+        Ok(report) => {
+            swap_in(&staging, &args.out)?;
+            Ok(report)
+        }
+        Err(e) => {
+            std::fs::remove_dir_all(&staging).ok();
+            Err(e.context(format!(
+                "the report was not written; {} is left as it was",
+                args.out.display()
+            )))
+        }
+    }
+}
+
+fn run_stages(
+    ctx: &gl::Context,
+    args: &ReproduceArgs,
+    stages: &[&Stage],
+    staging: &Path,
+    progress: MultiProgress,
+) -> anyhow::Result<Report> {
+    let start = Instant::now();
+    let overall = progress.add(ProgressBar::new(stages.len() as u64));
+    overall.set_style(
+        ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    overall.set_prefix("reproduce");
+    let opts = BenchOptions {
+        gl: ctx,
+        quick: args.quick,
+        out_dir: staging.to_path_buf(),
+        progress: progress.clone(),
+    };
+    let mut sections = Vec::new();
+    // Test hook: make one section fail, to check that a failed run keeps the old report.
+    let fail = std::env::var(FAIL_SECTION_ENV).unwrap_or_default();
+    for stage in stages {
+        overall.set_message(stage.title);
+        if fail == stage.id {
+            bail!(
+                "section {} failed on purpose ({FAIL_SECTION_ENV})",
+                stage.id
+            );
+        }
+        let section = (stage.run)(&opts).with_context(|| format!("section {}", stage.id))?;
+        for figure in &section.figures {
+            if !staging.join(&figure.file).is_file() {
+                bail!(
+                    "section {} lists figure {} but did not write it",
+                    stage.id,
+                    figure.file
+                );
+            }
+        }
+        sections.push(section);
+        overall.inc(1);
+    }
+    overall.finish_and_clear();
+    let report = Report {
+        renderer: ctx.info().clone(),
+        cpu: cpu_name(),
+        date: utc_now(),
+        quick: args.quick,
+        elapsed_s: start.elapsed().as_secs_f64(),
+        sections,
+    };
+    std::fs::write(
+        staging.join("results.json"),
+        serde_json::to_string_pretty(&report)?,
+    )
+    .context("writing results.json")?;
+    std::fs::write(staging.join("index.html"), html::page(&report))
+        .context("writing index.html")?;
+    Ok(report)
+}
+
+/// A fresh staging folder beside `out` (same file system, so the swap is a rename).
+fn staging_dir(out: &Path) -> anyhow::Result<PathBuf> {
+    let parent = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
+    let name = out
+        .file_name()
+        .context("--out needs a folder name")?
+        .to_string_lossy();
+    let staging = parent.join(format!(".{name}.staging-{}", std::process::id()));
+    if staging.exists() {
+        std::fs::remove_dir_all(&staging)?;
+    }
+    std::fs::create_dir_all(&staging).with_context(|| format!("creating {}", staging.display()))?;
+    Ok(staging)
+}
+
+/// Replace `out` by `staging`: the old report is moved aside first and removed last.
+fn swap_in(staging: &Path, out: &Path) -> anyhow::Result<()> {
+    let old = staging.with_extension("old");
+    if out.exists() {
+        if !out.join("results.json").exists() && std::fs::read_dir(out)?.next().is_some() {
+            bail!(
+                "{} exists and is not a classic-gpgpu report; choose another --out",
+                out.display()
+            );
+        }
+        std::fs::rename(out, &old)
+            .with_context(|| format!("moving the old {} aside", out.display()))?;
+    }
+    std::fs::rename(staging, out).with_context(|| format!("writing {}", out.display()))?;
+    if old.exists() {
+        std::fs::remove_dir_all(&old).ok();
+    }
+    Ok(())
+}
+
+fn cpu_name() -> String {
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let model = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            info.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+    format!("{model}, {cores} cores")
+}
+
+/// The current UTC time as `YYYY-MM-DD HH:MM:SS UTC`.
+pub fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, rest) = (secs / 86_400, secs % 86_400);
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02}:{:02} UTC",
+        rest / 3600,
+        rest % 3600 / 60,
+        rest % 60
+    )
+}

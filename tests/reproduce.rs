@@ -1,0 +1,90 @@
+//! `classic-gpgpu reproduce --quick` end to end, as CI runs it.
+
+use std::path::Path;
+use std::process::Command;
+
+fn reproduce(out: &Path, extra_env: &[(&str, &str)]) -> std::process::Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"));
+    cmd.args(["reproduce", "--quick", "--json", "--out"])
+        .arg(out);
+    for (k, v) in extra_env {
+        cmd.env(k, v);
+    }
+    cmd.output().expect("the binary runs")
+}
+
+/// Every `src="..."` and non-anchor `href="..."` of the page.
+fn referenced_files(html: &str) -> Vec<String> {
+    let mut files = Vec::new();
+    for attribute in ["src=\"", "href=\""] {
+        for (i, _) in html.match_indices(attribute) {
+            let rest = &html[i + attribute.len()..];
+            let value = &rest[..rest.find('"').unwrap()];
+            if !value.starts_with('#') {
+                files.push(value.to_string());
+            }
+        }
+    }
+    files
+}
+
+#[test]
+fn quick_reproduction_writes_every_section_and_keeps_a_good_report_on_failure() {
+    let out = std::env::temp_dir().join(format!("classic-gpgpu-report-{}", std::process::id()));
+    let run = reproduce(&out, &[]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+
+    let results: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    assert_eq!(results["quick"], true);
+    assert!(results["renderer"]["renderer"]
+        .as_str()
+        .is_some_and(|r| !r.is_empty()));
+    let ids: Vec<&str> = results["sections"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["id"].as_str().unwrap())
+        .collect();
+    for stage in classic_gpgpu::report::reproduce::stages() {
+        assert!(
+            ids.contains(&stage.id),
+            "section {} missing from {ids:?}",
+            stage.id
+        );
+    }
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("Quick mode"));
+    let files = referenced_files(&html);
+    assert!(!files.is_empty(), "the report shows no figure");
+    for file in files {
+        assert!(
+            out.join(&file).is_file(),
+            "index.html references missing {file}"
+        );
+    }
+
+    // A run that fails half-way leaves the good report as it was.
+    let before = std::fs::read(out.join("results.json")).unwrap();
+    let failed = reproduce(&out, &[("CLASSIC_GPGPU_FAIL_SECTION", "blocks")]);
+    assert!(!failed.status.success());
+    let stderr = String::from_utf8_lossy(&failed.stderr);
+    assert!(stderr.contains("left as it was"), "{stderr}");
+    assert_eq!(std::fs::read(out.join("results.json")).unwrap(), before);
+    let leftovers: Vec<_> = std::fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains(".staging-"))
+        .filter(|e| {
+            e.file_name()
+                .to_string_lossy()
+                .contains("classic-gpgpu-report")
+        })
+        .collect();
+    assert!(leftovers.is_empty(), "staging folders left behind");
+    std::fs::remove_dir_all(&out).ok();
+}
