@@ -29,6 +29,8 @@ enum Command {
     Collide(classic_gpgpu::collide::cli::CollideArgs),
     /// Paper 1: a deforming scene of Table III, frame by frame.
     CollideScene(classic_gpgpu::collide::cli::SceneArgs),
+    /// Paper 1: Tables III-IV and Fig. 7, 10-12 against SOLID and CULLIDE.
+    CollideBench(classic_gpgpu::report::paper1::Paper1Args),
     /// Regenerate every table and figure of the papers into a report beside the published
     /// numbers (report/index.html, report/results.json, PNG figures).
     Reproduce(report::reproduce::ReproduceArgs),
@@ -65,6 +67,9 @@ fn main() -> ExitCode {
         Command::CollideScene(a) => global
             .context()
             .and_then(|ctx| classic_gpgpu::collide::cli::run_scene(&a, &ctx, global.json)),
+        Command::CollideBench(a) => global
+            .context()
+            .and_then(|ctx| classic_gpgpu::report::paper1::bench_command(&ctx, &a, global.json)),
         Command::Reproduce(args) => reproduce(&global, &args),
     };
     match result {

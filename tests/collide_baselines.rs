@@ -53,7 +53,10 @@ fn solid_equals_and_cullide_is_a_subset_of_the_exact_pairs_on_every_scene() {
             cullide_found += c.ctps;
         }
     }
-    assert!(cullide_found > 0, "CULLIDE must find some collisions at 1024 x 1024");
+    assert!(
+        cullide_found > 0,
+        "CULLIDE must find some collisions at 1024 x 1024"
+    );
 }
 
 #[test]
@@ -85,5 +88,8 @@ fn scenes_are_deterministic_and_collide() {
 #[test]
 fn unknown_scene_names_the_choices() {
     let err = Scene::build("teapots", None).err().unwrap().to_string();
-    assert!(err.contains("teapots") && err.contains("merging-tori"), "{err}");
+    assert!(
+        err.contains("teapots") && err.contains("merging-tori"),
+        "{err}"
+    );
 }

@@ -6,6 +6,7 @@
 
 pub mod blocks;
 mod html;
+pub mod paper1;
 pub mod paper_tables;
 pub mod plot;
 pub mod reproduce;

@@ -21,11 +21,18 @@ pub struct Stage {
 
 /// Every stage, in report order. Each paper adds its line here.
 pub fn stages() -> Vec<Stage> {
-    vec![Stage {
-        id: "blocks",
-        title: "building blocks",
-        run: super::blocks::run,
-    }]
+    vec![
+        Stage {
+            id: "blocks",
+            title: "building blocks",
+            run: super::blocks::run,
+        },
+        Stage {
+            id: "paper1",
+            title: "paper 1: streaming AABBs",
+            run: super::paper1::run,
+        },
+    ]
 }
 
 /// The `reproduce` options.
