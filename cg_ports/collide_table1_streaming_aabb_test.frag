@@ -1,7 +1,7 @@
-#version 330 core
 // Port of Zhang & Kim 2007 (IEEE TVCG 13(2)), Table I: "Elementary AABB overlap test in Cg"
 // (streamingAABBTest), line for line in GLSL 330. Cg's TEXCOORD0 / TEXCOORD1 inputs are the
 // varyings uvA / uvB, tex1D is texture() on a sampler1D, and the COLOR output is `color`.
+#version 330 core
 
 in float uvA;
 in float uvB;

@@ -1,4 +1,3 @@
-#version 330 core
 // Port of Zhang & Kim 2007 (IEEE TVCG 13(2)), Table II: "Stream update using a min/max
 // operation in Cg". Our copy of the paper keeps the table's caption and Sec. 6's account of
 // it, not the Cg lines themselves, so this port follows that account step by step: the
@@ -6,6 +5,7 @@
 // column-wise minimum and maximum over the n_max texels of column k of the 2D vertex
 // texture (Eq. 1), skipping empty texels (alpha 0), and writes them to COLOR0 (T_min) and
 // COLOR1 (T_max) at once through multiple render targets.
+#version 330 core
 
 uniform sampler2D vertexTexture;
 uniform int nMax;

@@ -49,7 +49,11 @@ fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
             dump.to_str().unwrap(),
             "--json",
         ]);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let pairs: Vec<(u32, u32)> = v["pairs"]
             .as_array()
@@ -59,14 +63,26 @@ fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
             .collect();
         assert_eq!(pairs, expected, "{readback}");
         assert_eq!(v["ctps"].as_u64().unwrap() as usize, expected.len());
-        assert_eq!(v["triangles"][0].as_u64().unwrap() as usize, la.triangles.len());
+        assert_eq!(
+            v["triangles"][0].as_u64().unwrap() as usize,
+            la.triangles.len()
+        );
         assert!(v["renderer"].as_str().is_some_and(|r| !r.is_empty()));
         assert!(v["readback"]["bytes"].as_u64().unwrap() > 0);
-        for key in ["overlap", "readback", "tri_test", "download", "update", "total"] {
+        for key in [
+            "overlap", "readback", "tri_test", "download", "update", "total",
+        ] {
             assert!(v["timings_ms"][key].as_f64().is_some(), "{key}");
         }
     }
-    for png in ["P0.png", "P1.png", "P2.png", "P3.png", "P1_reduced.png", "T_min_X_0.png"] {
+    for png in [
+        "P0.png",
+        "P1.png",
+        "P2.png",
+        "P3.png",
+        "P1_reduced.png",
+        "T_min_X_0.png",
+    ] {
         assert!(dump.join(png).is_file(), "{png} not written");
     }
     std::fs::remove_dir_all(&dir).ok();
@@ -105,7 +121,11 @@ fn collide_scene_and_bench_print_json() {
         "800",
         "--json",
     ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["frames"].as_array().unwrap().len(), 2);
     let dir = temp_dir("bench");
@@ -123,7 +143,11 @@ fn collide_scene_and_bench_print_json() {
         dir.to_str().unwrap(),
         "--json",
     ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["id"], "paper1");
     assert!(v["tables"].as_array().unwrap().len() >= 4);

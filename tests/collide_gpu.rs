@@ -242,3 +242,32 @@ fn bad_inputs_give_clear_errors() {
         .to_string()
         .contains("not finite"));
 }
+
+#[test]
+fn every_collide_shader_compiles_and_links() {
+    use classic_gpgpu::gl::Program;
+    use classic_gpgpu::shader;
+    let ctx = context();
+    let rect = [
+        shader!("cg_ports/collide_table1_streaming_aabb_test.frag"),
+        shader!("glsl/collide/stencil_mask.frag"),
+        shader!("glsl/collide/encode_4x4.frag"),
+        shader!("glsl/collide/encode_8x8.frag"),
+    ];
+    Program::new(&ctx, &[shader!("glsl/collide/aabb_pairs.vert")], &rect[..1]).unwrap();
+    for fragment in &rect[1..] {
+        Program::rect(&ctx, std::slice::from_ref(fragment)).unwrap();
+    }
+    Program::new(
+        &ctx,
+        &[shader!("glsl/collide/stream_line.vert")],
+        &[shader!("cg_ports/collide_table2_stream_update.frag")],
+    )
+    .unwrap();
+    Program::new(
+        &ctx,
+        &[shader!("glsl/collide/cullide.vert")],
+        &[shader!("glsl/collide/cullide.frag")],
+    )
+    .unwrap();
+}

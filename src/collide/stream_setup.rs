@@ -9,10 +9,14 @@ use super::CollideError;
 use crate::mesh::Mesh;
 use glam::Vec3;
 
-/// Default leaf size `n` (triangles per leaf). Chosen by measurement on the 15K-triangle
-/// tori (see `collide-bench --leaf-sweep` and the report): smaller leaves make `P0` four
-/// times larger per halving, larger leaves make the triangle test quadratic per CAP.
-pub const DEFAULT_LEAF_SIZE: usize = 16;
+/// Default leaf size `n` (triangles per leaf), chosen by measurement (`collide-bench`'s
+/// leaf-size sweep on the 15K-triangle interlocking tori, llvmpipe on 2 cores): halving `n`
+/// doubles both streams and so makes `P0` four times larger (n = 8 gives the paper's
+/// 2048 x 2048 `P0`: 79 ms per frame; n = 16: 19 ms; n = 32: 5 ms), while doubling it roughly
+/// doubles the PCTPs of the CPU triangle test (n = 64: 4 ms, but 2.5x the PCTPs of n = 32,
+/// which contact-heavy frames pay). A GPU with fast fragment rates favours smaller leaves;
+/// `--leaf-size` sets it.
+pub const DEFAULT_LEAF_SIZE: usize = 32;
 
 /// One real leaf of the AABB tree: a group of triangles and the unique vertices they use.
 #[derive(Clone, Debug, PartialEq)]

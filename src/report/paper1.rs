@@ -288,7 +288,7 @@ fn readback_curve(opts: &BenchOptions, quick: bool) -> anyhow::Result<Vec<Calibr
         &target,
         &reduction,
         &etas,
-        if quick { 1 } else { 3 },
+        if quick { 1 } else { 5 },
         7,
     )?)
 }
