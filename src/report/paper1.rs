@@ -109,12 +109,77 @@ pub fn run_with(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Sectio
     }
     bar.finish_and_clear();
     let fig7 = readback_curve(opts, quick)?;
+    let schemes = scheme_comparison(opts, quick, args.leaf_size, frames)?;
     let sweep = if args.no_leaf_sweep {
         Vec::new()
     } else {
         leaf_sweep(opts, quick)?
     };
-    section(opts, &runs, &fig7, &sweep, frames, quick, args)
+    let mut section = section(opts, &runs, &fig7, &sweep, frames, quick, args)?;
+    section.tables.insert(4, schemes);
+    Ok(section)
+}
+
+/// The three readback schemes on the real interlocking-tori frames, each forced in turn.
+fn scheme_comparison(
+    opts: &BenchOptions,
+    quick: bool,
+    leaf_size: usize,
+    frames: usize,
+) -> anyhow::Result<Table> {
+    let scene = Scene::build("interlocking-tori", if quick { Some(2000) } else { None })?;
+    let mut rows = Vec::new();
+    let mut p0 = 0;
+    for (mode, name) in [
+        (ReadbackMode::Hierarchical, "hierarchical"),
+        (ReadbackMode::Reduced, "reduced"),
+        (ReadbackMode::Full, "full"),
+    ] {
+        let options = Options {
+            leaf_size,
+            readback: mode,
+            ..Options::default()
+        };
+        let mut c = StreamingCollider::new(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
+        p0 = c.target.width();
+        let (mut enc, mut dec, mut bytes, mut eta) = (0.0, 0.0, 0u64, 0.0);
+        for f in 0..=frames {
+            let (px, py) = scene.frame(f);
+            let r = c.frame(&px, &py)?;
+            if f > 0 {
+                enc += r.timings.encode;
+                dec += r.timings.readback;
+                bytes += r.readback_bytes;
+                eta += r.eta;
+            }
+        }
+        let n = frames.max(1) as f64;
+        rows.push(vec![
+            name.to_string(),
+            format!("{:.4}", 100.0 * eta / n),
+            f2(enc / n),
+            f2(dec / n),
+            f2((enc + dec) / n),
+            format!("{:.0}", bytes as f64 / n),
+        ]);
+    }
+    Ok(Table {
+        caption: format!(
+            "Readback schemes on the interlocking tori ({p0}x{p0} P0, mean of {frames} frames, {})",
+            opts.gl.info().renderer_line()
+        ),
+        header: [
+            "scheme",
+            "eta %",
+            "encode ms",
+            "read+decode ms",
+            "total ms",
+            "bytes read",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows,
+    })
 }
 
 fn run_scene(
