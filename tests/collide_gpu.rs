@@ -226,6 +226,12 @@ fn bad_inputs_give_clear_errors() {
     let mut tiny_tiles = options(ReadbackMode::Full, 1);
     tiny_tiles.max_tile = Some(2);
     assert!(err(&big, &big, tiny_tiles).contains("tiles"));
+    // One leaf with more vertices than a texture has rows.
+    let rows = ctx.info().limits.max_texture_size as usize;
+    let wide = soup(rows / 3 + 1, 0.01, 3);
+    let one_leaf = options(ReadbackMode::Full, wide.triangles.len());
+    let e = err(&wide, &good, one_leaf);
+    assert!(e.contains("vertices") && e.contains("leaf size"), "{e}");
     // A frame with the wrong vertex count or a NaN.
     let mut c = StreamingCollider::new(&ctx, &good, &good, o).unwrap();
     let short = &good.positions[..10];
