@@ -477,6 +477,46 @@ mod tests {
     }
 
     #[test]
+    fn moller_and_exact_agree_on_random_coplanar_triangles() {
+        // In a plane where f32 coordinates are exactly coplanar: z = 0, then x + y + z = 1
+        // with x, y on a grid so that z is exact.
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let mut hits = 0;
+        for plane in 0..2 {
+            for _ in 0..5_000 {
+                let mut p = || {
+                    let (x, y) = (
+                        rng.gen_range(0..64) as f32 / 64.0,
+                        rng.gen_range(0..64) as f32 / 64.0,
+                    );
+                    if plane == 0 {
+                        Vec3::new(x, y, 0.0)
+                    } else {
+                        Vec3::new(x, y, 1.0 - x - y)
+                    }
+                };
+                let (a, b) = ([p(), p(), p()], [p(), p(), p()]);
+                let area = |t: &[Vec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).length();
+                if area(&a) == 0.0 || area(&b) == 0.0 {
+                    continue;
+                }
+                let e = triangles_intersect(&a, &b, Predicate::Exact);
+                let m = triangles_intersect(&a, &b, Predicate::Moller);
+                // On a grid, exact touching happens; Möller's float test may then go either
+                // way. Where the exact test finds a proper overlap both must agree.
+                if !e {
+                    assert!(
+                        !m,
+                        "Möller reports disjoint coplanar triangles: {a:?} {b:?}"
+                    );
+                }
+                hits += e as u32;
+            }
+        }
+        assert!(hits > 1000, "{hits}");
+    }
+
+    #[test]
     fn the_test_is_symmetric_and_independent_of_vertex_order() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         for _ in 0..2_000 {
