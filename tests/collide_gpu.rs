@@ -277,3 +277,26 @@ fn every_collide_shader_compiles_and_links() {
     )
     .unwrap();
 }
+
+/// The paper's size: every scene of Table III, two frames, each readback scheme, against
+/// brute force. Slow in debug builds; run with `cargo test --release -- --ignored`.
+#[test]
+#[ignore = "paper size (15K-50K triangles per model): run in release with --ignored"]
+fn paper_size_scenes_match_brute_force() {
+    use classic_gpgpu::collide::scenes::{Scene, SCENES};
+    let ctx = context();
+    for name in SCENES {
+        let scene = Scene::build(name, None).unwrap();
+        let (x, y) = (&scene.x.rest, &scene.y.rest);
+        for readback in FIXED {
+            let mut c = StreamingCollider::new(&ctx, x, y, options(readback, 16)).unwrap();
+            for f in [0, 9] {
+                let (px, py) = scene.frame(f);
+                let r = c.frame(&px, &py).unwrap();
+                let expected = all_pairs(x, &px, y, &py, Predicate::Moller);
+                assert_eq!(r.pairs, expected, "{name} frame {f} {readback:?}");
+                eprintln!("{name} frame {f} {readback:?}: {} pairs", expected.len());
+            }
+        }
+    }
+}
