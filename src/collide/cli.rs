@@ -23,7 +23,8 @@ pub struct PipelineArgs {
     /// Decide triangle pairs with exact orientation predicates instead of floating point.
     #[arg(long)]
     pub exact_predicates: bool,
-    /// Largest tile side (slots); default: the renderer's maximum texture size.
+    /// Largest tile side (slots); default 4096 (the paper's GPU limit), at most the
+    /// renderer's maximum texture size.
     #[arg(long)]
     pub max_tile: Option<usize>,
 }

@@ -18,6 +18,11 @@ use glam::Vec3;
 use serde::Serialize;
 use std::time::Instant;
 
+/// Default tile side: the GeForce 7800's texture limit of Sec. 5.5 (`d_max` <= 12 per
+/// tile). It bounds the render target's memory (a 4096 x 4096 `P0` with its depth-stencil
+/// buffer is 128 MB; a 16384 x 16384 one would be 2 GB) while keeping tiles few.
+pub const DEFAULT_MAX_TILE: usize = 4096;
+
 /// The user's choices.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Options {
@@ -25,7 +30,8 @@ pub struct Options {
     pub leaf_size: usize,
     pub readback: ReadbackMode,
     pub predicate: Predicate,
-    /// Force tiles smaller than the texture limit (tests, or to study Sec. 5.5).
+    /// Largest tile side; default [`DEFAULT_MAX_TILE`], never above the texture limit.
+    /// Small values force tiling (tests, or to study Sec. 5.5).
     pub max_tile: Option<usize>,
 }
 
@@ -134,7 +140,7 @@ impl StreamingCollider {
         let sx = AabbStream::build(x, options.leaf_size)?;
         let sy = AabbStream::build(y, options.leaf_size)?;
         let limit = ctx.info().limits.max_texture_size as usize;
-        let max_tile = options.max_tile.unwrap_or(limit).min(limit);
+        let max_tile = options.max_tile.unwrap_or(DEFAULT_MAX_TILE).min(limit);
         let layout = TileLayout::new(sx.len(), sy.len(), max_tile)?;
         let x_gpu = GpuStream::new(ctx, sx, &layout)?;
         let y_gpu = GpuStream::new(ctx, sy, &layout)?;

@@ -10,7 +10,9 @@
 //!   orientation predicates (the `robust` crate), and the interval step in the
 //!   orientation-only form of Guigue & Devillers (2003), because Möller's interval
 //!   endpoints are quotients that no orientation predicate expresses. Touching
-//!   configurations (a vertex exactly on a face, shared edges) are decided exactly.
+//!   configurations (a vertex exactly on a face, shared edges) are decided exactly, and a
+//!   zero-area triangle is taken as the segment or point it is. (Möller's test, like its
+//!   paper, assumes proper triangles.)
 //!
 //! Both begin with the triangles' own boxes: a pair whose boxes are disjoint is never
 //! reported. Every triangle box lies inside its leaf box, so any pair this predicate reports
@@ -242,7 +244,158 @@ mod exact {
             .unwrap_or(Equal)
     }
 
+    /// Exact test of two closed triangles; a degenerate one (collinear corners) is taken
+    /// as the segment or point it is, so zero-area triangles are decided exactly too.
     pub fn tri_tri(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
+        match (Shape::of(t1), Shape::of(t2)) {
+            (Shape::Triangle, Shape::Triangle) => proper_tri_tri(t1, t2),
+            (Shape::Triangle, other) => other.meets_triangle(t1),
+            (other, Shape::Triangle) => other.meets_triangle(t2),
+            (a, b) => a.meets_lower(&b),
+        }
+    }
+
+    /// What three corners span.
+    #[derive(Clone, Copy, Debug)]
+    enum Shape {
+        Triangle,
+        Segment(DVec3, DVec3),
+        Point(DVec3),
+    }
+
+    /// The three axis-plane projections (index pairs).
+    const PLANES: [(usize, usize); 3] = [(0, 1), (1, 2), (2, 0)];
+
+    fn project(p: DVec3, (i, j): (usize, usize)) -> [f64; 2] {
+        [p[i], p[j]]
+    }
+
+    /// Three points are collinear iff their projections on all three axis planes are: the
+    /// projections' orientations are the components of the cross product.
+    fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
+        PLANES
+            .iter()
+            .all(|&pl| o2(project(a, pl), project(b, pl), project(c, pl)) == Equal)
+    }
+
+    /// The axis plane to decide coplanar (or collinear) figures in: one where the points
+    /// do not all fall on a line, else one that keeps the axis of largest spread.
+    fn working_plane(points: &[DVec3]) -> (usize, usize) {
+        for &pl in &PLANES {
+            for i in 0..points.len() {
+                for j in i + 1..points.len() {
+                    for k in j + 1..points.len() {
+                        let (a, b, c) = (points[i], points[j], points[k]);
+                        if o2(project(a, pl), project(b, pl), project(c, pl)) != Equal {
+                            return pl;
+                        }
+                    }
+                }
+            }
+        }
+        let spread = |axis: usize| {
+            let lo = points.iter().map(|p| p[axis]).fold(f64::INFINITY, f64::min);
+            let hi = points
+                .iter()
+                .map(|p| p[axis])
+                .fold(f64::NEG_INFINITY, f64::max);
+            hi - lo
+        };
+        let axis = (0..3)
+            .max_by(|&a, &b| spread(a).total_cmp(&spread(b)))
+            .unwrap_or(0);
+        PLANES[axis] // the plane (axis, axis + 1) keeps `axis`
+    }
+
+    impl Shape {
+        fn of(t: &[DVec3; 3]) -> Shape {
+            if !collinear(t[0], t[1], t[2]) {
+                return Shape::Triangle;
+            }
+            // The extreme corners along the axis of largest spread bound the others.
+            let spread = |axis: usize| {
+                let v: Vec<f64> = t.iter().map(|p| p[axis]).collect();
+                v.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+                    - v.iter().cloned().fold(f64::INFINITY, f64::min)
+            };
+            let axis = (0..3)
+                .max_by(|&a, &b| spread(a).total_cmp(&spread(b)))
+                .unwrap_or(0);
+            let lo = *t.iter().min_by(|a, b| a[axis].total_cmp(&b[axis])).unwrap();
+            let hi = *t.iter().max_by(|a, b| a[axis].total_cmp(&b[axis])).unwrap();
+            if lo == hi {
+                Shape::Point(lo)
+            } else {
+                Shape::Segment(lo, hi)
+            }
+        }
+
+        /// This segment or point against the proper triangle `t`.
+        fn meets_triangle(&self, t: &[DVec3; 3]) -> bool {
+            let [a, b, c] = *t;
+            match *self {
+                Shape::Point(p) => o3(a, b, c, p) == Equal && point_in_coplanar_triangle(p, t),
+                Shape::Segment(p, q) => {
+                    let (sp, sq) = (o3(a, b, c, p), o3(a, b, c, q));
+                    if sp == sq && sp != Equal {
+                        return false;
+                    }
+                    if sp == Equal && sq == Equal {
+                        let pl = working_plane(&[a, b, c]);
+                        let tri = t.map(|v| project(v, pl));
+                        let (p2, q2) = (project(p, pl), project(q, pl));
+                        return point_in_triangle(p2, &tri)
+                            || (0..3).any(|k| segments_meet(p2, q2, tri[k], tri[(k + 1) % 3]));
+                    }
+                    if sp == Equal {
+                        return point_in_coplanar_triangle(p, t);
+                    }
+                    if sq == Equal {
+                        return point_in_coplanar_triangle(q, t);
+                    }
+                    // pq crosses the plane: the crossing is inside iff pq passes on the
+                    // same side of (or through) all three edges.
+                    let s = [o3(p, q, a, b), o3(p, q, b, c), o3(p, q, c, a)];
+                    !(s.contains(&Greater) && s.contains(&Less))
+                }
+                Shape::Triangle => unreachable!("proper triangles go to proper_tri_tri"),
+            }
+        }
+
+        /// Two segments or points.
+        fn meets_lower(&self, other: &Shape) -> bool {
+            let ends = |s: &Shape| match *s {
+                Shape::Segment(p, q) => (p, q),
+                Shape::Point(p) => (p, p),
+                Shape::Triangle => unreachable!(),
+            };
+            let ((p, q), (r, t)) = (ends(self), ends(other));
+            if o3(p, q, r, t) != Equal {
+                return false;
+            }
+            let pl = working_plane(&[p, q, r, t]);
+            let [p2, q2, r2, t2] = [p, q, r, t].map(|v| project(v, pl));
+            if p == q && r == t {
+                return p == r;
+            }
+            if p == q {
+                return o2(r2, t2, p2) == Equal && on_segment(r2, t2, p2) && collinear(r, t, p);
+            }
+            if r == t {
+                return o2(p2, q2, r2) == Equal && on_segment(p2, q2, r2) && collinear(p, q, r);
+            }
+            segments_meet(p2, q2, r2, t2)
+        }
+    }
+
+    /// `p`, known to lie in the plane of the proper triangle `t`, inside or on it.
+    fn point_in_coplanar_triangle(p: DVec3, t: &[DVec3; 3]) -> bool {
+        let pl = working_plane(t);
+        point_in_triangle(project(p, pl), &t.map(|v| project(v, pl)))
+    }
+
+    /// Guigue & Devillers on two proper triangles.
+    fn proper_tri_tri(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
         let [p1, q1, r1] = *t1;
         let [p2, q2, r2] = *t2;
         // Sides of T1's vertices with respect to the plane of T2, and vice versa.
@@ -316,20 +469,11 @@ mod exact {
         o3(q1, p2, p1, q2) != Greater && o3(p1, p2, r1, r2) != Greater
     }
 
-    /// Coplanar triangles, decided in the axis plane where their normal is largest:
-    /// closed triangles meet iff an edge pair meets or a vertex lies in the other triangle.
+    /// Coplanar proper triangles, decided in an axis plane onto which they project without
+    /// collapsing (chosen exactly): closed triangles meet iff an edge pair meets or a vertex
+    /// lies in the other triangle.
     fn coplanar(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
-        let n = (t1[1] - t1[0]).cross(t1[2] - t1[0]);
-        let n = if n == DVec3::ZERO {
-            (t2[1] - t2[0]).cross(t2[2] - t2[0])
-        } else {
-            n
-        };
-        let (i0, i1) = match super::moller::largest_axis(n) {
-            0 => (1, 2),
-            1 => (0, 2),
-            _ => (0, 1),
-        };
+        let (i0, i1) = working_plane(t1);
         let a = t1.map(|p| [p[i0], p[i1]]);
         let b = t2.map(|p| [p[i0], p[i1]]);
         for i in 0..3 {
@@ -451,6 +595,45 @@ mod tests {
         assert!(triangles_intersect(&a, &shared_edge, Predicate::Exact));
         assert!(triangles_intersect(&a, &corner, Predicate::Exact));
         assert!(!triangles_intersect(&a, &hovering, Predicate::Exact));
+    }
+
+    #[test]
+    fn exact_predicates_take_degenerate_triangles_as_segments_and_points() {
+        let exact = |a: &[Vec3; 3], b: &[Vec3; 3]| triangles_intersect(a, b, Predicate::Exact);
+        // A tilted proper triangle in the plane z = y.
+        let t = tri([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 2.0]);
+        let seg = |p: [f32; 3], q: [f32; 3]| {
+            let m = [
+                (p[0] + q[0]) / 2.0,
+                (p[1] + q[1]) / 2.0,
+                (p[2] + q[2]) / 2.0,
+            ];
+            tri(p, m, q)
+        };
+        // Above the plane all along, though its shadow on the plane falls inside t.
+        assert!(!exact(&seg([0.5, 0.2, 0.9], [0.5, 0.2, 1.9]), &t));
+        // Piercing it at (0.5, 0.2, 0.2).
+        assert!(exact(&seg([0.5, 0.2, -0.5], [0.5, 0.2, 0.9]), &t));
+        assert!(exact(&t, &seg([0.5, 0.2, -0.5], [0.5, 0.2, 0.9])));
+        // Lying in the plane, crossing an edge; lying in the plane outside.
+        assert!(exact(&seg([-0.5, 0.5, 0.5], [0.5, 0.5, 0.5]), &t));
+        assert!(!exact(&seg([1.5, 1.5, 1.5], [2.5, 1.5, 1.5]), &t));
+        // Points on and off the face.
+        let point = |p: [f32; 3]| tri(p, p, p);
+        assert!(exact(&point([0.5, 0.25, 0.25]), &t));
+        assert!(!exact(&point([0.5, 0.25, 0.5]), &t));
+        // Segment against segment: crossing, and skew.
+        let s1 = seg([0.0, 0.0, 0.0], [2.0, 2.0, 0.0]);
+        assert!(exact(&s1, &seg([0.0, 2.0, 0.0], [2.0, 0.0, 0.0])));
+        assert!(!exact(&s1, &seg([0.0, 2.0, 0.0], [2.0, 0.0, 1.0])));
+        // Collinear overlapping and collinear apart; a point on a segment.
+        assert!(exact(&s1, &seg([1.0, 1.0, 0.0], [3.0, 3.0, 0.0])));
+        assert!(!exact(
+            &seg([0.0, 0.0, 1.0], [1.0, 1.0, 1.0]),
+            &seg([1.5, 1.5, 1.0], [3.0, 3.0, 1.0])
+        ));
+        assert!(exact(&s1, &point([0.5, 0.5, 0.0])));
+        assert!(!exact(&s1, &point([0.5, 0.5, 1e-7])));
     }
 
     #[test]
