@@ -10,8 +10,31 @@
 //! `P0..P3` the reduction levels, `eta` the ratio of CAPs (colliding AABB pairs) to all
 //! AABB pairs; PCTPs / CTPs are potentially colliding / colliding triangle pairs.
 //!
-//! Baselines: [`solid`] (CPU AABB tree refit, Sec. 7.4.1) and [`brute_force`] (all pairs,
-//! the reference answer).
+//! Files, in pipeline order: [`stream_setup`] (AABB tree, virtual nodes, stencil array),
+//! [`aabb_textures`], [`vertex_textures`], [`global_test`], [`streaming_test`] (paper
+//! Table I, `cg_ports/`), [`reduction`] and [`reduction_gpu`] (hierarchical, reduced, full,
+//! auto), [`tri_test`] (Möller 1997, exact predicates), [`tiles`], [`stream_update`] (paper
+//! Table II, `cg_ports/`), [`deform`], and the driver [`pipeline`].
+//!
+//! Baselines: [`solid`] (CPU AABB tree refit, Sec. 7.4.1), [`cullide`] (image-space culling
+//! with occlusion queries, Sec. 7.4.2) and [`brute_force`] (all pairs, the reference
+//! answer). [`scenes`] builds the deforming scenes of Table III; `report::paper1` measures
+//! them.
+//!
+//! ```no_run
+//! use classic_gpgpu::collide::pipeline::{Options, StreamingCollider};
+//! use classic_gpgpu::gl::Context;
+//! use classic_gpgpu::mesh;
+//!
+//! let ctx = Context::from_env()?;
+//! let x = mesh::torus_with_triangles(1.0, 1.0 / 3.0, 15_000);
+//! let y = x.translated(glam::Vec3::new(1.2, 0.0, 0.2));
+//! let mut collider = StreamingCollider::new(&ctx, &x, &y, Options::default())?;
+//! // Each frame: the deformed vertices in, every intersecting triangle pair out.
+//! let frame = collider.frame(&x.positions, &y.positions)?;
+//! println!("{} CAPs, {} colliding triangle pairs", frame.caps, frame.pairs.len());
+//! # Ok::<(), anyhow::Error>(())
+//! ```
 
 pub mod aabb;
 pub mod aabb_textures;
