@@ -153,7 +153,7 @@ struct TreeBuilder<'a> {
 }
 
 impl TreeBuilder<'_> {
-    /// Top-down subdivision [2]: split the triangles at the median centroid along the
+    /// Top-down subdivision as in SOLID (the paper's reference 2): split the triangles at the median centroid along the
     /// longest axis of their centroids' box, until a group has at most `n` triangles.
     /// The median keeps the tree balanced, so few virtual nodes are needed.
     fn split(&mut self, triangles: &mut [u32], depth: u32) -> u32 {

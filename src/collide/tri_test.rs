@@ -1,6 +1,6 @@
-//! Primitive-level intersection test [Sec. 5.4]: Möller's triangle/triangle test [39]
-//! (Möller 1997, "A fast triangle-triangle intersection test"), on the CPU, for every
-//! triangle pair of every colliding AABB pair.
+//! Primitive-level intersection test [Sec. 5.4]: Möller's triangle/triangle test (the
+//! paper's reference 39: Möller 1997, "A fast triangle-triangle intersection test"), on the
+//! CPU, for every triangle pair of every colliding AABB pair.
 //!
 //! Two predicates share one entry point, [`triangles_intersect`]:
 //! - [`Predicate::Moller`]: Möller's interval test, written here without the epsilon
