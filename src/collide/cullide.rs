@@ -1,5 +1,5 @@
-//! The CULLIDE baseline (the paper's reference 4; Sec. 7.4.2) (Govindaraju, Redon, Lin & Manocha 2003):
-//! image-space culling with occlusion queries, then the exact triangle test on what is left.
+//! The CULLIDE baseline (the paper's reference 4, Govindaraju, Redon, Lin & Manocha 2003;
+//! Sec. 7.4.2): image-space culling with occlusion queries, then the exact triangle test on what is left.
 //!
 //! A sub-object is *fully visible* with respect to a set when none of its fragments lies at
 //! or behind the set's depth: render the set into the depth buffer, then draw the sub-object

@@ -1,5 +1,5 @@
-//! The SOLID baseline (the paper's reference 2; Sec. 7.4.1): the same leaves kept in a CPU AABB tree, refitted
-//! bottom-up every frame (SOLID's scheme for deformable models: new leaf boxes from the
+//! The SOLID baseline (the paper's reference 2; Sec. 7.4.1): the same leaves kept in a
+//! CPU AABB tree, refitted bottom-up every frame (SOLID's scheme for deformable models: new leaf boxes from the
 //! vertices, then each internal box as the union of its children's), and traversed as a
 //! tree pair to find the overlapping leaves. The triangle test is the pipeline's own.
 
