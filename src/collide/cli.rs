@@ -60,8 +60,12 @@ pub struct CollideArgs {
 
 /// `collide`: one frame of the pipeline on two static meshes; `json` prints one object.
 pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
-    let load = |p: &Path| {
-        crate::mesh::load_obj(p).with_context(|| format!("reading model {}", p.display()))
+    let load = |p: &Path| -> anyhow::Result<crate::mesh::Mesh> {
+        let mesh =
+            crate::mesh::load_obj(p).with_context(|| format!("reading model {}", p.display()))?;
+        super::stream_setup::validate_mesh(&mesh)
+            .with_context(|| format!("model {}", p.display()))?;
+        Ok(mesh)
     };
     let (x, y) = (load(&args.a)?, load(&args.b)?);
     let mut collider = StreamingCollider::new(ctx, &x, &y, args.pipeline.options())
