@@ -388,6 +388,17 @@ mod exact {
         }
     }
 
+    /// A second exact test for proper triangles, by a different route (tests only): closed
+    /// triangles meet iff an edge of one meets the other, since the boundary of their
+    /// intersection (a segment, a point or a polygon) lies on their edges.
+    #[cfg(test)]
+    pub fn by_edges(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
+        let edges_meet = |a: &[DVec3; 3], b: &[DVec3; 3]| {
+            (0..3).any(|k| Shape::Segment(a[k], a[(k + 1) % 3]).meets_triangle(b))
+        };
+        edges_meet(t1, t2) || edges_meet(t2, t1)
+    }
+
     /// `p`, known to lie in the plane of the proper triangle `t`, inside or on it.
     fn point_in_coplanar_triangle(p: DVec3, t: &[DVec3; 3]) -> bool {
         let pl = working_plane(t);
@@ -634,6 +645,33 @@ mod tests {
         ));
         assert!(exact(&s1, &point([0.5, 0.5, 0.0])));
         assert!(!exact(&s1, &point([0.5, 0.5, 1e-7])));
+    }
+
+    #[test]
+    fn exact_test_agrees_with_the_edge_route_on_adversarial_triangles() {
+        // Corners on a coarse grid, so that shared vertices, vertices on faces, shared
+        // edges and coplanar pairs all happen often.
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        let (mut hits, mut tested) = (0, 0);
+        for _ in 0..40_000 {
+            let mut p = || {
+                DVec3::new(
+                    rng.gen_range(0..4) as f64,
+                    rng.gen_range(0..4) as f64,
+                    rng.gen_range(0..3) as f64,
+                )
+            };
+            let (a, b) = ([p(), p(), p()], [p(), p(), p()]);
+            let proper = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]) != DVec3::ZERO;
+            if !proper(&a) || !proper(&b) {
+                continue;
+            }
+            let e = exact::tri_tri(&a, &b);
+            assert_eq!(e, exact::by_edges(&a, &b), "{a:?} {b:?}");
+            hits += e as u32;
+            tested += 1;
+        }
+        assert!(hits > 1000 && hits < tested, "{hits} of {tested}");
     }
 
     #[test]
