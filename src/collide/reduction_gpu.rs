@@ -204,22 +204,39 @@ impl LevelReader for GpuLevels<'_> {
     }
 }
 
+/// What one scheme cost at one calibration point.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct SchemeCost {
+    pub scheme: Scheme,
+    /// GPU time of the encoding passes, ms.
+    pub encode_ms: f64,
+    /// Wall time of reading back and decoding, ms.
+    pub decode_ms: f64,
+    /// Bytes read back.
+    pub bytes: u64,
+}
+
+impl SchemeCost {
+    pub fn total_ms(&self) -> f64 {
+        self.encode_ms + self.decode_ms
+    }
+}
+
 /// One calibration point: the time of each scheme on a `P0` with CAP ratio `eta`.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct CalibrationPoint {
     pub eta: f64,
     pub caps: usize,
-    /// (scheme, encode ms, read + decode ms, bytes read back), in the order
-    /// hierarchical, reduced, full.
-    pub schemes: Vec<(Scheme, f64, f64, u64)>,
+    /// In the order hierarchical, reduced, full.
+    pub schemes: Vec<SchemeCost>,
 }
 
 impl CalibrationPoint {
     pub fn fastest(&self) -> Scheme {
         self.schemes
             .iter()
-            .min_by(|a, b| (a.1 + a.2).total_cmp(&(b.1 + b.2)))
-            .map(|s| s.0)
+            .min_by(|a, b| a.total_ms().total_cmp(&b.total_ms()))
+            .map(|s| s.scheme)
             .unwrap_or(Scheme::Full)
     }
 }
@@ -257,7 +274,12 @@ pub fn calibrate(
                     best = (r.encode_ms, r.decode_ms, r.decoded.bytes);
                 }
             }
-            schemes.push((scheme, best.0, best.1, best.2));
+            schemes.push(SchemeCost {
+                scheme,
+                encode_ms: best.0,
+                decode_ms: best.1,
+                bytes: best.2,
+            });
         }
         points.push(CalibrationPoint { eta, caps, schemes });
     }

@@ -617,15 +617,15 @@ fn section(
                 vec![
                     format!("{:.4}", p.eta * 100.0),
                     p.caps.to_string(),
-                    f2(s[0].1),
-                    f2(s[0].2),
-                    s[0].3.to_string(),
-                    f2(s[1].1),
-                    f2(s[1].2),
-                    s[1].3.to_string(),
-                    f2(s[2].2),
-                    s[2].3.to_string(),
-                    format!("{:.3}", 100.0 * s[0].3 as f64 / s[2].3 as f64),
+                    f2(s[0].encode_ms),
+                    f2(s[0].decode_ms),
+                    s[0].bytes.to_string(),
+                    f2(s[1].encode_ms),
+                    f2(s[1].decode_ms),
+                    s[1].bytes.to_string(),
+                    f2(s[2].decode_ms),
+                    s[2].bytes.to_string(),
+                    format!("{:.3}", 100.0 * s[0].bytes as f64 / s[2].bytes as f64),
                     format!("{:?}", p.fastest()).to_lowercase(),
                 ]
             })
@@ -674,13 +674,18 @@ fn section(
              stand-ins of the same triangle counts (scanned models not available), named as \
              such. Streaming pairs are exact (tests compare them with brute force); SOLID \
              and CULLIDE are measured against them. Leaf size n = {}; readback auto \
-             (calibrated per P0 size).",
+             (calibrated per P0 size). SOLID: the same leaves in a CPU tree, refitted \
+             bottom-up and traversed as a tree pair each frame. CULLIDE: {res}x{res} views \
+             along x, y, z over the overlap of the two global boxes, two passes per view, \
+             pruning objects, then leaves, then triangles. GPU passes are timed with timer \
+             queries; CPU stages and whole frames by wall clock.",
             if quick {
                 ", quick mode (small models)"
             } else {
                 ""
             },
-            args.leaf_size
+            args.leaf_size,
+            res = args.cullide_resolution,
         ),
         tables: all_tables,
         claims,
@@ -721,7 +726,7 @@ fn claims(
     if !sparse.is_empty() {
         let worst = sparse
             .iter()
-            .map(|p| p.schemes[0].3 as f64 / p.schemes[2].3 as f64)
+            .map(|p| p.schemes[0].bytes as f64 / p.schemes[2].bytes as f64)
             .fold(0.0, f64::max);
         claims.push(Claim {
             claim: "Hierarchical readback reads a small part of P0 when CAPs are sparse".into(),
@@ -783,9 +788,7 @@ fn figures(
     let mut figures = Vec::new();
     // The curves of the paper's Fig. 7: encoding, decoding and their total for the
     // hierarchical (H) and reduced (RH) schemes, plus the full readback.
-    let curve = |name: &str,
-                 f: &dyn Fn(&(crate::collide::reduction::Scheme, f64, f64, u64)) -> f64,
-                 k: usize| {
+    let curve = |name: &str, f: &dyn Fn(&reduction_gpu::SchemeCost) -> f64, k: usize| {
         Series::new(
             name,
             fig7.iter()
@@ -801,13 +804,13 @@ fn figures(
         log_x: true,
         log_y: true,
         series: vec![
-            curve("Encoding(H)", &|s| s.1, 0),
-            curve("Decoding(H)", &|s| s.2, 0),
-            curve("Total(H)", &|s| s.1 + s.2, 0),
-            curve("Encoding(RH)", &|s| s.1, 1),
-            curve("Reading+Decoding(RH)", &|s| s.2, 1),
-            curve("Total(RH)", &|s| s.1 + s.2, 1),
-            curve("full readback", &|s| s.2, 2),
+            curve("Encoding(H)", &|s| s.encode_ms, 0),
+            curve("Decoding(H)", &|s| s.decode_ms, 0),
+            curve("Total(H)", &|s| s.total_ms(), 0),
+            curve("Encoding(RH)", &|s| s.encode_ms, 1),
+            curve("Reading+Decoding(RH)", &|s| s.decode_ms, 1),
+            curve("Total(RH)", &|s| s.total_ms(), 1),
+            curve("full readback", &|s| s.decode_ms, 2),
         ],
     }
     .write_png(&opts.out_dir.join(file))?;
