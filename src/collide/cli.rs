@@ -70,6 +70,9 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     let (x, y) = (load(&args.a)?, load(&args.b)?);
     let mut collider = StreamingCollider::new(ctx, &x, &y, args.pipeline.options())
         .context("setting up the AABB streams")?;
+    // The first frame pays for shader compilation (llvmpipe compiles on first draw); the
+    // timings reported are those of a second, identical frame.
+    collider.frame(&x.positions, &y.positions)?;
     let frame = collider.frame(&x.positions, &y.positions)?;
     if let Some(dir) = &args.dump {
         dump_buffers(&collider, dir)?;
