@@ -107,9 +107,13 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
             collider.layout.count()
         );
         print_frame(&frame);
+        // Written through a handle so that a closed pipe (`| head`) is an error, not a panic.
+        use std::io::Write as _;
+        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
         for (a, b) in &frame.pairs {
-            println!("{a} {b}");
+            writeln!(out, "{a} {b}")?;
         }
+        out.flush()?;
     }
     Ok(())
 }
@@ -175,13 +179,15 @@ fn timings_json(f: &FrameResult) -> serde_json::Value {
 fn print_frame(f: &FrameResult) {
     let t = &f.timings;
     println!(
-        "CAPs {} PCTPs {} CTPs {} eta {:.4}% readback {:?} {} B | overlap {:.2} encode {:.2} \
+        "CAPs {} PCTPs {} CTPs {} eta {:.4}% readback {} {} B | overlap {:.2} encode {:.2} \
          read+decode {:.2} tri {:.2} download {:.2} update {:.2} total {:.2} ms",
         f.caps,
         f.pctps,
         f.ctps,
         f.eta * 100.0,
-        f.scheme,
+        f.scheme
+            .map(|s| format!("{s:?}").to_lowercase())
+            .unwrap_or_else(|| "none".into()),
         f.readback_bytes,
         t.overlap,
         t.encode,
