@@ -28,7 +28,8 @@ impl StreamUpdate {
             .targets
             .pass(&self.program, "stream update (Table II)")?;
         pass.texture("vertexTexture", &vertices.texture)
-            .uniform("nMax", vertices.layout.height as i32);
+            .uniform("nMax", vertices.layout.height as i32)
+            .uniform("u_pad", 1.0 / vertices.layout.width as f32);
         pass.draw_attributeless(Primitive::Lines, 2, 1)
     }
 }
