@@ -308,3 +308,40 @@ pub fn measured_threshold(points: &[CalibrationPoint]) -> Option<f64> {
         .find(|p| p.fastest() != Scheme::Hierarchical)
         .map(|p| p.eta)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(eta: f64, totals: [f64; 3]) -> CalibrationPoint {
+        let schemes = [Scheme::Hierarchical, Scheme::Reduced, Scheme::Full]
+            .iter()
+            .zip(totals)
+            .map(|(&scheme, t)| SchemeCost {
+                scheme,
+                encode_ms: t / 2.0,
+                decode_ms: t / 2.0,
+                bytes: 0,
+            })
+            .collect();
+        CalibrationPoint {
+            eta,
+            caps: 0,
+            schemes,
+        }
+    }
+
+    #[test]
+    fn auto_picks_the_fastest_scheme_at_the_nearest_calibrated_eta() {
+        let points = [
+            point(1e-5, [1.0, 2.0, 5.0]),
+            point(1e-3, [3.0, 2.0, 5.0]),
+            point(1e-1, [9.0, 7.0, 5.0]),
+        ];
+        assert_eq!(choose(&points, 2e-5), Scheme::Hierarchical);
+        assert_eq!(choose(&points, 5e-4), Scheme::Reduced);
+        assert_eq!(choose(&points, 0.5), Scheme::Full);
+        assert_eq!(measured_threshold(&points), Some(1e-3));
+        assert_eq!(measured_threshold(&points[..1]), None);
+    }
+}
