@@ -300,3 +300,24 @@ fn paper_size_scenes_match_brute_force() {
         }
     }
 }
+
+#[test]
+fn streams_of_one_and_few_slots_in_every_scheme() {
+    // P0 of 1 x n and n x 2: the encodings must handle blocks cut by the edges.
+    let ctx = context();
+    for (nx, ny, leaf) in [(1usize, 200usize, 2usize), (300, 3, 2), (5, 5, 1)] {
+        let x = soup(nx, 0.6, nx as u64);
+        let y = soup(ny, 0.6, 100 + ny as u64);
+        let expected = all_pairs(&x, &x.positions, &y, &y.positions, Predicate::Moller);
+        for readback in [
+            ReadbackMode::Hierarchical,
+            ReadbackMode::Reduced,
+            ReadbackMode::Full,
+            ReadbackMode::Auto,
+        ] {
+            let mut c = StreamingCollider::new(&ctx, &x, &y, options(readback, leaf)).unwrap();
+            let r = c.frame(&x.positions, &y.positions).unwrap();
+            assert_eq!(r.pairs, expected, "{nx} x {ny} {readback:?}");
+        }
+    }
+}
