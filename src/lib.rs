@@ -6,7 +6,7 @@
 //!
 //! Layers, and which way the arrows point: `main.rs` -> [`report`] -> the four paper
 //! modules ([`collide`], [`crowd`], [`mlp`], [`mass`]) -> [`mesh`], [`gl`]. Only [`gl`]
-//! calls OpenGL or EGL, and only [`gl`] holds `unsafe` code.
+//! calls OpenGL or EGL, and it alone holds the code the compiler cannot check (raw GL calls).
 
 pub mod collide;
 pub mod crowd;

@@ -31,9 +31,20 @@ enum Command {
     CollideScene(classic_gpgpu::collide::cli::SceneArgs),
     /// Paper 1: Tables III-IV and Fig. 7, 10-12 against SOLID and CULLIDE.
     CollideBench(classic_gpgpu::report::paper1::Paper1Args),
+    /// Check an OBJ file, or write one of the papers' test objects.
+    #[command(subcommand)]
+    Mesh(classic_gpgpu::mesh::cli::MeshCommand),
     /// Regenerate every table and figure of the papers into a report beside the published
     /// numbers (report/index.html, report/results.json, PNG figures).
     Reproduce(report::reproduce::ReproduceArgs),
+    /// Paper 2: render a skinned crowd off-screen (two-pass or vertex-shader skinning).
+    Crowd(classic_gpgpu::crowd::cli::CrowdArgs),
+    /// Paper 2: Table 1 and the LOD runs beside the paper's numbers.
+    CrowdBench(classic_gpgpu::crowd::cli::BenchArgs),
+    /// Paper 3 (Oh & Jung 2004): a multilayer perceptron as render passes, text detection.
+    Mlp(classic_gpgpu::mlp::cli::MlpArgs),
+    /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
+    MlpBench(classic_gpgpu::mlp::cli::BenchArgs),
 }
 
 /// What every command gets.
@@ -53,7 +64,26 @@ impl Global {
     }
 }
 
+/// `classic-gpgpu ... | head` closes stdout early: that is the reader's choice, not an error,
+/// so end quietly instead of reporting a panic from `println!`.
+fn quiet_on_broken_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.contains("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    quiet_on_broken_pipe();
     let cli = Cli::parse();
     let global = Global {
         renderer: cli.renderer,
@@ -70,7 +100,18 @@ fn main() -> ExitCode {
         Command::CollideBench(a) => global
             .context()
             .and_then(|ctx| classic_gpgpu::report::paper1::bench_command(&ctx, &a, global.json)),
+        Command::Mesh(command) => classic_gpgpu::mesh::cli::run(&command, global.json),
         Command::Reproduce(args) => reproduce(&global, &args),
+        Command::Crowd(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::crowd::cli::run(&a, &c, global.json)),
+        Command::CrowdBench(a) => global
+            .context()
+            .and_then(|c| classic_gpgpu::crowd::cli::run_bench(&a, &c, global.json)),
+        Command::Mlp(args) => classic_gpgpu::mlp::cli::run(args, global.json, || global.context()),
+        Command::MlpBench(args) => {
+            classic_gpgpu::mlp::cli::bench(args, global.json, || global.context())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -34,3 +34,66 @@ fn a_renderer_that_is_not_there_is_a_clear_error() {
         assert!(!err.contains("panicked"), "{err}");
     }
 }
+
+#[test]
+fn mesh_generate_then_check_round_trips_the_papers_sizes() {
+    let dir = std::env::temp_dir().join(format!("classic-gpgpu-cli-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("sphere.obj");
+    let path_text = path.to_str().unwrap();
+    let out = classic_gpgpu(&["mesh", "generate", "sphere", "--out", path_text]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = classic_gpgpu(&["mesh", "check", path_text, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["vertices"], 422);
+    assert_eq!(report["triangles"], 840);
+    assert_eq!(report["closed"], true);
+    // The user's file is not overwritten without --force.
+    let again = classic_gpgpu(&["mesh", "generate", "cube", "--out", path_text]);
+    assert!(!again.status.success());
+    assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn bad_obj_files_are_named_with_their_line() {
+    let dir = std::env::temp_dir().join(format!("classic-gpgpu-cli-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases = [
+        (
+            "nan.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n",
+            "nan.obj:3",
+        ),
+        (
+            "face.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n",
+            "face.obj:4",
+        ),
+        ("empty.obj", "", "empty"),
+        (
+            "range.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+            "range.obj:4",
+        ),
+    ];
+    for (name, text, expected) in cases {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = classic_gpgpu(&["mesh", "check", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{name} was accepted");
+        assert!(err.contains(expected), "{name}: {err}");
+        assert!(!err.contains("panicked"), "{name}: {err}");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}

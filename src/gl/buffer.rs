@@ -177,7 +177,8 @@ pub enum AttribType {
 pub struct VertexArray {
     ctx: Context,
     id: glow::VertexArray,
-    buffers: Vec<Buffer>,
+    /// The buffer feeding each attribute location, kept alive while it is in use.
+    buffers: std::collections::HashMap<u32, Buffer>,
     index_buffer: Option<Buffer>,
 }
 
@@ -193,7 +194,7 @@ impl VertexArray {
         Ok(VertexArray {
             ctx: ctx.clone(),
             id,
-            buffers: Vec::new(),
+            buffers: std::collections::HashMap::new(),
             index_buffer: None,
         })
     }
@@ -269,7 +270,7 @@ impl VertexArray {
             gl.vertex_attrib_divisor(location, divisor);
             gl.bind_vertex_array(None);
         }
-        self.buffers.push(buffer.clone());
+        self.buffers.insert(location, buffer.clone());
         self.ctx
             .check(&format!("setting vertex attribute {location}"))
     }

@@ -74,6 +74,8 @@ pub struct Limits {
     pub max_vertex_texture_image_units: u32,
     pub max_vertex_uniform_components: u32,
     pub max_fragment_uniform_components: u32,
+    /// The largest vertex attribute stride in bytes (GL 4.4; 2048, the 4.4 minimum, before).
+    pub max_vertex_attrib_stride: u32,
     pub stencil_bits: u32,
     pub samples_passed_counter_bits: u32,
     pub time_elapsed_counter_bits: u32,
@@ -273,6 +275,9 @@ impl Context {
                 platform: platform_state,
             }),
         };
+        if version >= (3, 3) {
+            ctx.warm_up_timer_queries()?;
+        }
         if version < (3, 3) {
             return Err(GlError::Context(format!(
                 "OpenGL {}.{} is too old: classic-gpgpu needs OpenGL 3.3 core ({}). \
@@ -283,6 +288,18 @@ impl Context {
             )));
         }
         Ok(ctx)
+    }
+
+    /// llvmpipe answers the first TIME_ELAPSED query of a context that has drawn nothing
+    /// with its uptime. One throw-away query around a clear takes that answer.
+    fn warm_up_timer_queries(&self) -> Result<(), GlError> {
+        let target = super::Texture::new_2d(self, 1, 1, super::TextureFormat::R8)?;
+        let framebuffer = super::Framebuffer::new(self, "timer warm-up", &[&target], None)?;
+        let query = super::TimerQuery::new(self)?;
+        query.begin();
+        framebuffer.clear_colors([0.0; 4])?;
+        query.end();
+        query.nanoseconds().map(|_| ())
     }
 
     /// Vendor, renderer, version, platform and limits.
@@ -380,6 +397,11 @@ unsafe fn read_info(
         max_vertex_texture_image_units: int(glow::MAX_VERTEX_TEXTURE_IMAGE_UNITS),
         max_vertex_uniform_components: int(glow::MAX_VERTEX_UNIFORM_COMPONENTS),
         max_fragment_uniform_components: int(glow::MAX_FRAGMENT_UNIFORM_COMPONENTS),
+        max_vertex_attrib_stride: if gl_version >= (4, 4) {
+            int(glow::MAX_VERTEX_ATTRIB_STRIDE)
+        } else {
+            2048
+        },
         stencil_bits: stencil_bits(gl),
         samples_passed_counter_bits: counter_bits(glow::SAMPLES_PASSED),
         time_elapsed_counter_bits: counter_bits(glow::TIME_ELAPSED),

@@ -7,6 +7,8 @@
 pub mod blocks;
 mod html;
 pub mod paper1;
+pub mod paper2;
+pub mod paper3;
 pub mod paper_tables;
 pub mod plot;
 pub mod reproduce;

@@ -21,17 +21,12 @@ pub struct Stage {
 
 /// Every stage, in report order. Each paper adds its line here.
 pub fn stages() -> Vec<Stage> {
+    let stage = |id, title, run| Stage { id, title, run };
     vec![
-        Stage {
-            id: "blocks",
-            title: "building blocks",
-            run: super::blocks::run,
-        },
-        Stage {
-            id: "paper1",
-            title: "paper 1: streaming AABBs",
-            run: super::paper1::run,
-        },
+        stage("blocks", "building blocks", super::blocks::run),
+        stage("paper1", "paper 1: streaming AABBs", super::paper1::run),
+        stage("paper2", "paper 2: crowd skinning", super::paper2::run),
+        stage("paper3", "paper 3: neural networks", super::paper3::run),
     ]
 }
 

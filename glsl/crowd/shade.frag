@@ -1,0 +1,16 @@
+#version 330 core
+// Shading shared by both skinning methods (and the impostor capture), so that they render
+// the same image: one directional light plus ambient, two-sided.
+
+in vec3 v_normal;
+
+uniform vec3 u_colour;
+uniform vec3 u_light; // unit vector towards the light
+
+layout(location = 0) out vec4 o_colour;
+
+void main() {
+    vec3 n = normalize(v_normal);
+    float diffuse = abs(dot(n, u_light));
+    o_colour = vec4(u_colour * (0.3 + 0.7 * diffuse), 1.0);
+}

@@ -1,0 +1,17 @@
+#version 330 core
+// Oh & Jung 2004, section 3, eq. 3: "the pixel shader adds two textures and performs a
+// sigmoid operation": r_ij = 1 / (1 + e^-(m_ij + b_i)). An identity layer skips the sigmoid.
+
+uniform sampler2D u_product; // texture W x X: L wide, M high, R32F
+uniform sampler1D u_bias;    // M texels, R32F: texel i = b_i
+uniform bool u_sigmoid;      // false: identity activation
+
+in vec2 v_product;
+in float v_bias;
+
+layout(location = 0) out float o_result; // R, L wide, M high: the next layer's texture X
+
+void main() {
+    float m = texture(u_product, v_product).r + texture(u_bias, v_bias).r;
+    o_result = u_sigmoid ? 1.0 / (1.0 + exp(-m)) : m;
+}

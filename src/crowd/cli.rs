@@ -1,0 +1,214 @@
+//! `classic-gpgpu crowd`: render a crowd off-screen with either skinning method, report
+//! frames per second and the time of each pass, and write a snapshot (paper Fig. 3-5).
+//! `classic-gpgpu crowd-bench`: the paper's Table 1 and LOD runs (see `report::paper2`).
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context as _};
+use serde_json::json;
+
+use crate::gl::{dump, Context};
+use crate::report::{self, BenchOptions};
+
+use super::character::{CharacterModel, ModelKind};
+use super::renderer::{CrowdRenderer, Method};
+use super::scene::{self, RunStats};
+
+/// Arguments of `crowd`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct CrowdArgs {
+    /// Which character.
+    #[arg(long, value_enum, default_value = "soldier")]
+    pub model: ModelKind,
+    /// How many characters (n).
+    #[arg(long, default_value_t = 256)]
+    pub characters: usize,
+    /// Skinning in a pixel shader + render-to-VBO (the paper) or in the vertex shader.
+    #[arg(long, value_enum, default_value = "two-pass")]
+    pub method: Method,
+    /// LOD meshes, sprites and view-frustum culling (paper Fig. 4-5); without it every
+    /// character is skinned at full detail, as in Table 1.
+    #[arg(long)]
+    pub lod: bool,
+    /// Timed frames (after one warm-up frame).
+    #[arg(long, default_value_t = 10)]
+    pub frames: usize,
+    /// Image size, WxH.
+    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Write the last frame here as PNG.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// Characters per draw call of the vertex-shader method (default: as many as the
+    /// uniforms hold; 1 is how the paper's hardware generation ran it).
+    #[arg(long)]
+    pub vs_batch: Option<u32>,
+    /// Seed of the crowd's placement and wandering.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+/// Parses `WxH`.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("size '{text}' is not WxH with positive integers (e.g. 800x600)");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(bad());
+    }
+    Ok((w, h))
+}
+
+/// Runs `crowd`.
+pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    if args.characters == 0 {
+        bail!("--characters must be at least 1");
+    }
+    if args.frames == 0 {
+        bail!("--frames must be at least 1");
+    }
+    let (w, h) = args.size;
+    let [max_w, max_h] = ctx.info().limits.max_viewport_dims;
+    if w > max_w || h > max_h {
+        bail!("--size {w}x{h} exceeds this renderer's largest viewport {max_w}x{max_h}");
+    }
+    let model = CharacterModel::build(args.model).context("building the character model")?;
+    let mut renderer = CrowdRenderer::new(ctx, model).context("setting up the crowd renderer")?;
+    if let Some(batch) = args.vs_batch {
+        if batch == 0 {
+            bail!("--vs-batch must be at least 1");
+        }
+        renderer.set_vertex_shader_batch(batch);
+    }
+    let target = scene::scene_target(ctx, w, h)?;
+    let aspect = w as f32 / h as f32;
+    let mut scene = if args.lod {
+        scene::lod_scene(args.model, args.characters, aspect, args.seed)
+    } else {
+        scene::table1_scene(args.model, args.characters, aspect, args.seed)
+    };
+    let stats = scene::run(
+        ctx,
+        &mut renderer,
+        &target,
+        &mut scene,
+        args.method,
+        args.frames,
+        1.0 / 30.0,
+    )?;
+    if let Some(path) = &args.png {
+        dump::texture_png(target.color(0), path, dump::DumpRange::Auto)
+            .with_context(|| format!("writing the snapshot {}", path.display()))?;
+    }
+    if json {
+        let value = json!({
+            "renderer": ctx.info().renderer,
+            "size": [w, h],
+            "vertex_shader_batch": renderer.vertex_shader_batch(),
+            "run": stats,
+            "png": args.png,
+        });
+        println!("{}", serde_json::to_string_pretty(&value)?);
+    } else {
+        print_text(ctx, &stats, &args.png, renderer.vertex_shader_batch());
+    }
+    Ok(())
+}
+
+fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
+    let p = &s.passes;
+    println!("renderer        {}", ctx.info().renderer);
+    println!(
+        "crowd           {} x {} ({}), {}",
+        s.characters,
+        s.model,
+        s.method,
+        if s.lod_and_culling {
+            "LOD + sprites + culling"
+        } else {
+            "full detail, no culling"
+        }
+    );
+    println!(
+        "frame           {:.2} ms wall clock, {:.1} FPS over {} frames",
+        s.frame_ms, s.fps, s.frames
+    );
+    println!(
+        "drawn           {} skinned (LOD {} / {} / {}), {} sprites, {} culled, {} triangles",
+        p.skinned, s.per_lod[0], s.per_lod[1], s.per_lod[2], p.sprites, s.culled, p.triangles
+    );
+    println!("bone matrices   {:.2} ms (CPU)", p.bones_ms);
+    let (g, w) = (&p.gl_timer, &p.wall);
+    let line = |name: &str, gl: f64, wall: f64| {
+        println!("{name:<15} {wall:.2} ms wall clock with glFinish, {gl:.2} ms GL timer query");
+    };
+    if s.method == Method::TwoPass.name() {
+        println!("bone upload     {:.2} ms (CPU)", p.upload_ms);
+        line("pass 1 skinning", g.pass1, w.pass1);
+        line("render-to-VBO", g.copy, w.copy);
+        line("pass 2 drawing", g.pass2, w.pass2);
+    } else {
+        line("VS skinning", g.vertex_shader, w.vertex_shader);
+        println!("                ({batch} characters per draw call)");
+    }
+    if p.sprites > 0 {
+        line("sprites", g.sprites, w.sprites);
+    }
+    if let Some(path) = png {
+        println!("snapshot        {}", path.display());
+    }
+}
+
+/// Arguments of `crowd-bench`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct BenchArgs {
+    /// Small sizes (up to 64 characters, LOD runs at a tenth) for a quick look or CI.
+    #[arg(long)]
+    pub quick: bool,
+    /// Where the figures (PNG) go.
+    #[arg(long, default_value = "target/crowd-bench")]
+    pub out: PathBuf,
+}
+
+/// Runs `crowd-bench`: Table 1 and the LOD runs beside the paper's numbers.
+pub fn run_bench(args: &BenchArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let progress = indicatif::MultiProgress::new();
+    if json {
+        progress.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let opts = BenchOptions {
+        gl: ctx,
+        quick: args.quick,
+        out_dir: args.out.clone(),
+        progress,
+    };
+    let section = report::paper2::run(&opts)?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&section)?);
+        return Ok(());
+    }
+    println!("{}\n\n{}\n", section.title, section.summary);
+    for table in &section.tables {
+        println!("{}", table.to_text());
+    }
+    for claim in &section.claims {
+        let verdict = match claim.holds {
+            Some(true) => "holds",
+            Some(false) => "does not hold",
+            None => "not judged",
+        };
+        println!(
+            "- {}\n  paper: {}\n  here:  {} ({verdict})",
+            claim.claim, claim.paper, claim.measured
+        );
+    }
+    for figure in &section.figures {
+        println!(
+            "figure: {} ({})",
+            args.out.join(&figure.file).display(),
+            figure.caption
+        );
+    }
+    Ok(())
+}

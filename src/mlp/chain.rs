@@ -1,0 +1,248 @@
+//! Layer chaining (section 3): "the result of the previous layer is saved in the form of a
+//! render target texture, which is then used as an input for the next layer", so after
+//! texture creation every operation of every layer runs on the GPU and only the last layer's
+//! output is read back.
+
+use super::activation::{activation_pass, activation_program};
+use super::matmul::{float_target, product_pass, product_program};
+use super::network::Network;
+use super::packed::{
+    packed_activation_pass, packed_inputs, packed_layer, packed_product_pass, packed_target,
+    read_packed, targets_of, texels, PackedLayer, PackedPrograms,
+};
+use super::textures::{input_texture, layer_textures, LayerTextures};
+use crate::gl::{Context, GlError, Program, TimerQuery};
+use ndarray::{Array2, ArrayView2};
+use serde::Serialize;
+use std::time::Instant;
+
+/// Which GPU formulation evaluates the network.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Formulation {
+    /// The paper's: one float per texel, one inner product per fragment.
+    Faithful,
+    /// Four floats per texel, a 4 x 4 block of outputs per fragment (MRT).
+    Packed,
+}
+
+/// Time spent in each elementary operation (Table 1), in milliseconds. Texture creation and
+/// readback are wall clock (they involve the CPU); the passes are GL timer queries.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct StepTimes {
+    pub texture_creation: f64,
+    pub matmul: f64,
+    pub activation: f64,
+    pub readback: f64,
+}
+
+impl StepTimes {
+    pub fn add(&mut self, other: &StepTimes) {
+        self.texture_creation += other.texture_creation;
+        self.matmul += other.matmul;
+        self.activation += other.activation;
+        self.readback += other.readback;
+    }
+}
+
+/// The compiled programs of both formulations on one context.
+pub struct GpuMlp {
+    ctx: Context,
+    product: Program,
+    activation: Program,
+    packed: PackedPrograms,
+}
+
+enum LayerStack {
+    Faithful(Vec<LayerTextures>),
+    Packed(Vec<PackedLayer>),
+}
+
+/// A network whose weights and biases are textures, ready for batches.
+pub struct GpuNetwork<'a> {
+    pub(crate) gpu: &'a GpuMlp,
+    layers: LayerStack,
+    pub(crate) inputs: usize,
+    pub(crate) outputs: usize,
+    /// Wall-clock milliseconds spent making the weight and bias textures.
+    pub upload_ms: f64,
+}
+
+impl GpuMlp {
+    /// Compiles the programs of both formulations.
+    pub fn new(ctx: &Context) -> Result<GpuMlp, GlError> {
+        let mlp = GpuMlp {
+            ctx: ctx.clone(),
+            product: product_program(ctx)?,
+            activation: activation_program(ctx)?,
+            packed: PackedPrograms::new(ctx)?,
+        };
+        Ok(mlp)
+    }
+
+    pub fn context(&self) -> &Context {
+        &self.ctx
+    }
+
+    /// Makes the weight and bias textures of `net`, refusing layers wider than the renderer's
+    /// textures (see [`super::tiling::check_network_fits`]).
+    pub fn load(&self, net: &Network, formulation: Formulation) -> Result<GpuNetwork<'_>, GlError> {
+        super::tiling::check_network_fits(&self.ctx, net, formulation)?;
+        let start = Instant::now();
+        let layers = match formulation {
+            Formulation::Faithful => LayerStack::Faithful(
+                net.layers()
+                    .iter()
+                    .map(|l| layer_textures(&self.ctx, l))
+                    .collect::<Result<_, _>>()?,
+            ),
+            Formulation::Packed => LayerStack::Packed(
+                net.layers()
+                    .iter()
+                    .map(|l| packed_layer(&self.ctx, l))
+                    .collect::<Result<_, _>>()?,
+            ),
+        };
+        self.ctx.finish_all();
+        Ok(GpuNetwork {
+            gpu: self,
+            layers,
+            inputs: net.inputs(),
+            outputs: net.outputs(),
+            upload_ms: start.elapsed().as_secs_f64() * 1e3,
+        })
+    }
+}
+
+/// Timer queries around the passes, read once everything has been drawn.
+struct PassTimers {
+    matmul: Vec<TimerQuery>,
+    activation: Vec<TimerQuery>,
+}
+
+impl PassTimers {
+    fn new() -> PassTimers {
+        PassTimers {
+            matmul: Vec::new(),
+            activation: Vec::new(),
+        }
+    }
+
+    fn time(
+        ctx: &Context,
+        into: &mut Vec<TimerQuery>,
+        pass: impl FnOnce() -> Result<(), GlError>,
+    ) -> Result<(), GlError> {
+        let query = TimerQuery::new(ctx)?;
+        query.begin();
+        let result = pass();
+        query.end();
+        into.push(query);
+        result
+    }
+
+    fn read(&self, times: &mut StepTimes) -> Result<(), GlError> {
+        for q in &self.matmul {
+            times.matmul += q.milliseconds()?;
+        }
+        for q in &self.activation {
+            times.activation += q.milliseconds()?;
+        }
+        Ok(())
+    }
+}
+
+impl GpuNetwork<'_> {
+    pub fn formulation(&self) -> Formulation {
+        match self.layers {
+            LayerStack::Faithful(_) => Formulation::Faithful,
+            LayerStack::Packed(_) => Formulation::Packed,
+        }
+    }
+
+    /// All layers on one batch that fits one texture (L x N in, L x M out).
+    pub(crate) fn forward_tile(
+        &self,
+        batch: ArrayView2<f32>,
+    ) -> Result<(Array2<f32>, StepTimes), GlError> {
+        match &self.layers {
+            LayerStack::Faithful(layers) => self.faithful_tile(layers, batch),
+            LayerStack::Packed(layers) => self.packed_tile(layers, batch),
+        }
+    }
+
+    fn faithful_tile(
+        &self,
+        layers: &[LayerTextures],
+        batch: ArrayView2<f32>,
+    ) -> Result<(Array2<f32>, StepTimes), GlError> {
+        let (ctx, gpu) = (&self.gpu.ctx, self.gpu);
+        let l = batch.nrows() as u32;
+        let mut times = StepTimes::default();
+        let start = Instant::now();
+        let mut x = input_texture(ctx, batch)?;
+        ctx.finish_all();
+        times.texture_creation = start.elapsed().as_secs_f64() * 1e3;
+        let mut timers = PassTimers::new();
+        let mut last = None;
+        for layer in layers {
+            let product = float_target(ctx, "mlp W x X", l, layer.m)?;
+            PassTimers::time(ctx, &mut timers.matmul, || {
+                product_pass(&gpu.product, layer, &x, &product)
+            })?;
+            let result = float_target(ctx, "mlp R", l, layer.m)?;
+            PassTimers::time(ctx, &mut timers.activation, || {
+                activation_pass(&gpu.activation, layer, product.color(0), &result)
+            })?;
+            x = result.color(0).clone();
+            last = Some(result);
+        }
+        let result = last.expect("a network has layers");
+        let start = Instant::now();
+        let data = result.read_f32(0, result.rect())?; // M rows of L
+        let outputs = Array2::from_shape_vec((self.outputs, l as usize), data)
+            .expect("M x L")
+            .reversed_axes()
+            .as_standard_layout()
+            .into_owned();
+        times.readback = start.elapsed().as_secs_f64() * 1e3;
+        timers.read(&mut times)?;
+        Ok((outputs, times))
+    }
+
+    fn packed_tile(
+        &self,
+        layers: &[PackedLayer],
+        batch: ArrayView2<f32>,
+    ) -> Result<(Array2<f32>, StepTimes), GlError> {
+        let (ctx, programs) = (&self.gpu.ctx, &self.gpu.packed);
+        let l = batch.nrows();
+        let l4 = texels(l) as u32;
+        let mut times = StepTimes::default();
+        let start = Instant::now();
+        let mut x = packed_inputs(ctx, batch)?;
+        ctx.finish_all();
+        times.texture_creation = start.elapsed().as_secs_f64() * 1e3;
+        let mut timers = PassTimers::new();
+        let mut last = None;
+        for layer in layers {
+            let product = packed_target(ctx, "mlp packed W x X", l4, layer.m4)?;
+            PassTimers::time(ctx, &mut timers.matmul, || {
+                packed_product_pass(programs, layer, &x, &product)
+            })?;
+            let result = packed_target(ctx, "mlp packed R", l4, layer.m4)?;
+            let product = targets_of(&product);
+            PassTimers::time(ctx, &mut timers.activation, || {
+                packed_activation_pass(programs, layer, &product, &result)
+            })?;
+            x = targets_of(&result);
+            last = Some(result);
+        }
+        let result = last.expect("a network has layers");
+        let start = Instant::now();
+        let outputs = read_packed(&result, l, self.outputs)?;
+        times.readback = start.elapsed().as_secs_f64() * 1e3;
+        timers.read(&mut times)?;
+        Ok((outputs, times))
+    }
+}

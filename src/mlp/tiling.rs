@@ -1,0 +1,105 @@
+//! Batches larger than a texture: "the GPU's performance is maximized by accumulating a large
+//! number of input vectors to create a two-dimensional texture", up to the maximum texture
+//! size (footnote 1: 2048 on the paper's ATI RADEON 9700 PRO). Larger batches are split into
+//! tiles of input vectors, each run through all layers on the GPU in turn. A layer whose W
+//! does not fit a texture (N or M beyond the limit) is refused with a message that says so.
+
+use super::chain::{Formulation, GpuNetwork, StepTimes};
+use super::network::Network;
+use super::packed::{texels, PACK};
+use crate::gl::{Context, GlError};
+use ndarray::{s, Array2, ArrayView2};
+
+/// The outputs of a (possibly tiled) batch.
+#[derive(Clone, Debug)]
+pub struct GpuForward {
+    /// L x M of the last layer.
+    pub outputs: Array2<f32>,
+    /// Summed over tiles.
+    pub times: StepTimes,
+    pub tiles: usize,
+    /// Input vectors per tile.
+    pub tile_vectors: usize,
+}
+
+/// The largest side of a texture that is also a render target.
+fn max_side(ctx: &Context) -> u32 {
+    let l = &ctx.info().limits;
+    l.max_texture_size
+        .min(l.max_viewport_dims[0])
+        .min(l.max_viewport_dims[1])
+}
+
+/// Input vectors that fit one texture in `formulation`: the texture width, four times that
+/// when packed.
+pub fn max_vectors_per_texture(ctx: &Context, formulation: Formulation) -> usize {
+    let side = max_side(ctx) as usize;
+    match formulation {
+        Formulation::Faithful => side,
+        Formulation::Packed => side * PACK,
+    }
+}
+
+/// Why a layer is refused, if it is: its W (N wide, M high) and its output (M high) must fit.
+pub fn check_network_fits(
+    ctx: &Context,
+    net: &Network,
+    formulation: Formulation,
+) -> Result<(), GlError> {
+    let max = max_side(ctx) as usize;
+    for (index, layer) in net.layers().iter().enumerate() {
+        let (n, m) = (layer.inputs(), layer.outputs());
+        let (w_wide, w_high, what) = match formulation {
+            Formulation::Faithful => (n, m, "one texel per weight"),
+            Formulation::Packed => (texels(n), texels(m) * PACK, "four weights per texel"),
+        };
+        if w_wide > max || w_high > max {
+            return Err(GlError::Limit(format!(
+                "layer {index} ({n} inputs, {m} outputs) does not fit this renderer: its \
+                 texture W would be {w_wide} x {w_high} texels ({what}) but textures hold at \
+                 most {max} per side (GL_MAX_TEXTURE_SIZE / viewport); only the batch is split \
+                 into tiles, so a layer this wide is refused"
+            )));
+        }
+    }
+    Ok(())
+}
+
+impl GpuNetwork<'_> {
+    /// Runs a batch (L x N, row j = input vector j) through the network in tiles of at most
+    /// `max_vectors` input vectors (default and upper limit: what one texture holds).
+    pub fn forward(
+        &self,
+        batch: ArrayView2<f32>,
+        max_vectors: Option<usize>,
+    ) -> Result<GpuForward, GlError> {
+        if batch.ncols() != self.inputs {
+            return Err(GlError::Invalid(format!(
+                "the batch has {} values per input vector but the network takes {}",
+                batch.ncols(),
+                self.inputs
+            )));
+        }
+        if batch.nrows() == 0 {
+            return Err(GlError::Invalid("the batch has no input vectors".into()));
+        }
+        let limit = max_vectors_per_texture(self.gpu.context(), self.formulation());
+        let tile = max_vectors.unwrap_or(limit).clamp(1, limit);
+        let mut outputs = Array2::zeros((batch.nrows(), self.outputs));
+        let mut times = StepTimes::default();
+        let mut tiles = 0;
+        for start in (0..batch.nrows()).step_by(tile) {
+            let end = (start + tile).min(batch.nrows());
+            let (out, t) = self.forward_tile(batch.slice(s![start..end, ..]))?;
+            outputs.slice_mut(s![start..end, ..]).assign(&out);
+            times.add(&t);
+            tiles += 1;
+        }
+        Ok(GpuForward {
+            outputs,
+            times,
+            tiles,
+            tile_vectors: tile,
+        })
+    }
+}
