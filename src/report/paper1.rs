@@ -488,46 +488,90 @@ fn f2(v: f64) -> String {
     format!("{v:.2}")
 }
 
-fn section(
-    opts: &BenchOptions,
-    runs: &[SceneRun],
-    fig7: &[CalibrationPoint],
-    sweep: &[SweepPoint],
-    frames: usize,
-    quick: bool,
-    args: &Paper1Args,
-) -> anyhow::Result<Section> {
-    let renderer = opts.gl.info().renderer_line();
-    let tables = super::paper_tables::load();
-    let paper = tables
-        .get("paper1")
-        .and_then(|v| v.as_table())
-        .cloned()
-        .unwrap_or_default();
-    let paper_row = |table: &str, i: usize| -> Vec<toml::Value> {
-        paper
+/// The paper's numbers, row by row, from `assets/paper_tables.toml`.
+struct PaperTables(toml::Table);
+
+impl PaperTables {
+    fn load() -> PaperTables {
+        let tables = super::paper_tables::load();
+        PaperTables(
+            tables
+                .get("paper1")
+                .and_then(|v| v.as_table())
+                .cloned()
+                .unwrap_or_default(),
+        )
+    }
+
+    /// Row of `table` for scene `name` (Table III's order), as cells.
+    fn row(&self, table: &str, name: &str) -> Vec<String> {
+        let i = SCENES.iter().position(|&s| s == name).unwrap_or(0);
+        self.0
             .get(table)
             .and_then(|t| t.get("rows"))
             .and_then(|r| r.as_array())
             .and_then(|r| r.get(i))
             .and_then(|r| r.as_array())
-            .cloned()
+            .map(|cells| cells.iter().map(cell).collect())
             .unwrap_or_default()
-    };
-    let num = |v: Option<&toml::Value>| -> String {
-        match v {
-            Some(toml::Value::Float(f)) => format!("{f}"),
-            Some(toml::Value::Integer(i)) => format!("{i}"),
-            _ => "-".into(),
-        }
-    };
-    let index_of = |name: &str| SCENES.iter().position(|&s| s == name).unwrap_or(0);
-    let mut t3 = Table {
+    }
+}
+
+fn cell(v: &toml::Value) -> String {
+    match v {
+        toml::Value::Float(f) => format!("{f}"),
+        toml::Value::Integer(i) => format!("{i}"),
+        toml::Value::String(s) => s.clone(),
+        _ => "-".into(),
+    }
+}
+
+/// Cell `k` of a paper row, or "-".
+fn at(p: &[String], k: usize) -> String {
+    p.get(k).cloned().unwrap_or_else(|| "-".into())
+}
+
+fn header(names: &[&str]) -> Vec<String> {
+    names.iter().map(|s| s.to_string()).collect()
+}
+
+fn table3(runs: &[SceneRun], paper: &PaperTables, renderer: &str, frames: usize) -> Table {
+    let rows = runs
+        .iter()
+        .map(|r| {
+            let p = paper.row("table3", &r.name);
+            let t = &r.stream.timings;
+            vec![
+                r.label.clone(),
+                format!("{}x2", r.triangles),
+                r.stream.caps.to_string(),
+                at(&p, 3),
+                r.stream.pctps.to_string(),
+                at(&p, 4),
+                r.stream.ctps.to_string(),
+                at(&p, 5),
+                f2(t.overlap),
+                at(&p, 6),
+                format!("{:.2}/{:.2}", t.encode, t.readback),
+                format!("{}/{}", at(&p, 7), at(&p, 8)),
+                f2(t.tri_test),
+                at(&p, 9),
+                f2(t.download),
+                at(&p, 10),
+                f2(t.update),
+                at(&p, 11),
+                f2(t.total),
+                at(&p, 12),
+                r.schemes.join("+"),
+            ]
+        })
+        .collect();
+    Table {
         caption: format!(
             "Table III: streaming AABBs per frame, mean of {frames} frames ({renderer}); \
              paper (GeForce 7800 GTX) in the (paper) columns"
         ),
-        header: [
+        header: header(&[
             "scene",
             "nTris",
             "nCAPs",
@@ -549,45 +593,39 @@ fn section(
             "total",
             "(paper)",
             "scheme",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: Vec::new(),
-    };
-    for r in runs {
-        let p = paper_row("table3", index_of(&r.name));
-        let t = &r.stream.timings;
-        t3.rows.push(vec![
-            r.label.clone(),
-            format!("{}x2", r.triangles),
-            r.stream.caps.to_string(),
-            num(p.get(3)),
-            r.stream.pctps.to_string(),
-            num(p.get(4)),
-            r.stream.ctps.to_string(),
-            num(p.get(5)),
-            f2(t.overlap),
-            num(p.get(6)),
-            format!("{:.2}/{:.2}", t.encode, t.readback),
-            format!("{}/{}", num(p.get(7)), num(p.get(8))),
-            f2(t.tri_test),
-            num(p.get(9)),
-            f2(t.download),
-            num(p.get(10)),
-            f2(t.update),
-            num(p.get(11)),
-            f2(t.total),
-            num(p.get(12)),
-            r.schemes.join("+"),
-        ]);
+        ]),
+        rows,
     }
-    let mut t4 = Table {
+}
+
+fn table4(runs: &[SceneRun], paper: &PaperTables, renderer: &str, resolution: u32) -> Table {
+    let rows = runs
+        .iter()
+        .map(|r| {
+            let p = paper.row("table4", &r.name);
+            let c = &r.cullide;
+            vec![
+                r.label.clone(),
+                f2(c.pruning_ms),
+                at(&p, 1),
+                f2(c.tri_test_ms),
+                at(&p, 2),
+                c.pctps.to_string(),
+                at(&p, 3),
+                c.ctps.to_string(),
+                at(&p, 4),
+                format!("{:.0}", r.cullide_missing_percent),
+                at(&p, 5),
+                c.queries.to_string(),
+            ]
+        })
+        .collect();
+    Table {
         caption: format!(
-            "Table IV: CULLIDE at {0}x{0}, mean per frame ({renderer}); missing = exact pairs \
-             CULLIDE did not report",
-            args.cullide_resolution
+            "Table IV: CULLIDE at {resolution}x{resolution}, mean per frame ({renderer}); \
+             missing = exact pairs CULLIDE did not report"
         ),
-        header: [
+        header: header(&[
             "scene",
             "pruning",
             "(paper)",
@@ -600,55 +638,18 @@ fn section(
             "missing %",
             "(paper)",
             "queries",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: Vec::new(),
-    };
-    for r in runs {
-        let p = paper_row("table4", index_of(&r.name));
-        let c = &r.cullide;
-        t4.rows.push(vec![
-            r.label.clone(),
-            f2(c.pruning_ms),
-            num(p.get(1)),
-            f2(c.tri_test_ms),
-            num(p.get(2)),
-            c.pctps.to_string(),
-            num(p.get(3)),
-            c.ctps.to_string(),
-            num(p.get(4)),
-            format!("{:.0}", r.cullide_missing_percent),
-            num(p.get(5)),
-            c.queries.to_string(),
-        ]);
+        ]),
+        rows,
     }
-    // Fig. 10-12 in numbers. The paper compares culling + update without the triangle test,
-    // with and without the texture download.
-    let mut cmp = Table {
-        caption: format!(
-            "Fig. 10-12: ms per frame ({renderer}). Culling = streaming overlap + readback + \
-             update (+ download) vs SOLID refit + traversal; totals include the triangle test"
-        ),
-        header: [
-            "scene",
-            "stream cull",
-            "stream cull+download",
-            "SOLID refit+traverse",
-            "SOLID / stream (no download)",
-            "SOLID / stream (with download)",
-            "stream total",
-            "SOLID total",
-            "CULLIDE total",
-            "CULLIDE / stream",
-            "SOLID = exact",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: Vec::new(),
-    };
+}
+
+/// Fig. 10-12 in numbers, and the ratios the claims judge: SOLID / streaming culling
+/// (without and with the download) and CULLIDE / streaming per frame. The paper compares
+/// culling + update without the triangle test, with and without the texture download.
+fn comparison(runs: &[SceneRun], renderer: &str) -> (Table, Vec<(f64, f64)>, Vec<f64>) {
     let mut ratios_solid = Vec::new();
     let mut ratios_cullide = Vec::new();
+    let mut rows = Vec::new();
     for r in runs {
         let t = &r.stream.timings;
         let cull = t.overlap + t.encode + t.readback + t.update;
@@ -656,7 +657,7 @@ fn section(
         let cullide_total = r.cullide.pruning_ms + r.cullide.tri_test_ms;
         ratios_solid.push((solid_cull / cull, solid_cull / (cull + t.download)));
         ratios_cullide.push(cullide_total / t.total);
-        cmp.rows.push(vec![
+        rows.push(vec![
             r.label.clone(),
             f2(cull),
             f2(cull + t.download),
@@ -670,13 +671,37 @@ fn section(
             format!("{}/{}", r.solid_agrees, r.frames),
         ]);
     }
-    let fig7_table = Table {
+    let table = Table {
+        caption: format!(
+            "Fig. 10-12: ms per frame ({renderer}). Culling = streaming overlap + readback + \
+             update (+ download) vs SOLID refit + traversal; totals include the triangle test"
+        ),
+        header: header(&[
+            "scene",
+            "stream cull",
+            "stream cull+download",
+            "SOLID refit+traverse",
+            "SOLID / stream (no download)",
+            "SOLID / stream (with download)",
+            "stream total",
+            "SOLID total",
+            "CULLIDE total",
+            "CULLIDE / stream",
+            "SOLID = exact",
+        ]),
+        rows,
+    };
+    (table, ratios_solid, ratios_cullide)
+}
+
+fn fig7_table(fig7: &[CalibrationPoint], renderer: &str, quick: bool) -> Table {
+    Table {
         caption: format!(
             "Fig. 7: readback of a {0}x{0} P0 against eta, best of repeats ({renderer}): \
              encode (GPU) + read/decode (wall) ms, and bytes read back",
             if quick { 512 } else { 2048 }
         ),
-        header: [
+        header: header(&[
             "eta %",
             "CAPs",
             "hier enc",
@@ -689,9 +714,7 @@ fn section(
             "full bytes",
             "hier/full bytes %",
             "fastest",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ]),
         rows: fig7
             .iter()
             .map(|p| {
@@ -712,21 +735,22 @@ fn section(
                 ]
             })
             .collect(),
-    };
-    let sweep_table = Table {
+    }
+}
+
+fn sweep_table(sweep: &[SweepPoint], renderer: &str) -> Table {
+    Table {
         caption: format!(
             "Leaf size n on interlocking tori ({renderer}): why the default is {DEFAULT_LEAF_SIZE}"
         ),
-        header: [
+        header: header(&[
             "n",
             "P0 side",
             "overlap ms",
             "tri test ms",
             "PCTPs",
             "total ms",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ]),
         rows: sweep
             .iter()
             .map(|p| {
@@ -740,13 +764,32 @@ fn section(
                 ]
             })
             .collect(),
-    };
+    }
+}
+
+fn section(
+    opts: &BenchOptions,
+    runs: &[SceneRun],
+    fig7: &[CalibrationPoint],
+    sweep: &[SweepPoint],
+    frames: usize,
+    quick: bool,
+    args: &Paper1Args,
+) -> anyhow::Result<Section> {
+    let renderer = opts.gl.info().renderer_line();
+    let paper = PaperTables::load();
+    let (cmp, ratios_solid, ratios_cullide) = comparison(runs, &renderer);
+    let mut all_tables = vec![
+        table3(runs, &paper, &renderer, frames),
+        table4(runs, &paper, &renderer, args.cullide_resolution),
+        cmp,
+        fig7_table(fig7, &renderer, quick),
+    ];
+    if !sweep.is_empty() {
+        all_tables.push(sweep_table(sweep, &renderer));
+    }
     let figures = figures(opts, runs, fig7)?;
     let claims = claims(runs, fig7, &ratios_solid, &ratios_cullide);
-    let mut all_tables = vec![t3, t4, cmp, fig7_table];
-    if !sweep.is_empty() {
-        all_tables.push(sweep_table);
-    }
     Ok(Section {
         id: "paper1".into(),
         title: "Paper 1: collision detection with streaming AABBs (Zhang & Kim 2007)".into(),
