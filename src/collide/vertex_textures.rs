@@ -2,7 +2,9 @@
 //! texture of `2^d_max x n_max` texels. Texel `(k, i)` holds vertex `i` of the leaf in
 //! slot `k` (virtual slots copy their leaf, so their boxes copy their parent's); RGB is
 //! the position and alpha is 1, or alpha 0 for an empty texel when the leaf has fewer
-//! than `n_max` vertices.
+//! than `n_max` vertices. (The paper defines `n_max` as the most triangles in a leaf, yet
+//! stores a leaf's unique vertices, one per texel; `n_max` here is the most unique vertices
+//! in a leaf, the number of texels a column needs.)
 
 use super::stream_setup::AabbStream;
 use crate::gl::{Context, GlError, Texture, TextureFormat};
