@@ -276,6 +276,12 @@ fn every_collide_shader_compiles_and_links() {
         &[shader!("glsl/collide/cullide.frag")],
     )
     .unwrap();
+    Program::new(
+        &ctx,
+        &[shader!("glsl/collide/snapshot.vert")],
+        &[shader!("glsl/collide/snapshot.frag")],
+    )
+    .unwrap();
 }
 
 /// The paper's size: every scene of Table III, two frames, each readback scheme, against

@@ -76,6 +76,7 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     let frame = collider.frame(&x.positions, &y.positions)?;
     if let Some(dir) = &args.dump {
         dump_buffers(&collider, dir)?;
+        snapshot(&collider, &frame, (&x, &y), &dir.join("snapshot.png"))?;
     }
     let renderer = ctx.info().renderer_line();
     let report = json!({
@@ -197,6 +198,56 @@ fn print_frame(f: &FrameResult) {
         t.update,
         t.total
     );
+}
+
+/// Paper Fig. 1 / 6(a): the models, their colliding triangles and the boxes of the CAPs.
+pub fn snapshot(
+    collider: &StreamingCollider,
+    frame: &FrameResult,
+    (x, y): (&crate::mesh::Mesh, &crate::mesh::Mesh),
+    path: &Path,
+) -> anyhow::Result<()> {
+    use super::snapshot::{write_png, SnapshotModel};
+    let model = |m: &crate::mesh::Mesh, stream: &super::AabbStream, side: usize| {
+        let mut colliding: Vec<u32> = frame
+            .pairs
+            .iter()
+            .map(|p| if side == 0 { p.0 } else { p.1 })
+            .collect();
+        colliding.sort_unstable();
+        colliding.dedup();
+        let boxes = stream.leaf_boxes(&m.positions);
+        let mut leaves: Vec<u32> = frame
+            .cap_leaves
+            .iter()
+            .map(|c| if side == 0 { c.0 } else { c.1 })
+            .collect();
+        leaves.sort_unstable();
+        leaves.dedup();
+        (
+            (0..m.triangles.len()).map(|t| m.triangle(t)).collect(),
+            colliding,
+            leaves.iter().map(|&l| boxes[l as usize]).collect(),
+        )
+    };
+    let (tx, cx, bx) = model(x, &collider.x.stream, 0);
+    let (ty, cy, by) = model(y, &collider.y.stream, 1);
+    write_png(
+        collider.context(),
+        &SnapshotModel {
+            triangles: tx,
+            colliding: &cx,
+            cap_boxes: bx,
+        },
+        &SnapshotModel {
+            triangles: ty,
+            colliding: &cy,
+            cap_boxes: by,
+        },
+        800,
+        path,
+    )?;
+    Ok(())
 }
 
 /// Paper Fig. 6: P0, the hierarchy P1..P3, the reduced P1', and the AABB textures.

@@ -47,6 +47,7 @@ pub mod pipeline;
 pub mod reduction;
 pub mod reduction_gpu;
 pub mod scenes;
+pub mod snapshot;
 pub mod solid;
 pub mod stream_setup;
 pub mod stream_update;
