@@ -80,6 +80,8 @@ pub struct SceneRun {
     pub cullide_missing_percent: f64,
     /// Per-frame totals (ms) for Fig. 10-12: streaming, SOLID, CULLIDE.
     pub series: [Vec<f64>; 3],
+    /// The Fig. 8-9 style snapshot of the last frame (file in the output folder).
+    pub snapshot: Option<String>,
 }
 
 pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
@@ -339,6 +341,14 @@ fn run_scene(
         out.series[1].push(refit + traverse + solid_tri);
         out.series[2].push(c.pruning_ms + c.tri_test_ms);
         accumulate(&mut out, &s, refit, traverse, solid_tri, &c);
+        if f == frames {
+            // Fig. 8-9: a snapshot of the last frame.
+            let mx = crate::mesh::Mesh::new(px.clone(), x.triangles.clone());
+            let my = crate::mesh::Mesh::new(py.clone(), y.triangles.clone());
+            let file = format!("paper1_fig8-9_{}.png", scene.name);
+            crate::collide::cli::snapshot(&stream, &s, (&mx, &my), &opts.out_dir.join(&file))?;
+            out.snapshot = Some(file);
+        }
     }
     let n = frames.max(1) as f64;
     average(&mut out, n);
@@ -962,6 +972,16 @@ fn figures(
         caption: "Fig. 7: readback time of each scheme against eta".into(),
     });
     for r in runs {
+        if let Some(file) = &r.snapshot {
+            figures.push(Figure {
+                file: file.clone(),
+                caption: format!(
+                    "Fig. 8-9: {} at the last frame; colliding triangles red, CAP boxes \
+                     orange (X) and yellow (Y)",
+                    r.label
+                ),
+            });
+        }
         let file = format!("paper1_fig10-12_{}.png", r.name);
         let frames = |v: &[f64]| {
             v.iter()
