@@ -25,6 +25,12 @@ struct Cli {
 enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
+    /// Paper 1: every intersecting triangle pair of two meshes, with streaming AABBs.
+    Collide(classic_gpgpu::collide::cli::CollideArgs),
+    /// Paper 1: a deforming scene of Table III, frame by frame.
+    CollideScene(classic_gpgpu::collide::cli::SceneArgs),
+    /// Paper 1: Tables III-IV and Fig. 7, 10-12 against SOLID and CULLIDE.
+    CollideBench(classic_gpgpu::report::paper1::Paper1Args),
     /// Paper 4: mass properties by depth peeling and reduction, beside Mirtich's method.
     Mass(classic_gpgpu::mass::cli::MassArgs),
     /// Paper 4: rigid bodies floating on still water (section 5).
@@ -91,6 +97,15 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info => info(&global),
+        Command::Collide(a) => global
+            .context()
+            .and_then(|ctx| classic_gpgpu::collide::cli::run_collide(&a, &ctx, global.json)),
+        Command::CollideScene(a) => global
+            .context()
+            .and_then(|ctx| classic_gpgpu::collide::cli::run_scene(&a, &ctx, global.json)),
+        Command::CollideBench(a) => global
+            .context()
+            .and_then(|ctx| classic_gpgpu::report::paper1::bench_command(&ctx, &a, global.json)),
         Command::Mass(a) => global
             .context()
             .and_then(|c| classic_gpgpu::mass::cli::run_mass(&a, &c, global.json)),

@@ -6,6 +6,7 @@
 
 pub mod blocks;
 mod html;
+pub mod paper1;
 pub mod paper2;
 pub mod paper3;
 pub mod paper4;

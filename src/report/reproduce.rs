@@ -24,8 +24,14 @@ pub fn stages() -> Vec<Stage> {
     let stage = |id, title, run| Stage { id, title, run };
     vec![
         stage("blocks", "building blocks", super::blocks::run),
+        stage("paper1", "paper 1: streaming AABBs", super::paper1::run),
         stage("paper2", "paper 2: crowd skinning", super::paper2::run),
         stage("paper3", "paper 3: neural networks", super::paper3::run),
+        stage(
+            "paper4",
+            "paper 4: mass properties and buoyancy",
+            super::paper4::run,
+        ),
     ]
 }
 

@@ -1,0 +1,14 @@
+#version 330 core
+// Filling the stencil buffer from the two 1D stencil arrays (Sec. 4.2.1, Fig. 5): the pair of
+// slots (i, j) survives only when both are marked 1 (a real leaf, or the first copy of a
+// pulled-down leaf). Drawn with stencil op REPLACE 1; discarded pairs keep 0 and become
+// prevented AABB pairs (PAPs) in the overlap pass.
+
+in vec2 v_uv;
+uniform sampler1D stencilA; // rows: S^X
+uniform sampler1D stencilB; // columns: S^Y
+
+void main() {
+    if (texture(stencilA, v_uv.y).r < 0.5 || texture(stencilB, v_uv.x).r < 0.5)
+        discard;
+}

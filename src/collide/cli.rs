@@ -1,0 +1,298 @@
+//! The commands `collide` (two static meshes) and `collide-scene` (a deforming scene of
+//! Table III, frame by frame). `collide-bench` lives in `report::paper1`.
+
+use super::pipeline::{FrameResult, Options, StreamingCollider};
+use super::reduction_gpu::ReadbackMode;
+use super::scenes::{Scene, SCENES};
+use super::stream_setup::DEFAULT_LEAF_SIZE;
+use super::tri_test::Predicate;
+use crate::gl::{dump, Context};
+use anyhow::Context as _;
+use serde_json::json;
+use std::path::{Path, PathBuf};
+
+/// Options shared by both commands.
+#[derive(clap::Args, Debug, Clone)]
+pub struct PipelineArgs {
+    /// Most triangles per leaf AABB (`n`).
+    #[arg(long, default_value_t = DEFAULT_LEAF_SIZE)]
+    pub leaf_size: usize,
+    /// Stream reduction scheme; `auto` calibrates all three on this renderer and picks by eta.
+    #[arg(long, value_enum, default_value_t = ReadbackMode::Auto)]
+    pub readback: ReadbackMode,
+    /// Decide triangle pairs with exact orientation predicates instead of floating point.
+    #[arg(long)]
+    pub exact_predicates: bool,
+    /// Largest tile side (slots); default 4096 (the paper's GPU limit), at most the
+    /// renderer's maximum texture size.
+    #[arg(long)]
+    pub max_tile: Option<usize>,
+}
+
+impl PipelineArgs {
+    pub fn options(&self) -> Options {
+        Options {
+            leaf_size: self.leaf_size,
+            readback: self.readback,
+            predicate: if self.exact_predicates {
+                Predicate::Exact
+            } else {
+                Predicate::Moller
+            },
+            max_tile: self.max_tile,
+        }
+    }
+}
+
+/// Every intersecting triangle pair between two meshes (OBJ files).
+#[derive(clap::Args, Debug)]
+pub struct CollideArgs {
+    /// Model X (OBJ).
+    pub a: PathBuf,
+    /// Model Y (OBJ).
+    pub b: PathBuf,
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
+    /// Write P0..P3, P1' and the AABB textures as PNG into this directory (paper Fig. 6).
+    #[arg(long)]
+    pub dump: Option<PathBuf>,
+}
+
+/// `collide`: one frame of the pipeline on two static meshes; `json` prints one object.
+pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let load = |p: &Path| -> anyhow::Result<crate::mesh::Mesh> {
+        let mesh =
+            crate::mesh::load_obj(p).with_context(|| format!("reading model {}", p.display()))?;
+        super::stream_setup::validate_mesh(&mesh)
+            .with_context(|| format!("model {}", p.display()))?;
+        Ok(mesh)
+    };
+    let (x, y) = (load(&args.a)?, load(&args.b)?);
+    let mut collider = StreamingCollider::new(ctx, &x, &y, args.pipeline.options())
+        .context("setting up the AABB streams")?;
+    // The first frame pays for shader compilation (llvmpipe compiles on first draw); the
+    // timings reported are those of a second, identical frame.
+    collider.frame(&x.positions, &y.positions)?;
+    let frame = collider.frame(&x.positions, &y.positions)?;
+    if let Some(dir) = &args.dump {
+        dump_buffers(&collider, dir)?;
+        snapshot(&collider, &frame, (&x, &y), &dir.join("snapshot.png"))?;
+    }
+    let renderer = ctx.info().renderer_line();
+    let report = json!({
+        "renderer": renderer,
+        "triangles": [x.triangles.len(), y.triangles.len()],
+        "leaves": [collider.x.stream.leaves.len(), collider.y.stream.leaves.len()],
+        "stream_lengths": [collider.x.stream.len(), collider.y.stream.len()],
+        "tiles": collider.layout.count(),
+        "caps": frame.caps,
+        "pctps": frame.pctps,
+        "ctps": frame.ctps,
+        "eta": frame.eta,
+        "readback": {"scheme": frame.scheme, "bytes": frame.readback_bytes, "reads": frame.readback_reads},
+        "pairs": frame.pairs.iter().map(|&(a, b)| [a, b]).collect::<Vec<_>>(),
+        "timings_ms": timings_json(&frame),
+    });
+    if json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        println!("renderer: {renderer}");
+        println!(
+            "triangles {} x {}, leaves {} x {} (streams of {} x {}), {} tile(s)",
+            x.triangles.len(),
+            y.triangles.len(),
+            collider.x.stream.leaves.len(),
+            collider.y.stream.leaves.len(),
+            collider.x.stream.len(),
+            collider.y.stream.len(),
+            collider.layout.count()
+        );
+        print_frame(&frame);
+        // Written through a handle so that a closed pipe (`| head`) is an error, not a panic.
+        use std::io::Write as _;
+        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+        for (a, b) in &frame.pairs {
+            writeln!(out, "{a} {b}")?;
+        }
+        out.flush()?;
+    }
+    Ok(())
+}
+
+/// Run a deforming scene of Table III.
+#[derive(clap::Args, Debug)]
+pub struct SceneArgs {
+    /// One of: interlocking-tori, touching-tori, merging-tori, bump-bunnies, happy-buddhas,
+    /// intimate-animals.
+    pub scene: String,
+    #[arg(long, default_value_t = 30)]
+    pub frames: usize,
+    /// Triangles per model instead of the paper's count.
+    #[arg(long)]
+    pub triangles: Option<usize>,
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
+}
+
+/// `collide-scene`: a deforming scene frame by frame; `json` prints one object.
+pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let scene = Scene::build(&args.scene, args.triangles)
+        .with_context(|| format!("scenes: {}", SCENES.join(", ")))?;
+    let mut collider =
+        StreamingCollider::new(ctx, &scene.x.rest, &scene.y.rest, args.pipeline.options())?;
+    let mut frames = Vec::new();
+    for f in 0..args.frames {
+        let (px, py) = scene.frame(f);
+        let r = collider.frame(&px, &py)?;
+        if !json {
+            print!("frame {f:4}: ");
+            print_frame(&r);
+        }
+        frames.push(json!({
+            "frame": f, "caps": r.caps, "pctps": r.pctps, "ctps": r.ctps, "eta": r.eta,
+            "scheme": r.scheme, "readback_bytes": r.readback_bytes, "timings_ms": timings_json(&r),
+        }));
+    }
+    if json {
+        let out = json!({
+            "renderer": ctx.info().renderer_line(),
+            "scene": scene.name,
+            "label": scene.label,
+            "triangles": [scene.triangles, scene.triangles],
+            "leaves": [collider.x.stream.leaves.len(), collider.y.stream.leaves.len()],
+            "frames": frames,
+        });
+        println!("{}", serde_json::to_string(&out)?);
+    }
+    Ok(())
+}
+
+fn timings_json(f: &FrameResult) -> serde_json::Value {
+    let t = &f.timings;
+    // "readback" is the paper's Readback column: encoding plus reading and decoding.
+    json!({
+        "overlap": t.overlap, "readback": t.encode + t.readback, "encode": t.encode,
+        "decode": t.readback, "tri_test": t.tri_test, "download": t.download,
+        "update": t.update, "total": t.total,
+    })
+}
+
+fn print_frame(f: &FrameResult) {
+    let t = &f.timings;
+    println!(
+        "CAPs {} PCTPs {} CTPs {} eta {:.4}% readback {} {} B | overlap {:.2} encode {:.2} \
+         read+decode {:.2} tri {:.2} download {:.2} update {:.2} total {:.2} ms",
+        f.caps,
+        f.pctps,
+        f.ctps,
+        f.eta * 100.0,
+        f.scheme
+            .map(|s| format!("{s:?}").to_lowercase())
+            .unwrap_or_else(|| "none".into()),
+        f.readback_bytes,
+        t.overlap,
+        t.encode,
+        t.readback,
+        t.tri_test,
+        t.download,
+        t.update,
+        t.total
+    );
+}
+
+/// Paper Fig. 1 / 6(a): the models, their colliding triangles and the boxes of the CAPs.
+pub fn snapshot(
+    collider: &StreamingCollider,
+    frame: &FrameResult,
+    (x, y): (&crate::mesh::Mesh, &crate::mesh::Mesh),
+    path: &Path,
+) -> anyhow::Result<()> {
+    use super::snapshot::{write_png, SnapshotModel};
+    let model = |m: &crate::mesh::Mesh, stream: &super::AabbStream, side: usize| {
+        let mut colliding: Vec<u32> = frame
+            .pairs
+            .iter()
+            .map(|p| if side == 0 { p.0 } else { p.1 })
+            .collect();
+        colliding.sort_unstable();
+        colliding.dedup();
+        let boxes = stream.leaf_boxes(&m.positions);
+        let mut leaves: Vec<u32> = frame
+            .cap_leaves
+            .iter()
+            .map(|c| if side == 0 { c.0 } else { c.1 })
+            .collect();
+        leaves.sort_unstable();
+        leaves.dedup();
+        (
+            (0..m.triangles.len()).map(|t| m.triangle(t)).collect(),
+            colliding,
+            leaves.iter().map(|&l| boxes[l as usize]).collect(),
+        )
+    };
+    let (tx, cx, bx) = model(x, &collider.x.stream, 0);
+    let (ty, cy, by) = model(y, &collider.y.stream, 1);
+    write_png(
+        collider.context(),
+        &SnapshotModel {
+            triangles: tx,
+            colliding: &cx,
+            cap_boxes: bx,
+        },
+        &SnapshotModel {
+            triangles: ty,
+            colliding: &cy,
+            cap_boxes: by,
+        },
+        800,
+        path,
+    )?;
+    Ok(())
+}
+
+/// Paper Fig. 6: P0, the hierarchy P1..P3, the reduced P1', and the AABB textures.
+pub fn dump_buffers(collider: &StreamingCollider, dir: &Path) -> anyhow::Result<()> {
+    use super::reduction::Scheme;
+    let ctx = collider.context();
+    // Fill both encodings from the last P0.
+    collider
+        .reduction
+        .read(ctx, &collider.target, Scheme::Hierarchical)?;
+    collider
+        .reduction
+        .read(ctx, &collider.target, Scheme::Reduced)?;
+    let range = dump::DumpRange::Auto;
+    dump::texture_png(
+        &collider.target.p0,
+        &dir.join("P0.png"),
+        dump::DumpRange::Fixed(0.0, 1.0),
+    )?;
+    for (i, t) in collider.reduction.level_textures().into_iter().enumerate() {
+        dump::texture_png(t, &dir.join(format!("P{}.png", i + 1)), range)?;
+    }
+    dump::texture_png(
+        collider.reduction.reduced_texture(),
+        &dir.join("P1_reduced.png"),
+        range,
+    )?;
+    for (name, stream) in [("X", &collider.x), ("Y", &collider.y)] {
+        for (s, (aabb, vertices)) in stream.segments.iter().enumerate() {
+            dump::texture_png(
+                &aabb.t_min,
+                &dir.join(format!("T_min_{name}_{s}.png")),
+                range,
+            )?;
+            dump::texture_png(
+                &aabb.t_max,
+                &dir.join(format!("T_max_{name}_{s}.png")),
+                range,
+            )?;
+            dump::texture_png(
+                &vertices.texture,
+                &dir.join(format!("vertices_{name}_{s}.png")),
+                range,
+            )?;
+        }
+    }
+    Ok(())
+}

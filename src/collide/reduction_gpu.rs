@@ -1,0 +1,347 @@
+//! Stream reduction on the GPU [Sec. 5.3]: the encoding passes that fill `P1..P3` (4x4) or
+//! `P1'` (8x8) from `P0`, and the reads the decoders of [`super::reduction`] ask for. The
+//! scheme of each frame is `hierarchical`, `reduced` or `full`, or chosen by `auto` from the
+//! frame's `eta` (known before any readback: the occlusion query counted the CAPs) and a
+//! calibration of all three schemes on this renderer at this `P0` size.
+
+use super::reduction::{
+    decode_full, decode_hierarchical, decode_reduced, encoded_size, hierarchy_sizes, Decoded,
+    LevelReader, Scheme, HIER_LEVELS, REDUCED_BLOCK,
+};
+use super::streaming_test::PairTarget;
+use crate::gl::{Context, Framebuffer, GlError, Program, Rect, Texture, TextureFormat};
+use crate::shader;
+use std::time::Instant;
+
+/// How the CAPs are read back.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ReadbackMode {
+    /// Per frame, the scheme the calibration found fastest at this frame's `eta`.
+    #[default]
+    Auto,
+    Hierarchical,
+    Reduced,
+    Full,
+}
+
+/// One encoded level: an R32F (`P1..P3`) or RGBA32F (`P1'`) texture and its framebuffer.
+struct Level {
+    texture: Texture,
+    framebuffer: Framebuffer,
+}
+
+impl Level {
+    fn new(
+        ctx: &Context,
+        name: &str,
+        (w, h): (usize, usize),
+        f: TextureFormat,
+    ) -> Result<Level, GlError> {
+        let texture = Texture::new_2d(ctx, w as u32, h as u32, f)?;
+        let framebuffer = Framebuffer::new(ctx, name, &[&texture], None)?;
+        Ok(Level {
+            texture,
+            framebuffer,
+        })
+    }
+}
+
+/// `P1..P3`, `P1'` and the two encoding programs, for one `P0` size.
+pub struct Reduction {
+    /// `P1`, `P2`, `P3`.
+    levels: Vec<Level>,
+    reduced: Level,
+    encode4: Program,
+    encode8: Program,
+    width: usize,
+    height: usize,
+}
+
+/// What one readback did and what it cost.
+#[derive(Clone, Debug, Default)]
+pub struct Readback {
+    pub decoded: Decoded,
+    /// GPU time of the encoding passes (timer queries), ms.
+    pub encode_ms: f64,
+    /// Wall time of reading back and decoding on the CPU, ms.
+    pub decode_ms: f64,
+}
+
+impl Reduction {
+    pub fn new(ctx: &Context, width: usize, height: usize) -> Result<Reduction, GlError> {
+        let sizes = hierarchy_sizes(width, height);
+        let names = ["P1", "P2", "P3"];
+        let levels = (1..=HIER_LEVELS)
+            .map(|i| Level::new(ctx, names[i - 1], sizes[i], TextureFormat::R32F))
+            .collect::<Result<Vec<_>, _>>()?;
+        let reduced = Level::new(
+            ctx,
+            "P1'",
+            encoded_size(width, height, REDUCED_BLOCK),
+            TextureFormat::Rgba32F,
+        )?;
+        Ok(Reduction {
+            levels,
+            reduced,
+            encode4: Program::rect(ctx, &[shader!("glsl/collide/encode_4x4.frag")])?,
+            encode8: Program::rect(ctx, &[shader!("glsl/collide/encode_8x8.frag")])?,
+            width,
+            height,
+        })
+    }
+
+    /// `P1..P3` (for dumps).
+    pub fn level_textures(&self) -> Vec<&Texture> {
+        self.levels.iter().map(|l| &l.texture).collect()
+    }
+
+    /// `P1'` (for dumps).
+    pub fn reduced_texture(&self) -> &Texture {
+        &self.reduced.texture
+    }
+
+    /// Encode `P0` for `scheme`, read back and decode its CAPs (tile-local `(row, column)`).
+    pub fn read(
+        &self,
+        ctx: &Context,
+        p0: &PairTarget,
+        scheme: Scheme,
+    ) -> Result<Readback, GlError> {
+        let (w, h) = (self.width, self.height);
+        let ((), encode_ms) = crate::gl::query::time_gpu(ctx, || match scheme {
+            Scheme::Hierarchical => self.encode_hierarchical(&p0.p0),
+            Scheme::Reduced => self.encode(
+                &self.encode8,
+                &p0.p0,
+                &self.reduced,
+                "encode P0 -> P1' (8x8)",
+            ),
+            Scheme::Full => Ok(()),
+        })?;
+        let start = Instant::now();
+        let mut reader = GpuLevels {
+            p0,
+            reduction: self,
+        };
+        let decoded = match scheme {
+            Scheme::Hierarchical => decode_hierarchical(&mut reader, w, h)?,
+            Scheme::Reduced => decode_reduced(&mut reader, w, h)?,
+            Scheme::Full => decode_full(&mut reader, w, h)?,
+        };
+        Ok(Readback {
+            decoded,
+            encode_ms,
+            decode_ms: start.elapsed().as_secs_f64() * 1e3,
+        })
+    }
+
+    fn encode_hierarchical(&self, p0: &Texture) -> Result<(), GlError> {
+        let names = [
+            "encode P0 -> P1 (4x4)",
+            "encode P1 -> P2 (4x4)",
+            "encode P2 -> P3 (4x4)",
+        ];
+        let mut source = p0;
+        for (level, name) in self.levels.iter().zip(names) {
+            self.encode(&self.encode4, source, level, name)?;
+            source = &level.texture;
+        }
+        Ok(())
+    }
+
+    fn encode(
+        &self,
+        program: &Program,
+        source: &Texture,
+        target: &Level,
+        name: &str,
+    ) -> Result<(), GlError> {
+        let mut pass = target.framebuffer.pass(program, name)?;
+        pass.texture("level", source);
+        pass.draw_full()
+    }
+}
+
+/// Reads the levels with `glReadPixels`.
+struct GpuLevels<'a> {
+    p0: &'a PairTarget,
+    reduction: &'a Reduction,
+}
+
+impl LevelReader for GpuLevels<'_> {
+    type Error = GlError;
+
+    fn read_red(
+        &mut self,
+        level: usize,
+        x: usize,
+        y: usize,
+        w: usize,
+        h: usize,
+    ) -> Result<Vec<f32>, GlError> {
+        let rect = Rect::new(x as u32, y as u32, w as u32, h as u32);
+        let framebuffer = match level {
+            0 => &self.p0.framebuffer,
+            l => &self.reduction.levels[l - 1].framebuffer,
+        };
+        framebuffer.read_f32(0, rect)
+    }
+
+    fn read_reduced(
+        &mut self,
+        x: usize,
+        y: usize,
+        w: usize,
+        h: usize,
+    ) -> Result<Vec<[f32; 4]>, GlError> {
+        let rect = Rect::new(x as u32, y as u32, w as u32, h as u32);
+        let flat = self.reduction.reduced.framebuffer.read_f32(0, rect)?;
+        Ok(flat
+            .chunks_exact(4)
+            .map(|c| [c[0], c[1], c[2], c[3]])
+            .collect())
+    }
+}
+
+/// What one scheme cost at one calibration point.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct SchemeCost {
+    pub scheme: Scheme,
+    /// GPU time of the encoding passes, ms.
+    pub encode_ms: f64,
+    /// Wall time of reading back and decoding, ms.
+    pub decode_ms: f64,
+    /// Bytes read back.
+    pub bytes: u64,
+}
+
+impl SchemeCost {
+    pub fn total_ms(&self) -> f64 {
+        self.encode_ms + self.decode_ms
+    }
+}
+
+/// One calibration point: the time of each scheme on a `P0` with CAP ratio `eta`.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct CalibrationPoint {
+    pub eta: f64,
+    pub caps: usize,
+    /// In the order hierarchical, reduced, full.
+    pub schemes: Vec<SchemeCost>,
+}
+
+impl CalibrationPoint {
+    pub fn fastest(&self) -> Scheme {
+        self.schemes
+            .iter()
+            .min_by(|a, b| a.total_ms().total_cmp(&b.total_ms()))
+            .map(|s| s.scheme)
+            .unwrap_or(Scheme::Full)
+    }
+}
+
+/// The `eta` values the calibration samples (as fractions), spanning the paper's 0.095%.
+pub const CALIBRATION_ETAS: [f64; 8] = [1e-5, 1e-4, 3e-4, 9.5e-4, 3e-3, 1e-2, 3e-2, 1e-1];
+
+/// The schemes' costs on this renderer for a `P0` of this size: random `P0` contents at each
+/// `eta` are uploaded into `P0`, then every scheme encodes, reads and decodes them, `repeats`
+/// times (the best time is kept). Also Fig. 7's data.
+pub fn calibrate(
+    ctx: &Context,
+    p0: &PairTarget,
+    reduction: &Reduction,
+    etas: &[f64],
+    repeats: usize,
+    seed: u64,
+) -> Result<Vec<CalibrationPoint>, GlError> {
+    let (w, h) = (p0.width(), p0.height());
+    let mut rng = super::deform::SplitMix64(seed);
+    let mut points = Vec::new();
+    for &eta in etas {
+        let cells: Vec<f32> = (0..w * h)
+            .map(|_| f32::from((rng.unit() as f64) < eta))
+            .collect();
+        let caps = cells.iter().filter(|&&c| c != 0.0).count();
+        p0.p0.upload_f32(&cells)?;
+        let mut schemes = Vec::new();
+        for scheme in [Scheme::Hierarchical, Scheme::Reduced, Scheme::Full] {
+            let mut best = (f64::INFINITY, f64::INFINITY, 0);
+            for _ in 0..repeats.max(1) {
+                ctx.finish_all();
+                let r = reduction.read(ctx, p0, scheme)?;
+                if r.encode_ms + r.decode_ms < best.0 + best.1 {
+                    best = (r.encode_ms, r.decode_ms, r.decoded.bytes);
+                }
+            }
+            schemes.push(SchemeCost {
+                scheme,
+                encode_ms: best.0,
+                decode_ms: best.1,
+                bytes: best.2,
+            });
+        }
+        points.push(CalibrationPoint { eta, caps, schemes });
+    }
+    Ok(points)
+}
+
+/// The scheme `auto` uses at `eta`: the fastest at the nearest calibrated `eta` (in log scale).
+pub fn choose(points: &[CalibrationPoint], eta: f64) -> Scheme {
+    let log = |e: f64| e.max(1e-9).ln();
+    points
+        .iter()
+        .min_by(|a, b| {
+            (log(a.eta) - log(eta))
+                .abs()
+                .total_cmp(&(log(b.eta) - log(eta)).abs())
+        })
+        .map(|p| p.fastest())
+        .unwrap_or(Scheme::Hierarchical)
+}
+
+/// The measured `eta` threshold: the first calibrated `eta` from which the hierarchical
+/// scheme is no longer the fastest (`None` if it always is).
+pub fn measured_threshold(points: &[CalibrationPoint]) -> Option<f64> {
+    points
+        .iter()
+        .find(|p| p.fastest() != Scheme::Hierarchical)
+        .map(|p| p.eta)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(eta: f64, totals: [f64; 3]) -> CalibrationPoint {
+        let schemes = [Scheme::Hierarchical, Scheme::Reduced, Scheme::Full]
+            .iter()
+            .zip(totals)
+            .map(|(&scheme, t)| SchemeCost {
+                scheme,
+                encode_ms: t / 2.0,
+                decode_ms: t / 2.0,
+                bytes: 0,
+            })
+            .collect();
+        CalibrationPoint {
+            eta,
+            caps: 0,
+            schemes,
+        }
+    }
+
+    #[test]
+    fn auto_picks_the_fastest_scheme_at_the_nearest_calibrated_eta() {
+        let points = [
+            point(1e-5, [1.0, 2.0, 5.0]),
+            point(1e-3, [3.0, 2.0, 5.0]),
+            point(1e-1, [9.0, 7.0, 5.0]),
+        ];
+        assert_eq!(choose(&points, 2e-5), Scheme::Hierarchical);
+        assert_eq!(choose(&points, 5e-4), Scheme::Reduced);
+        assert_eq!(choose(&points, 0.5), Scheme::Full);
+        assert_eq!(measured_threshold(&points), Some(1e-3));
+        assert_eq!(measured_threshold(&points[..1]), None);
+    }
+}

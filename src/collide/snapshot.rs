@@ -1,0 +1,125 @@
+//! A picture of a frame, as in the paper's Fig. 1 and Fig. 6(a): the two models (blue and
+//! cyan), their colliding triangles (red), and the boxes of the colliding AABB pairs
+//! (orange for X, yellow for Y), from an oblique orthographic view. For `collide --dump`.
+
+use super::aabb::Aabb;
+use crate::gl::{
+    dump, Buffer, BufferUsage, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
+    Primitive, Program, Texture, TextureFormat, VertexArray,
+};
+use crate::shader;
+use glam::{Mat4, Quat, Vec3};
+use std::path::Path;
+
+const BLUE: Vec3 = Vec3::new(0.35, 0.45, 0.95);
+const CYAN: Vec3 = Vec3::new(0.3, 0.85, 0.85);
+const RED: Vec3 = Vec3::new(0.95, 0.15, 0.1);
+const ORANGE: Vec3 = Vec3::new(1.0, 0.55, 0.1);
+const YELLOW: Vec3 = Vec3::new(1.0, 0.95, 0.2);
+
+/// One model of the picture: its triangles (corners), and which of them collide.
+pub struct SnapshotModel<'a> {
+    pub triangles: Vec<[Vec3; 3]>,
+    pub colliding: &'a [u32],
+    /// Boxes of this model's leaves that are in some CAP.
+    pub cap_boxes: Vec<Aabb>,
+}
+
+/// Render `x` and `y` into a `size x size` PNG at `path`.
+pub fn write_png(
+    ctx: &Context,
+    x: &SnapshotModel,
+    y: &SnapshotModel,
+    size: u32,
+    path: &Path,
+) -> Result<(), GlError> {
+    let mut tri_vertices: Vec<[f32; 6]> = Vec::new();
+    for (model, base) in [(x, BLUE), (y, CYAN)] {
+        let mut colliding = vec![false; model.triangles.len()];
+        for &t in model.colliding {
+            colliding[t as usize] = true;
+        }
+        for (t, corners) in model.triangles.iter().enumerate() {
+            let c = if colliding[t] { RED } else { base };
+            tri_vertices.extend(corners.iter().map(|p| vertex(*p, c)));
+        }
+    }
+    let mut line_vertices: Vec<[f32; 6]> = Vec::new();
+    for (model, c) in [(x, ORANGE), (y, YELLOW)] {
+        for b in &model.cap_boxes {
+            line_vertices.extend(box_edges(b).iter().map(|p| vertex(*p, c)));
+        }
+    }
+    let bounds = Aabb::from_points(x.triangles.iter().chain(&y.triangles).flatten().copied());
+    let mvp = oblique_view(&bounds);
+    let colour = Texture::new_2d(ctx, size, size, TextureFormat::Rgba8)?;
+    let depth = Texture::new_2d(ctx, size, size, TextureFormat::Depth32F)?;
+    let target = Framebuffer::new(ctx, "snapshot", &[&colour], Some(&depth))?;
+    target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
+    target.clear_depth_stencil(1.0, 0)?;
+    let program = Program::new(
+        ctx,
+        &[shader!("glsl/collide/snapshot.vert")],
+        &[shader!("glsl/collide/snapshot.frag")],
+    )?;
+    let state = DrawState {
+        depth: Some(DepthTest {
+            func: Compare::LessEqual,
+            write: true,
+        }),
+        ..DrawState::default()
+    };
+    for (vertices, primitive, lit) in [
+        (&tri_vertices, Primitive::Triangles, true),
+        (&line_vertices, Primitive::Lines, false),
+    ] {
+        if vertices.is_empty() {
+            continue;
+        }
+        let buffer = Buffer::from_slice(ctx, vertices, BufferUsage::Static)?;
+        let mut vao = VertexArray::new(ctx)?;
+        vao.float_attribute(0, &buffer, 3, 24, 0, 0)?;
+        vao.float_attribute(1, &buffer, 3, 24, 12, 0)?;
+        let mut pass = target.pass(&program, "snapshot")?;
+        pass.state(state)
+            .uniform("u_mvp", mvp)
+            .uniform("u_lit", lit)
+            .uniform("u_light", Vec3::new(0.4, 0.6, 0.7).normalize());
+        pass.draw_arrays(&vao, primitive, 0, vertices.len())?;
+    }
+    dump::texture_png(&colour, path, dump::DumpRange::Auto)
+}
+
+fn vertex(p: Vec3, c: Vec3) -> [f32; 6] {
+    [p.x, p.y, p.z, c.x, c.y, c.z]
+}
+
+/// The 12 edges of a box as 24 line end points.
+fn box_edges(b: &Aabb) -> Vec<Vec3> {
+    let corner = |i: usize| {
+        Vec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        )
+    };
+    let mut out = Vec::with_capacity(24);
+    for i in 0..8 {
+        for bit in [1, 2, 4] {
+            if i & bit == 0 {
+                out.push(corner(i));
+                out.push(corner(i | bit));
+            }
+        }
+    }
+    out
+}
+
+/// Orthographic view of `b` turned 35 degrees about y and 25 about x, fitted to the image.
+fn oblique_view(b: &Aabb) -> Mat4 {
+    let centre = (b.min + b.max) * 0.5;
+    let radius = (b.max - b.min).length().max(1e-6) * 0.5;
+    let turn = Quat::from_rotation_x(0.45) * Quat::from_rotation_y(-0.6);
+    let scale = Mat4::from_scale(Vec3::new(1.0, 1.0, -1.0) / radius);
+    scale * Mat4::from_quat(turn) * Mat4::from_translation(-centre)
+}

@@ -1,0 +1,156 @@
+//! The `collide`, `collide-scene` and `collide-bench` commands as a user meets them.
+
+use classic_gpgpu::collide::brute_force::all_pairs;
+use classic_gpgpu::collide::Predicate;
+use classic_gpgpu::mesh;
+use glam::{Affine3A, Quat, Vec3};
+use std::process::Command;
+
+fn classic_gpgpu(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("collide-cli-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
+    let dir = temp_dir("pairs");
+    let a = mesh::torus_with_triangles(1.0, 0.33, 500);
+    let b = a.transformed(&Affine3A::from_rotation_translation(
+        Quat::from_rotation_x(1.4),
+        Vec3::new(1.5, 0.1, 0.0),
+    ));
+    let (pa, pb) = (dir.join("a.obj"), dir.join("b.obj"));
+    mesh::write_obj(&a, &pa).unwrap();
+    mesh::write_obj(&b, &pb).unwrap();
+    // The reference reads the same files, so face order and coordinates are the CLI's.
+    let (la, lb) = (mesh::load_obj(&pa).unwrap(), mesh::load_obj(&pb).unwrap());
+    let expected = all_pairs(&la, &la.positions, &lb, &lb.positions, Predicate::Exact);
+    assert!(!expected.is_empty());
+    let dump = dir.join("dump");
+    for readback in ["hierarchical", "reduced", "full", "auto"] {
+        let out = classic_gpgpu(&[
+            "collide",
+            pa.to_str().unwrap(),
+            pb.to_str().unwrap(),
+            "--readback",
+            readback,
+            "--exact-predicates",
+            "--leaf-size",
+            "6",
+            "--dump",
+            dump.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let pairs: Vec<(u32, u32)> = v["pairs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| (p[0].as_u64().unwrap() as u32, p[1].as_u64().unwrap() as u32))
+            .collect();
+        assert_eq!(pairs, expected, "{readback}");
+        assert_eq!(v["ctps"].as_u64().unwrap() as usize, expected.len());
+        assert_eq!(
+            v["triangles"][0].as_u64().unwrap() as usize,
+            la.triangles.len()
+        );
+        assert!(v["renderer"].as_str().is_some_and(|r| !r.is_empty()));
+        assert!(v["readback"]["bytes"].as_u64().unwrap() > 0);
+        for key in [
+            "overlap", "readback", "tri_test", "download", "update", "total",
+        ] {
+            assert!(v["timings_ms"][key].as_f64().is_some(), "{key}");
+        }
+    }
+    for png in [
+        "P0.png",
+        "P1.png",
+        "P2.png",
+        "P3.png",
+        "P1_reduced.png",
+        "T_min_X_0.png",
+    ] {
+        assert!(dump.join(png).is_file(), "{png} not written");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_inputs_fail_with_a_message_naming_them() {
+    let dir = temp_dir("bad");
+    let empty = dir.join("empty.obj");
+    std::fs::write(&empty, "# nothing\n").unwrap();
+    let good = dir.join("good.obj");
+    mesh::write_obj(&mesh::cube(1.0), &good).unwrap();
+    let missing = dir.join("missing.obj");
+    let cases: [(&std::path::Path, &str); 2] = [(&missing, "missing.obj"), (&empty, "empty.obj")];
+    for (path, name) in cases {
+        let out = classic_gpgpu(&["collide", path.to_str().unwrap(), good.to_str().unwrap()]);
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(name), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    let out = classic_gpgpu(&["collide-scene", "teapots"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("interlocking-tori"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn collide_scene_and_bench_print_json() {
+    let out = classic_gpgpu(&[
+        "collide-scene",
+        "touching-tori",
+        "--frames",
+        "2",
+        "--triangles",
+        "800",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["frames"].as_array().unwrap().len(), 2);
+    let dir = temp_dir("bench");
+    let out = classic_gpgpu(&[
+        "collide-bench",
+        "--quick",
+        "--scenes",
+        "merging-tori",
+        "--frames",
+        "1",
+        "--triangles",
+        "600",
+        "--no-leaf-sweep",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["id"], "paper1");
+    assert!(v["tables"].as_array().unwrap().len() >= 4);
+    assert!(dir.join("paper1_fig7_readback.png").is_file());
+    std::fs::remove_dir_all(&dir).ok();
+}
