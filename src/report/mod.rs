@@ -146,7 +146,7 @@ pub fn progress_bars(json: bool) -> indicatif::MultiProgress {
 /// its tables and claims, or the whole section as JSON.
 pub fn bench_command(
     gl: &crate::gl::Context,
-    run: fn(&BenchOptions) -> anyhow::Result<Section>,
+    run: impl FnOnce(&BenchOptions) -> anyhow::Result<Section>,
     quick: bool,
     out_dir: &std::path::Path,
     json: bool,
@@ -164,7 +164,13 @@ pub fn bench_command(
         println!("{}", serde_json::to_string_pretty(&section)?);
     } else {
         println!("{}", section.to_text());
-        println!("figures in {}", out_dir.display());
+        for figure in &section.figures {
+            println!(
+                "figure: {} ({})",
+                out_dir.join(&figure.file).display(),
+                figure.caption
+            );
+        }
     }
     Ok(())
 }

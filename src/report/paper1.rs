@@ -1014,11 +1014,7 @@ fn figures(
 }
 
 fn fidelity() -> Vec<Fidelity> {
-    let row = |feature: &str, paper: &str, code: &str| Fidelity {
-        feature: feature.into(),
-        paper: paper.into(),
-        code: code.into(),
-    };
+    let row = Fidelity::new;
     vec![
         row(
             "1D float AABB textures T_min/T_max",
@@ -1079,39 +1075,11 @@ pub fn bench_command(
     args: &Paper1Args,
     json_out: bool,
 ) -> anyhow::Result<()> {
-    std::fs::create_dir_all(&args.out)?;
-    let progress = indicatif::MultiProgress::new();
-    if json_out {
-        progress.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    let opts = BenchOptions {
-        gl: ctx,
-        quick: args.quick,
-        out_dir: args.out.clone(),
-        progress,
-    };
-    let section = run_with(&opts, args)?;
-    if json_out {
-        println!("{}", serde_json::to_string_pretty(&section)?);
-        return Ok(());
-    }
-    println!("{}\n", section.summary);
-    for t in &section.tables {
-        println!("{}", t.to_text());
-    }
-    for c in &section.claims {
-        let holds = match c.holds {
-            Some(true) => "holds",
-            Some(false) => "does not hold",
-            None => "not judged",
-        };
-        println!(
-            "- {} [{holds}]: paper: {}; here: {}",
-            c.claim, c.paper, c.measured
-        );
-    }
-    for f in &section.figures {
-        println!("figure: {}", args.out.join(&f.file).display());
-    }
-    Ok(())
+    super::bench_command(
+        ctx,
+        |opts| run_with(opts, args),
+        args.quick,
+        &args.out,
+        json_out,
+    )
 }

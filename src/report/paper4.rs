@@ -30,46 +30,7 @@ pub struct BenchArgs {
 
 /// Runs the benchmark and prints its tables (or the whole section as JSON).
 pub fn run_cli(args: &BenchArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("--out: creating {}", args.out.display()))?;
-    let progress = indicatif::MultiProgress::new();
-    if json_out {
-        progress.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    let opts = BenchOptions {
-        gl: ctx,
-        quick: args.quick,
-        out_dir: args.out.clone(),
-        progress,
-    };
-    let section = run(&opts)?;
-    if json_out {
-        println!("{}", serde_json::to_string_pretty(&section)?);
-        return Ok(());
-    }
-    println!("{}\n\n{}\n", section.title, section.summary);
-    for t in &section.tables {
-        println!("{}", t.to_text());
-    }
-    for c in &section.claims {
-        let holds = match c.holds {
-            Some(true) => "holds",
-            Some(false) => "does not hold",
-            None => "not judged",
-        };
-        println!(
-            "claim: {}\n  paper: {}\n  here:  {} ({holds})",
-            c.claim, c.paper, c.measured
-        );
-    }
-    for f in &section.figures {
-        println!(
-            "figure: {} ({})",
-            args.out.join(&f.file).display(),
-            f.caption
-        );
-    }
-    Ok(())
+    super::bench_command(ctx, run, args.quick, &args.out, json_out)
 }
 
 /// Median of `runs` timings (ms) of `work`.

@@ -122,6 +122,8 @@ impl Plot {
             .x_desc(self.x_label.as_str())
             .y_desc(self.y_label.as_str())
             .label_style(("sans-serif", 14))
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| tick_label(*v))
             .draw()
             .map_err(|e| anyhow::anyhow!("{e}"))?;
         for (i, series) in self.series.iter().enumerate() {
@@ -158,9 +160,32 @@ impl Plot {
     }
 }
 
+/// A short axis label: 0.001 .. 99999 in plain digits (trailing zeros dropped), else 1e6.
+fn tick_label(v: f64) -> String {
+    let magnitude = v.abs();
+    if v == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e5).contains(&magnitude) {
+        format!("{v:.0e}")
+    } else {
+        let text = format!("{v:.3}");
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(tick_label(0.0), "0");
+        assert_eq!(tick_label(0.09999999), "0.1");
+        assert_eq!(tick_label(100.0), "100");
+        assert_eq!(tick_label(2.5), "2.5");
+        assert_eq!(tick_label(1e6), "1e6");
+        assert_eq!(tick_label(1e-5), "1e-5");
+    }
 
     #[test]
     fn writes_a_png_with_log_axes() {
