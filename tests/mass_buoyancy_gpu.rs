@@ -9,7 +9,7 @@ use classic_gpgpu::mass::buoyancy::simulation::{
 use classic_gpgpu::mass::gpu::GpuMass;
 use classic_gpgpu::mesh::Mesh;
 use glam::{DQuat, DVec3, Vec3};
-use mass_shapes::{cuboid, torus, uv_sphere};
+use mass_shapes::{cuboid, energy_run, torus, uv_sphere};
 use rand::{Rng, SeedableRng};
 
 mod mass_shapes;
@@ -149,30 +149,9 @@ fn batched_submerged_volumes_equal_the_mass_module_below_answer() {
 #[test]
 fn energy_on_the_gpu_stays_bounded_without_drag_and_decays_with_it() {
     let ctx = context();
-    let run = |drag: f64| -> (f64, f64, f64) {
-        let shape = Shape::new("box", &cuboid(Vec3::new(1.0, 0.6, 0.4), Vec3::ZERO)).unwrap();
-        let mut solver = GpuSolver::new(&ctx, std::slice::from_ref(&shape), 1, RESOLUTION).unwrap();
-        let water = Water {
-            drag,
-            linear_drag: drag,
-            angular_damping: if drag > 0.0 { 1.0 } else { 0.0 },
-            ..Water::default()
-        };
-        let mut sim = Simulation::new(vec![shape], water, 0.004);
-        sim.add(
-            0,
-            600.0,
-            DVec3::new(0.0, 0.0, 0.15),
-            DQuat::from_rotation_y(0.3),
-        );
-        let e0 = sim.energy();
-        let mut max_e = e0;
-        for _ in 0..300 {
-            sim.step(&mut solver).unwrap();
-            max_e = max_e.max(sim.energy());
-        }
-        (e0, max_e, sim.energy())
-    };
+    let box_shape = Shape::new("box", &cuboid(Vec3::new(1.0, 0.6, 0.4), Vec3::ZERO)).unwrap();
+    let mut solver = GpuSolver::new(&ctx, std::slice::from_ref(&box_shape), 1, RESOLUTION).unwrap();
+    let mut run = |drag: f64| energy_run(&mut solver, drag, 0.004, 300);
     let scale = 240.0 * 9.81 * 0.1;
     let (e0, max_e, _) = run(0.0);
     assert!(
