@@ -9,13 +9,9 @@ use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
 use classic_gpgpu::collide::scenes::{Scene, SCENES};
 use classic_gpgpu::collide::tri_test::{test_caps, ModelView};
 use classic_gpgpu::collide::{solid, AabbStream, Predicate};
-use classic_gpgpu::gl::Context;
+use common::context;
 
-fn context() -> Context {
-    let ctx = Context::from_env().expect("a headless OpenGL context");
-    ctx.set_checks(true);
-    ctx
-}
+mod common;
 
 #[test]
 fn solid_equals_and_cullide_is_a_subset_of_the_exact_pairs_on_every_scene() {

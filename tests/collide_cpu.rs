@@ -7,26 +7,10 @@ use classic_gpgpu::collide::solid;
 use classic_gpgpu::collide::tri_test::{test_caps, ModelView};
 use classic_gpgpu::collide::{AabbStream, Predicate};
 use classic_gpgpu::mesh::Mesh;
+use common::soup;
 use glam::Vec3;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 
-/// `n` random triangles of size about `size` in the unit cube, no shared vertices.
-fn soup(n: usize, size: f32, seed: u64) -> Mesh {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut positions = Vec::new();
-    for _ in 0..n {
-        let c = Vec3::new(rng.gen(), rng.gen(), rng.gen());
-        for _ in 0..3 {
-            let d = Vec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
-            positions.push(c + d * size);
-        }
-    }
-    let triangles = (0..n as u32)
-        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-        .collect();
-    Mesh::new(positions, triangles)
-}
+mod common;
 
 fn view<'a>(m: &'a Mesh, p: &'a [Vec3], s: &'a AabbStream) -> ModelView<'a> {
     ModelView {

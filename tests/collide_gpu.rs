@@ -9,33 +9,13 @@ use classic_gpgpu::collide::deform::{Deformation, Deforming, Wavy};
 use classic_gpgpu::collide::pipeline::{Options, StreamingCollider};
 use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
 use classic_gpgpu::collide::{solid, AabbStream, Predicate};
-use classic_gpgpu::gl::Context;
 use classic_gpgpu::mesh::{self, Mesh};
+use common::{context, soup};
 use glam::{Affine3A, Quat, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn context() -> Context {
-    let ctx = Context::from_env().expect("a headless OpenGL context");
-    ctx.set_checks(true);
-    ctx
-}
-
-fn soup(n: usize, size: f32, seed: u64) -> Mesh {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut positions = Vec::new();
-    for _ in 0..n {
-        let c = Vec3::new(rng.gen(), rng.gen(), rng.gen());
-        for _ in 0..3 {
-            let d = Vec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
-            positions.push(c + d * size);
-        }
-    }
-    let triangles = (0..n as u32)
-        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-        .collect();
-    Mesh::new(positions, triangles)
-}
+mod common;
 
 fn options(readback: ReadbackMode, leaf_size: usize) -> Options {
     Options {

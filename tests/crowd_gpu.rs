@@ -7,14 +7,11 @@ use classic_gpgpu::crowd::renderer::{CrowdRenderer, Instances, Method};
 use classic_gpgpu::crowd::scene::{self, SKY};
 use classic_gpgpu::crowd::sprites::{frame_row, view_column, FRAMES, VIEWS};
 use classic_gpgpu::crowd::{CharacterModel, LodPolicy, ModelKind};
-use classic_gpgpu::gl::{Context, Rect};
+use classic_gpgpu::gl::Rect;
+use common::context;
 use glam::{DAffine3, DQuat, DVec3, Vec3};
 
-fn context() -> Context {
-    let ctx = Context::from_env().expect("a headless OpenGL context");
-    ctx.set_checks(true);
-    ctx
-}
+mod common;
 
 /// Characters scattered up to ~40 m from the origin, each turned and at its own phase.
 fn scattered(n: usize) -> (Vec<DAffine3>, Vec<f64>) {

@@ -3,21 +3,18 @@
 
 use classic_gpgpu::gl::reduce::{passes_for, ReduceOp, Reducer};
 use classic_gpgpu::gl::{
-    self, dump, peel, query, Blend, Buffer, BufferUsage, Compare, Context, DepthTest, DrawState,
+    self, dump, peel, query, Blend, Buffer, BufferUsage, Compare, DepthTest, DrawState,
     Framebuffer, GlError, MeshBuffers, OcclusionQuery, Primitive, Program, Rect, ShaderSource,
     StencilOp, StencilTest, Texture, TextureFormat, VertexArray,
 };
 use classic_gpgpu::mesh;
 use classic_gpgpu::shader;
+use common::context;
 use glam::{Vec3, Vec4};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn context() -> Context {
-    let ctx = Context::from_env().expect("a headless OpenGL context (see README: renderer)");
-    ctx.set_checks(true);
-    ctx
-}
+mod common;
 
 const CONSTANT: ShaderSource<'static> = shader!("glsl/test/constant.frag");
 

@@ -1,6 +1,5 @@
 //! Section 5 on the GPU: the batched n + 2 passes drive the rigid bodies.
 
-use classic_gpgpu::gl::Context;
 use classic_gpgpu::mass::buoyancy::batch::GpuSolver;
 use classic_gpgpu::mass::buoyancy::forces::Water;
 use classic_gpgpu::mass::buoyancy::simulation::{
@@ -8,17 +7,14 @@ use classic_gpgpu::mass::buoyancy::simulation::{
 };
 use classic_gpgpu::mass::gpu::GpuMass;
 use classic_gpgpu::mesh::Mesh;
+use common::context;
 use glam::{DQuat, DVec3, Vec3};
 use mass_shapes::{cuboid, energy_run, torus, uv_sphere};
 use rand::{Rng, SeedableRng};
 
-mod mass_shapes;
+mod common;
 
-fn context() -> Context {
-    let ctx = Context::from_env().expect("a headless OpenGL context");
-    ctx.set_checks(true);
-    ctx
-}
+mod mass_shapes;
 
 const RESOLUTION: u32 = 32;
 

@@ -1,23 +1,20 @@
 //! Paper 4 on a real headless GL context: the integrand shaders, depth peeling, reduction
 //! and the fluid-surface passes, each compared with the CPU.
 
-use classic_gpgpu::gl::{Context, Program};
+use classic_gpgpu::gl::Program;
 use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::GpuMass;
 use classic_gpgpu::mass::{
     analytic, clip, closed_form, cpu_reference, integrands, MassProperties, VolumeIntegrals,
 };
 use classic_gpgpu::mesh::Mesh;
+use common::context;
 use glam::{DQuat, DVec3, Vec3};
 use mass_shapes::{cuboid, torus, uv_sphere};
 
-mod mass_shapes;
+mod common;
 
-fn context() -> Context {
-    let ctx = Context::from_env().expect("a headless OpenGL context");
-    ctx.set_checks(true);
-    ctx
-}
+mod mass_shapes;
 
 fn transformed(mesh: &Mesh, q: DQuat, t: DVec3) -> Mesh {
     Mesh::new(

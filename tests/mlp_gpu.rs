@@ -6,19 +6,15 @@
 //! gamma_N per layer, carried through |W| and the sigmoid's slope of 1/4, plus 1e-6 for the
 //! shader's `exp`); two evaluations therefore agree within twice that bound.
 
-use classic_gpgpu::gl::Context;
 use classic_gpgpu::mlp::cpu::{error_bound, forward, CpuProduct};
 use classic_gpgpu::mlp::detect::{classify_cpu, classify_gpu, shipped_detector, THRESHOLD};
 use classic_gpgpu::mlp::{Activation, Formulation, GpuMlp, Layer, Network};
+use common::context;
 use ndarray::{Array1, Array2};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn context() -> Context {
-    let ctx = Context::from_env().expect("a headless OpenGL context (see README: renderer)");
-    ctx.set_checks(true);
-    ctx
-}
+mod common;
 
 /// A network of the given layer sizes (sizes[0] inputs), weights uniform in +-1/sqrt(N)*2,
 /// sigmoid layers except a random identity here and there.

@@ -1,0 +1,33 @@
+//! What the integration tests share: the GL context they run on, and test data they make.
+#![allow(dead_code)]
+
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::mesh::Mesh;
+use glam::Vec3;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// The renderer named by `CLASSIC_GPGPU_RENDERER` (see README), with GL errors and
+/// framebuffer completeness checked after every pass.
+pub fn context() -> Context {
+    let ctx = Context::from_env().expect("a headless OpenGL context (see README: renderer)");
+    ctx.set_checks(true);
+    ctx
+}
+
+/// `n` random triangles of size about `size` in the unit cube, no shared vertices.
+pub fn soup(n: usize, size: f32, seed: u64) -> Mesh {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut positions = Vec::new();
+    for _ in 0..n {
+        let c = Vec3::new(rng.gen(), rng.gen(), rng.gen());
+        for _ in 0..3 {
+            let d = Vec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
+            positions.push(c + d * size);
+        }
+    }
+    let triangles = (0..n as u32)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    Mesh::new(positions, triangles)
+}
