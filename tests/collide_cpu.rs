@@ -102,3 +102,16 @@ fn solid_refit_follows_a_deformation_without_rebuilding() {
         }
     }
 }
+
+#[test]
+fn automatic_leaf_size_bounds_the_stream_and_keeps_the_default_for_the_papers_tori() {
+    use classic_gpgpu::collide::stream_setup::{auto_leaf_size, AUTO_MAX_SLOTS, DEFAULT_LEAF_SIZE};
+    let tori = classic_gpgpu::mesh::torus_with_triangles(1.0, 0.4, 15_000);
+    assert_eq!(auto_leaf_size(&tori).unwrap(), DEFAULT_LEAF_SIZE);
+    let large = classic_gpgpu::mesh::torus_with_triangles(1.0, 0.4, 50_000);
+    let n = auto_leaf_size(&large).unwrap();
+    assert!(n > DEFAULT_LEAF_SIZE);
+    assert!(AabbStream::build(&large, n).unwrap().len() <= AUTO_MAX_SLOTS);
+    // The smallest such size: half of it would overflow.
+    assert!(AabbStream::build(&large, n / 2).unwrap().len() > AUTO_MAX_SLOTS);
+}

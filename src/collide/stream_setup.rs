@@ -18,6 +18,22 @@ use glam::Vec3;
 /// `--leaf-size` sets it.
 pub const DEFAULT_LEAF_SIZE: usize = 32;
 
+/// The most stream slots the automatic leaf size allows per model: 512, the `P0` side of the
+/// 15K-triangle tori at [`DEFAULT_LEAF_SIZE`], where the sweep's overlap pass costs about
+/// 2 ms on llvmpipe. Larger models get larger leaves instead of a larger `P0`, whose cost
+/// grows with its area (a 2048 x 2048 `P0` is 16 times a 512 x 512 one).
+pub const AUTO_MAX_SLOTS: usize = 512;
+
+/// The leaf size for `mesh`: [`DEFAULT_LEAF_SIZE`], doubled until the stream has at most
+/// [`AUTO_MAX_SLOTS`] slots.
+pub fn auto_leaf_size(mesh: &Mesh) -> Result<usize, CollideError> {
+    let mut n = DEFAULT_LEAF_SIZE;
+    while AabbStream::build(mesh, n)?.len() > AUTO_MAX_SLOTS && n < mesh.triangles.len() {
+        n *= 2;
+    }
+    Ok(n)
+}
+
 /// One real leaf of the AABB tree: a group of triangles and the unique vertices they use.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Leaf {

@@ -9,7 +9,7 @@ use crate::collide::pipeline::{FrameResult, Options, StreamingCollider};
 use crate::collide::reduction_gpu::{self, CalibrationPoint, ReadbackMode, Reduction};
 use crate::collide::scenes::{Scene, SCENES};
 use crate::collide::solid;
-use crate::collide::stream_setup::DEFAULT_LEAF_SIZE;
+use crate::collide::stream_setup::{auto_leaf_size, DEFAULT_LEAF_SIZE};
 use crate::collide::streaming_test::PairTarget;
 use crate::collide::tri_test::{test_caps, ModelView, Predicate};
 use serde::Serialize;
@@ -28,9 +28,10 @@ pub struct Paper1Args {
     /// Triangles per model instead of the paper's counts.
     #[arg(long)]
     pub triangles: Option<usize>,
-    /// Leaf size `n` of the streaming pipeline and of SOLID.
-    #[arg(long, default_value_t = DEFAULT_LEAF_SIZE)]
-    pub leaf_size: usize,
+    /// Leaf size `n` of the streaming pipeline and of SOLID (default: per model, 32 doubled
+    /// until the stream has at most 512 slots; the leaf-size sweep shows why).
+    #[arg(long)]
+    pub leaf_size: Option<usize>,
     /// CULLIDE's image resolution (the paper: 512).
     #[arg(long, default_value_t = PAPER_RESOLUTION)]
     pub cullide_resolution: u32,
@@ -51,7 +52,7 @@ impl Paper1Args {
             scenes: Vec::new(),
             frames: None,
             triangles: None,
-            leaf_size: DEFAULT_LEAF_SIZE,
+            leaf_size: None,
             cullide_resolution: PAPER_RESOLUTION,
             no_leaf_sweep: false,
             quick,
@@ -66,6 +67,8 @@ pub struct SceneRun {
     pub name: String,
     pub label: String,
     pub triangles: usize,
+    /// Leaf size `n` used for this scene.
+    pub leaf_size: usize,
     pub leaves: [usize; 2],
     pub p0: [usize; 2],
     pub frames: usize,
@@ -111,8 +114,9 @@ pub fn run_with(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Sectio
     }
     bar.finish_and_clear();
     let fig7 = readback_curve(opts, quick)?;
-    let schemes = scheme_comparison(opts, quick, args.leaf_size, frames)?;
-    let resolutions = cullide_resolutions(opts, quick, args.leaf_size)?;
+    let tori_leaf_size = args.leaf_size.unwrap_or(DEFAULT_LEAF_SIZE);
+    let schemes = scheme_comparison(opts, quick, tori_leaf_size, frames)?;
+    let resolutions = cullide_resolutions(opts, quick, tori_leaf_size)?;
     let sweep = if args.no_leaf_sweep {
         Vec::new()
     } else {
@@ -277,8 +281,12 @@ fn run_scene(
     let ctx = opts.gl;
     let scene = Scene::build(name, triangles)?;
     let (x, y) = (&scene.x.rest, &scene.y.rest);
+    let leaf_size = match args.leaf_size {
+        Some(n) => n,
+        None => auto_leaf_size(x)?.max(auto_leaf_size(y)?),
+    };
     let options = Options {
-        leaf_size: args.leaf_size,
+        leaf_size,
         readback: ReadbackMode::Auto,
         ..Options::default()
     };
@@ -293,6 +301,7 @@ fn run_scene(
         name: scene.name.into(),
         label: scene.label.clone(),
         triangles: scene.triangles,
+        leaf_size,
         leaves: [stream.x.stream.leaves.len(), stream.y.stream.leaves.len()],
         p0: [stream.target.width(), stream.target.height()],
         ..SceneRun::default()
@@ -809,7 +818,7 @@ fn section(
              method in the same run on {renderer}. The happy buddhas and intimate animals are \
              stand-ins of the same triangle counts (scanned models not available), named as \
              such. Streaming pairs are exact (tests compare them with brute force); SOLID \
-             and CULLIDE are measured against them. Leaf size n = {}; readback auto \
+             and CULLIDE are measured against them. Leaf size {}; readback auto \
              (calibrated per P0 size). SOLID: the same leaves in a CPU tree, refitted \
              bottom-up and traversed as a tree pair each frame. CULLIDE: {res}x{res} views \
              along x, y, z over the overlap of the two global boxes, two passes per view, \
@@ -820,7 +829,19 @@ fn section(
             } else {
                 ""
             },
-            args.leaf_size,
+            match args.leaf_size {
+                Some(n) => format!("n = {n}"),
+                None => {
+                    let sizes: Vec<String> = runs
+                        .iter()
+                        .map(|r| format!("{} {}", r.label, r.leaf_size))
+                        .collect();
+                    format!(
+                        "per model, 32 doubled until a stream has at most 512 slots ({})",
+                        sizes.join(", ")
+                    )
+                }
+            },
             res = args.cullide_resolution,
         ),
         tables: all_tables,
