@@ -105,13 +105,24 @@ fn solid_refit_follows_a_deformation_without_rebuilding() {
 
 #[test]
 fn automatic_leaf_size_bounds_the_stream_and_keeps_the_default_for_the_papers_tori() {
-    use classic_gpgpu::collide::stream_setup::{auto_leaf_size, AUTO_MAX_SLOTS, DEFAULT_LEAF_SIZE};
+    use classic_gpgpu::collide::stream_setup::{auto_leaf_size, max_slots, DEFAULT_LEAF_SIZE};
     let tori = classic_gpgpu::mesh::torus_with_triangles(1.0, 0.4, 15_000);
-    assert_eq!(auto_leaf_size(&tori).unwrap(), DEFAULT_LEAF_SIZE);
     let large = classic_gpgpu::mesh::torus_with_triangles(1.0, 0.4, 50_000);
-    let n = auto_leaf_size(&large).unwrap();
+    for software in [true, false] {
+        assert_eq!(
+            auto_leaf_size(&tori, max_slots(software)).unwrap(),
+            DEFAULT_LEAF_SIZE
+        );
+    }
+    // On a GPU the 50K model keeps the default; on a software renderer its leaves grow until
+    // the stream fits, and no smaller size would.
+    assert_eq!(
+        auto_leaf_size(&large, max_slots(false)).unwrap(),
+        DEFAULT_LEAF_SIZE
+    );
+    let bound = max_slots(true);
+    let n = auto_leaf_size(&large, bound).unwrap();
     assert!(n > DEFAULT_LEAF_SIZE);
-    assert!(AabbStream::build(&large, n).unwrap().len() <= AUTO_MAX_SLOTS);
-    // The smallest such size: half of it would overflow.
-    assert!(AabbStream::build(&large, n / 2).unwrap().len() > AUTO_MAX_SLOTS);
+    assert!(AabbStream::build(&large, n).unwrap().len() <= bound);
+    assert!(AabbStream::build(&large, n / 2).unwrap().len() > bound);
 }

@@ -98,6 +98,15 @@ pub struct ContextInfo {
 }
 
 impl ContextInfo {
+    /// Whether the renderer rasterizes on the CPU (llvmpipe, softpipe, swrast, SwiftShader):
+    /// there, every fragment costs CPU time that the CPU baselines also need.
+    pub fn is_software(&self) -> bool {
+        let renderer = self.renderer.to_lowercase();
+        ["llvmpipe", "softpipe", "swrast", "swiftshader"]
+            .iter()
+            .any(|name| renderer.contains(name))
+    }
+
     /// One line naming the renderer, for every printed figure: "llvmpipe (...) via egl-surfaceless".
     pub fn renderer_line(&self) -> String {
         format!(

@@ -9,7 +9,7 @@ use crate::collide::pipeline::{FrameResult, Options, StreamingCollider};
 use crate::collide::reduction_gpu::{self, CalibrationPoint, ReadbackMode, Reduction};
 use crate::collide::scenes::{Scene, SCENES};
 use crate::collide::solid;
-use crate::collide::stream_setup::{auto_leaf_size, DEFAULT_LEAF_SIZE};
+use crate::collide::stream_setup::{auto_leaf_size, max_slots, DEFAULT_LEAF_SIZE};
 use crate::collide::streaming_test::PairTarget;
 use crate::collide::tri_test::{test_caps, ModelView, Predicate};
 use serde::Serialize;
@@ -29,7 +29,7 @@ pub struct Paper1Args {
     #[arg(long)]
     pub triangles: Option<usize>,
     /// Leaf size `n` of the streaming pipeline and of SOLID (default: per model, 32 doubled
-    /// until the stream has at most 512 slots; the leaf-size sweep shows why).
+    /// until the stream has at most 512 slots on a software renderer, 4096 on a GPU).
     #[arg(long)]
     pub leaf_size: Option<usize>,
     /// CULLIDE's image resolution (the paper: 512).
@@ -283,7 +283,10 @@ fn run_scene(
     let (x, y) = (&scene.x.rest, &scene.y.rest);
     let leaf_size = match args.leaf_size {
         Some(n) => n,
-        None => auto_leaf_size(x)?.max(auto_leaf_size(y)?),
+        None => {
+            let slots = max_slots(ctx.info().is_software());
+            auto_leaf_size(x, slots)?.max(auto_leaf_size(y, slots)?)
+        }
     };
     let options = Options {
         leaf_size,
@@ -808,7 +811,7 @@ fn section(
         all_tables.push(sweep_table(sweep, &renderer));
     }
     let figures = figures(opts, runs, fig7)?;
-    let software = opts.gl.info().renderer.contains("llvmpipe");
+    let software = opts.gl.info().is_software();
     let claims = claims(runs, fig7, &ratios_solid, &ratios_cullide, software);
     Ok(Section {
         id: "paper1".into(),
@@ -837,7 +840,8 @@ fn section(
                         .map(|r| format!("{} {}", r.label, r.leaf_size))
                         .collect();
                     format!(
-                        "per model, 32 doubled until a stream has at most 512 slots ({})",
+                        "per model, 32 doubled until a stream has at most {} slots ({})",
+                        max_slots(opts.gl.info().is_software()),
                         sizes.join(", ")
                     )
                 }
