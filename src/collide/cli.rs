@@ -4,9 +4,10 @@
 use super::pipeline::{FrameResult, Options, StreamingCollider};
 use super::reduction_gpu::ReadbackMode;
 use super::scenes::{Scene, SCENES};
-use super::stream_setup::DEFAULT_LEAF_SIZE;
+use super::stream_setup::auto_leaf_size_for_pair;
 use super::tri_test::Predicate;
 use crate::gl::{dump, Context};
+use crate::mesh::Mesh;
 use anyhow::Context as _;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -14,9 +15,10 @@ use std::path::{Path, PathBuf};
 /// Options shared by both commands.
 #[derive(clap::Args, Debug, Clone)]
 pub struct PipelineArgs {
-    /// Most triangles per leaf AABB (`n`).
-    #[arg(long, default_value_t = DEFAULT_LEAF_SIZE)]
-    pub leaf_size: usize,
+    /// Most triangles per leaf AABB (`n`); default: 32, doubled until a model's stream has
+    /// at most 512 slots on a software renderer (4096 on a GPU).
+    #[arg(long)]
+    pub leaf_size: Option<usize>,
     /// Stream reduction scheme; `auto` calibrates all three on this renderer and picks by eta.
     #[arg(long, value_enum, default_value_t = ReadbackMode::Auto)]
     pub readback: ReadbackMode,
@@ -30,9 +32,14 @@ pub struct PipelineArgs {
 }
 
 impl PipelineArgs {
-    pub fn options(&self) -> Options {
-        Options {
-            leaf_size: self.leaf_size,
+    /// The pipeline options for models `x` and `y` on `ctx`'s renderer.
+    pub fn options(&self, ctx: &Context, x: &Mesh, y: &Mesh) -> anyhow::Result<Options> {
+        let leaf_size = match self.leaf_size {
+            Some(n) => n,
+            None => auto_leaf_size_for_pair(x, y, ctx.info().is_software())?,
+        };
+        Ok(Options {
+            leaf_size,
             readback: self.readback,
             predicate: if self.exact_predicates {
                 Predicate::Exact
@@ -40,7 +47,7 @@ impl PipelineArgs {
                 Predicate::Moller
             },
             max_tile: self.max_tile,
-        }
+        })
     }
 }
 
@@ -68,8 +75,9 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
         Ok(mesh)
     };
     let (x, y) = (load(&args.a)?, load(&args.b)?);
-    let mut collider = StreamingCollider::new(ctx, &x, &y, args.pipeline.options())
-        .context("setting up the AABB streams")?;
+    let options = args.pipeline.options(ctx, &x, &y)?;
+    let mut collider =
+        StreamingCollider::new(ctx, &x, &y, options).context("setting up the AABB streams")?;
     // The first frame pays for shader compilation (llvmpipe compiles on first draw); the
     // timings reported are those of a second, identical frame.
     collider.frame(&x.positions, &y.positions)?;
@@ -82,6 +90,7 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     let report = json!({
         "renderer": renderer,
         "triangles": [x.triangles.len(), y.triangles.len()],
+        "leaf_size": collider.options.leaf_size,
         "leaves": [collider.x.stream.leaves.len(), collider.y.stream.leaves.len()],
         "stream_lengths": [collider.x.stream.len(), collider.y.stream.len()],
         "tiles": collider.layout.count(),
@@ -138,8 +147,12 @@ pub struct SceneArgs {
 pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let scene = Scene::build(&args.scene, args.triangles)
         .with_context(|| format!("scenes: {}", SCENES.join(", ")))?;
-    let mut collider =
-        StreamingCollider::new(ctx, &scene.x.rest, &scene.y.rest, args.pipeline.options())?;
+    let mut collider = StreamingCollider::new(
+        ctx,
+        &scene.x.rest,
+        &scene.y.rest,
+        args.pipeline.options(ctx, &scene.x.rest, &scene.y.rest)?,
+    )?;
     let mut frames = Vec::new();
     for f in 0..args.frames {
         let (px, py) = scene.frame(f);
@@ -159,7 +172,8 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
             "scene": scene.name,
             "label": scene.label,
             "triangles": [scene.triangles, scene.triangles],
-            "leaves": [collider.x.stream.leaves.len(), collider.y.stream.leaves.len()],
+            "leaf_size": collider.options.leaf_size,
+        "leaves": [collider.x.stream.leaves.len(), collider.y.stream.leaves.len()],
             "frames": frames,
         });
         println!("{}", serde_json::to_string(&out)?);

@@ -48,6 +48,17 @@ pub fn auto_leaf_size(mesh: &Mesh, max_slots: usize) -> Result<usize, CollideErr
     Ok(n)
 }
 
+/// The automatic leaf size of a pair of models on a renderer: the larger of the two models'
+/// [`auto_leaf_size`], so both streams stay within the bound.
+pub fn auto_leaf_size_for_pair(
+    x: &Mesh,
+    y: &Mesh,
+    software_renderer: bool,
+) -> Result<usize, CollideError> {
+    let slots = max_slots(software_renderer);
+    Ok(auto_leaf_size(x, slots)?.max(auto_leaf_size(y, slots)?))
+}
+
 /// One real leaf of the AABB tree: a group of triangles and the unique vertices they use.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Leaf {

@@ -9,7 +9,7 @@ use crate::collide::pipeline::{FrameResult, Options, StreamingCollider};
 use crate::collide::reduction_gpu::{self, CalibrationPoint, ReadbackMode, Reduction};
 use crate::collide::scenes::{Scene, SCENES};
 use crate::collide::solid;
-use crate::collide::stream_setup::{auto_leaf_size, max_slots, DEFAULT_LEAF_SIZE};
+use crate::collide::stream_setup::{auto_leaf_size_for_pair, max_slots, DEFAULT_LEAF_SIZE};
 use crate::collide::streaming_test::PairTarget;
 use crate::collide::tri_test::{test_caps, ModelView, Predicate};
 use serde::Serialize;
@@ -283,10 +283,7 @@ fn run_scene(
     let (x, y) = (&scene.x.rest, &scene.y.rest);
     let leaf_size = match args.leaf_size {
         Some(n) => n,
-        None => {
-            let slots = max_slots(ctx.info().is_software());
-            auto_leaf_size(x, slots)?.max(auto_leaf_size(y, slots)?)
-        }
+        None => auto_leaf_size_for_pair(x, y, ctx.info().is_software())?,
     };
     let options = Options {
         leaf_size,
