@@ -337,13 +337,7 @@ mod pixel_sums {
         let f = Framing::fit(mesh, n).unwrap();
         let got = MassProperties::from_integrals(&cpu_reference::integrate(mesh, &f, None), 1.0);
         let want = MassProperties::from_integrals(&analytic::volume_integrals(mesh), 1.0);
-        let rel = |g: f64, w: f64| (g - w).abs() / w.abs();
-        [
-            rel(got.mass, want.mass),
-            rel(got.inertia.x_axis.x, want.inertia.x_axis.x),
-            rel(got.inertia.y_axis.y, want.inertia.y_axis.y),
-            rel(got.inertia.z_axis.z, want.inertia.z_axis.z),
-        ]
+        got.relative_errors(&want)
     }
 
     #[test]

@@ -84,16 +84,6 @@ fn gpu_pixel_sums_equal_the_cpu_reference() {
     }
 }
 
-fn relative_errors(got: &MassProperties, want: &MassProperties) -> [f64; 4] {
-    let rel = |g: f64, w: f64| (g - w).abs() / w.abs();
-    [
-        rel(got.mass, want.mass),
-        rel(got.inertia.x_axis.x, want.inertia.x_axis.x),
-        rel(got.inertia.y_axis.y, want.inertia.y_axis.y),
-        rel(got.inertia.z_axis.z, want.inertia.z_axis.z),
-    ]
-}
-
 /// Measured on llvmpipe for this tilted torus (relative error of mass / worst of Ixx, Iyy,
 /// Izz): 32x32 1.4e-3 / 1.1e-3, 128x128 3.4e-4 / 4.8e-4, 512x512 1.9e-6 / 4.2e-6. The
 /// asserted bounds are the paper's 5% at 32x32, a decrease, and 0.2% at 512x512.
@@ -113,7 +103,7 @@ fn gpu_converges_to_the_analytic_result() {
             .integrate(&mesh, None, None)
             .unwrap();
         let got = MassProperties::from_integrals(&gpu.integrals, 2.0);
-        let e = relative_errors(&got, &want);
+        let e = got.relative_errors(&want);
         eprintln!("{n}x{n}: relative errors (mass, Ixx, Iyy, Izz) = {e:?}");
         worst.push(e.iter().cloned().fold(0.0, f64::max));
     }

@@ -41,6 +41,18 @@ impl MassProperties {
         }
     }
 
+    /// Relative errors of mass, Ixx, Iyy and Izz against `reference`: the measure of paper 4's
+    /// Fig. 4.
+    pub fn relative_errors(&self, reference: &MassProperties) -> [f64; 4] {
+        let rel = |got: f64, want: f64| ((got - want) / want).abs();
+        [
+            rel(self.mass, reference.mass),
+            rel(self.inertia.x_axis.x, reference.inertia.x_axis.x),
+            rel(self.inertia.y_axis.y, reference.inertia.y_axis.y),
+            rel(self.inertia.z_axis.z, reference.inertia.z_axis.z),
+        ]
+    }
+
     /// The principal moments (eigenvalues of the inertia tensor), ascending.
     pub fn principal_moments(&self) -> DVec3 {
         symmetric_eigenvalues(self.inertia)

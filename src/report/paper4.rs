@@ -55,16 +55,6 @@ struct ObjectRun {
     turned_peels: usize,
 }
 
-fn relative_errors(got: &MassProperties, want: &MassProperties) -> [f64; 4] {
-    let rel = |g: f64, w: f64| ((g - w) / w).abs();
-    [
-        rel(got.mass, want.mass),
-        rel(got.inertia.x_axis.x, want.inertia.x_axis.x),
-        rel(got.inertia.y_axis.y, want.inertia.y_axis.y),
-        rel(got.inertia.z_axis.z, want.inertia.z_axis.z),
-    ]
-}
-
 /// Fig. 4 and 5 for one object at every resolution.
 fn measure_object(
     ctx: &Context,
@@ -96,7 +86,7 @@ fn measure_object(
         rows.push((
             n,
             first.peels,
-            relative_errors(&got, &exact),
+            got.relative_errors(&exact),
             timer[timer.len() / 2],
             wall,
         ));
