@@ -1,13 +1,8 @@
 //! The command line as a user meets it.
 
-use std::process::Command;
+use common::classic_gpgpu;
 
-fn classic_gpgpu(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
 
 #[test]
 fn info_json_names_renderer_and_limits() {

@@ -3,15 +3,10 @@
 use classic_gpgpu::collide::brute_force::all_pairs;
 use classic_gpgpu::collide::Predicate;
 use classic_gpgpu::mesh;
+use common::classic_gpgpu;
 use glam::{Affine3A, Quat, Vec3};
-use std::process::Command;
 
-fn classic_gpgpu(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("collide-cli-{name}-{}", std::process::id()));

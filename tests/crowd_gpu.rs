@@ -8,7 +8,7 @@ use classic_gpgpu::crowd::scene::{self, SKY};
 use classic_gpgpu::crowd::sprites::{frame_row, view_column, FRAMES, VIEWS};
 use classic_gpgpu::crowd::{CharacterModel, LodPolicy, ModelKind};
 use classic_gpgpu::gl::Rect;
-use common::context;
+use common::{classic_gpgpu, context};
 use glam::{DAffine3, DQuat, DVec3, Vec3};
 
 mod common;
@@ -298,13 +298,6 @@ fn the_atlas_holds_every_view_and_phase() {
             );
         }
     }
-}
-
-fn classic_gpgpu(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -1,17 +1,12 @@
 //! The `mass`, `buoyancy` and `mass-bench` commands as a user meets them.
 
+use common::classic_gpgpu;
 use std::path::PathBuf;
-use std::process::Command;
 
-fn run(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
 
 fn json_of(args: &[&str]) -> serde_json::Value {
-    let out = run(args);
+    let out = classic_gpgpu(args);
     assert!(
         out.status.success(),
         "{args:?}: {}",
@@ -96,7 +91,7 @@ fn inverted_mesh_is_reported_never_a_silent_positive_mass() {
         })
         .collect();
     let cube = write_obj(&dir, "inside_out.obj", &flipped);
-    let out = run(&["mass", &cube, "--json"]);
+    let out = classic_gpgpu(&["mass", &cube, "--json"]);
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["mass"].as_f64().unwrap() < 0.0);
@@ -113,7 +108,7 @@ fn open_mesh_is_reported_and_its_analytic_result_marked_unreliable() {
         .map(|l| format!("{l}\n"))
         .collect();
     let mesh = write_obj(&dir, "open.obj", &open);
-    let out = run(&["mass", &mesh, "--json"]);
+    let out = classic_gpgpu(&["mass", &mesh, "--json"]);
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["closed"], false);
@@ -133,7 +128,7 @@ fn bad_input_is_a_clear_error() {
             "--png-every x",
         ),
     ] {
-        let out = run(&args);
+        let out = classic_gpgpu(&args);
         assert!(!out.status.success(), "{args:?} should fail");
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(needle), "{args:?}: {err}");
@@ -142,7 +137,7 @@ fn bad_input_is_a_clear_error() {
     let dir = scratch("garbage");
     let path = dir.join("garbage.obj");
     std::fs::write(&path, "v 0 0 0\nf 1 2 9\n").unwrap();
-    let out = run(&["mass", path.to_str().unwrap()]);
+    let out = classic_gpgpu(&["mass", path.to_str().unwrap()]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("garbage.obj"));
 }

@@ -1,15 +1,11 @@
 //! `classic-gpgpu mlp run | detect` and `mlp-bench` as a user meets them: JSON output, and
 //! bad files giving a clear message and a non-zero exit without a panic.
 
+use common::classic_gpgpu;
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn classic_gpgpu(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
 
 /// A scratch directory for this test binary.
 fn scratch(name: &str) -> PathBuf {

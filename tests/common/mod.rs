@@ -31,3 +31,11 @@ pub fn soup(n: usize, size: f32, seed: u64) -> Mesh {
         .collect();
     Mesh::new(positions, triangles)
 }
+
+/// Run the `classic-gpgpu` binary with `args`, as a user would.
+pub fn classic_gpgpu(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
