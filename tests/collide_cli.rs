@@ -3,7 +3,7 @@
 use classic_gpgpu::collide::brute_force::all_pairs;
 use classic_gpgpu::collide::Predicate;
 use classic_gpgpu::mesh;
-use common::classic_gpgpu;
+use common::{classic_gpgpu, json_of};
 use glam::{Affine3A, Quat, Vec3};
 
 mod common;
@@ -31,7 +31,7 @@ fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
     assert!(!expected.is_empty());
     let dump = dir.join("dump");
     for readback in ["hierarchical", "reduced", "full", "auto"] {
-        let out = classic_gpgpu(&[
+        let v = json_of(&[
             "collide",
             pa.to_str().unwrap(),
             pb.to_str().unwrap(),
@@ -44,12 +44,6 @@ fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
             dump.to_str().unwrap(),
             "--json",
         ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let pairs: Vec<(u32, u32)> = v["pairs"]
             .as_array()
             .unwrap()
@@ -107,7 +101,7 @@ fn bad_inputs_fail_with_a_message_naming_them() {
 
 #[test]
 fn collide_scene_and_bench_print_json() {
-    let out = classic_gpgpu(&[
+    let v = json_of(&[
         "collide-scene",
         "touching-tori",
         "--frames",
@@ -116,15 +110,9 @@ fn collide_scene_and_bench_print_json() {
         "800",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["frames"].as_array().unwrap().len(), 2);
     let dir = temp_dir("bench");
-    let out = classic_gpgpu(&[
+    let v = json_of(&[
         "collide-bench",
         "--quick",
         "--scenes",
@@ -138,12 +126,6 @@ fn collide_scene_and_bench_print_json() {
         dir.to_str().unwrap(),
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["id"], "paper1");
     assert!(v["tables"].as_array().unwrap().len() >= 4);
     assert!(dir.join("paper1_fig7_readback.png").is_file());

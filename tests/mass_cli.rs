@@ -1,19 +1,9 @@
 //! The `mass`, `buoyancy` and `mass-bench` commands as a user meets them.
 
-use common::classic_gpgpu;
+use common::{classic_gpgpu, json_of};
 use std::path::PathBuf;
 
 mod common;
-
-fn json_of(args: &[&str]) -> serde_json::Value {
-    let out = classic_gpgpu(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
-}
 
 fn scratch(name: &str) -> PathBuf {
     let dir =

@@ -6,7 +6,7 @@ use classic_gpgpu::mass::buoyancy::rigid_body::{RigidBody, Wrench};
 use classic_gpgpu::mass::{analytic, clip, closed_form, surface, MassProperties, VolumeIntegrals};
 use classic_gpgpu::mesh::Mesh;
 use glam::{DMat3, DQuat, DVec3, Vec3};
-use mass_shapes::{cuboid, torus, uv_sphere};
+use mass_shapes::{cuboid, torus, transformed, uv_sphere};
 use rand::{Rng, SeedableRng};
 
 mod mass_shapes;
@@ -40,16 +40,6 @@ fn tetrahedron_sum(mesh: &Mesh) -> VolumeIntegrals {
         };
     }
     out
-}
-
-fn transformed(mesh: &Mesh, q: DQuat, t: DVec3) -> Mesh {
-    Mesh::new(
-        mesh.positions
-            .iter()
-            .map(|p| (q * p.as_dvec3() + t).as_vec3())
-            .collect(),
-        mesh.triangles.clone(),
-    )
 }
 
 fn assert_close(what: &str, got: f64, want: f64, rel: f64, scale: f64) {

@@ -7,24 +7,13 @@ use classic_gpgpu::mass::gpu::GpuMass;
 use classic_gpgpu::mass::{
     analytic, clip, closed_form, cpu_reference, integrands, MassProperties, VolumeIntegrals,
 };
-use classic_gpgpu::mesh::Mesh;
 use common::context;
 use glam::{DQuat, DVec3, Vec3};
-use mass_shapes::{cuboid, torus, uv_sphere};
+use mass_shapes::{cuboid, torus, transformed, uv_sphere};
 
 mod common;
 
 mod mass_shapes;
-
-fn transformed(mesh: &Mesh, q: DQuat, t: DVec3) -> Mesh {
-    Mesh::new(
-        mesh.positions
-            .iter()
-            .map(|p| (q * p.as_dvec3() + t).as_vec3())
-            .collect(),
-        mesh.triangles.clone(),
-    )
-}
 
 fn largest(i: &VolumeIntegrals) -> f64 {
     i.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()))

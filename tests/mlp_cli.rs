@@ -1,7 +1,7 @@
 //! `classic-gpgpu mlp run | detect` and `mlp-bench` as a user meets them: JSON output, and
 //! bad files giving a clear message and a non-zero exit without a panic.
 
-use common::classic_gpgpu;
+use common::{classic_gpgpu, json_of};
 use std::path::PathBuf;
 use std::process::Output;
 
@@ -44,13 +44,7 @@ fn run_prints_outputs_and_timings_as_json() {
     ] {
         let mut args = vec!["mlp", "run", "--network", &net, "--input", &input, "--json"];
         args.extend_from_slice(extra);
-        let out = classic_gpgpu(&args);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let v = json_of(&args);
         assert!(v["renderer"].as_str().is_some_and(|r| !r.is_empty()));
         for key in ["texture_creation", "matmul", "activation"] {
             assert!(
@@ -145,13 +139,7 @@ fn detect_writes_a_mask_and_refuses_a_non_image() {
     crop.save(&input).unwrap();
     let mask = dir.join("mask.png");
     let (input, mask_arg) = (input.display().to_string(), mask.display().to_string());
-    let out = classic_gpgpu(&["mlp", "detect", &input, "--out", &mask_arg, "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = json_of(&["mlp", "detect", &input, "--out", &mask_arg, "--json"]);
     let written = image::open(&mask).unwrap().to_luma8();
     assert_eq!(written.dimensions(), (64, 48));
     let black = written.pixels().filter(|p| p.0[0] == 0).count() as u64;
@@ -166,19 +154,13 @@ fn detect_writes_a_mask_and_refuses_a_non_image() {
 #[test]
 fn bench_quick_reports_table_1_beside_the_paper() {
     let dir = scratch("bench");
-    let out = classic_gpgpu(&[
+    let v = json_of(&[
         "mlp-bench",
         "--quick",
         "--out-dir",
         &dir.display().to_string(),
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["id"], "paper3");
     let table1 = &v["tables"][0];
     assert!(table1["header"].to_string().contains("paper GPU"));

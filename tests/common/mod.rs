@@ -39,3 +39,14 @@ pub fn classic_gpgpu(args: &[&str]) -> std::process::Output {
         .output()
         .expect("the binary runs")
 }
+
+/// Run the binary with `args`, require success, and parse its stdout as JSON.
+pub fn json_of(args: &[&str]) -> serde_json::Value {
+    let out = classic_gpgpu(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
+}

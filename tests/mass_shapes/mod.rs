@@ -127,3 +127,14 @@ pub fn energy_run(
     }
     (e0, max_e, sim.energy())
 }
+
+/// `mesh` rotated by `q` then moved by `t`, in f64.
+pub fn transformed(mesh: &Mesh, q: glam::DQuat, t: glam::DVec3) -> Mesh {
+    Mesh::new(
+        mesh.positions
+            .iter()
+            .map(|p| (q * p.as_dvec3() + t).as_vec3())
+            .collect(),
+        mesh.triangles.clone(),
+    )
+}
