@@ -57,6 +57,7 @@ fn quick_reproduction_writes_every_section_and_keeps_a_good_report_on_failure() 
             stage.id
         );
     }
+    assert_same_shape(&results);
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("Quick mode"));
     let files = referenced_files(&html);
@@ -87,4 +88,63 @@ fn quick_reproduction_writes_every_section_and_keeps_a_good_report_on_failure() 
         .collect();
     assert!(leftovers.is_empty(), "staging folders left behind");
     std::fs::remove_dir_all(&out).ok();
+}
+
+/// The names a reader finds in the report: per section its id and title, the tables (caption
+/// up to the first ':' or '(', where the measured details begin), figures, claims, fidelity
+/// features and result keys.
+fn shape(results: &serde_json::Value) -> serde_json::Value {
+    let names = |v: &serde_json::Value, key: &str, field: &str| -> Vec<String> {
+        v[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x[field].as_str().unwrap().to_string())
+            .collect()
+    };
+    let sections: Vec<serde_json::Value> = results["sections"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            let tables: Vec<String> = names(s, "tables", "caption")
+                .iter()
+                .map(|c| c.split([':', '(']).next().unwrap().trim().to_string())
+                .collect();
+            let mut keys: Vec<&String> = s["results"].as_object().unwrap().keys().collect();
+            keys.sort();
+            serde_json::json!({
+                "id": s["id"],
+                "title": s["title"],
+                "tables": tables,
+                "figures": names(s, "figures", "file"),
+                "claims": names(s, "claims", "claim"),
+                "fidelity": names(s, "fidelity", "feature"),
+                "results": keys,
+            })
+        })
+        .collect();
+    serde_json::Value::Array(sections)
+}
+
+/// The report's shape equals `tests/data/reproduce_quick_shape.json`: a refactoring of the
+/// report layer must not lose or rename a section, table, figure, claim or result. A change
+/// meant to alter the report updates that file (`CLASSIC_GPGPU_UPDATE_SHAPE=1` rewrites it).
+fn assert_same_shape(results: &serde_json::Value) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/reproduce_quick_shape.json");
+    let got = shape(results);
+    if std::env::var_os("CLASSIC_GPGPU_UPDATE_SHAPE").is_some() {
+        std::fs::write(&path, serde_json::to_string_pretty(&got).unwrap() + "\n").unwrap();
+    }
+    let want: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let (got, want) = (got.as_array().unwrap(), want.as_array().unwrap());
+    for (g, w) in got.iter().zip(want) {
+        for key in [
+            "id", "title", "tables", "figures", "claims", "fidelity", "results",
+        ] {
+            assert_eq!(g[key], w[key], "section {}: {key} differs", w["id"]);
+        }
+    }
+    assert_eq!(got.len(), want.len(), "number of sections");
 }

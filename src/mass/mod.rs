@@ -36,7 +36,6 @@
 pub mod analytic;
 pub mod assemble;
 pub mod buoyancy;
-pub mod cli;
 pub mod clip;
 pub mod closed_form;
 pub mod cpu_reference;

@@ -2,7 +2,7 @@
 //! a staging folder beside the target and swapped in only when every section succeeded, so a
 //! failed run never leaves a half-written report where a good one was.
 
-use super::{html, BenchOptions, Report, Section};
+use super::{html, run_section, BenchOptions, Paper, Report, Section};
 use crate::gl;
 use anyhow::{bail, Context as _};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
@@ -19,19 +19,25 @@ pub struct Stage {
     pub run: fn(&BenchOptions) -> anyhow::Result<Section>,
 }
 
-/// Every stage, in report order. Each paper adds its line here.
+impl Stage {
+    /// The stage of section `P`, run with its default options.
+    pub fn of<P: Paper>() -> Stage {
+        Stage {
+            id: P::ID,
+            title: P::TITLE,
+            run: |opts| run_section::<P>(opts, &P::Options::default()),
+        }
+    }
+}
+
+/// Every stage, in report order. Each section adds its line here.
 pub fn stages() -> Vec<Stage> {
-    let stage = |id, title, run| Stage { id, title, run };
     vec![
-        stage("blocks", "building blocks", super::blocks::run),
-        stage("paper1", "paper 1: streaming AABBs", super::paper1::run),
-        stage("paper2", "paper 2: crowd skinning", super::paper2::run),
-        stage("paper3", "paper 3: neural networks", super::paper3::run),
-        stage(
-            "paper4",
-            "paper 4: mass properties and buoyancy",
-            super::paper4::run,
-        ),
+        Stage::of::<super::blocks::Blocks>(),
+        Stage::of::<super::paper1::Paper1>(),
+        Stage::of::<super::paper2::Paper2>(),
+        Stage::of::<super::paper3::Paper3>(),
+        Stage::of::<super::paper4::Paper4>(),
     ]
 }
 

@@ -1,8 +1,10 @@
 //! `classic-gpgpu mesh`: check an OBJ the way the papers' commands will read it, and write
 //! the papers' test objects as OBJ files.
 
-use super::{generate, load_bunny, load_obj, retessellate, write_obj, Mesh, Pipe, TorusKnot};
 use anyhow::{bail, Context as _};
+use classic_gpgpu::mesh::{
+    generate, load_bunny, load_obj, retessellate, write_obj, Mesh, Pipe, TorusKnot,
+};
 use serde_json::json;
 use std::path::PathBuf;
 
