@@ -128,6 +128,26 @@ fn collide_scene_and_bench_print_json() {
     ]);
     assert_eq!(v["id"], "paper1");
     assert!(v["tables"].as_array().unwrap().len() >= 4);
-    assert!(dir.join("paper1_fig7_readback.png").is_file());
+    for png in [
+        "paper1_fig7_readback.png",
+        "paper1_fig7_readback_uniform.png",
+        "paper1_fig10_merging-tori.png",
+        "paper1_fig12_merging-tori.png",
+    ] {
+        assert!(dir.join(png).is_file(), "{png} not written");
+    }
+    // Sec. 5.5: a scene forced through tiles, beside the same frames as one rectangle.
+    let tiles = v["results"]["tiles"]["rows"].as_array().unwrap();
+    assert!(tiles.iter().any(|r| r["tiles"].as_u64().unwrap() > 1));
+    let captions: Vec<&str> = v["tables"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["caption"].as_str().unwrap())
+        .collect();
+    assert!(captions.iter().any(|c| c.starts_with("Sec. 5.5: tiles")));
+    assert!(captions
+        .iter()
+        .any(|c| c.starts_with("Fig. 7, clustered CAPs")));
     std::fs::remove_dir_all(&dir).ok();
 }

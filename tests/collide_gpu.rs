@@ -7,7 +7,8 @@
 use classic_gpgpu::collide::brute_force::all_pairs;
 use classic_gpgpu::collide::deform::{Deformation, Deforming, Wavy};
 use classic_gpgpu::collide::pipeline::{Options, StreamingCollider};
-use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
+use classic_gpgpu::collide::reduction::P0Contents;
+use classic_gpgpu::collide::reduction_gpu::{paper_switch, ReadbackMode};
 use classic_gpgpu::collide::{solid, AabbStream, Predicate};
 use classic_gpgpu::mesh::{self, Mesh};
 use common::{context, soup};
@@ -160,6 +161,7 @@ fn a_model_forced_through_many_tiles() {
         ReadbackMode::Hierarchical,
         ReadbackMode::Reduced,
         ReadbackMode::Auto,
+        ReadbackMode::PaperSwitch,
     ] {
         let mut o = options(readback, 4);
         o.max_tile = Some(32);
@@ -295,15 +297,41 @@ fn streams_of_one_and_few_slots_in_every_scheme() {
         let x = soup(nx, 0.6, nx as u64);
         let y = soup(ny, 0.6, 100 + ny as u64);
         let expected = all_pairs(&x, &x.positions, &y, &y.positions, Predicate::Moller);
-        for readback in [
-            ReadbackMode::Hierarchical,
-            ReadbackMode::Reduced,
-            ReadbackMode::Full,
-            ReadbackMode::Auto,
-        ] {
+        for readback in ReadbackMode::ALL {
             let mut c = StreamingCollider::new(&ctx, &x, &y, options(readback, leaf)).unwrap();
             let r = c.frame(&x.positions, &y.positions).unwrap();
             assert_eq!(r.pairs, expected, "{nx} x {ny} {readback:?}");
+            if readback == ReadbackMode::PaperSwitch && r.caps > 0 {
+                // One tile: the frame's eta is the tile's.
+                assert_eq!(r.scheme, Some(paper_switch(r.eta)), "{nx} x {ny}");
+            }
         }
     }
+}
+
+#[test]
+fn auto_calibrates_on_clustered_p0_contents() {
+    // Sec. 5.3.1's hierarchy counts on CAPs that cluster, as the scenes' do; uniformly
+    // random contents put one CAP in each set P1 texel.
+    let ctx = context();
+    let x = soup(200, 0.1, 61);
+    let y = soup(200, 0.1, 62);
+    let c = StreamingCollider::new(&ctx, &x, &y, options(ReadbackMode::Auto, 1)).unwrap();
+    assert!(!c.calibration.is_empty());
+    assert!(c
+        .calibration
+        .iter()
+        .all(|p| p.contents == P0Contents::Clustered));
+    let dense = c
+        .calibration
+        .iter()
+        .find(|p| p.caps >= 20)
+        .expect("a point with CAPs");
+    assert!(dense.caps_per_set_p1_texel > 1.5, "{dense:?}");
+    let fixed =
+        StreamingCollider::new(&ctx, &x, &y, options(ReadbackMode::PaperSwitch, 1)).unwrap();
+    assert!(
+        fixed.calibration.is_empty(),
+        "the paper's switch needs no calibration"
+    );
 }

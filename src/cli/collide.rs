@@ -22,7 +22,8 @@ pub struct PipelineArgs {
     /// at most 512 slots on a software renderer (4096 on a GPU).
     #[arg(long)]
     pub leaf_size: Option<usize>,
-    /// Stream reduction scheme; `auto` calibrates all three on this renderer and picks by eta.
+    /// Stream reduction scheme; `auto` calibrates all three on this renderer and picks by eta,
+    /// `paper-switch` is the paper's: hierarchical below eta = 0.095%, reduced from it.
     #[arg(long, default_value_t = ReadbackMode::Auto, value_parser = readback_parser())]
     pub readback: ReadbackMode,
     /// Decide triangle pairs with exact orientation predicates instead of floating point.
@@ -194,7 +195,7 @@ fn timings_json(f: &FrameResult) -> serde_json::Value {
     let t = &f.timings;
     // "readback" is the paper's Readback column: encoding plus reading and decoding.
     json!({
-        "overlap": t.overlap, "readback": t.encode + t.readback, "encode": t.encode,
+        "overlap": t.overlap, "stencil": t.stencil, "readback": t.encode + t.readback, "encode": t.encode,
         "decode": t.readback, "tri_test": t.tri_test, "download": t.download,
         "update": t.update, "total": t.total,
     })

@@ -4,7 +4,7 @@
 
 use super::aabb_textures::AabbTextures;
 use super::global_test::global_boxes_overlap;
-use super::reduction::Scheme;
+use super::reduction::{P0Contents, Scheme};
 use super::reduction_gpu::{self, CalibrationPoint, ReadbackMode, Reduction};
 use super::stream_setup::{validate_mesh, AabbStream, DEFAULT_LEAF_SIZE};
 use super::stream_update::StreamUpdate;
@@ -72,6 +72,9 @@ impl GpuStream {
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Timings {
     pub overlap: f64,
+    /// Filling the stencil buffer from the stencil arrays: once for all frames when the pair
+    /// fits one tile, for every tile of every frame otherwise [Sec. 5.5].
+    pub stencil: f64,
     pub encode: f64,
     /// Reading back and decoding.
     pub readback: f64,
@@ -171,7 +174,10 @@ impl StreamingCollider {
         Ok(collider)
     }
 
-    /// (Re)run the readback calibration that `auto` decides by.
+    /// (Re)run the readback calibration that `auto` decides by, on clustered `P0` contents:
+    /// the spatial coherence of CAPs that the hierarchical readback counts on [Sec. 5.3.1]
+    /// (uniformly random CAPs make every set `P1` texel hold one CAP, which the scenes never
+    /// show, and push the scheme off the hierarchy too early).
     pub fn calibrate(
         &mut self,
         etas: &[f64],
@@ -183,6 +189,7 @@ impl StreamingCollider {
             &self.reduction,
             etas,
             repeats,
+            P0Contents::Clustered,
             0x5eed,
         )?;
         Ok(&self.calibration)
@@ -193,6 +200,7 @@ impl StreamingCollider {
             ReadbackMode::Hierarchical => Scheme::Hierarchical,
             ReadbackMode::Reduced => Scheme::Reduced,
             ReadbackMode::Full => Scheme::Full,
+            ReadbackMode::PaperSwitch => reduction_gpu::paper_switch(eta),
             ReadbackMode::Auto => reduction_gpu::choose(&self.calibration, eta),
         }
     }
@@ -288,7 +296,9 @@ impl StreamingCollider {
         let (ay, _) = &self.y.segments[b];
         // The stencil only depends on the tile; with one tile it is set once and kept.
         if self.layout.count() > 1 || !self.stencil_ready {
-            self.test.set_stencil(&self.target, ax, ay)?;
+            let ((), stencil_ms) =
+                time_gpu(&self.ctx, || self.test.set_stencil(&self.target, ax, ay))?;
+            out.timings.stencil += stencil_ms;
             self.stencil_ready = true;
         }
         let (count, overlap_ms) = time_gpu(&self.ctx, || self.test.run(&self.target, ax, ay))?;

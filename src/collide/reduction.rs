@@ -245,6 +245,98 @@ pub fn encode8(src: &[f32], w: usize, h: usize) -> (Vec<[f32; 4]>, usize, usize)
     (out, ew, eh)
 }
 
+/// What a calibration fills `P0` with at a given `eta`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum P0Contents {
+    /// Every pair a CAP with probability `eta`, independently.
+    Uniform,
+    /// CAPs in [`CLUSTER_BLOBS`] square blobs, as contacts make them (Sec. 5.3.1: "colliding
+    /// triangles tend to be in close proximity"): see [`fill_p0`].
+    Clustered,
+}
+
+impl std::fmt::Display for P0Contents {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            P0Contents::Uniform => "uniform",
+            P0Contents::Clustered => "clustered",
+        })
+    }
+}
+
+/// Blobs of a clustered `P0`.
+pub const CLUSTER_BLOBS: usize = 8;
+/// Share of a blob's pixels that are CAPs (when the blob is large enough).
+pub const CLUSTER_FILL: f64 = 0.25;
+
+/// A `w x h` `P0` (row-major, 1.0 = CAP) with about `eta * w * h` CAPs.
+///
+/// Clustered: up to [`CLUSTER_BLOBS`] squares at random places, each pixel in them a CAP with
+/// probability [`CLUSTER_FILL`] (higher when the squares would be smaller than a pixel), the
+/// squares' side growing with `eta`. The model is fitted to the scenes' own `P0`s (tori,
+/// bunnies, stand-ins at 2000 triangles, 512 x 512): their CAPs fill 2.1-3.7 per set 4x4
+/// block (what the hierarchical readback reads at `P1`) and 8-85 per set 64x64 block (`P3`),
+/// where uniform contents give 1-1.05 and 1-30; these blobs give 1.8-3.4 and 4-120 over the
+/// same range of `eta` (0.01-0.7%). Deterministic in `rng`.
+pub fn fill_p0(
+    w: usize,
+    h: usize,
+    eta: f64,
+    contents: P0Contents,
+    rng: &mut super::deform::SplitMix64,
+) -> Vec<f32> {
+    let mut cells = vec![0.0f32; w * h];
+    let target = eta * (w * h) as f64;
+    match contents {
+        P0Contents::Uniform => {
+            for c in &mut cells {
+                *c = f32::from((rng.unit() as f64) < eta);
+            }
+        }
+        P0Contents::Clustered if target > 0.0 => {
+            let blobs = (CLUSTER_BLOBS as f64).min(target.ceil());
+            let side = ((target / (blobs * CLUSTER_FILL)).sqrt().ceil() as usize)
+                .clamp(1, w.min(h).max(1));
+            let fill = (target / (blobs * (side * side) as f64)).min(1.0);
+            for _ in 0..blobs as usize {
+                let x0 = (rng.next_u64() % (w - side + 1) as u64) as usize;
+                let y0 = (rng.next_u64() % (h - side + 1) as u64) as usize;
+                for y in y0..y0 + side {
+                    for x in x0..x0 + side {
+                        if (rng.unit() as f64) < fill {
+                            cells[y * w + x] = 1.0;
+                        }
+                    }
+                }
+            }
+        }
+        P0Contents::Clustered => {}
+    }
+    cells
+}
+
+/// CAPs per set `block x block` block of a `w x h` `P0`: 1 when no two CAPs share a block.
+pub fn caps_per_set_block(cells: &[f32], w: usize, h: usize, block: usize) -> f64 {
+    let (bw, bh) = encoded_size(w, h, block);
+    let mut set = vec![false; bw * bh];
+    let mut caps = 0usize;
+    for y in 0..h {
+        for x in 0..w {
+            if cells[y * w + x] != 0.0 {
+                caps += 1;
+                set[(y / block) * bw + x / block] = true;
+            }
+        }
+    }
+    let blocks = set.iter().filter(|&&b| b).count();
+    if blocks == 0 {
+        0.0
+    } else {
+        caps as f64 / blocks as f64
+    }
+}
+
 /// CPU levels, for testing the decoders and for the calibration's bookkeeping.
 pub struct CpuLevels {
     pub levels: Vec<(Vec<f32>, usize)>,
@@ -346,5 +438,36 @@ mod tests {
             hier.bytes,
             full.bytes
         );
+    }
+
+    #[test]
+    fn clustered_contents_hold_about_eta_caps_in_blobs() {
+        let (w, h) = (512, 512);
+        for eta in [1e-4, 7e-4, 7e-3, 5e-2] {
+            let mut rng = SplitMix64(9);
+            let uniform = fill_p0(w, h, eta, P0Contents::Uniform, &mut rng);
+            let clustered = fill_p0(w, h, eta, P0Contents::Clustered, &mut rng);
+            let target = eta * (w * h) as f64;
+            for (cells, name) in [(&uniform, "uniform"), (&clustered, "clustered")] {
+                let caps = cells.iter().filter(|&&c| c != 0.0).count() as f64;
+                // Binomial spread (and blob overlap): within 25% plus a few CAPs.
+                assert!(
+                    (caps - target).abs() <= 0.25 * target + 8.0,
+                    "{name} at eta {eta}: {caps} CAPs for {target}"
+                );
+            }
+            // The scenes' P0s hold 2.1-3.7 CAPs per set 4x4 block; uniform CAPs this sparse
+            // rarely share one. (Without the blobs, clustered would read about 1.)
+            let c = caps_per_set_block(&clustered, w, h, 4);
+            let u = caps_per_set_block(&uniform, w, h, 4);
+            assert!((1.5..=4.5).contains(&c), "clustered at eta {eta}: {c}");
+            if eta < 1e-3 {
+                assert!(u < 1.1, "uniform at eta {eta}: {u}");
+            }
+        }
+        let mut rng = SplitMix64(1);
+        assert!(fill_p0(64, 64, 0.0, P0Contents::Clustered, &mut rng)
+            .iter()
+            .all(|&c| c == 0.0));
     }
 }

@@ -1,11 +1,13 @@
 //! The measurements: every scene of Table III through the streaming pipeline, SOLID and
 //! CULLIDE frame by frame (Tables III-IV, Fig. 8-12); CULLIDE's resolution; the readback
-//! curves of Fig. 7; the three readback schemes on real frames; the leaf-size sweep.
-//! Numbers only: the tables and figures are built from [`Paper1Results`] elsewhere.
+//! curves of Fig. 7 on clustered and on uniform `P0` contents; the readback schemes on real
+//! frames; the tiles of Sec. 5.5; the leaf-size sweep. Numbers only: the tables and figures
+//! are built from [`Paper1Results`] elsewhere.
 
 use super::Paper1Args;
 use crate::collide::cullide::{Cullide, CullideResult};
 use crate::collide::pipeline::{FrameResult, Options, StreamingCollider};
+use crate::collide::reduction::{P0Contents, HIER_BLOCK};
 use crate::collide::reduction_gpu::{self, CalibrationPoint, ReadbackMode, Reduction};
 use crate::collide::scenes::{Scene, SCENES};
 use crate::collide::stream_setup::{auto_leaf_size_for_pair, max_slots, DEFAULT_LEAF_SIZE};
@@ -26,11 +28,9 @@ pub struct Paper1Results {
     pub setup: Setup,
     pub scenes: Vec<SceneRun>,
     pub cullide_resolutions: CullideResolutions,
-    /// Fig. 7: every scheme at each `eta`, on random `P0` contents.
-    pub fig7: Vec<CalibrationPoint>,
-    /// The first calibrated `eta` from which the hierarchical scheme is not the fastest.
-    pub threshold_eta: Option<f64>,
+    pub fig7: Fig7,
     pub readback_schemes: ReadbackSchemes,
+    pub tiles: TileStudy,
     /// Empty when the sweep was skipped.
     pub leaf_sweep: Vec<SweepPoint>,
 }
@@ -48,8 +48,40 @@ pub struct Setup {
     pub max_slots: usize,
     pub software_renderer: bool,
     pub cullide_resolution: u32,
-    /// Side of Fig. 7's `P0`.
-    pub fig7_p0: usize,
+}
+
+/// Fig. 7: every scheme at each `eta`, on a `p0 x p0` `P0` filled two ways.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Fig7 {
+    pub p0: usize,
+    /// Timed runs per scheme and point (the best is kept).
+    pub repeats: usize,
+    /// CAPs in blobs, as the scenes make them (what Sec. 5.3.1 assumes).
+    pub clustered: Fig7Curve,
+    /// CAPs uniformly at random.
+    pub uniform: Fig7Curve,
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Fig7Curve {
+    /// In increasing `eta`.
+    pub points: Vec<CalibrationPoint>,
+    /// The paper's crossover: from this `eta` on the reduced scheme beats the hierarchical
+    /// one ([`reduction_gpu::crossover`]).
+    pub crossover_eta: Option<f64>,
+    /// Where `auto` leaves the hierarchical scheme: the first `eta` at which it is not the
+    /// fastest of the three ([`reduction_gpu::measured_threshold`]).
+    pub auto_switch_eta: Option<f64>,
+}
+
+impl Fig7Curve {
+    fn of(points: Vec<CalibrationPoint>) -> Fig7Curve {
+        Fig7Curve {
+            crossover_eta: reduction_gpu::crossover(&points),
+            auto_switch_eta: reduction_gpu::measured_threshold(&points),
+            points,
+        }
+    }
 }
 
 /// Averages over the frames of one scene.
@@ -73,17 +105,39 @@ pub struct SceneRun {
     pub solid_agrees: usize,
     pub cullide: CullideResult,
     pub cullide_missing_percent: f64,
-    /// Per-frame totals (ms) for Fig. 10-12: streaming, SOLID, CULLIDE.
-    pub series: [Vec<f64>; 3],
+    /// Mean CAPs per set `P1` texel (4x4 block of the slot pairs): how clustered this
+    /// scene's CAPs are (1 when no two share a block).
+    pub caps_per_set_p1_texel: f64,
+    /// Each counted frame's times, for Fig. 10-12.
+    pub frame_times: Vec<FrameTimes>,
     /// The Fig. 8-9 style snapshot of the last frame (file in the output folder).
     pub snapshot: Option<String>,
 }
 
+/// One frame's times (ms) as Fig. 10-12 split them.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct FrameTimes {
+    /// Overlap test (with its stencil), readback and stream update (Fig. 10-11's streaming
+    /// time).
+    pub stream_cull: f64,
+    /// Texture download, shown apart in Fig. 10-11.
+    pub stream_download: f64,
+    pub stream_tri_test: f64,
+    /// The whole frame, wall clock (Fig. 12).
+    pub stream_total: f64,
+    /// Refit and traversal (Fig. 10-11's SOLID time).
+    pub solid_cull: f64,
+    pub solid_tri_test: f64,
+    /// Pruning and triangle test (Fig. 12).
+    pub cullide_total: f64,
+}
+
 impl SceneRun {
-    /// The paper's culling time of Fig. 10-11: overlap test, readback and stream update.
+    /// The paper's culling time of Fig. 10-11: overlap test (with its stencil), readback and
+    /// stream update.
     pub fn stream_cull_ms(&self) -> f64 {
         let t = &self.stream.timings;
-        t.overlap + t.encode + t.readback + t.update
+        t.overlap + t.stencil + t.encode + t.readback + t.update
     }
 
     /// SOLID's culling: refit and traversal.
@@ -131,6 +185,48 @@ pub struct SchemeRun {
     pub bytes: f64,
 }
 
+/// Sec. 5.5's tiles: the interlocking tori at leaf sizes that double the streams, each run
+/// in tiles of a fixed side (one tile at the smallest size) and as one rectangle.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct TileStudy {
+    pub scene: String,
+    pub triangles: usize,
+    pub frames: usize,
+    /// Tile side (slots).
+    pub tile: usize,
+    pub readback: ReadbackMode,
+    pub rows: Vec<TileRow>,
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct TileRow {
+    pub leaf_size: usize,
+    /// Slots of each stream.
+    pub slots: [usize; 2],
+    pub tiles: usize,
+    pub tiled: CullTimes,
+    /// The same frames as one rectangle (one tile).
+    pub one_rectangle: CullTimes,
+    /// CAPs per frame (the pairs are checked equal both ways).
+    pub caps: usize,
+}
+
+/// The GPU culling stages of one frame, ms.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct CullTimes {
+    pub overlap: f64,
+    pub stencil: f64,
+    pub encode: f64,
+    /// Reading back and decoding (wall).
+    pub readback: f64,
+}
+
+impl CullTimes {
+    pub fn total(&self) -> f64 {
+        self.overlap + self.stencil + self.encode + self.readback
+    }
+}
+
 /// The default leaf size, justified: interlocking tori at several `n`.
 #[derive(Clone, Debug, Serialize)]
 pub struct SweepPoint {
@@ -173,8 +269,6 @@ pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
         runs.push(run_scene(opts, name, frames, triangles, args, &bar)?);
     }
     bar.finish_and_clear();
-    let fig7_p0 = if quick { 512 } else { 2048 };
-    let fig7 = readback_curve(opts, fig7_p0, quick)?;
     let tori_leaf_size = args.leaf_size.unwrap_or(DEFAULT_LEAF_SIZE);
     let software = opts.gl.info().is_software();
     Ok(Paper1Results {
@@ -187,13 +281,12 @@ pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
             max_slots: max_slots(software),
             software_renderer: software,
             cullide_resolution: args.cullide_resolution,
-            fig7_p0,
         },
         scenes: runs,
         cullide_resolutions: cullide_resolutions(opts, tori_leaf_size)?,
-        threshold_eta: reduction_gpu::measured_threshold(&fig7),
-        fig7,
+        fig7: fig7(opts)?,
         readback_schemes: readback_schemes(opts, tori_leaf_size, frames)?,
+        tiles: tile_study(opts)?,
         leaf_sweep: if args.no_leaf_sweep {
             Vec::new()
         } else {
@@ -271,6 +364,8 @@ fn readback_schemes(
         ReadbackMode::Hierarchical,
         ReadbackMode::Reduced,
         ReadbackMode::Full,
+        ReadbackMode::PaperSwitch,
+        ReadbackMode::Auto,
     ] {
         let options = Options {
             leaf_size,
@@ -340,6 +435,7 @@ fn run_scene(
     };
     let mut missed = 0usize;
     let mut exact_total = 0usize;
+    let mut clustering = 0.0;
     // Frame 0 warms up shader compilation and is not counted.
     for f in 0..=frames {
         let (px, py) = scene.frame(f);
@@ -373,9 +469,17 @@ fn run_scene(
             .count();
         missed += s.pairs.len() - found;
         exact_total += s.pairs.len();
-        out.series[0].push(s.timings.total);
-        out.series[1].push(refit + traverse + solid_tri);
-        out.series[2].push(c.pruning_ms + c.tri_test_ms);
+        let t = &s.timings;
+        out.frame_times.push(FrameTimes {
+            stream_cull: t.overlap + t.stencil + t.encode + t.readback + t.update,
+            stream_download: t.download,
+            stream_tri_test: t.tri_test,
+            stream_total: t.total,
+            solid_cull: refit + traverse,
+            solid_tri_test: solid_tri,
+            cullide_total: c.pruning_ms + c.tri_test_ms,
+        });
+        clustering += caps_per_set_p1_texel(&stream, &s.cap_leaves);
         accumulate(&mut out, &s, refit, traverse, solid_tri, &c);
         if f == frames {
             // Fig. 8-9: a snapshot of the last frame.
@@ -392,6 +496,7 @@ fn run_scene(
         }
     }
     average(&mut out, frames.max(1) as f64);
+    out.caps_per_set_p1_texel = clustering / frames.max(1) as f64;
     out.frames = frames;
     out.cullide_missing_percent = if exact_total == 0 {
         0.0
@@ -417,6 +522,7 @@ fn accumulate(
     a.readback_bytes += s.readback_bytes;
     let (t, u) = (&mut a.timings, &s.timings);
     t.overlap += u.overlap;
+    t.stencil += u.stencil;
     t.encode += u.encode;
     t.readback += u.readback;
     t.tri_test += u.tri_test;
@@ -451,6 +557,7 @@ fn average(out: &mut SceneRun, n: f64) {
     let t = &mut a.timings;
     for v in [
         &mut t.overlap,
+        &mut t.stencil,
         &mut t.encode,
         &mut t.readback,
         &mut t.tri_test,
@@ -471,26 +578,123 @@ fn average(out: &mut SceneRun, n: f64) {
     k.queries = avg(k.queries);
 }
 
-/// Fig. 7: encode and read+decode time of each scheme against eta, on a `size x size` P0
-/// (the paper's 2048 x 2048; 512 x 512 in quick mode).
-fn readback_curve(
-    opts: &BenchOptions,
-    size: usize,
-    quick: bool,
-) -> anyhow::Result<Vec<CalibrationPoint>> {
-    let target = PairTarget::new(opts.gl, size, size)?;
-    let reduction = Reduction::new(opts.gl, size, size)?;
+/// CAPs per set 4x4 block of the slot-pair rectangle, each CAP at the first slots of its
+/// leaves (the pixel the stencil keeps).
+fn caps_per_set_p1_texel(c: &StreamingCollider, cap_leaves: &[(u32, u32)]) -> f64 {
+    let first_slot = |s: &AabbStream| {
+        let mut first = vec![0usize; s.leaves.len()];
+        for (slot, &leaf) in s.slot_leaf.iter().enumerate().rev() {
+            first[leaf as usize] = slot;
+        }
+        first
+    };
+    let (fx, fy) = (first_slot(&c.x.stream), first_slot(&c.y.stream));
+    let mut blocks: Vec<(usize, usize)> = cap_leaves
+        .iter()
+        .map(|&(a, b)| (fx[a as usize] / HIER_BLOCK, fy[b as usize] / HIER_BLOCK))
+        .collect();
+    blocks.sort_unstable();
+    blocks.dedup();
+    if blocks.is_empty() {
+        0.0
+    } else {
+        cap_leaves.len() as f64 / blocks.len() as f64
+    }
+}
+
+/// Fig. 7: encode and read+decode time of each scheme against eta, on a P0 of the paper's
+/// 2048 x 2048 (512 x 512 in quick mode), filled with clustered and with uniform CAPs.
+fn fig7(opts: &BenchOptions) -> anyhow::Result<Fig7> {
+    let p0 = if opts.quick { 512 } else { 2048 };
+    let repeats = 5;
+    let target = PairTarget::new(opts.gl, p0, p0)?;
+    let reduction = Reduction::new(opts.gl, p0, p0)?;
     let etas = [
         1e-5, 3e-5, 1e-4, 3e-4, 6e-4, 9.5e-4, 2e-3, 5e-3, 1e-2, 3e-2, 1e-1,
     ];
-    Ok(reduction_gpu::calibrate(
-        opts.gl,
-        &target,
-        &reduction,
-        &etas,
-        if quick { 1 } else { 5 },
-        7,
-    )?)
+    let curve = |contents| -> anyhow::Result<Fig7Curve> {
+        Ok(Fig7Curve::of(reduction_gpu::calibrate(
+            opts.gl, &target, &reduction, &etas, repeats, contents, 7,
+        )?))
+    };
+    Ok(Fig7 {
+        p0,
+        repeats,
+        clustered: curve(P0Contents::Clustered)?,
+        uniform: curve(P0Contents::Uniform)?,
+    })
+}
+
+/// Sec. 5.5: the interlocking tori with streams of `s`, `2s` and `4s` slots, in tiles of
+/// `s` (1, 4 and 16 tiles sharing one render target) and as one rectangle, the two taking
+/// turns frame by frame, read back by the paper's switch. The frame of median culling time
+/// is kept for each.
+fn tile_study(opts: &BenchOptions) -> anyhow::Result<TileStudy> {
+    let scene = Scene::build("interlocking-tori", study_triangles(opts.quick))?;
+    let (x, y) = (&scene.x.rest, &scene.y.rest);
+    let frames = if opts.quick { 5 } else { 7 };
+    let readback = ReadbackMode::PaperSwitch;
+    let base = if opts.quick { 8 } else { 32 };
+    let tile = AabbStream::build(x, base)?
+        .len()
+        .max(AabbStream::build(y, base)?.len());
+    let mut rows = Vec::new();
+    for leaf_size in [base, base / 2, base / 4] {
+        let collider = |max_tile| {
+            let options = Options {
+                leaf_size,
+                readback,
+                max_tile,
+                ..Options::default()
+            };
+            StreamingCollider::new(opts.gl, x, y, options)
+        };
+        let mut tiled = collider(Some(tile))?;
+        let mut whole = collider(None)?;
+        let (mut tiled_times, mut whole_times, mut caps) = (Vec::new(), Vec::new(), 0);
+        for f in 0..=frames {
+            let (px, py) = scene.frame(f);
+            let t = tiled.frame(&px, &py)?;
+            let w = whole.frame(&px, &py)?;
+            anyhow::ensure!(t.pairs == w.pairs, "tiles changed the pairs at frame {f}");
+            if f > 0 {
+                tiled_times.push(cull_times(&t));
+                whole_times.push(cull_times(&w));
+                caps += t.caps;
+            }
+        }
+        rows.push(TileRow {
+            leaf_size,
+            slots: [tiled.x.stream.len(), tiled.y.stream.len()],
+            tiles: tiled.layout.count(),
+            tiled: median(tiled_times),
+            one_rectangle: median(whole_times),
+            caps: caps / frames,
+        });
+    }
+    Ok(TileStudy {
+        scene: scene.label.clone(),
+        triangles: scene.triangles,
+        frames,
+        tile,
+        readback,
+        rows,
+    })
+}
+
+fn cull_times(r: &FrameResult) -> CullTimes {
+    CullTimes {
+        overlap: r.timings.overlap,
+        stencil: r.timings.stencil,
+        encode: r.timings.encode,
+        readback: r.timings.readback,
+    }
+}
+
+/// The frame of median total.
+fn median(mut frames: Vec<CullTimes>) -> CullTimes {
+    frames.sort_by(|a, b| a.total().total_cmp(&b.total()));
+    frames.get(frames.len() / 2).copied().unwrap_or_default()
 }
 
 fn leaf_sweep(opts: &BenchOptions) -> anyhow::Result<Vec<SweepPoint>> {

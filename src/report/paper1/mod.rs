@@ -15,8 +15,11 @@ mod leaf_sweep;
 mod readback_schemes;
 mod table3;
 mod table4;
+mod tiles;
 
-pub use bench::{Paper1Results, SceneRun, Setup, SweepPoint};
+pub use bench::{
+    Fig7, Fig7Curve, FrameTimes, Paper1Results, SceneRun, Setup, SweepPoint, TileStudy,
+};
 
 use super::published::Published;
 use super::{BenchOptions, Paper, Section};
@@ -80,16 +83,17 @@ impl Paper for Paper1 {
             table4::table(results, paper),
             cullide_resolution::table(results),
             fig10_12::table(results),
-            fig7::table(results),
-            readback_schemes::table(results),
         ];
+        tables.extend(fig7::tables(results));
+        tables.push(readback_schemes::table(results));
+        tables.push(tiles::table(results));
         if !results.leaf_sweep.is_empty() {
             tables.push(leaf_sweep::table(results));
         }
-        let mut figures = vec![fig7::figure(opts, results)?];
+        let mut figures = fig7::figures(opts, results)?;
         for run in &results.scenes {
             figures.extend(fig8_9::figure(run));
-            figures.push(fig10_12::figure(opts, run)?);
+            figures.extend(fig10_12::figures(opts, run)?);
         }
         Ok(Section {
             summary: summary(results),
@@ -124,7 +128,8 @@ fn summary(results: &Paper1Results) -> String {
          same run on {}. The happy buddhas and intimate animals are stand-ins of the same \
          triangle counts (scanned models not available), named as such. Streaming pairs are \
          exact (tests compare them with brute force); SOLID and CULLIDE are measured against \
-         them. Leaf size {leaf_size}; readback auto (calibrated per P0 size). SOLID: the same \
+         them. Leaf size {leaf_size}; readback auto (calibrated per P0 size on clustered CAPs, \
+         like the scenes' own: {clustering} CAPs per set P1 texel here). SOLID: the same \
          leaves in a CPU tree, refitted bottom-up and traversed as a tree pair each frame. \
          CULLIDE: {res}x{res} views along x, y, z over the overlap of the two global boxes, two \
          passes per view, pruning objects, then leaves, then triangles. GPU passes are timed \
@@ -137,7 +142,24 @@ fn summary(results: &Paper1Results) -> String {
         },
         results.renderer,
         res = setup.cullide_resolution,
+        clustering = clustering(results),
     )
+}
+
+/// The range of the scenes' CAPs per set `P1` texel, "2.1-3.7".
+fn clustering(results: &Paper1Results) -> String {
+    let (lo, hi) = results
+        .scenes
+        .iter()
+        .map(|r| r.caps_per_set_p1_texel)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+    if lo > hi {
+        "-".into()
+    } else {
+        format!("{lo:.1}-{hi:.1}")
+    }
 }
 
 /// Two decimals, the tables' usual precision.

@@ -1,5 +1,5 @@
 //! The readback schemes of Sec. 5.3 on real frames: each forced in turn on the interlocking
-//! tori, beside the calibrated curves of Fig. 7.
+//! tori (with the paper's fixed switch and `auto`), beside the calibrated curves of Fig. 7.
 
 use super::bench::Paper1Results;
 use super::{f2, header};
@@ -25,7 +25,7 @@ pub fn table(results: &Paper1Results) -> Table {
             .iter()
             .map(|r| {
                 vec![
-                    format!("{:?}", r.scheme).to_lowercase(),
+                    r.scheme.to_string(),
                     format!("{:.4}", 100.0 * r.eta),
                     f2(r.encode_ms),
                     f2(r.decode_ms),
