@@ -5,6 +5,7 @@
 use crate::gl::Context;
 use crate::mlp::cpu::{forward, CpuProduct};
 use crate::mlp::detect::{classify_cpu, classify_gpu, mask_image, shipped_detector, THRESHOLD};
+use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 use crate::mlp::tiling::max_vectors_per_texture;
 use crate::mlp::window::window_batch;
 use crate::mlp::{Activation, Formulation, GpuMlp, Layer, Network, StepTimes};
@@ -56,29 +57,49 @@ impl Paper3Results {
     }
 }
 
-/// The four ways of evaluating a network, measured side by side.
+/// The ways of evaluating a network, measured side by side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Method {
+    /// The paper's passes, each product in one pass.
     GpuFaithful,
+    /// The paper's passes, each product split into passes of at most
+    /// [`RADEON_9700_INPUTS_PER_PASS`] inputs, as the paper's board required.
+    GpuMultiPass,
     GpuPacked,
     CpuPlain,
     CpuOptimised,
 }
 
 impl Method {
-    pub const ALL: [Method; 4] = [
+    pub const ALL: [Method; 5] = [
         Method::GpuFaithful,
+        Method::GpuMultiPass,
         Method::GpuPacked,
         Method::CpuPlain,
         Method::CpuOptimised,
     ];
 
-    pub fn label(self) -> &'static str {
+    pub fn label(self) -> String {
         match self {
-            Method::GpuFaithful => "GPU faithful (1 float/texel)",
-            Method::GpuPacked => "GPU packed (RGBA, 4x4/fragment)",
-            Method::CpuPlain => "CPU plain loop",
-            Method::CpuOptimised => "CPU matrixmultiply sgemm",
+            Method::GpuFaithful => "GPU faithful (1 float/texel)".into(),
+            Method::GpuMultiPass => format!(
+                "GPU faithful, {RADEON_9700_INPUTS_PER_PASS} inputs/pass (RADEON 9700 estimate)"
+            ),
+            Method::GpuPacked => "GPU packed (RGBA, 4x4/fragment)".into(),
+            Method::CpuPlain => "CPU plain loop".into(),
+            Method::CpuOptimised => "CPU matrixmultiply sgemm".into(),
+        }
+    }
+
+    /// The GPU formulation and per-pass input limit, or `None` for the CPU.
+    fn gpu(self) -> Option<(Formulation, Option<usize>)> {
+        match self {
+            Method::GpuFaithful => Some((Formulation::Faithful, None)),
+            Method::GpuMultiPass => {
+                Some((Formulation::Faithful, Some(RADEON_9700_INPUTS_PER_PASS)))
+            }
+            Method::GpuPacked => Some((Formulation::Packed, None)),
+            Method::CpuPlain | Method::CpuOptimised => None,
         }
     }
 }
@@ -92,6 +113,8 @@ pub struct Measurement {
     pub layers: Vec<[usize; 2]>,
     pub vectors: usize,
     pub tiles: usize,
+    /// Rendering passes of each layer's matrix product per tile (empty on the CPU).
+    pub product_passes: Vec<usize>,
     pub times_ms: StepTimes,
     pub total_ms: f64,
     /// From the median product time.
@@ -241,21 +264,26 @@ fn wide_case(width: usize, l: usize) -> Case {
     }
 }
 
-/// One run of `method` on `case`: step times, tiles, outputs.
-fn run_once(
-    gpu: &GpuMlp,
-    case: &Case,
-    method: Method,
-) -> anyhow::Result<(StepTimes, usize, Array2<f32>)> {
-    let gpu_formulation = match method {
-        Method::GpuFaithful => Some(Formulation::Faithful),
-        Method::GpuPacked => Some(Formulation::Packed),
-        Method::CpuPlain | Method::CpuOptimised => None,
-    };
-    if let Some(formulation) = gpu_formulation {
-        let loaded = gpu.load(&case.network, formulation)?;
+/// One run of `method` on `case`.
+struct Run {
+    times: StepTimes,
+    tiles: usize,
+    product_passes: Vec<usize>,
+    outputs: Array2<f32>,
+}
+
+fn run_once(gpu: &GpuMlp, case: &Case, method: Method) -> anyhow::Result<Run> {
+    if let Some((formulation, inputs_per_pass)) = method.gpu() {
+        let loaded = gpu
+            .load(&case.network, formulation)?
+            .split_products(inputs_per_pass)?;
         let out = loaded.forward(case.batch.view(), case.max_vectors)?;
-        return Ok((out.times, out.tiles, out.outputs));
+        return Ok(Run {
+            times: out.times,
+            tiles: out.tiles,
+            product_passes: out.product_passes,
+            outputs: out.outputs,
+        });
     }
     let kind = if method == Method::CpuPlain {
         CpuProduct::Plain
@@ -268,7 +296,12 @@ fn run_once(
         activation: out.activation.as_secs_f64() * 1e3,
         ..StepTimes::default()
     };
-    Ok((times, 1, out.outputs))
+    Ok(Run {
+        times,
+        tiles: 1,
+        product_passes: Vec::new(),
+        outputs: out.outputs,
+    })
 }
 
 fn measure_case(
@@ -288,7 +321,7 @@ fn measure_case(
         }
     }
     let median = |f: fn(&StepTimes) -> f64| {
-        let mut v: Vec<f64> = runs.iter().map(|r| f(&r.0)).collect();
+        let mut v: Vec<f64> = runs.iter().map(|r| f(&r.times)).collect();
         v.sort_by(f64::total_cmp);
         v[v.len() / 2]
     };
@@ -301,9 +334,9 @@ fn measure_case(
     let flops = case.network.flops_per_input() * case.batch.nrows() as f64;
     let fastest = runs
         .iter()
-        .map(|r| r.0.matmul)
+        .map(|r| r.times.matmul)
         .fold(f64::INFINITY, f64::min);
-    let outputs = &runs[0].2;
+    let outputs = &runs[0].outputs;
     anyhow::ensure!(
         outputs.iter().all(|v| v.is_finite()),
         "{}: {} gave a non-finite output",
@@ -325,7 +358,8 @@ fn measure_case(
             .map(|l| [l.inputs(), l.outputs()])
             .collect(),
         vectors: case.batch.nrows(),
-        tiles: runs[0].1,
+        tiles: runs[0].tiles,
+        product_passes: runs[0].product_passes.clone(),
         total_ms: times.total(),
         matmul_gflops: flops / (times.matmul * 1e-3) / 1e9,
         best_matmul_gflops: flops / (fastest * 1e-3) / 1e9,
@@ -339,13 +373,14 @@ fn measure_case(
 fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow::Result<Detection> {
     let net = shipped_detector()?;
     let (width, height) = photo.dimensions();
-    let cpu = classify_cpu(&net, photo, CpuProduct::Optimised, 1 << 18);
+    let cpu = classify_cpu(&net, photo, CpuProduct::Optimised, 1 << 18).outputs;
     photo
         .save(opts.out_dir.join(FIG2A_FILE))
         .with_context(|| format!("writing {FIG2A_FILE}"))?;
     let classify = |formulation: Formulation| -> anyhow::Result<DetectionRun> {
         let loaded = gpu.load(&net, formulation)?;
-        let (out, times) = classify_gpu(&loaded, photo, 1 << 18)?;
+        let classified = classify_gpu(&loaded, photo, 1 << 18, None)?;
+        let out = classified.outputs;
         anyhow::ensure!(
             out.iter().all(|v| v.is_finite()),
             "text.png: the {formulation:?} GPU passes gave a non-finite output"
@@ -363,7 +398,7 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
         Ok(DetectionRun {
             text_pixels: out.iter().filter(|&&v| v > THRESHOLD).count(),
             agreement_with_cpu: same as f64 / cpu.len() as f64,
-            times_ms: times,
+            times_ms: classified.times,
         })
     };
     let faithful = classify(Formulation::Faithful)?;

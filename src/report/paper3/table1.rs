@@ -48,6 +48,14 @@ pub fn table(results: &Paper3Results, paper: &Paper3Table1) -> Table {
                 m.times_ms.activation
             }),
             line("readback", na(), na(), |m| m.times_ms.readback),
+            [
+                "product passes per layer".to_string(),
+                "not stated".to_string(),
+                na(),
+            ]
+            .into_iter()
+            .chain(rows.iter().map(|m| passes(&m.product_passes)))
+            .collect(),
             line(
                 "total",
                 format!("{paper_gpu_total:.3}"),
@@ -58,10 +66,20 @@ pub fn table(results: &Paper3Results, paper: &Paper3Table1) -> Table {
     }
 }
 
+/// "9 + 2": the product passes of each layer, "-" on the CPU.
+pub fn passes(per_layer: &[usize]) -> String {
+    if per_layer.is_empty() {
+        return "-".into();
+    }
+    let counts: Vec<String> = per_layer.iter().map(usize::to_string).collect();
+    counts.join(" + ")
+}
+
 /// The short column heading of a method.
 fn column(method: Method) -> &'static str {
     match method {
         Method::GpuFaithful => "GPU faithful",
+        Method::GpuMultiPass => "GPU multi-pass",
         Method::GpuPacked => "GPU packed",
         Method::CpuPlain => "CPU plain",
         Method::CpuOptimised => "CPU sgemm",
