@@ -4,8 +4,14 @@ use std::path::Path;
 use std::process::Command;
 
 fn reproduce(out: &Path, extra_env: &[(&str, &str)]) -> std::process::Output {
+    reproduce_with(&["--quick"], out, extra_env)
+}
+
+fn reproduce_with(args: &[&str], out: &Path, extra_env: &[(&str, &str)]) -> std::process::Output {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"));
-    cmd.args(["reproduce", "--quick", "--json", "--out"])
+    cmd.arg("reproduce")
+        .args(args)
+        .args(["--json", "--out"])
         .arg(out);
     for (k, v) in extra_env {
         cmd.env(k, v);
@@ -87,7 +93,74 @@ fn quick_reproduction_writes_every_section_and_keeps_a_good_report_on_failure() 
         })
         .collect();
     assert!(leftovers.is_empty(), "staging folders left behind");
+
+    nothing_of_the_report_is_lost(&out, &before);
     std::fs::remove_dir_all(&out).ok();
+}
+
+fn section_ids(results_json: &Path) -> Vec<String> {
+    let results: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(results_json).unwrap()).unwrap();
+    results["sections"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["id"].as_str().unwrap().to_string())
+        .collect()
+}
+
+/// `--only` merges into the report it finds, refuses to mix renderers or sizes without
+/// `--force`, a file as `--out` is refused before any work, and the staging folders of killed
+/// runs are cleaned up.
+fn nothing_of_the_report_is_lost(out: &Path, results_before: &[u8]) {
+    let all = section_ids(&out.join("results.json"));
+    let name = out.file_name().unwrap().to_string_lossy();
+    let stale = out.with_file_name(format!(".{name}.staging-4294967"));
+    std::fs::create_dir_all(&stale).unwrap();
+
+    let merged = reproduce_with(&["--quick", "--only", "blocks"], out, &[]);
+    assert!(
+        merged.status.success(),
+        "{}",
+        String::from_utf8_lossy(&merged.stderr)
+    );
+    assert_eq!(section_ids(&out.join("results.json")), all);
+    assert_ne!(
+        std::fs::read(out.join("results.json")).unwrap(),
+        results_before
+    );
+    assert!(!stale.exists(), "a dead run's staging folder was kept");
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    for file in referenced_files(&html) {
+        assert!(out.join(&file).is_file(), "merged report lost {file}");
+    }
+
+    let mixed = reproduce_with(&["--only", "blocks"], out, &[]);
+    assert!(!mixed.status.success());
+    let stderr = String::from_utf8_lossy(&mixed.stderr);
+    assert!(stderr.contains("--force"), "{stderr}");
+    assert_eq!(section_ids(&out.join("results.json")), all);
+
+    let file = out.with_file_name(format!("{name}-a-file"));
+    std::fs::write(&file, "not a folder").unwrap();
+    // The first section is made to fail: the error must be the --out check's, made first.
+    let refused = reproduce_with(
+        &["--quick"],
+        &file,
+        &[("CLASSIC_GPGPU_FAIL_SECTION", "blocks")],
+    );
+    assert!(!refused.status.success());
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains(&*file.to_string_lossy()) && stderr.contains("not a folder"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains("on purpose"),
+        "refused only after running: {stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a folder");
+    std::fs::remove_file(file).ok();
 }
 
 /// The names a reader finds in the report: per section its id and title, the tables (caption

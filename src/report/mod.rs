@@ -18,7 +18,7 @@ pub mod published;
 pub mod reproduce;
 
 use anyhow::Context as _;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// One section of the report: a paper (or a lecture, or the shared building blocks).
@@ -102,7 +102,7 @@ pub struct Report {
 }
 
 /// One paper's part of the report.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Section {
     /// `paper1` .. `paper4`.
     pub id: String,
@@ -120,7 +120,7 @@ pub struct Section {
 }
 
 /// A table of measured numbers, usually with the paper's numbers in adjacent columns.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Table {
     pub caption: String,
     pub header: Vec<String>,
@@ -128,7 +128,7 @@ pub struct Table {
 }
 
 /// A qualitative or quantitative claim of the paper, and whether it holds here.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Claim {
     pub claim: String,
     pub paper: String,
@@ -138,14 +138,14 @@ pub struct Claim {
 }
 
 /// A PNG written under [`BenchOptions::out_dir`].
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Figure {
     pub file: String,
     pub caption: String,
 }
 
 /// One row of a paper's fidelity table.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Fidelity {
     pub feature: String,
     pub paper: String,
