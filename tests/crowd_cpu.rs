@@ -437,3 +437,18 @@ fn steering_keeps_characters_apart_and_inside_and_advances_phases() {
     first.step(0.1, 1.4);
     assert_eq!(again.agents, first.agents);
 }
+
+#[test]
+fn models_and_methods_parse_from_their_names_and_refuse_others() {
+    use classic_gpgpu::crowd::Method;
+    for kind in ModelKind::ALL {
+        assert_eq!(kind.to_string().parse::<ModelKind>(), Ok(kind));
+    }
+    for method in Method::ALL {
+        assert_eq!(method.to_string().parse::<Method>(), Ok(method));
+    }
+    let e = "dragon".parse::<ModelKind>().unwrap_err();
+    assert!(e.contains("dragon") && e.contains("soldier"), "{e}");
+    let e = "one-pass".parse::<Method>().unwrap_err();
+    assert!(e.contains("one-pass") && e.contains("two-pass"), "{e}");
+}

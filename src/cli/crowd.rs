@@ -1,6 +1,7 @@
 //! `classic-gpgpu crowd`: render a crowd off-screen with either skinning method, report
 //! frames per second and the time of each pass, and write a snapshot (paper Fig. 3-5).
-//! `classic-gpgpu crowd-bench`: the paper's Table 1 and LOD runs (see `report::paper2`).
+//! (`crowd-bench`, the paper's Table 1 and LOD runs, is `report::paper2` through
+//! `report::bench_command`.)
 
 use std::path::PathBuf;
 
@@ -18,13 +19,13 @@ use classic_gpgpu::crowd::scene::{self, RunStats};
 pub struct CrowdArgs {
     /// Which character.
     #[arg(long, value_enum, default_value = "soldier")]
-    pub model: ModelKind,
+    pub model: ModelArg,
     /// How many characters (n).
     #[arg(long, default_value_t = 256)]
     pub characters: usize,
     /// Skinning in a pixel shader + render-to-VBO (the paper) or in the vertex shader.
     #[arg(long, value_enum, default_value = "two-pass")]
-    pub method: Method,
+    pub method: MethodArg,
     /// LOD meshes, sprites and view-frustum culling (paper Fig. 4-5); without it every
     /// character is skinned at full detail, as in Table 1.
     #[arg(long)]
@@ -45,6 +46,42 @@ pub struct CrowdArgs {
     /// Seed of the crowd's placement and wandering.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+}
+
+/// The library's [`ModelKind`], as the command line names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ModelArg {
+    /// The procedural humanoid.
+    Soldier,
+    /// The procedural quadruped.
+    Horse,
+}
+
+impl From<ModelArg> for ModelKind {
+    fn from(m: ModelArg) -> ModelKind {
+        match m {
+            ModelArg::Soldier => ModelKind::Soldier,
+            ModelArg::Horse => ModelKind::Horse,
+        }
+    }
+}
+
+/// The library's [`Method`], as the command line names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum MethodArg {
+    /// The paper's: skinning in a pixel shader, render-to-VBO, a drawing pass.
+    TwoPass,
+    /// The baseline: skinning in the vertex shader, bone matrices in uniforms.
+    VertexShader,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::TwoPass => Method::TwoPass,
+            MethodArg::VertexShader => Method::VertexShader,
+        }
+    }
 }
 
 /// Parses `WxH`.
@@ -72,7 +109,8 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if w > max_w || h > max_h {
         bail!("--size {w}x{h} exceeds this renderer's largest viewport {max_w}x{max_h}");
     }
-    let model = CharacterModel::build(args.model).context("building the character model")?;
+    let (kind, method) = (ModelKind::from(args.model), Method::from(args.method));
+    let model = CharacterModel::build(kind).context("building the character model")?;
     let mut renderer = CrowdRenderer::new(ctx, model).context("setting up the crowd renderer")?;
     if let Some(batch) = args.vs_batch {
         if batch == 0 {
@@ -83,16 +121,16 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let target = scene::scene_target(ctx, w, h)?;
     let aspect = w as f32 / h as f32;
     let mut scene = if args.lod {
-        scene::lod_scene(args.model, args.characters, aspect, args.seed)
+        scene::lod_scene(kind, args.characters, aspect, args.seed)
     } else {
-        scene::table1_scene(args.model, args.characters, aspect, args.seed)
+        scene::table1_scene(kind, args.characters, aspect, args.seed)
     };
     let stats = scene::run(
         ctx,
         &mut renderer,
         &target,
         &mut scene,
-        args.method,
+        method,
         args.frames,
         1.0 / 30.0,
     )?;

@@ -17,8 +17,10 @@
 //! - the crowd: [`steering`] (behaviour), [`culling`] (frustum culling and LOD choice);
 //! - on the GPU: [`vertex_textures`] and [`bone_textures`] (Fig. 1), [`pass1_skinning`]
 //!   (Fig. 2), [`render_to_vbo`], [`pass2_draw`], the baseline [`vertex_shader_skinning`],
-//!   [`sprites`]; a frame of either method: [`renderer`]; the measured scenes: [`scene`];
-//!   the commands: [`cli`].
+//!   [`sprites`]; a frame of either method: [`renderer`]; the measured scenes: [`scene`].
+//!
+//! The commands `crowd` and `crowd-bench` live in the binary (`src/cli/crowd.rs`) and the
+//! report (`report::paper2`); nothing here knows of them.
 
 pub mod animation;
 pub mod body_part;

@@ -24,7 +24,7 @@ use super::vertex_shader_skinning::VertexShaderSkinning;
 use super::vertex_textures::VertexTextures;
 
 /// The two methods of Table 1.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// The paper's pixel-shader skinning, render-to-VBO, drawing pass.
@@ -34,11 +34,33 @@ pub enum Method {
 }
 
 impl Method {
+    pub const ALL: [Method; 2] = [Method::TwoPass, Method::VertexShader];
+
     pub fn name(self) -> &'static str {
         match self {
             Method::TwoPass => "two-pass",
             Method::VertexShader => "vertex-shader",
         }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+
+    /// `two-pass` or `vertex-shader`.
+    fn from_str(text: &str) -> Result<Self, String> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == text)
+            .ok_or_else(|| {
+                format!("unknown skinning method '{text}' (expected two-pass or vertex-shader)")
+            })
     }
 }
 
