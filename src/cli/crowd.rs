@@ -13,6 +13,7 @@ use classic_gpgpu::gl::{dump, Context};
 use classic_gpgpu::crowd::character::{CharacterModel, ModelKind};
 use classic_gpgpu::crowd::renderer::{CrowdRenderer, Method};
 use classic_gpgpu::crowd::scene::{self, RunStats};
+use classic_gpgpu::crowd::LodPolicy;
 
 /// Arguments of `crowd`.
 #[derive(clap::Args, Debug, Clone)]
@@ -26,10 +27,14 @@ pub struct CrowdArgs {
     /// Skinning in a pixel shader + render-to-VBO (the paper) or in the vertex shader.
     #[arg(long, value_enum, default_value = "two-pass")]
     pub method: MethodArg,
-    /// LOD meshes, sprites and view-frustum culling (paper Fig. 4-5); without it every
+    /// The paper's three LOD meshes and view-frustum culling (Fig. 4-5); without it every
     /// character is skinned at full detail, as in Table 1.
     #[arg(long)]
     pub lod: bool,
+    /// With --lod, also draw characters beyond 90 m as sprites: this project's extension,
+    /// not in the paper.
+    #[arg(long, requires = "lod")]
+    pub sprites: bool,
     /// Timed frames (after one warm-up frame).
     #[arg(long, default_value_t = 10)]
     pub frames: usize,
@@ -43,6 +48,11 @@ pub struct CrowdArgs {
     /// uniforms hold; 1 is how the paper's hardware generation ran it).
     #[arg(long)]
     pub vs_batch: Option<u32>,
+    /// Characters per pass-1 draw of the two-pass method (default: as many as one render
+    /// target holds, 3,712 soldiers at LOD 0 on 16384-texel targets; the paper skins all
+    /// characters in one draw). A smaller value runs the several-batch path.
+    #[arg(long)]
+    pub skin_batch: Option<usize>,
     /// Seed of the crowd's placement and wandering.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -118,10 +128,21 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         }
         renderer.set_vertex_shader_batch(batch);
     }
+    if let Some(batch) = args.skin_batch {
+        if batch == 0 {
+            bail!("--skin-batch must be at least 1");
+        }
+        renderer.set_batch_limit(Some(batch));
+    }
     let target = scene::scene_target(ctx, w, h)?;
     let aspect = w as f32 / h as f32;
     let mut scene = if args.lod {
-        scene::lod_scene(kind, args.characters, aspect, args.seed)
+        let policy = if args.sprites {
+            LodPolicy::with_sprites()
+        } else {
+            LodPolicy::default()
+        };
+        scene::lod_scene(kind, args.characters, aspect, args.seed, policy)
     } else {
         scene::table1_scene(kind, args.characters, aspect, args.seed)
     };
@@ -143,6 +164,9 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             "renderer": ctx.info().renderer,
             "size": [w, h],
             "vertex_shader_batch": renderer.vertex_shader_batch(),
+            "pass1_characters_per_draw": (0..renderer.model.lods.len())
+                .map(|lod| renderer.batch_limit(lod))
+                .collect::<Vec<_>>(),
             "run": stats,
             "png": args.png,
         });
@@ -161,10 +185,10 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
         s.characters,
         s.model,
         s.method,
-        if s.lod_and_culling {
-            "LOD + sprites + culling"
-        } else {
-            "full detail, no culling"
+        match (s.lod_and_culling, s.sprites_enabled) {
+            (true, true) => "3 LOD meshes + culling + sprites (extension)",
+            (true, false) => "3 LOD meshes + culling",
+            _ => "full detail, no culling",
         }
     );
     println!(
@@ -182,6 +206,7 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
     };
     if s.method == Method::TwoPass.name() {
         println!("bone upload     {:.2} ms (CPU)", p.upload_ms);
+        println!("pass-1 draws    {}", p.pass1_draws);
         line("pass 1 skinning", g.pass1, w.pass1);
         line("render-to-VBO", g.copy, w.copy);
         line("pass 2 drawing", g.pass2, w.pass2);

@@ -1,13 +1,15 @@
 //! The measurements: Table 1 (both skinning methods, the vertex-shader one also at one
-//! character per draw) and the LOD runs of Fig. 4-5, with the snapshots that need live GL
-//! state (Fig. 2's render target, Fig. 3-5's frames, the impostor atlases).
+//! character per draw) and the LOD runs of Fig. 4-5 in the paper's setup and, side by side
+//! on the same crowds, with this project's sprite level, with the snapshots that need live
+//! GL state (Fig. 2's render target, Fig. 3-5's frames, the impostor atlases).
 
 use anyhow::Context as _;
 use serde::Serialize;
 
+use crate::crowd::pass1_skinning;
 use crate::crowd::renderer::{CrowdRenderer, Method};
-use crate::crowd::scene::{self, Config, RunStats};
-use crate::crowd::{sprites, CharacterModel, ModelKind};
+use crate::crowd::scene::{self, Config, RunStats, Scene};
+use crate::crowd::{sprites, CharacterModel, LodPolicy, ModelKind};
 use crate::gl::dump::{self, DumpRange};
 use crate::gl::Texture;
 use crate::report::{published, BenchOptions};
@@ -25,12 +27,75 @@ pub struct Paper2Results {
     pub quick: bool,
     /// The scene target, width x height.
     pub size: [u32; 2],
+    pub setup: Setup,
+    /// The two characters as built here (this project's stand-ins).
+    pub models: Vec<ModelInfo>,
     /// Table 1: every model x count x [`Variant`].
     pub table1: Vec<RunStats>,
-    /// Fig. 4-5: both methods on each LOD scene.
+    /// Fig. 4-5 in the paper's setup (three LOD meshes, culling, no sprites): both methods
+    /// on each LOD scene.
     pub lod_runs: Vec<RunStats>,
+    /// The same scenes with this project's sprite level, measured side by side with
+    /// `lod_runs` (an extension, not in the paper).
+    pub sprite_runs: Vec<RunStats>,
     /// PNGs written during the run, in the order they were taken.
     pub snapshots: Vec<Snapshot>,
+}
+
+/// What the runs were set up with.
+#[derive(Clone, Debug, Serialize)]
+pub struct Setup {
+    /// The largest texture side, which bounds the characters of one pass-1 draw.
+    pub max_texture_size: u32,
+    /// Characters per render-target row (the vertex-stride cap).
+    pub row_characters: u32,
+    /// The LOD runs use the paper's crowds divided by this.
+    pub lod_divisor: usize,
+    /// The paper's setup at this project's distances.
+    pub lod_policy: LodPolicy,
+    /// The extension: the same plus sprites.
+    pub sprite_policy: LodPolicy,
+}
+
+/// One character model as built here.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModelInfo {
+    pub model: ModelKind,
+    pub bones: usize,
+    /// Whether the skeleton has a spear bone (the soldier's prop, this project's choice).
+    pub spear: bool,
+    /// Per LOD mesh, finest first.
+    pub lods: Vec<LodInfo>,
+}
+
+/// One LOD mesh of a model.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct LodInfo {
+    pub triangles: usize,
+    /// m.
+    pub vertices: usize,
+    /// The most characters one pass-1 draw skins on this renderer.
+    pub characters_per_draw: usize,
+}
+
+impl ModelInfo {
+    fn of(model: &CharacterModel, renderer: &CrowdRenderer) -> ModelInfo {
+        ModelInfo {
+            model: model.kind,
+            bones: model.bone_count(),
+            spear: model.skeleton.index_of("spear").is_some(),
+            lods: model
+                .lods
+                .iter()
+                .enumerate()
+                .map(|(lod, mesh)| LodInfo {
+                    triangles: mesh.triangle_count(),
+                    vertices: mesh.vertex_count(),
+                    characters_per_draw: renderer.batch_limit(lod),
+                })
+                .collect(),
+        }
+    }
 }
 
 /// A PNG written from live GL state, and what it shows.
@@ -55,11 +120,12 @@ pub enum Shows {
         views: u32,
         frames: u32,
     },
-    /// Fig. 4 or 5: a frame of the LOD scene (two-pass).
+    /// Fig. 4 or 5: a frame of the LOD scene (two-pass), with or without sprites.
     LodRun {
         figure: String,
         model: ModelKind,
         characters: usize,
+        sprites: bool,
     },
 }
 
@@ -121,6 +187,11 @@ impl Paper2Results {
     ) -> Option<&RunStats> {
         runs.iter()
             .find(|r| r.model == kind.name() && r.characters == n && Variant::of(r) == variant)
+    }
+
+    /// The model as built here.
+    pub fn model(&self, kind: ModelKind) -> Option<&ModelInfo> {
+        self.models.iter().find(|m| m.model == kind)
     }
 
     /// Table 1's frame rate of `kind` x `n` as `variant`.
@@ -214,31 +285,41 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
     let ctx = opts.gl;
     let target = scene::scene_target(ctx, w, h)?;
     let aspect = w as f32 / h as f32;
-    let total = (ModelKind::ALL.len() * counts.len() * Variant::ALL.len() + lod.len() * 2) as u64;
+    let total = (ModelKind::ALL.len() * counts.len() * Variant::ALL.len() + lod.len() * 4) as u64;
     let bar = opts.progress.add(indicatif::ProgressBar::new(total));
     bar.set_style(
         indicatif::ProgressStyle::with_template("paper 2 {bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
+    let (lod_policy, sprite_policy) = (LodPolicy::default(), LodPolicy::with_sprites());
     let mut results = Paper2Results {
         renderer: ctx.info().renderer.clone(),
         quick: opts.quick,
         size: [w, h],
+        setup: Setup {
+            max_texture_size: ctx.info().limits.max_texture_size,
+            row_characters: pass1_skinning::MAX_ROW_CHARACTERS,
+            lod_divisor: lod_divisor(opts.quick),
+            lod_policy,
+            sprite_policy,
+        },
+        models: Vec::new(),
         table1: Vec::new(),
         lod_runs: Vec::new(),
+        sprite_runs: Vec::new(),
         snapshots: Vec::new(),
     };
+    let mut snapshots = Vec::new();
     let mut snapshot = |texture: &Texture, file: String, shows: Shows| -> anyhow::Result<()> {
         dump::texture_png(texture, &opts.out_dir.join(&file), DumpRange::Auto)?;
-        results.snapshots.push(Snapshot { file, shows });
+        snapshots.push(Snapshot { file, shows });
         Ok(())
     };
-    let mut table1 = Vec::new();
-    let mut lod_stats = Vec::new();
     let fig3_n = if opts.quick { 64 } else { 1024 };
     for kind in ModelKind::ALL {
         let model = CharacterModel::build(kind)?;
-        let mut renderer = CrowdRenderer::new(ctx, model)?;
+        let mut renderer = CrowdRenderer::new(ctx, model.clone())?;
+        results.models.push(ModelInfo::of(&model, &renderer));
         for &n in &counts {
             bar.set_message(format!("{} x {n}", kind.name()));
             let mut scenes: Vec<_> = Variant::ALL
@@ -246,7 +327,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
                 .map(|_| scene::table1_scene(kind, n, aspect, 1))
                 .collect();
             let configs = Variant::ALL.map(Variant::config);
-            table1.extend(scene::run_side_by_side(
+            results.table1.extend(scene::run_side_by_side(
                 ctx,
                 &mut renderer,
                 &target,
@@ -284,15 +365,13 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         for run in lod.iter().filter(|r| r.kind == kind) {
             let n = run.characters;
             bar.set_message(format!("{} x {n} with LOD", kind.name()));
-            let mut scenes = [
-                scene::lod_scene(kind, n, aspect, 1),
-                scene::lod_scene(kind, n, aspect, 1),
-            ];
-            let configs = [
-                Config::new(Method::VertexShader),
-                Config::new(Method::TwoPass),
-            ];
-            lod_stats.extend(scene::run_side_by_side(
+            // The paper's setup and the sprite extension on identical crowds (same seed,
+            // same steps), frame by frame in turn.
+            let mut scenes = [lod_policy, lod_policy, sprite_policy, sprite_policy]
+                .map(|policy| scene::lod_scene(kind, n, aspect, 1, policy));
+            let configs = [Method::VertexShader, Method::TwoPass].map(Config::new);
+            let configs = [configs, configs].concat();
+            let mut runs = scene::run_side_by_side(
                 ctx,
                 &mut renderer,
                 &target,
@@ -300,22 +379,42 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
                 &configs,
                 if opts.quick { 2 } else { 5 },
                 1.0 / 30.0,
-            )?);
-            bar.inc(2);
-            let number = run.figure.trim_start_matches("Fig. ");
-            snapshot(
-                target.color(0),
-                format!("fig{number}_{n}_{}s_lod.png", kind.name()),
-                Shows::LodRun {
-                    figure: run.figure.clone(),
-                    model: kind,
-                    characters: n,
-                },
             )?;
+            bar.inc(4);
+            results.sprite_runs.extend(runs.split_off(2));
+            results.lod_runs.extend(runs);
+            let number = run.figure.trim_start_matches("Fig. ");
+            for (scene, sprites) in [(&scenes[1], false), (&scenes[3], true)] {
+                two_pass_frame(&mut renderer, &target, scene)?;
+                snapshot(
+                    target.color(0),
+                    format!(
+                        "fig{number}_{n}_{}s_lod{}.png",
+                        kind.name(),
+                        if sprites { "_sprites" } else { "" }
+                    ),
+                    Shows::LodRun {
+                        figure: run.figure.clone(),
+                        model: kind,
+                        characters: n,
+                        sprites,
+                    },
+                )?;
+            }
         }
     }
     bar.finish_and_clear();
-    results.table1 = table1;
-    results.lod_runs = lod_stats;
+    results.snapshots = snapshots;
     Ok(results)
+}
+
+/// Draws one frame of `scene` with the paper's method into `target`.
+fn two_pass_frame(
+    renderer: &mut CrowdRenderer,
+    target: &crate::gl::Framebuffer,
+    scene: &Scene,
+) -> anyhow::Result<()> {
+    scene::clear(target)?;
+    scene::render_frame(renderer, target, scene, Method::TwoPass, false)?;
+    Ok(())
 }

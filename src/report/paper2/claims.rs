@@ -10,7 +10,52 @@ pub fn claims(results: &Paper2Results) -> Vec<Claim> {
         crossover(results, Variant::VertexShaderSingle),
     ];
     claims.extend(stage_costs(results));
+    claims.push(single_draw(results));
     claims
+}
+
+/// Section 2: "through a single drawcall, all vertices of all characters are transformed".
+/// Holds when every measured two-pass run of Table 1 skinned its crowd in one pass-1 draw;
+/// the measured text gives the crowd size from which it stops holding on this renderer.
+pub fn single_draw(results: &Paper2Results) -> Claim {
+    let two_pass: Vec<_> = results
+        .table1
+        .iter()
+        .filter(|r| Variant::of(r) == Variant::TwoPass)
+        .collect();
+    let most_draws = two_pass
+        .iter()
+        .max_by_key(|r| (r.passes.pass1_draws, r.characters));
+    let limits: Vec<String> = results
+        .models
+        .iter()
+        .filter_map(|m| {
+            let lod0 = m.lods.first()?;
+            Some(format!(
+                "{} {}s of {} vertices",
+                lod0.characters_per_draw,
+                m.model.name(),
+                lod0.vertices
+            ))
+        })
+        .collect();
+    Claim {
+        claim: "All vertices of all characters are skinned in a single draw call (pass 1)".into(),
+        paper: "Section 2: one draw call over a render target of n characters x m vertices".into(),
+        measured: format!(
+            "one draw holds at most {} at LOD 0 ({}-texel targets, rows of {} characters); \
+             larger crowds are skinned in batches, a draw each; {} ({})",
+            limits.join(" or "),
+            results.setup.max_texture_size,
+            results.setup.row_characters,
+            most_draws.map_or("no two-pass run".to_string(), |r| format!(
+                "Table 1's {} x {} took {} draw(s)",
+                r.model, r.characters, r.passes.pass1_draws
+            )),
+            results.renderer
+        ),
+        holds: Some(!two_pass.is_empty() && two_pass.iter().all(|r| r.passes.pass1_draws == 1)),
+    }
 }
 
 /// Table 1: the vertex shader wins at one character, two-pass from 16 on. Holds when, for

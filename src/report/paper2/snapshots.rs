@@ -38,8 +38,20 @@ fn caption(shows: &Shows) -> String {
             figure,
             model,
             characters,
+            sprites: false,
         } => format!(
-            "{figure}: {characters} {}s with LOD, sprites and frustum culling (two-pass)",
+            "{figure}: {characters} {}s with the three LOD meshes and frustum culling, the \
+             paper's setup (two-pass)",
+            model.name()
+        ),
+        Shows::LodRun {
+            figure,
+            model,
+            characters,
+            sprites: true,
+        } => format!(
+            "{figure} setup plus sprites beyond the last mesh distance (this project's \
+             extension, not in the paper): {characters} {}s (two-pass)",
             model.name()
         ),
     }
