@@ -352,7 +352,7 @@ fn hand_placed_characters_get_the_right_level_or_are_culled() {
         at(0.0, 5.0),   // near: LOD 0
         at(1.0, 30.0),  // LOD 1
         at(-3.0, 60.0), // LOD 2
-        at(0.0, 150.0), // sprite
+        at(0.0, 150.0), // LOD 2 in the paper's setup, a sprite with the extension
         at(0.0, -5.0),  // behind: culled
         at(80.0, 10.0), // far right: culled
         at(0.0, 250.0), // beyond far plane: culled
@@ -366,10 +366,23 @@ fn hand_placed_characters_get_the_right_level_or_are_culled() {
         Some(&policy),
         true,
     );
-    assert_eq!(plan.lods, [vec![0], vec![1], vec![2]]);
-    assert_eq!(plan.sprites, vec![3]);
+    // The paper's setup has no sprite level: the far character is LOD 2.
+    assert_eq!(plan.lods, [vec![0], vec![1], vec![2, 3]]);
+    assert!(plan.sprites.is_empty());
     assert_eq!(plan.culled, 3);
-    assert_eq!(plan.skinned(), 3);
+    assert_eq!(plan.skinned(), 4);
+    let with_sprites = LodPolicy::with_sprites();
+    let extended = plan_frame(
+        &placed,
+        model.bound_centre,
+        model.bound_radius,
+        &camera(),
+        Some(&with_sprites),
+        true,
+    );
+    assert_eq!(extended.lods, [vec![0], vec![1], vec![2]]);
+    assert_eq!(extended.sprites, vec![3]);
+    assert_eq!(extended.culled, 3);
     // Without culling or LOD (the paper's Table 1 setting) every character is LOD 0.
     let all = plan_frame(
         &placed,
@@ -382,7 +395,9 @@ fn hand_placed_characters_get_the_right_level_or_are_culled() {
     assert_eq!(all.lods[0], (0..placed.len()).collect::<Vec<_>>());
     assert_eq!(policy.select(15.0), Level::Mesh(0));
     assert_eq!(policy.select(15.01), Level::Mesh(1));
-    assert_eq!(policy.select(1000.0), Level::Sprite);
+    assert_eq!(policy.select(1000.0), Level::Mesh(2));
+    assert_eq!(with_sprites.select(15.01), Level::Mesh(1));
+    assert_eq!(with_sprites.select(1000.0), Level::Sprite);
 }
 
 #[test]
@@ -436,4 +451,42 @@ fn steering_keeps_characters_apart_and_inside_and_advances_phases() {
     again.step(0.1, 1.4);
     first.step(0.1, 1.4);
     assert_eq!(again.agents, first.agents);
+}
+
+#[test]
+fn models_and_methods_parse_from_their_names_and_refuse_others() {
+    use classic_gpgpu::crowd::Method;
+    for kind in ModelKind::ALL {
+        assert_eq!(kind.to_string().parse::<ModelKind>(), Ok(kind));
+    }
+    for method in Method::ALL {
+        assert_eq!(method.to_string().parse::<Method>(), Ok(method));
+    }
+    let e = "dragon".parse::<ModelKind>().unwrap_err();
+    assert!(e.contains("dragon") && e.contains("soldier"), "{e}");
+    let e = "one-pass".parse::<Method>().unwrap_err();
+    assert!(e.contains("one-pass") && e.contains("two-pass"), "{e}");
+}
+
+#[test]
+fn one_pass1_draw_holds_3712_characters_at_lod0_on_16384_texel_targets() {
+    use classic_gpgpu::crowd::pass1_skinning::{characters_per_target, MAX_ROW_CHARACTERS};
+    // The figure the module docs and the report give: 128 characters a row, floor(16384 /
+    // m) blocks of m rows, for the soldier's and the horse's LOD 0 meshes.
+    for model in models() {
+        let m = model.lods[0].vertex_count() as u32;
+        assert_eq!(
+            characters_per_target(16384, m),
+            3712,
+            "{:?}, m = {m}",
+            model.kind
+        );
+        assert_eq!(
+            characters_per_target(16384, m),
+            MAX_ROW_CHARACTERS * (16384 / m)
+        );
+    }
+    // The target's side bounds it too: one row of bone texels per character.
+    assert_eq!(characters_per_target(256, 1), 256);
+    assert_eq!(characters_per_target(4096, 5000), 0);
 }

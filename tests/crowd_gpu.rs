@@ -58,41 +58,113 @@ fn pass1_vbo_matches_cpu_linear_blend_skinning_in_f64() {
             (2, many, vec![0, 1, 127, 128, 200, 255, 256, 299]),
         ] {
             let gpu = renderer.skin_to_vbo(lod, &instances, &ids).unwrap();
-            assert_eq!(gpu.len(), ids.len());
-            let mesh = &model.lods[lod];
-            let mut worst: f64 = 0.0;
-            for &slot in &checked {
-                let id = ids[slot];
-                let pose = model.clip.sample(&model.skeleton, phases[id]);
-                let bones = model.skeleton.skinning_matrices(&pose, models[id]);
-                let cpu = cpu_skinning::skin(mesh, &bones);
-                let (positions, normals) = &gpu[slot];
-                assert_eq!(positions.len(), mesh.vertex_count());
-                for v in 0..mesh.vertex_count() {
-                    let p = positions[v];
-                    let q = cpu.positions[v];
-                    let err = (DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) - q)
-                        .abs()
-                        .max_element();
-                    let tol = tolerance(q.abs().max_element());
-                    assert!(
-                        err <= tol,
-                        "{kind:?} LOD {lod} character {id} vertex {v}: {p:?} vs {q} (err {err:e} > {tol:e})"
-                    );
-                    assert_eq!(p[3], 1.0);
-                    worst = worst.max(err / tol);
-                    let n = normals[v];
-                    let m = cpu.normals[v];
-                    let nerr = (DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64) - m).length();
-                    // Unit normals: a few ulp after the blend and the normalisation.
-                    assert!(nerr < 1e-5, "{kind:?} LOD {lod} normal {v}: {n:?} vs {m}");
-                }
-            }
+            let worst = assert_matches_cpu(&model, lod, &instances, &ids, &gpu, &checked);
             eprintln!(
                 "{kind:?} LOD {lod}, {} characters: worst error {worst:.3} of the tolerance",
                 ids.len()
             );
         }
+    }
+}
+
+/// Checks the GPU-skinned vertices `gpu` (slot s holds character `ids[s]`) of the slots
+/// `checked` against f64 CPU skinning; returns the worst error as a share of the tolerance.
+fn assert_matches_cpu(
+    model: &CharacterModel,
+    lod: usize,
+    instances: &Instances,
+    ids: &[usize],
+    gpu: &[classic_gpgpu::crowd::render_to_vbo::SkinnedColumn],
+    checked: &[usize],
+) -> f64 {
+    let kind = model.kind;
+    assert_eq!(gpu.len(), ids.len());
+    let mesh = &model.lods[lod];
+    let mut worst: f64 = 0.0;
+    for &slot in checked {
+        let id = ids[slot];
+        let pose = model.clip.sample(&model.skeleton, instances.phases[id]);
+        let bones = model
+            .skeleton
+            .skinning_matrices(&pose, instances.models[id]);
+        let cpu = cpu_skinning::skin(mesh, &bones);
+        let (positions, normals) = &gpu[slot];
+        assert_eq!(positions.len(), mesh.vertex_count());
+        for v in 0..mesh.vertex_count() {
+            let p = positions[v];
+            let q = cpu.positions[v];
+            let err = (DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) - q)
+                .abs()
+                .max_element();
+            let tol = tolerance(q.abs().max_element());
+            assert!(
+                err <= tol,
+                "{kind:?} LOD {lod} character {id} vertex {v}: {p:?} vs {q} (err {err:e} > {tol:e})"
+            );
+            assert_eq!(p[3], 1.0);
+            worst = worst.max(err / tol);
+            let n = normals[v];
+            let m = cpu.normals[v];
+            let nerr = (DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64) - m).length();
+            // Unit normals: a few ulp after the blend and the normalisation.
+            assert!(nerr < 1e-5, "{kind:?} LOD {lod} normal {v}: {n:?} vs {m}");
+        }
+    }
+    worst
+}
+
+#[test]
+fn a_crowd_beyond_one_batch_is_skinned_in_several_draws_that_match_cpu_skinning() {
+    // The paper skins every character in one draw; here one draw holds at most what a
+    // render target does (3,712 soldiers at LOD 0 on 16384-texel targets), and a larger
+    // crowd is split into batches. A small forced limit runs that path without allocating
+    // targets of the largest size: 45 characters in batches of 16 (16 + 16 + 13), the
+    // last batch partly filled and its target's rows unevenly used.
+    let ctx = context();
+    for kind in ModelKind::ALL {
+        let model = CharacterModel::build(kind).unwrap();
+        let mut renderer = CrowdRenderer::new(&ctx, model.clone()).unwrap();
+        let natural = renderer.batch_limit(0);
+        renderer.set_batch_limit(Some(16));
+        assert_eq!(renderer.batch_limit(0), 16);
+        let (models, phases) = scattered(60);
+        let instances = Instances {
+            models: &models,
+            phases: &phases,
+        };
+        // Out of order, so a batch that took the wrong slice of matrices would show.
+        let ids: Vec<usize> = (0..45).map(|i| (i * 17 + 5) % 60).collect();
+        for lod in [0, 2] {
+            let gpu = renderer.skin_to_vbo(lod, &instances, &ids).unwrap();
+            let every: Vec<usize> = (0..ids.len()).collect();
+            let worst = assert_matches_cpu(&model, lod, &instances, &ids, &gpu, &every);
+            eprintln!("{kind:?} LOD {lod}, 45 characters in batches of 16: worst {worst:.3}");
+        }
+        // Whole frames: three pass-1 draws, one image equal to the single-batch one.
+        let (w, h) = (160, 120);
+        let target = scene::scene_target(&ctx, w, h).unwrap();
+        let scene = scene::table1_scene(kind, 45, w as f32 / h as f32, 5);
+        let frame = |renderer: &mut CrowdRenderer| {
+            scene::clear(&target).unwrap();
+            let (stats, _) =
+                scene::render_frame(renderer, &target, &scene, Method::TwoPass, false).unwrap();
+            (stats, target.read_u8(0, Rect::sized(w, h)).unwrap())
+        };
+        let (batched, batched_image) = frame(&mut renderer);
+        assert_eq!(batched.pass1_draws, 3, "{kind:?}");
+        assert_eq!(batched.skinned, 45);
+        renderer.set_batch_limit(None);
+        assert_eq!(renderer.batch_limit(0), natural);
+        let (single, single_image) = frame(&mut renderer);
+        assert_eq!(single.pass1_draws, 1, "{kind:?}");
+        assert!(
+            1.0 - sky_fraction(&single_image) > 0.01,
+            "{kind:?}: the crowd is not in view"
+        );
+        assert_eq!(
+            batched_image, single_image,
+            "{kind:?}: batches of 16 draw another image than one batch"
+        );
     }
 }
 
@@ -209,7 +281,8 @@ fn lod_culling_and_sprites_draw_what_the_plan_says() {
     ];
     let phases = [0.1, 0.2, 0.3, 0.4, 0.5];
     let policy = LodPolicy {
-        mesh_until: [7.0, 11.0, 18.0],
+        mesh_until: [7.0, 11.0],
+        sprites_beyond: Some(18.0),
     };
     let plan = plan_frame(
         &models,
@@ -373,7 +446,24 @@ fn crowd_bench_quick_reports_table1_beside_the_paper() {
     assert_eq!(table1["rows"][1][1], "580");
     let measured: f64 = table1["rows"][1][2].as_str().unwrap().parse().unwrap();
     assert!(measured > 0.0);
-    assert_eq!(section["claims"].as_array().unwrap().len(), 3);
+    let claims = section["claims"].as_array().unwrap();
+    assert_eq!(claims.len(), 4);
+    // The single-draw claim states the limit of one draw on this renderer.
+    let single = claims
+        .iter()
+        .find(|c| c["claim"].as_str().unwrap().contains("single draw call"))
+        .expect("the single-draw claim");
+    let results = &section["results"];
+    let lod0_limit = results["models"][0]["lods"][0]["characters_per_draw"]
+        .as_u64()
+        .unwrap();
+    assert!(
+        single["measured"]
+            .as_str()
+            .unwrap()
+            .contains(&lod0_limit.to_string()),
+        "{single}"
+    );
     for figure in section["figures"].as_array().unwrap() {
         let file = out_dir.join(figure["file"].as_str().unwrap());
         assert!(file.exists(), "{}", file.display());
@@ -382,4 +472,139 @@ fn crowd_bench_quick_reports_table1_beside_the_paper() {
     let runs = section["results"]["table1"].as_array().unwrap();
     assert_eq!(runs.len(), 2 * 3 * 3);
     assert!(runs.iter().all(|r| r["fps"].as_f64().unwrap() > 0.0));
+    assert!(runs
+        .iter()
+        .all(|r| r["passes"]["pass1_draws"].as_u64().is_some()));
+
+    // Fig. 4-5 are run in the paper's setup: three meshes and culling, no sprites; LOD 2
+    // reaches to the far plane.
+    let paper_setup = results["lod_runs"].as_array().unwrap();
+    let extension = results["sprite_runs"].as_array().unwrap();
+    assert_eq!(paper_setup.len(), 4, "two figures x two methods");
+    assert_eq!(extension.len(), 4);
+    for (paper, ext) in paper_setup.iter().zip(extension) {
+        assert_eq!(paper["sprites_enabled"], false);
+        assert_eq!(paper["passes"]["sprites"], 0, "{paper}");
+        assert!(paper["per_lod"][2].as_u64().unwrap() > 0);
+        assert_eq!(ext["sprites_enabled"], true);
+        // The same crowd, side by side: the extension only turns far LOD 2 characters
+        // into sprites.
+        assert_eq!(
+            (&paper["model"], &paper["method"]),
+            (&ext["model"], &ext["method"])
+        );
+        assert_eq!(paper["culled"], ext["culled"]);
+        assert_eq!(paper["per_lod"][0], ext["per_lod"][0]);
+        assert_eq!(paper["per_lod"][1], ext["per_lod"][1]);
+        assert_eq!(
+            paper["per_lod"][2].as_u64().unwrap(),
+            ext["per_lod"][2].as_u64().unwrap() + ext["passes"]["sprites"].as_u64().unwrap()
+        );
+    }
+    // The Fig. 3-5 table keeps the sprite runs in rows of their own, marked as an extension.
+    let fig3_5 = section["tables"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|t| t["caption"].as_str().unwrap().starts_with("Fig. 3-5"))
+        .unwrap();
+    let figures: Vec<&str> = fig3_5["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r[0].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        figures,
+        [
+            "Fig. 4",
+            "Fig. 5",
+            "Fig. 4 + sprites (extension)",
+            "Fig. 5 + sprites (extension)"
+        ]
+    );
+
+    // The models' bone counts, the spear and the LOD distances are declared as this
+    // project's choices, with the values the code uses.
+    let fidelity = section["fidelity"].as_array().unwrap();
+    let deviation = |feature: &str| {
+        fidelity
+            .iter()
+            .find(|f| f["feature"].as_str().unwrap().starts_with(feature))
+            .unwrap_or_else(|| panic!("no fidelity row '{feature}'"))["deviation"]
+            .as_str()
+            .unwrap()
+            .to_string()
+    };
+    let models = deviation("Character models");
+    for kind in ModelKind::ALL {
+        let bones = CharacterModel::build(kind).unwrap().bone_count();
+        assert!(
+            models.contains(&format!("{bones} bones")),
+            "{kind:?} {bones}: {models}"
+        );
+    }
+    assert!(models.contains("spear") && models.contains("this project's choices"));
+    let lod = deviation("3 LODs");
+    let [near, middle] = LodPolicy::default().mesh_until;
+    assert!(
+        lod.contains(&format!(
+            "{near:.0} m and {middle:.0} m, are this project's"
+        )),
+        "{lod}"
+    );
+    let sprites = deviation("Sprites");
+    assert!(sprites.contains("extension, not in the paper"), "{sprites}");
+    let one_draw = deviation("Skinning in a pixel shader");
+    assert!(
+        one_draw.starts_with("not one draw for all") && one_draw.contains(&lod0_limit.to_string()),
+        "{one_draw}"
+    );
+}
+
+#[test]
+fn crowd_command_runs_the_papers_lod_setup_sprites_on_request_and_forced_batches() {
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec![
+            "crowd",
+            "--characters",
+            "40",
+            "--frames",
+            "1",
+            "--size",
+            "96x64",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let out = classic_gpgpu(&args);
+        assert!(
+            out.status.success(),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let lod = run(&["--lod"]);
+    assert_eq!(lod["run"]["lod_and_culling"], true);
+    assert_eq!(lod["run"]["sprites_enabled"], false);
+    assert_eq!(lod["run"]["passes"]["sprites"], 0);
+    let sprites = run(&["--lod", "--sprites"]);
+    assert_eq!(sprites["run"]["sprites_enabled"], true);
+    // 40 characters in pass-1 draws of 16: three draws instead of the one that fits.
+    let batched = run(&["--skin-batch", "16"]);
+    assert_eq!(batched["run"]["passes"]["pass1_draws"], 3);
+    assert_eq!(batched["pass1_characters_per_draw"][0], 16);
+    assert_eq!(run(&[])["run"]["passes"]["pass1_draws"], 1);
+    for (args, needle) in [
+        (vec!["crowd", "--sprites"], "--lod"),
+        (vec!["crowd", "--skin-batch", "0"], "--skin-batch"),
+    ] {
+        let out = classic_gpgpu(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(
+            err.contains(needle) && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
+    }
 }

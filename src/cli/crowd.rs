@@ -1,6 +1,7 @@
 //! `classic-gpgpu crowd`: render a crowd off-screen with either skinning method, report
 //! frames per second and the time of each pass, and write a snapshot (paper Fig. 3-5).
-//! `classic-gpgpu crowd-bench`: the paper's Table 1 and LOD runs (see `report::paper2`).
+//! (`crowd-bench`, the paper's Table 1 and LOD runs, is `report::paper2` through
+//! `report::bench_command`.)
 
 use std::path::PathBuf;
 
@@ -12,23 +13,28 @@ use classic_gpgpu::gl::{dump, Context};
 use classic_gpgpu::crowd::character::{CharacterModel, ModelKind};
 use classic_gpgpu::crowd::renderer::{CrowdRenderer, Method};
 use classic_gpgpu::crowd::scene::{self, RunStats};
+use classic_gpgpu::crowd::LodPolicy;
 
 /// Arguments of `crowd`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct CrowdArgs {
     /// Which character.
     #[arg(long, value_enum, default_value = "soldier")]
-    pub model: ModelKind,
+    pub model: ModelArg,
     /// How many characters (n).
     #[arg(long, default_value_t = 256)]
     pub characters: usize,
     /// Skinning in a pixel shader + render-to-VBO (the paper) or in the vertex shader.
     #[arg(long, value_enum, default_value = "two-pass")]
-    pub method: Method,
-    /// LOD meshes, sprites and view-frustum culling (paper Fig. 4-5); without it every
+    pub method: MethodArg,
+    /// The paper's three LOD meshes and view-frustum culling (Fig. 4-5); without it every
     /// character is skinned at full detail, as in Table 1.
     #[arg(long)]
     pub lod: bool,
+    /// With --lod, also draw characters beyond 90 m as sprites: this project's extension,
+    /// not in the paper.
+    #[arg(long, requires = "lod")]
+    pub sprites: bool,
     /// Timed frames (after one warm-up frame).
     #[arg(long, default_value_t = 10)]
     pub frames: usize,
@@ -42,9 +48,50 @@ pub struct CrowdArgs {
     /// uniforms hold; 1 is how the paper's hardware generation ran it).
     #[arg(long)]
     pub vs_batch: Option<u32>,
+    /// Characters per pass-1 draw of the two-pass method (default: as many as one render
+    /// target holds, 3,712 soldiers at LOD 0 on 16384-texel targets; the paper skins all
+    /// characters in one draw). A smaller value runs the several-batch path.
+    #[arg(long)]
+    pub skin_batch: Option<usize>,
     /// Seed of the crowd's placement and wandering.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+}
+
+/// The library's [`ModelKind`], as the command line names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ModelArg {
+    /// The procedural humanoid.
+    Soldier,
+    /// The procedural quadruped.
+    Horse,
+}
+
+impl From<ModelArg> for ModelKind {
+    fn from(m: ModelArg) -> ModelKind {
+        match m {
+            ModelArg::Soldier => ModelKind::Soldier,
+            ModelArg::Horse => ModelKind::Horse,
+        }
+    }
+}
+
+/// The library's [`Method`], as the command line names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum MethodArg {
+    /// The paper's: skinning in a pixel shader, render-to-VBO, a drawing pass.
+    TwoPass,
+    /// The baseline: skinning in the vertex shader, bone matrices in uniforms.
+    VertexShader,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::TwoPass => Method::TwoPass,
+            MethodArg::VertexShader => Method::VertexShader,
+        }
+    }
 }
 
 /// Parses `WxH`.
@@ -72,7 +119,8 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if w > max_w || h > max_h {
         bail!("--size {w}x{h} exceeds this renderer's largest viewport {max_w}x{max_h}");
     }
-    let model = CharacterModel::build(args.model).context("building the character model")?;
+    let (kind, method) = (ModelKind::from(args.model), Method::from(args.method));
+    let model = CharacterModel::build(kind).context("building the character model")?;
     let mut renderer = CrowdRenderer::new(ctx, model).context("setting up the crowd renderer")?;
     if let Some(batch) = args.vs_batch {
         if batch == 0 {
@@ -80,19 +128,30 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         }
         renderer.set_vertex_shader_batch(batch);
     }
+    if let Some(batch) = args.skin_batch {
+        if batch == 0 {
+            bail!("--skin-batch must be at least 1");
+        }
+        renderer.set_batch_limit(Some(batch));
+    }
     let target = scene::scene_target(ctx, w, h)?;
     let aspect = w as f32 / h as f32;
     let mut scene = if args.lod {
-        scene::lod_scene(args.model, args.characters, aspect, args.seed)
+        let policy = if args.sprites {
+            LodPolicy::with_sprites()
+        } else {
+            LodPolicy::default()
+        };
+        scene::lod_scene(kind, args.characters, aspect, args.seed, policy)
     } else {
-        scene::table1_scene(args.model, args.characters, aspect, args.seed)
+        scene::table1_scene(kind, args.characters, aspect, args.seed)
     };
     let stats = scene::run(
         ctx,
         &mut renderer,
         &target,
         &mut scene,
-        args.method,
+        method,
         args.frames,
         1.0 / 30.0,
     )?;
@@ -105,6 +164,9 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             "renderer": ctx.info().renderer,
             "size": [w, h],
             "vertex_shader_batch": renderer.vertex_shader_batch(),
+            "pass1_characters_per_draw": (0..renderer.model.lods.len())
+                .map(|lod| renderer.batch_limit(lod))
+                .collect::<Vec<_>>(),
             "run": stats,
             "png": args.png,
         });
@@ -123,10 +185,10 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
         s.characters,
         s.model,
         s.method,
-        if s.lod_and_culling {
-            "LOD + sprites + culling"
-        } else {
-            "full detail, no culling"
+        match (s.lod_and_culling, s.sprites_enabled) {
+            (true, true) => "3 LOD meshes + culling + sprites (extension)",
+            (true, false) => "3 LOD meshes + culling",
+            _ => "full detail, no culling",
         }
     );
     println!(
@@ -144,6 +206,7 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
     };
     if s.method == Method::TwoPass.name() {
         println!("bone upload     {:.2} ms (CPU)", p.upload_ms);
+        println!("pass-1 draws    {}", p.pass1_draws);
         line("pass 1 skinning", g.pass1, w.pass1);
         line("render-to-VBO", g.copy, w.copy);
         line("pass 2 drawing", g.pass2, w.pass2);

@@ -14,7 +14,7 @@ use super::{horse, soldier};
 use crate::mesh::Mesh;
 
 /// The two models of the paper's Table 1.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ModelKind {
     Soldier,
@@ -29,6 +29,24 @@ impl ModelKind {
             ModelKind::Soldier => "soldier",
             ModelKind::Horse => "horse",
         }
+    }
+}
+
+impl std::fmt::Display for ModelKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for ModelKind {
+    type Err = String;
+
+    /// `soldier` or `horse`.
+    fn from_str(text: &str) -> Result<Self, String> {
+        ModelKind::ALL
+            .into_iter()
+            .find(|k| k.name() == text)
+            .ok_or_else(|| format!("unknown model '{text}' (expected soldier or horse)"))
     }
 }
 

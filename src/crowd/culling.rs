@@ -1,6 +1,8 @@
 //! View-frustum culling and LOD choice per character [paper section 3, Fig. 4-5]: before
 //! pass 1, characters whose bounding sphere lies outside the frustum are dropped, and the
-//! rest are sorted into the three LOD meshes and the sprite level by distance to the eye.
+//! rest are sorted into the three LOD meshes (and, when the policy has it, this project's
+//! sprite level) by distance to the eye. The paper does not say how it culls: here each
+//! character's animated bounding sphere is tested against the six frustum planes on the CPU.
 
 use glam::{DAffine3, Mat4, Vec3, Vec4, Vec4Swizzles};
 

@@ -1,5 +1,7 @@
-//! The "horse": a procedural quadruped standing in for the paper's rigged horse model
-//! (20 bones) and its gallop.
+//! The "horse": a procedural quadruped standing in for the paper's rigged horse model, whose
+//! mesh and skeleton are not published. The skeleton (20 bones), the proportions and the
+//! gallop are this project's choices; the paper gives only the polygon counts of the LOD
+//! meshes and at most 4 bones per vertex.
 
 use glam::DVec3;
 

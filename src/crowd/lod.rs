@@ -1,9 +1,14 @@
 //! Levels of detail [paper section 3, Fig. 4-5]: three meshes of 1,084, 544 and 312
-//! polygons, sprites (impostors) in the far field, chosen per character by distance.
+//! polygons, chosen per character by distance. Beyond them, sprites (impostors) are this
+//! project's extension, off unless asked for: the paper does not describe them (the
+//! tutorial's lecture 2 mentions sprites for still larger crowds).
 //!
-//! The polygon counts are met exactly: [`tessellate_to_budget`] picks each body part's
-//! segments and rings so that the character's triangle total equals the target.
+//! The polygon counts are the paper's and are met exactly: [`tessellate_to_budget`] picks
+//! each body part's segments and rings so that the character's triangle total equals the
+//! target. The distances at which the level changes are this project's choice; the paper
+//! gives none.
 
+use serde::Serialize;
 use thiserror::Error;
 
 use super::body_part::{BodyPart, Tessellation};
@@ -16,33 +21,55 @@ pub const LOD_TRIANGLES: [usize; 3] = [1084, 544, 312];
 pub enum Level {
     /// One of the skinned LOD meshes, 0 = finest.
     Mesh(usize),
-    /// A camera-facing sprite (impostor).
+    /// A camera-facing sprite (impostor): this project's extension.
     Sprite,
 }
 
-/// Distance thresholds: LOD `i` up to `mesh_until[i]`, sprites beyond the last.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Distance thresholds from the eye (metres): LOD 0 up to `mesh_until[0]`, LOD 1 up to
+/// `mesh_until[1]`, LOD 2 beyond, or a sprite beyond `sprites_beyond` when it is set.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct LodPolicy {
-    pub mesh_until: [f32; 3],
+    pub mesh_until: [f32; 2],
+    /// `None` in the paper's setup (three meshes only).
+    pub sprites_beyond: Option<f32>,
 }
 
+/// Where the sprite level starts when it is on ([`LodPolicy::with_sprites`]).
+pub const SPRITES_BEYOND: f32 = 90.0;
+
 impl Default for LodPolicy {
-    /// Thresholds for a 1.8 m character seen with a 60 degree field of view at 720 lines:
-    /// LOD0 while it is over ~90 pixels tall, LOD1 over ~35, LOD2 over ~15, then a sprite.
+    /// The paper's setup, three meshes and no sprites, at this project's distances: for a
+    /// 1.8 m character seen with a 60 degree field of view at 720 lines, LOD 0 while it is
+    /// over ~90 pixels tall, LOD 1 over ~35, LOD 2 below.
     fn default() -> Self {
         Self {
-            mesh_until: [15.0, 40.0, 90.0],
+            mesh_until: [15.0, 40.0],
+            sprites_beyond: None,
         }
     }
 }
 
 impl LodPolicy {
+    /// The paper's setup plus this project's sprite level beyond [`SPRITES_BEYOND`] (where
+    /// a character is under ~15 pixels tall under the same assumptions).
+    pub fn with_sprites() -> Self {
+        Self {
+            sprites_beyond: Some(SPRITES_BEYOND),
+            ..Self::default()
+        }
+    }
+
     /// The level for a character at `distance` from the eye.
     pub fn select(&self, distance: f32) -> Level {
-        self.mesh_until
-            .iter()
-            .position(|&limit| distance <= limit)
-            .map_or(Level::Sprite, Level::Mesh)
+        if self.sprites_beyond.is_some_and(|d| distance > d) {
+            return Level::Sprite;
+        }
+        Level::Mesh(
+            self.mesh_until
+                .iter()
+                .position(|&limit| distance <= limit)
+                .unwrap_or(self.mesh_until.len()),
+        )
     }
 }
 

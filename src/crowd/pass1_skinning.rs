@@ -6,8 +6,11 @@
 //! Rows hold at most [`MAX_ROW_CHARACTERS`] characters: pass 2 reads a character's
 //! vertices one row apart, and OpenGL 4.4+ caps a vertex attribute's stride at
 //! `GL_MAX_VERTEX_ATTRIB_STRIDE` (2048 bytes on Mesa; the paper's OpenGL 2 had no such
-//! cap). More characters continue in further blocks of m rows below the first, so one draw
-//! call still skins them all.
+//! cap). More characters continue in further blocks of m rows below the first, as many
+//! blocks as the largest texture holds. So one draw skins at most
+//! [`characters_per_target`] characters, not all of them as in the paper: 128 x
+//! floor(16384 / 562) = 3,712 soldiers at LOD 0 on 16384-texel targets. The renderer skins
+//! a larger crowd in several batches, a draw each.
 
 use crate::gl::{Context, Framebuffer, GlError, Program, Rect, Texture, TextureFormat};
 use crate::shader;
@@ -18,11 +21,17 @@ use super::vertex_textures::VertexTextures;
 /// Characters per render-target row: 2048-byte vertex stride / 16 bytes per RGBA32F texel.
 pub const MAX_ROW_CHARACTERS: u32 = 2048 / 16;
 
-/// Most characters one target can hold for meshes of `vertices` vertices (whole blocks of
-/// rows within the largest texture, and bone textures of one row per character).
-pub fn max_characters(ctx: &Context, vertices: u32) -> u32 {
-    let max = ctx.info().limits.max_texture_size;
+/// Most characters one target of at most `max_texture_size` texels a side can hold for
+/// meshes of `vertices` vertices: whole blocks of m rows of [`MAX_ROW_CHARACTERS`], and
+/// bone textures of one row per character.
+pub fn characters_per_target(max_texture_size: u32, vertices: u32) -> u32 {
+    let max = max_texture_size;
     (MAX_ROW_CHARACTERS * (max / vertices.max(1))).min(max)
+}
+
+/// [`characters_per_target`] on this renderer: the most characters one pass-1 draw skins.
+pub fn max_characters(ctx: &Context, vertices: u32) -> u32 {
+    characters_per_target(ctx.info().limits.max_texture_size, vertices)
 }
 
 /// The render target texture(s): `row_characters` columns x (`blocks` x `vertices`) rows,

@@ -1,6 +1,10 @@
 //! One frame of crowd rendering, either method: bone matrices on the CPU (both methods),
 //! then pass 1 + render-to-VBO + pass 2 per LOD ("two-pass"), or vertex-shader skinning
-//! ("vertex-shader"); sprites for the far field. Each stage can be timed twice: with a GL
+//! ("vertex-shader"); sprites for the far field when the plan has them (this project's
+//! extension). The paper skins every character in one draw; here a LOD's characters go
+//! through pass 1 in batches of at most [`pass1_skinning::max_characters`] (3,712 soldiers
+//! at LOD 0 on 16384-texel targets), each batch with its own pass 1, copy and pass 2, so a
+//! larger crowd takes several draws ([`FrameStats::pass1_draws`]). Each stage can be timed twice: with a GL
 //! timer query, and by wall clock between `glFinish` calls. Both are kept because a
 //! software renderer such as llvmpipe runs vertex shaders on the CPU while the draw call
 //! is made, outside the span its timer queries measure (they then read ~0 for the
@@ -24,7 +28,7 @@ use super::vertex_shader_skinning::VertexShaderSkinning;
 use super::vertex_textures::VertexTextures;
 
 /// The two methods of Table 1.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// The paper's pixel-shader skinning, render-to-VBO, drawing pass.
@@ -34,11 +38,33 @@ pub enum Method {
 }
 
 impl Method {
+    pub const ALL: [Method; 2] = [Method::TwoPass, Method::VertexShader];
+
     pub fn name(self) -> &'static str {
         match self {
             Method::TwoPass => "two-pass",
             Method::VertexShader => "vertex-shader",
         }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+
+    /// `two-pass` or `vertex-shader`.
+    fn from_str(text: &str) -> Result<Self, String> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == text)
+            .ok_or_else(|| {
+                format!("unknown skinning method '{text}' (expected two-pass or vertex-shader)")
+            })
     }
 }
 
@@ -94,6 +120,8 @@ pub struct FrameStats {
     pub gl_timer: PassTimes,
     /// Wall clock around each stage, with `glFinish` before and after.
     pub wall: PassTimes,
+    /// Pass-1 draws (one per batch of each LOD; the paper has one in all).
+    pub pass1_draws: usize,
     /// Characters drawn with a skinned mesh, and with a sprite.
     pub skinned: usize,
     pub sprites: usize,
@@ -154,6 +182,8 @@ pub struct CrowdRenderer {
     sprites: Sprites,
     colour: Vec3,
     light: Vec3,
+    /// At most this many characters per pass-1 batch, below what the render target holds.
+    batch_limit: Option<usize>,
 }
 
 /// Colour of each model.
@@ -200,6 +230,7 @@ impl CrowdRenderer {
             lods,
             colour,
             light,
+            batch_limit: None,
         })
     }
 
@@ -229,10 +260,26 @@ impl CrowdRenderer {
             .map(|b| b.target.framebuffer.color(0))
     }
 
-    /// Most characters one pass-1 draw can hold for LOD `lod` (the render target's size
-    /// limit).
-    fn batch_limit(&self, lod: usize) -> usize {
-        pass1_skinning::max_characters(&self.ctx, self.lods[lod].textures.vertices) as usize
+    /// Most characters one pass-1 draw skins for LOD `lod`: what the render target holds,
+    /// or less when [`Self::set_batch_limit`] asked for it.
+    pub fn batch_limit(&self, lod: usize) -> usize {
+        // At least one: a mesh too large for any target then fails with the target's error.
+        let fits = (pass1_skinning::max_characters(&self.ctx, self.lods[lod].textures.vertices)
+            as usize)
+            .max(1);
+        self.batch_limit.map_or(fits, |limit| limit.clamp(1, fits))
+    }
+
+    /// Skins at most `limit` characters per pass-1 draw (`None`: as many as a render target
+    /// holds). Lets tests and demonstrations run the several-batch path of crowds beyond one
+    /// target without allocating targets of the largest size.
+    pub fn set_batch_limit(&mut self, limit: Option<usize>) {
+        if limit != self.batch_limit {
+            self.batch_limit = limit;
+            for lod in &mut self.lods {
+                lod.batches.clear();
+            }
+        }
     }
 
     /// Skinning matrices of the characters `ids`, `bones` per character, in order.
@@ -358,6 +405,7 @@ impl CrowdRenderer {
         for (b, batch) in resources.batches.iter().enumerate().take(n.div_ceil(limit)) {
             let first = b * limit;
             let count = (n - first).min(limit);
+            stats.pass1_draws += 1;
             let started = Instant::now();
             batch
                 .bones
@@ -391,36 +439,39 @@ impl CrowdRenderer {
         Ok(())
     }
 
-    /// Runs pass 1 and the copy for characters `ids` of LOD `lod` and reads back the VBO
-    /// (tests: the skinned vertices of each character, positions and normals).
+    /// Runs pass 1 and the copy for characters `ids` of LOD `lod`, batch by batch as
+    /// [`Self::render`] does, and reads back the VBOs (tests: the skinned vertices of each
+    /// character, positions and normals, in the order of `ids`).
     pub fn skin_to_vbo(
         &mut self,
         lod: usize,
         instances: &Instances,
         ids: &[usize],
     ) -> Result<Vec<SkinnedColumn>, GlError> {
-        let limit = self.batch_limit(lod);
-        if ids.len() > limit {
-            return Err(GlError::Invalid(format!(
-                "skin_to_vbo takes at most {limit} characters"
-            )));
-        }
+        let n = ids.len();
         let matrices = self.bone_matrices(instances, ids);
-        self.reserve(lod, ids.len())?;
+        self.reserve(lod, n)?;
+        let limit = self.batch_limit(lod);
+        let bones = self.model.bone_count();
         let resources = &self.lods[lod];
-        let batch = &resources.batches[0];
-        batch.bones.upload(&matrices)?;
-        self.pass1.run(
-            &batch.target,
-            &resources.textures,
-            &batch.bones,
-            ids.len() as u32,
-        )?;
-        batch.vbo.copy_from(&batch.target, ids.len() as u32)?;
-        let all: Vec<[f32; 4]> = batch.vbo.buffer.read()?;
-        Ok((0..ids.len() as u32)
-            .map(|c| batch.vbo.column_of(&all, c))
-            .collect())
+        let mut columns = Vec::with_capacity(n);
+        for (b, batch) in resources.batches.iter().enumerate().take(n.div_ceil(limit)) {
+            let first = b * limit;
+            let count = (n - first).min(limit);
+            batch
+                .bones
+                .upload(&matrices[first * bones..(first + count) * bones])?;
+            self.pass1.run(
+                &batch.target,
+                &resources.textures,
+                &batch.bones,
+                count as u32,
+            )?;
+            batch.vbo.copy_from(&batch.target, count as u32)?;
+            let all: Vec<[f32; 4]> = batch.vbo.buffer.read()?;
+            columns.extend((0..count as u32).map(|c| batch.vbo.column_of(&all, c)));
+        }
+        Ok(columns)
     }
 }
 

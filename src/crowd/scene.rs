@@ -2,8 +2,11 @@
 //!
 //! - Table 1 / Fig. 3: n characters on a square field, the whole field in view, culling
 //!   off and every character at the finest LOD ("all characters processed by GPU").
-//! - Fig. 4-5: a large field seen from its edge near the ground, with LOD, sprites and
-//!   view-frustum culling on.
+//! - Fig. 4-5: a large field seen from its edge near the ground, with the three LOD
+//!   meshes and view-frustum culling on (the paper's setup), optionally with this project's
+//!   sprite level (see [`super::lod`]).
+//!
+//! The cameras, spacings and paces are this project's: the paper's are not published.
 //!
 //! Every frame the behaviour layer moves the characters (not timed: it is not part of the
 //! rendering method), then culling/LOD choice, bone matrices and the GPU passes are timed
@@ -69,8 +72,9 @@ pub fn table1_scene(kind: ModelKind, n: usize, aspect: f32, seed: u64) -> Scene 
     }
 }
 
-/// Fig. 4-5: a large field seen from the middle of one edge, 8 m up, with LOD and culling.
-pub fn lod_scene(kind: ModelKind, n: usize, aspect: f32, seed: u64) -> Scene {
+/// Fig. 4-5: a large field seen from the middle of one edge, 8 m up, with culling and the
+/// levels of `policy` ([`LodPolicy::default`] is the paper's three meshes, no sprites).
+pub fn lod_scene(kind: ModelKind, n: usize, aspect: f32, seed: u64, policy: LodPolicy) -> Scene {
     let (spacing, pace) = spacing_and_pace(kind);
     let crowd = Crowd::new(n, spacing, pace, seed);
     let half = crowd.params.bounds.1.x;
@@ -85,7 +89,7 @@ pub fn lod_scene(kind: ModelKind, n: usize, aspect: f32, seed: u64) -> Scene {
             near: 0.5,
             far: 3.0 * half + 10.0,
         },
-        lod: Some(LodPolicy::default()),
+        lod: Some(policy),
         cull: true,
     }
 }
@@ -109,6 +113,8 @@ pub struct RunStats {
     pub vertex_shader_batch: u32,
     pub characters: usize,
     pub lod_and_culling: bool,
+    /// Whether far characters were drawn as sprites (this project's extension).
+    pub sprites_enabled: bool,
     pub frames: usize,
     /// Wall clock per frame (culling, bone matrices, GPU passes, glFinish): the median
     /// over the timed frames, so that a frame slowed by another process does not count.
@@ -155,7 +161,8 @@ pub fn render_frame(
     Ok((stats, plan))
 }
 
-fn clear(target: &Framebuffer) -> Result<(), GlError> {
+/// Clears `target` to the sky and the far depth, as every frame starts.
+pub fn clear(target: &Framebuffer) -> Result<(), GlError> {
     target.clear_colors(SKY)?;
     target.clear_depth_stencil(1.0, 0)
 }
@@ -256,6 +263,7 @@ pub fn run_side_by_side(
             vertex_shader_batch: renderer.vertex_shader_batch(),
             characters: scene.crowd.agents.len(),
             lod_and_culling: scene.lod.is_some(),
+            sprites_enabled: scene.lod.is_some_and(|p| p.sprites_beyond.is_some()),
             frames,
             frame_ms,
             fps: 1e3 / frame_ms,

@@ -1,5 +1,7 @@
-//! The "soldier": a procedural humanoid standing in for the paper's rigged soldier model
-//! (18 bones, a spear in the right hand) and its walk cycle.
+//! The "soldier": a procedural humanoid standing in for the paper's rigged soldier model,
+//! whose mesh and skeleton are not published. The skeleton (18 bones, one of them a spear
+//! held in the right hand), the proportions and the walk cycle are this project's choices;
+//! the paper gives only the polygon counts of the LOD meshes and at most 4 bones per vertex.
 
 use glam::DVec3;
 

@@ -1,5 +1,6 @@
-//! The sprite level [section 3]: beyond the last LOD mesh a character is a textured quad.
-//! The impostor atlas is captured once per model: the coarsest mesh, skinned by the
+//! The sprite level, this project's extension (the paper's section 3 has three LOD meshes
+//! and no sprites; the tutorial's lecture 2 mentions sprites for larger crowds): beyond
+//! [`super::lod::LodPolicy::sprites_beyond`] a character is a textured quad. The impostor atlas is captured once per model: the coarsest mesh, skinned by the
 //! vertex-shader path, seen from `VIEWS` directions around it (columns) at `FRAMES`
 //! phases of its clip (rows), under an orthographic camera fitted to its bounding sphere.
 

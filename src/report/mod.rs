@@ -268,27 +268,3 @@ impl Table {
         out
     }
 }
-
-/// A section still built in one piece by its old `run` (papers 1-3, until each is split into
-/// its folder): the results are the section's own JSON.
-#[derive(Clone, Debug)]
-pub struct LegacySection(pub Section);
-
-impl Serialize for LegacySection {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        self.0.results.serialize(s)
-    }
-}
-
-impl LegacySection {
-    /// The section, every fidelity row without a deviation marked as not yet reviewed.
-    pub fn section(&self) -> Section {
-        let mut section = self.0.clone();
-        for row in &mut section.fidelity {
-            if row.deviation.is_empty() {
-                row.deviation = "not yet reviewed".into();
-            }
-        }
-        section
-    }
-}
