@@ -591,6 +591,48 @@ fn shader_syntax_error_names_file_and_line() {
 }
 
 #[test]
+fn misspelt_uniform_is_an_error_naming_it_and_the_files() {
+    let ctx = context();
+    let target = Texture::new_2d(&ctx, 4, 4, TextureFormat::Rgba32F).unwrap();
+    let fb = Framebuffer::new(&ctx, "uniforms", &[&target], None).unwrap();
+    let program = Program::rect(&ctx, &[shader!("glsl/test/unused_uniform.frag")]).unwrap();
+
+    let err = fb
+        .pass(&program, "misspelt")
+        .unwrap()
+        .uniform("u_colour", Vec4::ONE)
+        .draw_full()
+        .expect_err("u_colour is not declared");
+    assert!(matches!(err, GlError::Uniform { .. }), "{err}");
+    let text = err.to_string();
+    for part in [
+        "u_colour",
+        "glsl/gl/rect.vert",
+        "glsl/test/unused_uniform.frag",
+    ] {
+        assert!(text.contains(part), "{part} missing from: {text}");
+    }
+    // The message lists what the files do declare.
+    assert!(text.contains("u_color, u_never_read"), "{text}");
+    assert!(program.set("u_colr", 1.0f32).is_err());
+
+    // Declared but removed by the compiler: setting it is allowed, on every driver alike.
+    // Optional uniforms are set with uniform_if_used, which skips undeclared names.
+    fb.clear_colors([0.0; 4]).unwrap();
+    fb.pass(&program, "declared")
+        .unwrap()
+        .uniform("u_color", Vec4::new(0.25, 0.5, 0.75, 1.0))
+        .uniform("u_never_read", 2.0f32)
+        .uniform_if_used("u_not_in_this_program", 3.0f32)
+        .draw_full()
+        .unwrap();
+    assert!(program.declares_uniform("u_never_read"));
+    assert!(!program.declares_uniform("u_not_in_this_program"));
+    let pixels = target.download_f32().unwrap();
+    assert!(pixels.chunks(4).all(|p| p == [0.25, 0.5, 0.75, 1.0]));
+}
+
+#[test]
 fn every_gl_layer_shader_compiles() {
     let ctx = context();
     Program::rect(&ctx, &[shader!("glsl/gl/reduce.frag")]).unwrap();
@@ -604,6 +646,7 @@ fn every_gl_layer_shader_compiles() {
         shader!("glsl/test/mrt.frag"),
         shader!("glsl/test/constant.frag"),
         shader!("glsl/test/positions.frag"),
+        shader!("glsl/test/unused_uniform.frag"),
     ] {
         Program::rect(&ctx, &[fragment]).unwrap();
     }

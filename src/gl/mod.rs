@@ -24,6 +24,7 @@ mod program;
 pub mod query;
 pub mod reduce;
 mod texture;
+mod uniforms;
 
 pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
 pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
@@ -51,6 +52,13 @@ pub enum GlError {
     /// A shader failed to compile: file, line, driver log and the source around it.
     #[error("{0}")]
     Shader(#[from] ShaderError),
+    /// A uniform set by a name the program's files do not declare.
+    #[error("program ({files}): uniform {uniform} {problem}")]
+    Uniform {
+        files: String,
+        uniform: String,
+        problem: String,
+    },
     /// A program failed to link.
     #[error("program ({files}) failed to link:\n{log}")]
     Link { files: String, log: String },
