@@ -191,7 +191,7 @@ fn stencil_masks_a_pass_and_occlusion_query_counts_samples() {
         stencil: Some(StencilTest::equal(1)),
         ..DrawState::default()
     })
-    .uniform("u_color", Vec4::splat(1.0));
+    .uniform("u_colour", Vec4::splat(1.0));
     query.begin();
     pass.draw_full().unwrap();
     query.end();
@@ -250,7 +250,7 @@ fn min_max_and_additive_blending() {
                 blend: Some(blend),
                 ..DrawState::default()
             })
-            .uniform("u_color", Vec4::splat(*v));
+            .uniform("u_colour", Vec4::splat(*v));
             pass.draw_full().unwrap();
         }
         let read = fb.read_f32(0, fb.rect()).unwrap();
@@ -283,7 +283,7 @@ fn pbo_to_vbo_copy_feeds_a_draw() {
     target.clear_colors([0.0; 4]).unwrap();
     let points = Program::new(&ctx, &[shader!("glsl/test/points.vert")], &[CONSTANT]).unwrap();
     let mut pass = target.pass(&points, "draw points").unwrap();
-    pass.uniform("u_color", Vec4::splat(1.0));
+    pass.uniform("u_colour", Vec4::splat(1.0));
     pass.draw_arrays(&vertices, Primitive::Points, 0, (w * h) as usize)
         .unwrap();
     let read = target.read_f32(0, target.rect()).unwrap();
@@ -602,20 +602,20 @@ fn misspelt_uniform_is_an_error_naming_it_and_the_files() {
     let err = fb
         .pass(&program, "misspelt")
         .unwrap()
-        .uniform("u_colour", Vec4::ONE)
+        .uniform("u_color", Vec4::ONE)
         .draw_full()
-        .expect_err("u_colour is not declared");
+        .expect_err("u_color is not declared");
     assert!(matches!(err, GlError::Uniform { .. }), "{err}");
     let text = err.to_string();
     for part in [
-        "u_colour",
+        "uniform u_color ",
         "glsl/gl/rect.vert",
         "glsl/test/unused_uniform.frag",
     ] {
         assert!(text.contains(part), "{part} missing from: {text}");
     }
     // The message lists what the files do declare.
-    assert!(text.contains("u_color, u_never_read"), "{text}");
+    assert!(text.contains("u_colour, u_never_read"), "{text}");
     assert!(program.set("u_colr", 1.0f32).is_err());
 
     // Declared but removed by the compiler: setting it is allowed, on every driver alike.
@@ -623,7 +623,7 @@ fn misspelt_uniform_is_an_error_naming_it_and_the_files() {
     fb.clear_colors([0.0; 4]).unwrap();
     fb.pass(&program, "declared")
         .unwrap()
-        .uniform("u_color", Vec4::new(0.25, 0.5, 0.75, 1.0))
+        .uniform("u_colour", Vec4::new(0.25, 0.5, 0.75, 1.0))
         .uniform("u_never_read", 2.0f32)
         .uniform_if_used("u_not_in_this_program", 3.0f32)
         .draw_full()

@@ -12,6 +12,11 @@
 //! GL errors and framebuffer completeness are checked after every pass when
 //! [`Context::checks`] is on: always in debug builds, and in tests (which call
 //! [`Context::set_checks`]) or with `CLASSIC_GPGPU_GL_CHECKS=1`.
+//!
+//! Uniforms are set by the names the shader files give them, and a name the program's files do
+//! not declare is an error ([`Program::set`]). The files under `glsl/` follow one naming
+//! convention (`u_` uniforms, `a_` attributes, `v_` varyings, `o_` outputs: `glsl/README.md`);
+//! `cg_ports/` keeps the names of the papers' printed listings it ports line for line.
 
 mod buffer;
 mod context;

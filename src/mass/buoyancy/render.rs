@@ -95,16 +95,16 @@ impl FrameRenderer {
         {
             let mut pass = self.target.pass(&self.bodies, "buoyancy frame: bodies")?;
             pass.state(opaque)
-                .uniform("view_projection", vp)
-                .uniform("water_level", sim.water.level as f32);
+                .uniform("u_view_projection", vp)
+                .uniform("u_water_level", sim.water.level as f32);
             for body in &sim.bodies {
                 let (first, count) = self.meshes.ranges[body.shape];
                 let model = Mat4::from_rotation_translation(
                     body.rigid.orientation.as_quat(),
                     body.rigid.position.as_vec3(),
                 );
-                pass.uniform("model", model)
-                    .uniform("color", COLORS[body.shape % COLORS.len()]);
+                pass.uniform("u_model", model)
+                    .uniform("u_colour", COLORS[body.shape % COLORS.len()]);
                 pass.draw_arrays(&self.meshes.vertices, Primitive::Triangles, first, count)?;
             }
         }
@@ -119,10 +119,10 @@ impl FrameRenderer {
                 blend: Some(Blend::Alpha),
                 ..DrawState::default()
             })
-            .uniform("view_projection", vp)
-            .uniform("water_level", sim.water.level as f32)
-            .uniform("extent", 1000.0f32)
-            .uniform("color", Vec4::new(0.05, 0.22, 0.42, 0.55));
+            .uniform("u_view_projection", vp)
+            .uniform("u_water_level", sim.water.level as f32)
+            .uniform("u_extent", 1000.0f32)
+            .uniform("u_colour", Vec4::new(0.05, 0.22, 0.42, 0.55));
             pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)?;
         }
         let pixels = self
@@ -174,7 +174,8 @@ impl FrameRenderer {
             let mut pass = self
                 .target
                 .pass(&self.lines, "buoyancy frame: force arrows")?;
-            pass.uniform("view_projection", vp).uniform("color", color);
+            pass.uniform("u_view_projection", vp)
+                .uniform("u_colour", color);
             pass.draw_arrays(&vertices, Primitive::Lines, 0, segments.len())?;
         }
         Ok(())
