@@ -120,24 +120,24 @@ impl ContextInfo {
 /// clone of it, so the context outlives them.
 #[derive(Clone)]
 pub struct Context {
-    pub(crate) inner: Rc<Inner>,
+    pub(super) inner: Rc<Inner>,
 }
 
-pub(crate) struct Inner {
-    pub(crate) gl: glow::Context,
+pub(super) struct Inner {
+    pub(super) gl: glow::Context,
     info: ContextInfo,
     checks: Cell<bool>,
     /// The empty vertex array that attribute-less draws (rectangles) bind.
-    pub(crate) empty_vao: glow::VertexArray,
-    pub(crate) extra: ExtraEntryPoints,
+    pub(super) empty_vao: glow::VertexArray,
+    pub(super) extra: ExtraEntryPoints,
     platform: Platform,
 }
 
 /// Entry points glow does not bind, looked up by name.
-pub(crate) struct ExtraEntryPoints {
-    pub(crate) get_query_iv: Option<unsafe extern "system" fn(u32, u32, *mut i32)>,
+pub(super) struct ExtraEntryPoints {
+    pub(super) get_query_iv: Option<unsafe extern "system" fn(u32, u32, *mut i32)>,
     #[allow(clippy::type_complexity)]
-    pub(crate) tex_sub_image_1d:
+    pub(super) tex_sub_image_1d:
         Option<unsafe extern "system" fn(u32, i32, i32, i32, u32, u32, *const c_void)>,
 }
 
@@ -329,7 +329,7 @@ impl Context {
         self.inner.checks.set(on);
     }
 
-    pub(crate) fn gl(&self) -> &glow::Context {
+    pub(super) fn gl(&self) -> &glow::Context {
         &self.inner.gl
     }
 

@@ -198,7 +198,7 @@ pub struct Pass<'a> {
 }
 
 impl<'a> Pass<'a> {
-    pub(crate) fn begin(
+    pub(super) fn begin(
         target: &'a Framebuffer,
         program: &'a Program,
         name: &'a str,

@@ -69,7 +69,7 @@ impl Drop for Program {
 }
 
 /// The vertex shader of every rectangle pass ([`super::Pass::draw_rect`]).
-pub(crate) const RECT_VERTEX: ShaderSource<'static> = crate::shader!("glsl/gl/rect.vert");
+pub(super) const RECT_VERTEX: ShaderSource<'static> = crate::shader!("glsl/gl/rect.vert");
 
 impl Program {
     /// Compile and link a program whose vertex stage is the concatenation of `vertex` and
@@ -159,7 +159,7 @@ impl Program {
         &self.files
     }
 
-    pub(crate) fn bind(&self) {
+    pub(super) fn bind(&self) {
         unsafe { self.ctx.gl().use_program(Some(self.id)) };
     }
 
