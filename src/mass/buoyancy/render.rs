@@ -8,6 +8,7 @@ use crate::gl::{
     Primitive, Program, Rect, Texture, TextureFormat, VertexArray,
 };
 use crate::shader;
+use glam::camera::rh::{proj::opengl, view::look_at_mat4};
 use glam::{Mat4, Vec3, Vec4};
 use std::path::Path;
 
@@ -75,9 +76,9 @@ impl FrameRenderer {
             .fold(1.0, f32::max)
             + 2.0;
         let eye = Vec3::new(0.0, -1.1 * extent, 0.7 * extent);
-        let view = Mat4::look_at_rh(eye, Vec3::new(0.0, 0.0, -0.5), Vec3::Z);
+        let view = look_at_mat4(eye, Vec3::new(0.0, 0.0, -0.5), Vec3::Z);
         let aspect = self.width as f32 / self.height as f32;
-        Mat4::perspective_rh_gl(0.8, aspect, 0.1, 10.0 * extent) * view
+        opengl::perspective(0.8, aspect, 0.1, 10.0 * extent) * view
     }
 
     /// Draws the current state and writes it to `path`.
