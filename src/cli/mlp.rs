@@ -35,7 +35,7 @@ enum MlpCommand {
 struct Engine {
     /// GPU formulation: the paper's one-value-per-texel passes, or the packed RGBA passes.
     #[arg(long, value_enum, default_value = "faithful")]
-    formulation: Formulation,
+    formulation: FormulationArg,
     /// Evaluate on the CPU instead of the GPU.
     #[arg(long, value_enum)]
     cpu: Option<CpuChoice>,
@@ -43,6 +43,24 @@ struct Engine {
     /// size; the paper's board allowed 2048). Larger batches are split into tiles.
     #[arg(long)]
     max_vectors: Option<usize>,
+}
+
+/// The library's [`Formulation`], as the command line names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum FormulationArg {
+    /// The paper's: one float per texel, one inner product per fragment.
+    Faithful,
+    /// Four floats per texel, a 4 x 4 block of outputs per fragment (MRT).
+    Packed,
+}
+
+impl From<FormulationArg> for Formulation {
+    fn from(f: FormulationArg) -> Formulation {
+        match f {
+            FormulationArg::Faithful => Formulation::Faithful,
+            FormulationArg::Packed => Formulation::Packed,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -158,7 +176,7 @@ fn evaluate_batch(
     }
     let ctx = context()?;
     let gpu = GpuMlp::new(&ctx)?;
-    let loaded = gpu.load(net, engine.formulation)?;
+    let loaded = gpu.load(net, engine.formulation.into())?;
     let result = loaded.forward(batch, engine.max_vectors)?;
     Ok(Evaluated {
         outputs: result.outputs,
@@ -197,7 +215,7 @@ fn run_network(
             "evaluated_by": match args.engine.cpu {
                 Some(CpuChoice::Plain) => "cpu-plain",
                 Some(CpuChoice::Optimised) => "cpu-optimised",
-                None if args.engine.formulation == Formulation::Packed => "gpu-packed",
+                None if args.engine.formulation == FormulationArg::Packed => "gpu-packed",
                 None => "gpu-faithful",
             },
             "tiles": result.tiles,
@@ -248,7 +266,7 @@ fn detect(
         None => {
             let ctx = context()?;
             let gpu = GpuMlp::new(&ctx)?;
-            let loaded = gpu.load(&net, args.engine.formulation)?;
+            let loaded = gpu.load(&net, args.engine.formulation.into())?;
             let (out, times) = classify_gpu(&loaded, &image, 1 << 18)?;
             (out, ctx.info().renderer_line(), times)
         }

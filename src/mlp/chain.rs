@@ -17,7 +17,7 @@ use serde::Serialize;
 use std::time::Instant;
 
 /// Which GPU formulation evaluates the network.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Formulation {
     /// The paper's: one float per texel, one inner product per fragment.
@@ -37,6 +37,11 @@ pub struct StepTimes {
 }
 
 impl StepTimes {
+    /// All four steps.
+    pub fn total(&self) -> f64 {
+        self.texture_creation + self.matmul + self.activation + self.readback
+    }
+
     pub fn add(&mut self, other: &StepTimes) {
         self.texture_creation += other.texture_creation;
         self.matmul += other.matmul;

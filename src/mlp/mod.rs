@@ -12,7 +12,7 @@
 //! targets), [`packed`] (the faster RGBA formulation), [`tiling`] (batches beyond the maximum
 //! texture size), [`window`] (the 11 x 11 input windows of section 4), [`synth`] (synthetic
 //! training images), [`train`] (backpropagation), [`detect`] (classifying every pixel of an
-//! image), [`cli`] (the `mlp` commands). Shaders: `glsl/mlp/`.
+//! image). Shaders: `glsl/mlp/`. The `mlp` commands live in the binary (`src/cli/mlp.rs`).
 
 pub mod activation;
 pub mod chain;
