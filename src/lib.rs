@@ -8,10 +8,14 @@
 //! arguments and print) -> [`report`] -> the four paper modules ([`collide`], [`crowd`],
 //! [`mlp`], [`mass`]) -> [`mesh`], [`gl`]. A paper module is the algorithm alone: no command
 //! line, no report, no other paper. Only [`gl`] calls OpenGL or EGL, and it alone holds the
-//! code the compiler cannot check (raw GL calls).
+//! code the compiler cannot check (raw GL calls): `unsafe` is denied everywhere else.
+
+#![deny(unsafe_code)]
 
 pub mod collide;
 pub mod crowd;
+// Raw GL and EGL calls, behind safe RAII types; GL ids never leave the module.
+#[allow(unsafe_code)]
 pub mod gl;
 pub mod mass;
 pub mod mesh;

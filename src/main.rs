@@ -14,7 +14,7 @@ mod cli;
 struct Cli {
     /// Which platform provides OpenGL (default: the CLASSIC_GPGPU_RENDERER variable, else auto:
     /// EGL device, then EGL surfaceless, then OSMesa).
-    #[arg(long, global = true, value_enum)]
+    #[arg(long, global = true, value_parser = renderer_parser())]
     renderer: Option<Renderer>,
     /// Print one JSON object instead of text.
     #[arg(long, global = true)]
@@ -53,6 +53,13 @@ enum Command {
     Mlp(cli::mlp::MlpArgs),
     /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
     MlpBench(BenchArgs<NoOptions>),
+}
+
+/// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
+fn renderer_parser() -> impl clap::builder::TypedValueParser<Value = Renderer> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    let values = Renderer::ALL.map(|r| PossibleValue::new(r.name()).help(r.description()));
+    PossibleValuesParser::new(values).map(|name| name.parse().expect("one of the possible values"))
 }
 
 /// What every command gets.

@@ -191,7 +191,7 @@ fn stencil_masks_a_pass_and_occlusion_query_counts_samples() {
         stencil: Some(StencilTest::equal(1)),
         ..DrawState::default()
     })
-    .uniform("u_color", Vec4::splat(1.0));
+    .uniform("u_colour", Vec4::splat(1.0));
     query.begin();
     pass.draw_full().unwrap();
     query.end();
@@ -208,8 +208,10 @@ fn stencil_masks_a_pass_and_occlusion_query_counts_samples() {
         }
     }
 
-    // The depth test also gates the count: a rectangle behind a cleared-to-0.5 depth buffer.
-    fb.clear_depth_stencil(0.5, 0).unwrap();
+    // The depth test also gates the count: a rectangle (at depth 0.5) behind a depth buffer
+    // cleared nearer. Not cleared to 0.5 itself: whether equal depths compare "less" after
+    // both are quantised to 24 bits differs between renderers (softpipe counts every pixel).
+    fb.clear_depth_stencil(0.25, 0).unwrap();
     let mut pass = fb.pass(&program, "depth occluded").unwrap();
     pass.state(DrawState {
         depth: Some(DepthTest {
@@ -219,7 +221,7 @@ fn stencil_masks_a_pass_and_occlusion_query_counts_samples() {
         ..DrawState::default()
     });
     query.begin();
-    pass.draw_full().unwrap(); // the rectangle lies at depth 0.5: not less than 0.5
+    pass.draw_full().unwrap(); // the rectangle lies at depth 0.5: not less than 0.25
     query.end();
     assert_eq!(query.samples().unwrap(), 0);
     assert_eq!(
@@ -248,7 +250,7 @@ fn min_max_and_additive_blending() {
                 blend: Some(blend),
                 ..DrawState::default()
             })
-            .uniform("u_color", Vec4::splat(*v));
+            .uniform("u_colour", Vec4::splat(*v));
             pass.draw_full().unwrap();
         }
         let read = fb.read_f32(0, fb.rect()).unwrap();
@@ -281,7 +283,7 @@ fn pbo_to_vbo_copy_feeds_a_draw() {
     target.clear_colors([0.0; 4]).unwrap();
     let points = Program::new(&ctx, &[shader!("glsl/test/points.vert")], &[CONSTANT]).unwrap();
     let mut pass = target.pass(&points, "draw points").unwrap();
-    pass.uniform("u_color", Vec4::splat(1.0));
+    pass.uniform("u_colour", Vec4::splat(1.0));
     pass.draw_arrays(&vertices, Primitive::Points, 0, (w * h) as usize)
         .unwrap();
     let read = target.read_f32(0, target.rect()).unwrap();
@@ -591,6 +593,48 @@ fn shader_syntax_error_names_file_and_line() {
 }
 
 #[test]
+fn misspelt_uniform_is_an_error_naming_it_and_the_files() {
+    let ctx = context();
+    let target = Texture::new_2d(&ctx, 4, 4, TextureFormat::Rgba32F).unwrap();
+    let fb = Framebuffer::new(&ctx, "uniforms", &[&target], None).unwrap();
+    let program = Program::rect(&ctx, &[shader!("glsl/test/unused_uniform.frag")]).unwrap();
+
+    let err = fb
+        .pass(&program, "misspelt")
+        .unwrap()
+        .uniform("u_color", Vec4::ONE)
+        .draw_full()
+        .expect_err("u_color is not declared");
+    assert!(matches!(err, GlError::Uniform { .. }), "{err}");
+    let text = err.to_string();
+    for part in [
+        "uniform u_color ",
+        "glsl/gl/rect.vert",
+        "glsl/test/unused_uniform.frag",
+    ] {
+        assert!(text.contains(part), "{part} missing from: {text}");
+    }
+    // The message lists what the files do declare.
+    assert!(text.contains("u_colour, u_never_read"), "{text}");
+    assert!(program.set("u_colr", 1.0f32).is_err());
+
+    // Declared but removed by the compiler: setting it is allowed, on every driver alike.
+    // Optional uniforms are set with uniform_if_used, which skips undeclared names.
+    fb.clear_colors([0.0; 4]).unwrap();
+    fb.pass(&program, "declared")
+        .unwrap()
+        .uniform("u_colour", Vec4::new(0.25, 0.5, 0.75, 1.0))
+        .uniform("u_never_read", 2.0f32)
+        .uniform_if_used("u_not_in_this_program", 3.0f32)
+        .draw_full()
+        .unwrap();
+    assert!(program.declares_uniform("u_never_read"));
+    assert!(!program.declares_uniform("u_not_in_this_program"));
+    let pixels = target.download_f32().unwrap();
+    assert!(pixels.chunks(4).all(|p| p == [0.25, 0.5, 0.75, 1.0]));
+}
+
+#[test]
 fn every_gl_layer_shader_compiles() {
     let ctx = context();
     Program::rect(&ctx, &[shader!("glsl/gl/reduce.frag")]).unwrap();
@@ -604,6 +648,7 @@ fn every_gl_layer_shader_compiles() {
         shader!("glsl/test/mrt.frag"),
         shader!("glsl/test/constant.frag"),
         shader!("glsl/test/positions.frag"),
+        shader!("glsl/test/unused_uniform.frag"),
     ] {
         Program::rect(&ctx, &[fragment]).unwrap();
     }

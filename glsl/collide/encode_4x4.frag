@@ -3,19 +3,19 @@
 // the non-zero texels of the 4x4 block at (4x, 4y) of P_i, bit 4b + a for texel (4x+a, 4y+b).
 // 16 bits is an exact integer in a float, so the mask survives the float render target.
 
-uniform sampler2D level; // P_i
-out vec4 mask;
+uniform sampler2D u_level; // P_i
+out vec4 o_mask;
 
 void main() {
-    ivec2 size = textureSize(level, 0);
+    ivec2 size = textureSize(u_level, 0);
     ivec2 base = ivec2(gl_FragCoord.xy) * 4;
     int m = 0;
     for (int b = 0; b < 4; b++) {
         for (int a = 0; a < 4; a++) {
             ivec2 p = base + ivec2(a, b);
-            if (p.x < size.x && p.y < size.y && texelFetch(level, p, 0).r != 0.0)
+            if (p.x < size.x && p.y < size.y && texelFetch(u_level, p, 0).r != 0.0)
                 m |= 1 << (4 * b + a);
         }
     }
-    mask = vec4(float(m), 0.0, 0.0, 0.0);
+    o_mask = vec4(float(m), 0.0, 0.0, 0.0);
 }

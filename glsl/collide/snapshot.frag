@@ -6,7 +6,7 @@ in vec3 v_colour;
 in vec3 v_position;
 uniform bool u_lit;
 uniform vec3 u_light; // direction towards the light, world space
-out vec4 colour;
+out vec4 o_colour;
 
 void main() {
     float shade = 1.0;
@@ -14,5 +14,5 @@ void main() {
         vec3 n = normalize(cross(dFdx(v_position), dFdy(v_position)));
         shade = 0.35 + 0.65 * abs(dot(n, u_light));
     }
-    colour = vec4(v_colour * shade, 1.0);
+    o_colour = vec4(v_colour * shade, 1.0);
 }

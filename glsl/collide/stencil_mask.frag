@@ -5,10 +5,10 @@
 // prevented AABB pairs (PAPs) in the overlap pass.
 
 in vec2 v_uv;
-uniform sampler1D stencilA; // rows: S^X
-uniform sampler1D stencilB; // columns: S^Y
+uniform sampler1D u_stencil_a; // rows: S^X
+uniform sampler1D u_stencil_b; // columns: S^Y
 
 void main() {
-    if (texture(stencilA, v_uv.y).r < 0.5 || texture(stencilB, v_uv.x).r < 0.5)
+    if (texture(u_stencil_a, v_uv.y).r < 0.5 || texture(u_stencil_b, v_uv.x).r < 0.5)
         discard;
 }

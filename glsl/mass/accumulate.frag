@@ -3,24 +3,29 @@
 // into the running sums (the pass blends with ADD). On the first peel it also keeps the
 // faces-down mark that the water patch of section 5.2 needs. Pixels the peel did not
 // reach (depth still at the cleared 1.0) add nothing, so the peel's colour targets never
-// need clearing.
-uniform sampler2D peel_depth;
-uniform sampler2D peel0;
-uniform sampler2D peel1;
-uniform sampler2D peel2;
-uniform sampler2D peel_faces_down;
-uniform bool first_peel;
-layout(location = 0) out vec4 sum0;
-layout(location = 1) out vec4 sum1;
-layout(location = 2) out vec4 sum2;
-layout(location = 3) out float first_peel_faces_down;
+// need clearing. They are skipped, not multiplied by zero: a target never written may hold
+// anything, NaN included (softpipe's fresh memory does), and 0 * NaN is NaN.
+uniform sampler2D u_peel_depth;
+uniform sampler2D u_peel0;
+uniform sampler2D u_peel1;
+uniform sampler2D u_peel2;
+uniform sampler2D u_peel_faces_down;
+uniform bool u_first_peel;
+layout(location = 0) out vec4 o_sum0;
+layout(location = 1) out vec4 o_sum1;
+layout(location = 2) out vec4 o_sum2;
+layout(location = 3) out float o_first_peel_faces_down;
 
 void main()
 {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float reached = texelFetch(peel_depth, pixel, 0).r < 1.0 ? 1.0 : 0.0;
-    sum0 = reached * texelFetch(peel0, pixel, 0);
-    sum1 = reached * texelFetch(peel1, pixel, 0);
-    sum2 = reached * texelFetch(peel2, pixel, 0);
-    first_peel_faces_down = first_peel ? reached * texelFetch(peel_faces_down, pixel, 0).r : 0.0;
+    if (texelFetch(u_peel_depth, pixel, 0).r >= 1.0) {
+        o_sum0 = o_sum1 = o_sum2 = vec4(0.0);
+        o_first_peel_faces_down = 0.0;
+        return;
+    }
+    o_sum0 = texelFetch(u_peel0, pixel, 0);
+    o_sum1 = texelFetch(u_peel1, pixel, 0);
+    o_sum2 = texelFetch(u_peel2, pixel, 0);
+    o_first_peel_faces_down = u_first_peel ? texelFetch(u_peel_faces_down, pixel, 0).r : 0.0;
 }

@@ -3,13 +3,13 @@
 // once (MRT): each output texel is the sum of a 2x2 block of each input. Texels past the
 // input's size count as zero, so any size reduces; tiles of a power-of-two side stay
 // aligned (a 32x32 tile is one texel after five passes).
-uniform sampler2D source0;
-uniform sampler2D source1;
-uniform sampler2D source2;
-uniform ivec2 source_size;
-layout(location = 0) out vec4 sum0;
-layout(location = 1) out vec4 sum1;
-layout(location = 2) out vec4 sum2;
+uniform sampler2D u_source0;
+uniform sampler2D u_source1;
+uniform sampler2D u_source2;
+uniform ivec2 u_source_size;
+layout(location = 0) out vec4 o_sum0;
+layout(location = 1) out vec4 o_sum1;
+layout(location = 2) out vec4 o_sum2;
 
 vec4 block_sum(sampler2D source, ivec2 corner)
 {
@@ -17,7 +17,7 @@ vec4 block_sum(sampler2D source, ivec2 corner)
     for (int dy = 0; dy < 2; ++dy) {
         for (int dx = 0; dx < 2; ++dx) {
             ivec2 texel = corner + ivec2(dx, dy);
-            if (all(lessThan(texel, source_size))) s += texelFetch(source, texel, 0);
+            if (all(lessThan(texel, u_source_size))) s += texelFetch(source, texel, 0);
         }
     }
     return s;
@@ -26,7 +26,7 @@ vec4 block_sum(sampler2D source, ivec2 corner)
 void main()
 {
     ivec2 corner = 2 * ivec2(gl_FragCoord.xy);
-    sum0 = block_sum(source0, corner);
-    sum1 = block_sum(source1, corner);
-    sum2 = block_sum(source2, corner);
+    o_sum0 = block_sum(u_source0, corner);
+    o_sum1 = block_sum(u_source1, corner);
+    o_sum2 = block_sum(u_source2, corner);
 }

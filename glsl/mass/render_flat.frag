@@ -1,8 +1,8 @@
 #version 330 core
 // One colour (the water, with alpha; the force arrows).
-uniform vec4 color;
-out vec4 frag;
+uniform vec4 u_colour;
+out vec4 o_colour;
 void main()
 {
-    frag = color;
+    o_colour = u_colour;
 }

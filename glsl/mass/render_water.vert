@@ -1,10 +1,10 @@
 #version 330 core
-// The still water of the buoyancy frames: one large quad at z = water_level.
-uniform mat4 view_projection;
-uniform float water_level;
-uniform float extent;
+// The still water of the buoyancy frames: one large quad at z = u_water_level.
+uniform mat4 u_view_projection;
+uniform float u_water_level;
+uniform float u_extent;
 void main()
 {
     vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
-    gl_Position = view_projection * vec4(corner * extent, water_level, 1.0);
+    gl_Position = u_view_projection * vec4(corner * u_extent, u_water_level, 1.0);
 }

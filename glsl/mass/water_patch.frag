@@ -3,11 +3,11 @@
 // there at the water line). Compiled after cg_ports/mass_integrands.frag.
 #undef main
 
-// faces_down of pass 1.
-uniform sampler2D first_peel_faces_down;
+// o_faces_down of pass 1.
+uniform sampler2D u_first_peel_faces_down;
 
 void main()
 {
-    if (texelFetch(first_peel_faces_down, ivec2(gl_FragCoord.xy), 0).r < 0.5) discard;
+    if (texelFetch(u_first_peel_faces_down, ivec2(gl_FragCoord.xy), 0).r < 0.5) discard;
     integrands();
 }

@@ -1,8 +1,8 @@
 #version 330 core
 // Writes one colour everywhere it is drawn.
-uniform vec4 u_color;
-out vec4 o_color;
+uniform vec4 u_colour;
+out vec4 o_colour;
 
 void main() {
-    o_color = u_color;
+    o_colour = u_colour;
 }

@@ -221,7 +221,7 @@ impl Reduction {
         name: &str,
     ) -> Result<(), GlError> {
         let mut pass = target.framebuffer.pass(program, name)?;
-        pass.texture("level", source);
+        pass.texture("u_level", source);
         pass.draw_full()
     }
 }

@@ -78,8 +78,8 @@ impl StreamingTest {
             color_write: false,
             ..DrawState::default()
         })
-        .texture("stencilA", &x.stencil)
-        .texture("stencilB", &y.stencil);
+        .texture("u_stencil_a", &x.stencil)
+        .texture("u_stencil_b", &y.stencil);
         pass.draw_full()
     }
 

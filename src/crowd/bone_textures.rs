@@ -42,7 +42,7 @@ impl BoneTextures {
     /// textures.
     pub fn upload(&self, matrices: &[DAffine3]) -> Result<(), GlError> {
         let characters = matrices.len() as u32 / self.bones;
-        if characters > self.capacity || matrices.len() as u32 % self.bones != 0 {
+        if characters > self.capacity || !(matrices.len() as u32).is_multiple_of(self.bones) {
             return Err(GlError::Invalid(format!(
                 "{} bone matrices do not fill whole characters of {} bones within {}",
                 matrices.len(),

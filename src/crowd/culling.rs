@@ -4,6 +4,7 @@
 //! sprite level) by distance to the eye. The paper does not say how it culls: here each
 //! character's animated bounding sphere is tested against the six frustum planes on the CPU.
 
+use glam::camera::rh::{proj::opengl, view::look_at_mat4};
 use glam::{DAffine3, Mat4, Vec3, Vec4, Vec4Swizzles};
 
 use super::lod::{Level, LodPolicy};
@@ -21,12 +22,12 @@ pub struct Camera {
 
 impl Camera {
     pub fn view(&self) -> Mat4 {
-        Mat4::look_at_rh(self.eye, self.target, Vec3::Y)
+        look_at_mat4(self.eye, self.target, Vec3::Y)
     }
 
     /// OpenGL clip space (z in [-w, w]).
     pub fn projection(&self) -> Mat4 {
-        Mat4::perspective_rh_gl(self.fov_y, self.aspect, self.near, self.far)
+        opengl::perspective(self.fov_y, self.aspect, self.near, self.far)
     }
 
     pub fn view_projection(&self) -> Mat4 {

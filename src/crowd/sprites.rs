@@ -4,7 +4,8 @@
 //! vertex-shader path, seen from `VIEWS` directions around it (columns) at `FRAMES`
 //! phases of its clip (rows), under an orthographic camera fitted to its bounding sphere.
 
-use glam::{DAffine3, DQuat, DVec3, Mat4, Vec3};
+use glam::camera::rh::{proj::opengl, view::look_at_mat4};
+use glam::{DAffine3, DQuat, DVec3, Vec3};
 
 use crate::gl::{
     Buffer, BufferUsage, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, Primitive,
@@ -72,12 +73,12 @@ impl Sprites {
         atlas.clear_depth_stencil(1.0, 0)?;
         let c = model.bound_centre.as_dvec3();
         let r = model.bound_radius;
-        let view = Mat4::look_at_rh(
+        let view = look_at_mat4(
             Vec3::new(0.0, c.y as f32, 3.0 * r),
             Vec3::new(0.0, c.y as f32, 0.0),
             Vec3::Y,
         );
-        let projection = Mat4::orthographic_rh_gl(-r, r, -r, r, 0.1, 6.0 * r);
+        let projection = opengl::orthographic(-r, r, -r, r, 0.1, 6.0 * r);
         let shading = Shading {
             view_projection: projection * view,
             colour,

@@ -84,7 +84,7 @@ impl Buffer {
     pub fn len_bytes(&self) -> usize {
         self.obj.len.get()
     }
-    pub(crate) fn id(&self) -> glow::Buffer {
+    pub(super) fn id(&self) -> glow::Buffer {
         self.obj.id
     }
 
@@ -199,7 +199,7 @@ impl VertexArray {
         })
     }
 
-    pub(crate) fn id(&self) -> glow::VertexArray {
+    pub(super) fn id(&self) -> glow::VertexArray {
         self.id
     }
 

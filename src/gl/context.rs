@@ -24,7 +24,7 @@ const MESA_PACKAGES: &str = "libegl1 libegl-mesa0 libgl1-mesa-dri";
 const GL_VERSIONS: [(i32, i32); 4] = [(4, 5), (4, 3), (4, 1), (3, 3)];
 
 /// Which platform provides the context.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Renderer {
     /// EGL device, then EGL surfaceless, then OSMesa.
@@ -37,29 +37,57 @@ pub enum Renderer {
     Osmesa,
 }
 
+impl Renderer {
+    /// Every choice, as a user names it: `auto` first, then the order `auto` tries.
+    pub const ALL: [Renderer; 4] = [
+        Renderer::Auto,
+        Renderer::EglDevice,
+        Renderer::EglSurfaceless,
+        Renderer::Osmesa,
+    ];
+
+    /// The name a user types (`--renderer`, `CLASSIC_GPGPU_RENDERER`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Renderer::Auto => "auto",
+            Renderer::EglDevice => "egl-device",
+            Renderer::EglSurfaceless => "egl-surfaceless",
+            Renderer::Osmesa => "osmesa",
+        }
+    }
+
+    /// What the choice means, in one line (for help texts).
+    pub fn description(self) -> &'static str {
+        match self {
+            Renderer::Auto => "EGL device, then EGL surfaceless, then OSMesa",
+            Renderer::EglDevice => "`EGL_EXT_platform_device`: a GPU without a display (NVIDIA)",
+            Renderer::EglSurfaceless => "`EGL_MESA_platform_surfaceless`: Mesa, usually llvmpipe",
+            Renderer::Osmesa => "Mesa's off-screen library, for systems without EGL",
+        }
+    }
+}
+
 impl FromStr for Renderer {
     type Err = GlError;
     fn from_str(s: &str) -> Result<Self, GlError> {
-        match s.trim() {
-            "" | "auto" => Ok(Renderer::Auto),
-            "egl-device" => Ok(Renderer::EglDevice),
-            "egl-surfaceless" => Ok(Renderer::EglSurfaceless),
-            "osmesa" => Ok(Renderer::Osmesa),
-            other => Err(GlError::Context(format!(
-                "unknown renderer '{other}': expected auto, egl-device, egl-surfaceless or osmesa"
-            ))),
+        let s = s.trim();
+        if s.is_empty() {
+            return Ok(Renderer::Auto);
         }
+        Renderer::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| {
+                GlError::Context(format!(
+                    "unknown renderer '{s}': expected auto, egl-device, egl-surfaceless or osmesa"
+                ))
+            })
     }
 }
 
 impl fmt::Display for Renderer {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(match self {
-            Renderer::Auto => "auto",
-            Renderer::EglDevice => "egl-device",
-            Renderer::EglSurfaceless => "egl-surfaceless",
-            Renderer::Osmesa => "osmesa",
-        })
+        f.write_str(self.name())
     }
 }
 
@@ -120,24 +148,24 @@ impl ContextInfo {
 /// clone of it, so the context outlives them.
 #[derive(Clone)]
 pub struct Context {
-    pub(crate) inner: Rc<Inner>,
+    pub(super) inner: Rc<Inner>,
 }
 
-pub(crate) struct Inner {
-    pub(crate) gl: glow::Context,
+pub(super) struct Inner {
+    pub(super) gl: glow::Context,
     info: ContextInfo,
     checks: Cell<bool>,
     /// The empty vertex array that attribute-less draws (rectangles) bind.
-    pub(crate) empty_vao: glow::VertexArray,
-    pub(crate) extra: ExtraEntryPoints,
+    pub(super) empty_vao: glow::VertexArray,
+    pub(super) extra: ExtraEntryPoints,
     platform: Platform,
 }
 
 /// Entry points glow does not bind, looked up by name.
-pub(crate) struct ExtraEntryPoints {
-    pub(crate) get_query_iv: Option<unsafe extern "system" fn(u32, u32, *mut i32)>,
+pub(super) struct ExtraEntryPoints {
+    pub(super) get_query_iv: Option<unsafe extern "system" fn(u32, u32, *mut i32)>,
     #[allow(clippy::type_complexity)]
-    pub(crate) tex_sub_image_1d:
+    pub(super) tex_sub_image_1d:
         Option<unsafe extern "system" fn(u32, i32, i32, i32, u32, u32, *const c_void)>,
 }
 
@@ -329,7 +357,7 @@ impl Context {
         self.inner.checks.set(on);
     }
 
-    pub(crate) fn gl(&self) -> &glow::Context {
+    pub(super) fn gl(&self) -> &glow::Context {
         &self.inner.gl
     }
 

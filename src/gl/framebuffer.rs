@@ -154,7 +154,7 @@ impl Framebuffer {
     }
 
     /// Bind for drawing into every colour attachment, with the whole framebuffer as viewport.
-    pub(crate) fn bind(&self) {
+    pub(super) fn bind(&self) {
         let gl = self.ctx.gl();
         let buffers: Vec<u32> = (0..self.colors.len() as u32)
             .map(|i| glow::COLOR_ATTACHMENT0 + i)

@@ -12,6 +12,11 @@
 //! GL errors and framebuffer completeness are checked after every pass when
 //! [`Context::checks`] is on: always in debug builds, and in tests (which call
 //! [`Context::set_checks`]) or with `CLASSIC_GPGPU_GL_CHECKS=1`.
+//!
+//! Uniforms are set by the names the shader files give them, and a name the program's files do
+//! not declare is an error ([`Program::set`]). The files under `glsl/` follow one naming
+//! convention (`u_` uniforms, `a_` attributes, `v_` varyings, `o_` outputs: `glsl/README.md`);
+//! `cg_ports/` keeps the names of the papers' printed listings it ports line for line.
 
 mod buffer;
 mod context;
@@ -24,6 +29,7 @@ mod program;
 pub mod query;
 pub mod reduce;
 mod texture;
+mod uniforms;
 
 pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
 pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
@@ -51,6 +57,13 @@ pub enum GlError {
     /// A shader failed to compile: file, line, driver log and the source around it.
     #[error("{0}")]
     Shader(#[from] ShaderError),
+    /// A uniform set by a name the program's files do not declare.
+    #[error("program ({files}): uniform {uniform} {problem}")]
+    Uniform {
+        files: String,
+        uniform: String,
+        problem: String,
+    },
     /// A program failed to link.
     #[error("program ({files}) failed to link:\n{log}")]
     Link { files: String, log: String },

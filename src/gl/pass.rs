@@ -198,7 +198,7 @@ pub struct Pass<'a> {
 }
 
 impl<'a> Pass<'a> {
-    pub(crate) fn begin(
+    pub(super) fn begin(
         target: &'a Framebuffer,
         program: &'a Program,
         name: &'a str,
@@ -241,14 +241,23 @@ impl<'a> Pass<'a> {
             )));
             return self;
         }
-        self.program.set(sampler, unit as i32);
+        self.uniform(sampler, unit as i32);
         self.textures.push((unit, texture.clone()));
         self
     }
 
-    /// Set a uniform of the pass's program.
+    /// Set a uniform of the pass's program. A name the program does not declare is an error,
+    /// returned by the next draw ([`Program::set`]).
     pub fn uniform<U: Uniform>(&mut self, name: &str, value: U) -> &mut Self {
-        self.program.set(name, value);
+        if let Err(e) = self.program.set(name, value) {
+            self.error.get_or_insert(e);
+        }
+        self
+    }
+
+    /// Set a uniform the pass's program may not have ([`Program::set_if_used`]).
+    pub fn uniform_if_used<U: Uniform>(&mut self, name: &str, value: U) -> &mut Self {
+        self.program.set_if_used(name, value);
         self
     }
 
@@ -264,13 +273,12 @@ impl<'a> Pass<'a> {
         self.draw_rect(Rect::sized(self.viewport.w, self.viewport.h))
     }
 
-    /// Draw a rectangle with fractional pixel corners.
+    /// Draw a rectangle with fractional pixel corners. The vertex shader takes the corners as
+    /// `u_rect`, and the viewport size as `u_viewport` if it needs it.
     pub fn draw_rect_f32(&mut self, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<(), GlError> {
-        self.program.set("u_rect", Vec4::new(x0, y0, x1, y1));
-        self.program.set(
-            "u_viewport",
-            Vec2::new(self.viewport.w as f32, self.viewport.h as f32),
-        );
+        let viewport = Vec2::new(self.viewport.w as f32, self.viewport.h as f32);
+        self.uniform("u_rect", Vec4::new(x0, y0, x1, y1))
+            .uniform_if_used("u_viewport", viewport);
         self.draw_attributeless(Primitive::TriangleStrip, 4, 1)
     }
 

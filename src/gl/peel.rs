@@ -10,6 +10,7 @@ use super::{
     Pass, Program, Rect, ShaderSource, Texture, TextureFormat,
 };
 use crate::shader;
+use glam::camera::rh::proj::opengl;
 use glam::{Mat4, Vec3, Vec4};
 
 /// Fragment-shader snippet: `u_peel_depth`, `u_peel_layer` and `peel_discard()`.
@@ -20,7 +21,7 @@ pub const PEEL_VERTEX: ShaderSource<'static> = shader!("glsl/gl/peel_mesh.vert")
 /// An orthographic projection of the box `min..max`, looking down -z: x and y fill the
 /// viewport, the top (`max.z`) is nearest (depth 0) and the bottom (`min.z`) farthest (1).
 pub fn ortho_box(min: Vec3, max: Vec3) -> Mat4 {
-    Mat4::orthographic_rh_gl(min.x, max.x, min.y, max.y, -max.z, -min.z)
+    opengl::orthographic(min.x, max.x, min.y, max.y, -max.z, -min.z)
 }
 
 /// Options of a peel.

@@ -2,6 +2,7 @@
 //! followed by the shader that uses it); each is numbered with `#line 1 N`, so a compile error
 //! names the file and line it is really on, with the source lines around it.
 
+use super::uniforms::{base_name, Declared};
 use super::{Context, GlError};
 use glam::{IVec2, IVec4, Mat3, Mat4, Vec2, Vec3, Vec4};
 use glow::HasContext;
@@ -51,11 +52,13 @@ impl fmt::Display for ShaderError {
 
 impl std::error::Error for ShaderError {}
 
-/// A linked program. Uniform locations are looked up once and cached.
+/// A linked program. It knows the uniforms its files declare, so that setting one they do
+/// not is an error (see [`Program::set`]); locations are looked up once and cached.
 pub struct Program {
     ctx: Context,
     id: glow::Program,
     files: String,
+    uniforms: Declared,
     locations: RefCell<HashMap<String, Option<glow::UniformLocation>>>,
 }
 
@@ -66,7 +69,7 @@ impl Drop for Program {
 }
 
 /// The vertex shader of every rectangle pass ([`super::Pass::draw_rect`]).
-pub(crate) const RECT_VERTEX: ShaderSource<'static> = crate::shader!("glsl/gl/rect.vert");
+pub(super) const RECT_VERTEX: ShaderSource<'static> = crate::shader!("glsl/gl/rect.vert");
 
 impl Program {
     /// Compile and link a program whose vertex stage is the concatenation of `vertex` and
@@ -81,10 +84,11 @@ impl Program {
         let files: Vec<&str> = vertex.iter().chain(fragment).map(|s| s.name).collect();
         let files = files.join(", ");
         let id = unsafe { gl.create_program() }.map_err(GlError::Invalid)?;
-        let program = Program {
+        let mut program = Program {
             ctx: ctx.clone(),
             id,
             files,
+            uniforms: Declared::parse(&[vertex, fragment].concat()),
             locations: RefCell::new(HashMap::new()),
         };
         let shaders = [
@@ -119,8 +123,29 @@ impl Program {
                 });
             }
         }
+        program.add_active_uniforms();
         ctx.check_now(&format!("linking {}", program.files))?;
         Ok(program)
+    }
+
+    /// Whatever the driver reports active counts as declared too (a declaration made by a
+    /// macro, which the parser does not expand); members of uniform blocks do not.
+    fn add_active_uniforms(&mut self) {
+        let gl = self.ctx.gl();
+        unsafe {
+            let count = gl.get_active_uniforms(self.id);
+            let indices: Vec<u32> = (0..count).collect();
+            let blocks =
+                gl.get_active_uniforms_parameter(self.id, &indices, glow::UNIFORM_BLOCK_INDEX);
+            for (index, block) in indices.into_iter().zip(blocks) {
+                if block != -1 {
+                    continue;
+                }
+                if let Some(active) = gl.get_active_uniform(self.id, index) {
+                    self.uniforms.add_active(&active.name);
+                }
+            }
+        }
     }
 
     /// A program for rectangle passes: the built-in rectangle vertex shader (which passes
@@ -134,32 +159,73 @@ impl Program {
         &self.files
     }
 
-    pub(crate) fn bind(&self) {
+    pub(super) fn bind(&self) {
         unsafe { self.ctx.gl().use_program(Some(self.id)) };
     }
 
-    /// Set a uniform by name. A uniform the compiler removed (unused) is silently skipped,
-    /// as GL itself does for location -1.
-    pub fn set<U: Uniform>(&self, name: &str, value: U) {
-        let location = self.location(name);
-        if let Some(location) = location {
+    /// Set uniform `name` (an array element `u_rows[2]` or struct member `u_light.colour`
+    /// too). A uniform the files declare is set, or skipped when the driver removed it as
+    /// unused; a name they do not declare is an error naming the files and the name. Where a
+    /// uniform is optional, say so with [`Program::set_if_used`].
+    pub fn set<U: Uniform>(&self, name: &str, value: U) -> Result<(), GlError> {
+        self.check_declared(name)?;
+        self.set_if_used(name, value);
+        Ok(())
+    }
+
+    /// Set uniform `name` if the program has it; nothing happens if it does not.
+    pub fn set_if_used<U: Uniform>(&self, name: &str, value: U) {
+        if let Some(location) = self.location(name) {
             self.bind();
             unsafe { value.apply(self.ctx.gl(), &location) };
         }
     }
 
-    /// Whether the linked program uses uniform `name`.
-    pub fn has_uniform(&self, name: &str) -> bool {
+    /// Whether the program's files declare uniform `name` (used or not).
+    pub fn declares_uniform(&self, name: &str) -> bool {
+        self.uniforms.names.contains(base_name(name))
+    }
+
+    /// Whether the linked program uses uniform `name` (the driver kept it).
+    pub fn uses_uniform(&self, name: &str) -> bool {
         self.location(name).is_some()
     }
 
+    fn check_declared(&self, name: &str) -> Result<(), GlError> {
+        if self.declares_uniform(name) {
+            return Ok(());
+        }
+        let problem = match self.uniforms.block_members.get(base_name(name)) {
+            Some(block) => {
+                format!("is a member of uniform block {block}, which is set through a buffer")
+            }
+            None if self.uniforms.names.is_empty() => "is not declared (it has none)".into(),
+            None => format!(
+                "is not declared (it has {})",
+                self.uniforms
+                    .names
+                    .iter()
+                    .map(String::as_str)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        Err(GlError::Uniform {
+            files: self.files.clone(),
+            uniform: name.to_string(),
+            problem,
+        })
+    }
+
     fn location(&self, name: &str) -> Option<glow::UniformLocation> {
-        let mut cache = self.locations.borrow_mut();
-        cache
-            .entry(name.to_string())
-            .or_insert_with(|| unsafe { self.ctx.gl().get_uniform_location(self.id, name) })
-            .as_ref()
-            .copied()
+        if let Some(known) = self.locations.borrow().get(name) {
+            return *known;
+        }
+        let location = unsafe { self.ctx.gl().get_uniform_location(self.id, name) };
+        self.locations
+            .borrow_mut()
+            .insert(name.to_string(), location);
+        location
     }
 }
 

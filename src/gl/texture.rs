@@ -23,7 +23,7 @@ pub enum TextureFormat {
 
 impl TextureFormat {
     /// (internal format, pixel format, pixel type).
-    pub(crate) fn gl(self) -> (u32, u32, u32) {
+    pub(super) fn gl(self) -> (u32, u32, u32) {
         match self {
             TextureFormat::Rgba32F => (glow::RGBA32F, glow::RGBA, glow::FLOAT),
             TextureFormat::R32F => (glow::R32F, glow::RED, glow::FLOAT),
@@ -222,10 +222,10 @@ impl Texture {
     pub fn is_1d(&self) -> bool {
         self.obj.target == glow::TEXTURE_1D
     }
-    pub(crate) fn id(&self) -> glow::Texture {
+    pub(super) fn id(&self) -> glow::Texture {
         self.obj.id
     }
-    pub(crate) fn target(&self) -> u32 {
+    pub(super) fn target(&self) -> u32 {
         self.obj.target
     }
     pub fn context(&self) -> &Context {

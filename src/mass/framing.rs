@@ -7,6 +7,7 @@
 //! cancellation; [`crate::mass::VolumeIntegrals::translated`] moves the result back.
 
 use crate::mesh::Mesh;
+use glam::camera::rh::proj::opengl;
 use glam::{DVec3, Mat4, Vec3};
 use serde::Serialize;
 
@@ -91,7 +92,7 @@ impl Framing {
     pub fn projection(&self) -> Mat4 {
         let w = self.half_width as f32;
         let d = self.half_depth as f32;
-        Mat4::orthographic_rh_gl(-w, w, -w, w, -d, d)
+        opengl::orthographic(-w, w, -w, w, -d, d)
     }
 }
 

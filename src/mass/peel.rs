@@ -203,14 +203,14 @@ impl Peeler {
                         "u_peel_depth",
                         self.layers[(layer + 1) % 2].depth().expect("depth"),
                     )
-                    .texture("water_depth", water_depth)
+                    .texture("u_water_depth", water_depth)
                     .uniform("u_peel_layer", layer as i32);
                 for (k, job) in jobs.iter().enumerate().filter(|(k, _)| active[*k]) {
                     let (first, count) = job.indices;
                     pass.viewport(job.tile)
-                        .uniform("model", job.model)
-                        .uniform("frame_center", job.framing.center.as_vec3())
-                        .uniform("projection", job.framing.projection());
+                        .uniform("u_model", job.model)
+                        .uniform("u_frame_center", job.framing.center.as_vec3())
+                        .uniform("u_projection", job.framing.projection());
                     queries[k].begin();
                     let drawn = pass.draw_elements_instanced(
                         &soup.vertices,
@@ -259,7 +259,7 @@ impl Peeler {
             ..DrawState::default()
         })
         .texture(
-            "first_peel_faces_down",
+            "u_first_peel_faces_down",
             self.accumulator.first_peel_faces_down(),
         );
         self.water_quads(&mut pass, jobs.len(), level)
@@ -304,12 +304,12 @@ impl Peeler {
     fn water_quads(&self, pass: &mut Pass, bodies: usize, level: f64) -> Result<(), GlError> {
         let slot = self.tile_data.borrow();
         let tiles = slot.as_ref().expect("tile data uploaded in pass 0");
-        pass.texture("tiles", tiles)
+        pass.texture("u_tiles", tiles)
             .uniform(
-                "target_size",
+                "u_target_size",
                 glam::Vec2::new(self.width as f32, self.height as f32),
             )
-            .uniform("water_level", level as f32);
+            .uniform("u_water_level", level as f32);
         pass.draw_attributeless(Primitive::TriangleStrip, 4, bodies)
     }
 

@@ -71,12 +71,12 @@ impl Accumulator {
             blend: Some(Blend::Add),
             ..DrawState::default()
         })
-        .texture("peel_depth", depth)
-        .texture("peel0", &peel[0])
-        .texture("peel1", &peel[1])
-        .texture("peel2", &peel[2])
-        .texture("peel_faces_down", &peel[3])
-        .uniform("first_peel", first);
+        .texture("u_peel_depth", depth)
+        .texture("u_peel0", &peel[0])
+        .texture("u_peel1", &peel[1])
+        .texture("u_peel2", &peel[2])
+        .texture("u_peel_faces_down", &peel[3])
+        .uniform("u_first_peel", first);
         for &tile in tiles {
             pass.draw_rect(tile)?;
         }
@@ -113,10 +113,10 @@ impl Accumulator {
             let mut pass =
                 self.ping_pong[index].pass(&self.reduce_program, "mass: sum reduction")?;
             pass.viewport(Rect::sized(out_w, out_h))
-                .texture("source0", source.color(0))
-                .texture("source1", source.color(1))
-                .texture("source2", source.color(2))
-                .uniform("source_size", IVec2::new(w as i32, h as i32));
+                .texture("u_source0", source.color(0))
+                .texture("u_source1", source.color(1))
+                .texture("u_source2", source.color(2))
+                .uniform("u_source_size", IVec2::new(w as i32, h as i32));
             pass.draw_full()?;
             (w, h) = (out_w, out_h);
             index = 1 - index;

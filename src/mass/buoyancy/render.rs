@@ -8,6 +8,7 @@ use crate::gl::{
     Primitive, Program, Rect, Texture, TextureFormat, VertexArray,
 };
 use crate::shader;
+use glam::camera::rh::{proj::opengl, view::look_at_mat4};
 use glam::{Mat4, Vec3, Vec4};
 use std::path::Path;
 
@@ -75,9 +76,9 @@ impl FrameRenderer {
             .fold(1.0, f32::max)
             + 2.0;
         let eye = Vec3::new(0.0, -1.1 * extent, 0.7 * extent);
-        let view = Mat4::look_at_rh(eye, Vec3::new(0.0, 0.0, -0.5), Vec3::Z);
+        let view = look_at_mat4(eye, Vec3::new(0.0, 0.0, -0.5), Vec3::Z);
         let aspect = self.width as f32 / self.height as f32;
-        Mat4::perspective_rh_gl(0.8, aspect, 0.1, 10.0 * extent) * view
+        opengl::perspective(0.8, aspect, 0.1, 10.0 * extent) * view
     }
 
     /// Draws the current state and writes it to `path`.
@@ -95,16 +96,16 @@ impl FrameRenderer {
         {
             let mut pass = self.target.pass(&self.bodies, "buoyancy frame: bodies")?;
             pass.state(opaque)
-                .uniform("view_projection", vp)
-                .uniform("water_level", sim.water.level as f32);
+                .uniform("u_view_projection", vp)
+                .uniform("u_water_level", sim.water.level as f32);
             for body in &sim.bodies {
                 let (first, count) = self.meshes.ranges[body.shape];
                 let model = Mat4::from_rotation_translation(
                     body.rigid.orientation.as_quat(),
                     body.rigid.position.as_vec3(),
                 );
-                pass.uniform("model", model)
-                    .uniform("color", COLORS[body.shape % COLORS.len()]);
+                pass.uniform("u_model", model)
+                    .uniform("u_colour", COLORS[body.shape % COLORS.len()]);
                 pass.draw_arrays(&self.meshes.vertices, Primitive::Triangles, first, count)?;
             }
         }
@@ -119,10 +120,10 @@ impl FrameRenderer {
                 blend: Some(Blend::Alpha),
                 ..DrawState::default()
             })
-            .uniform("view_projection", vp)
-            .uniform("water_level", sim.water.level as f32)
-            .uniform("extent", 1000.0f32)
-            .uniform("color", Vec4::new(0.05, 0.22, 0.42, 0.55));
+            .uniform("u_view_projection", vp)
+            .uniform("u_water_level", sim.water.level as f32)
+            .uniform("u_extent", 1000.0f32)
+            .uniform("u_colour", Vec4::new(0.05, 0.22, 0.42, 0.55));
             pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)?;
         }
         let pixels = self
@@ -174,7 +175,8 @@ impl FrameRenderer {
             let mut pass = self
                 .target
                 .pass(&self.lines, "buoyancy frame: force arrows")?;
-            pass.uniform("view_projection", vp).uniform("color", color);
+            pass.uniform("u_view_projection", vp)
+                .uniform("u_colour", color);
             pass.draw_arrays(&vertices, Primitive::Lines, 0, segments.len())?;
         }
         Ok(())
