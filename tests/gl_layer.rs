@@ -100,6 +100,56 @@ fn every_texture_format_round_trips() {
     }
 }
 
+/// A new texture reads as zeros (depth: 0) on every renderer, even where the driver hands
+/// it memory a freed texture filled with NaN: softpipe does not clear what it allocates,
+/// and a pass that reads texels it has not drawn (mass's accumulation, `0 * NaN`) would
+/// otherwise see whatever was there. Repeated so that reused memory shows up.
+#[test]
+fn new_textures_read_as_zero_after_freed_ones_held_nan() {
+    let ctx = context();
+    for round in 0..8 {
+        for (w, h) in [(32, 32), (64, 64), (200, 100)] {
+            let n = (w * h) as usize;
+            for format in [
+                TextureFormat::Rgba32F,
+                TextureFormat::R32F,
+                TextureFormat::Depth32F,
+            ] {
+                let dirty = Texture::new_2d(&ctx, w, h, format).unwrap();
+                dirty
+                    .upload_f32(&vec![f32::NAN; n * format.components()])
+                    .unwrap();
+                drop(dirty);
+                let fresh = Texture::new_2d(&ctx, w, h, format).unwrap();
+                let texels = fresh.download_f32().unwrap();
+                assert!(
+                    texels.iter().all(|&v| v == 0.0),
+                    "round {round}: a new {w}x{h} {format:?} holds {:?}",
+                    texels.iter().find(|v| **v != 0.0)
+                );
+            }
+            let dirty = Texture::new_1d(&ctx, w, TextureFormat::Rgba32F).unwrap();
+            dirty.upload_f32(&vec![f32::NAN; 4 * w as usize]).unwrap();
+            drop(dirty);
+            let fresh = Texture::new_1d(&ctx, w, TextureFormat::Rgba32F).unwrap();
+            assert!(fresh.download_f32().unwrap().iter().all(|&v| v == 0.0));
+            for format in [TextureFormat::R8, TextureFormat::Rgba8] {
+                let dirty = Texture::new_2d(&ctx, w, h, format).unwrap();
+                dirty
+                    .upload_u8(&vec![0xff; n * format.components()])
+                    .unwrap();
+                drop(dirty);
+                let fresh = Texture::new_2d(&ctx, w, h, format).unwrap();
+                assert!(fresh.download_u8().unwrap().iter().all(|&v| v == 0));
+            }
+            let dirty = Texture::new_2d(&ctx, w, h, TextureFormat::Depth24Stencil8).unwrap();
+            dirty.upload_u32(&vec![u32::MAX; n]).unwrap();
+            drop(dirty);
+            let fresh = Texture::new_2d(&ctx, w, h, TextureFormat::Depth24Stencil8).unwrap();
+            assert!(fresh.download_u32().unwrap().iter().all(|&v| v == 0));
+        }
+    }
+}
 #[test]
 fn region_upload_and_size_errors() {
     let ctx = context();
