@@ -307,3 +307,41 @@ fn streams_of_one_and_few_slots_in_every_scheme() {
         }
     }
 }
+
+/// The decoders take any non-zero mark for a CAP, so a NaN in a level read back would be
+/// a pair that does not exist: every value read is checked, and a non-finite one is an
+/// error naming the level and the pass that wrote it. (Here `P0` is filled by hand.)
+#[test]
+fn a_non_finite_mark_is_an_error_naming_the_level_and_the_pass() {
+    use classic_gpgpu::collide::reduction::Scheme;
+    use classic_gpgpu::collide::reduction_gpu::Reduction;
+    use classic_gpgpu::collide::streaming_test::PairTarget;
+    let ctx = context();
+    let (w, h) = (64, 48);
+    let p0 = PairTarget::new(&ctx, w, h).unwrap();
+    let reduction = Reduction::new(&ctx, w, h).unwrap();
+    let mut marks = vec![0.0f32; w * h];
+    marks[5 * w + 7] = 1.0;
+    marks[40 * w + 60] = 1.0;
+    p0.p0.upload_f32(&marks).unwrap();
+    for scheme in [Scheme::Hierarchical, Scheme::Reduced, Scheme::Full] {
+        let read = reduction.read(&ctx, &p0, scheme).unwrap();
+        assert_eq!(read.decoded.caps.len(), 2, "{scheme:?}");
+    }
+    marks[40 * w + 61] = f32::NAN;
+    p0.p0.upload_f32(&marks).unwrap();
+    // The encoders pass it on to the level each scheme reads first.
+    for (scheme, pass) in [
+        (Scheme::Hierarchical, "encode P2 -> P3 (4x4)"),
+        (Scheme::Reduced, "encode P0 -> P1' (8x8)"),
+        (Scheme::Full, "streaming AABB test (Table I)"),
+    ] {
+        let err = reduction.read(&ctx, &p0, scheme).unwrap_err().to_string();
+        assert!(
+            err.contains("collide: the CAP marks of P0")
+                && err.contains(&format!("pass '{pass}'"))
+                && err.contains("NaN"),
+            "{scheme:?}: {err}"
+        );
+    }
+}

@@ -383,3 +383,34 @@ fn crowd_bench_quick_reports_table1_beside_the_paper() {
     assert_eq!(runs.len(), 2 * 3 * 3);
     assert!(runs.iter().all(|r| r["fps"].as_f64().unwrap() > 0.0));
 }
+
+/// A character placed with a transform the fp32 bone textures cannot hold (scaled by 10^39)
+/// skins to infinities and NaN: reading the vertices back is an error naming the model,
+/// the LOD and the pass, not numbers that poison whatever compares or draws them.
+#[test]
+fn skinned_vertices_that_are_not_finite_are_an_error() {
+    let ctx = context();
+    let model = CharacterModel::build(ModelKind::Soldier).unwrap();
+    let mut renderer = CrowdRenderer::new(&ctx, model).unwrap();
+    let (mut models, phases) = scattered(4);
+    let ids = [0, 1, 2, 3];
+    let instances = Instances {
+        models: &models,
+        phases: &phases,
+    };
+    assert!(renderer.skin_to_vbo(1, &instances, &ids).is_ok());
+    models[2] = models[2] * DAffine3::from_scale(DVec3::splat(1e39));
+    let instances = Instances {
+        models: &models,
+        phases: &phases,
+    };
+    let err = renderer
+        .skin_to_vbo(1, &instances, &ids)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("crowd: the skinned vertices of 4 Soldier characters at LOD 1")
+            && err.contains("pass 'crowd pass 1 (skinning)'"),
+        "{err}"
+    );
+}

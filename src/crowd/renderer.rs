@@ -11,7 +11,7 @@ use std::time::Instant;
 use glam::{DAffine3, Vec3};
 use serde::Serialize;
 
-use crate::gl::{query, Buffer, BufferUsage, Context, Framebuffer, GlError};
+use crate::gl::{ensure_finite, query, Buffer, BufferUsage, Context, Framebuffer, GlError};
 
 use super::bone_textures::BoneTextures;
 use super::character::{CharacterModel, ModelKind};
@@ -418,6 +418,17 @@ impl CrowdRenderer {
         )?;
         batch.vbo.copy_from(&batch.target, ids.len() as u32)?;
         let all: Vec<[f32; 4]> = batch.vbo.buffer.read()?;
+        let used = batch.vbo.used_texels(ids.len() as u32);
+        let what = format!(
+            "crowd: the skinned vertices of {} {:?} characters at LOD {lod}",
+            ids.len(),
+            self.model.kind
+        );
+        ensure_finite(
+            used.flat_map(|t| all[t]),
+            &what,
+            super::pass1_skinning::SKINNING_PASS,
+        )?;
         Ok((0..ids.len() as u32)
             .map(|c| batch.vbo.column_of(&all, c))
             .collect())
