@@ -399,7 +399,7 @@ fn skinned_vertices_that_are_not_finite_are_an_error() {
         phases: &phases,
     };
     assert!(renderer.skin_to_vbo(1, &instances, &ids).is_ok());
-    models[2] = models[2] * DAffine3::from_scale(DVec3::splat(1e39));
+    models[2] *= DAffine3::from_scale(DVec3::splat(1e39));
     let instances = Instances {
         models: &models,
         phases: &phases,
