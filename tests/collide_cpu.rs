@@ -127,6 +127,128 @@ fn automatic_leaf_size_bounds_the_stream_and_keeps_the_default_for_the_papers_to
     assert!(AabbStream::build(&large, n / 2).unwrap().len() > bound);
 }
 
+/// An independent exact reference for closed, non-degenerate triangles with integer
+/// corners: the separating axis theorem in i128 (every product exact). Two convex sets are
+/// disjoint exactly when their projections on some axis are; for two triangles the axes
+/// to try are both normals, the cross products of an edge of each, each triangle's in-plane
+/// edge normals (coplanar pairs), and, for parallel edges, the direction from one edge to
+/// the other perpendicular to both. Projections that touch do not separate.
+mod sat {
+    type V = [i128; 3];
+
+    fn sub(a: V, b: V) -> V {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+    fn cross(a: V, b: V) -> V {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+    fn dot(a: V, b: V) -> i128 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+
+    pub fn intersect(t: [V; 3], u: [V; 3]) -> bool {
+        let edges = |t: [V; 3]| [sub(t[1], t[0]), sub(t[2], t[1]), sub(t[0], t[2])];
+        let (et, eu) = (edges(t), edges(u));
+        let (nt, nu) = (cross(et[0], et[1]), cross(eu[0], eu[1]));
+        assert!(nt != [0; 3] && nu != [0; 3], "degenerate triangle");
+        let mut axes = vec![nt, nu];
+        for (i, &e) in et.iter().enumerate() {
+            axes.push(cross(nt, e));
+            for (j, &f) in eu.iter().enumerate() {
+                let c = cross(e, f);
+                if c != [0; 3] {
+                    axes.push(c);
+                } else {
+                    axes.push(cross(e, cross(e, sub(u[j], t[i]))));
+                }
+            }
+        }
+        for &f in &eu {
+            axes.push(cross(nu, f));
+        }
+        !axes.iter().any(|&a| {
+            let range = |t: [V; 3]| {
+                let d = t.map(|p| dot(a, p));
+                (*d.iter().min().unwrap(), *d.iter().max().unwrap())
+            };
+            let ((t0, t1), (u0, u1)) = (range(t), range(u));
+            t1 < u0 || u1 < t0
+        })
+    }
+}
+
+/// Random triangle pairs with corners on a 5 x 5 x 5 grid: shared vertices, vertices on
+/// edges and faces, edges crossing edges, coplanar overlaps, the touching configurations
+/// that decide whether a contact is reported. The default (exact) predicate equals the
+/// integer reference on every pair, and still does when the grid is scaled by 2^80 or 2^-80
+/// or moved by 2^20 (all exact in f32, so the geometry is the same). Möller's float test
+/// is counted too: it misses touching contacts at every scale and, at 2^80, its products
+/// of four plane distances overflow and it reports pairs that are far apart.
+#[test]
+fn the_default_predicate_is_exact_at_every_scale() {
+    use rand::{Rng, SeedableRng};
+    assert_eq!(Predicate::default(), Predicate::Exact);
+    assert_eq!(
+        classic_gpgpu::collide::pipeline::Options::default().predicate,
+        Predicate::Exact
+    );
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(18);
+    let corner = |rng: &mut rand_chacha::ChaCha8Rng| [0; 3].map(|_| rng.gen_range(0..5i128));
+    let mut pairs = Vec::new();
+    while pairs.len() < 4000 {
+        let t = [corner(&mut rng), corner(&mut rng), corner(&mut rng)];
+        let u = [corner(&mut rng), corner(&mut rng), corner(&mut rng)];
+        let area = |t: [[i128; 3]; 3]| {
+            let (a, b) = (
+                [0, 1, 2].map(|k| t[1][k] - t[0][k]),
+                [0, 1, 2].map(|k| t[2][k] - t[0][k]),
+            );
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ] != [0; 3]
+        };
+        if area(t) && area(u) {
+            pairs.push((t, u, sat::intersect(t, u)));
+        }
+    }
+    let touching = pairs.iter().filter(|p| p.2).count();
+    assert!(
+        touching > 500 && touching < 3500,
+        "{touching} of 4000 intersect"
+    );
+    for (scale, offset) in [
+        (1.0f32, 0.0f32),
+        (2f32.powi(80), 0.0),
+        (2f32.powi(-80), 0.0),
+        (1.0, 2f32.powi(20)),
+    ] {
+        let place = |t: [[i128; 3]; 3]| t.map(|p| p.map(|c| c as f32 * scale + offset).into());
+        let mut moller_wrong = 0;
+        for (k, &(t, u, want)) in pairs.iter().enumerate() {
+            let (a, b): ([Vec3; 3], [Vec3; 3]) = (place(t), place(u));
+            let got =
+                classic_gpgpu::collide::tri_test::triangles_intersect(&a, &b, Predicate::default());
+            assert_eq!(
+                got, want,
+                "scale {scale:e}, offset {offset}: pair {k}: {t:?} {u:?}"
+            );
+            moller_wrong +=
+                (classic_gpgpu::collide::tri_test::triangles_intersect(&a, &b, Predicate::Moller)
+                    != want) as usize;
+        }
+        eprintln!(
+            "scale {scale:e}, offset {offset}: Möller wrong on {moller_wrong} of {} pairs",
+            pairs.len()
+        );
+    }
+}
+
 #[test]
 fn readback_modes_and_predicates_parse_their_names_and_refuse_others() {
     use classic_gpgpu::collide::reduction_gpu::ReadbackMode;

@@ -335,3 +335,73 @@ fn auto_calibrates_on_clustered_p0_contents() {
         "the paper's switch needs no calibration"
     );
 }
+
+/// The decoders take any non-zero mark for a CAP, so a NaN in a level read back would be
+/// a pair that does not exist: every value read is checked, and a non-finite one is an
+/// error naming the level and the pass that wrote it. (Here `P0` is filled by hand.)
+#[test]
+fn a_non_finite_mark_is_an_error_naming_the_level_and_the_pass() {
+    use classic_gpgpu::collide::reduction::Scheme;
+    use classic_gpgpu::collide::reduction_gpu::Reduction;
+    use classic_gpgpu::collide::streaming_test::PairTarget;
+    let ctx = context();
+    let (w, h) = (64, 48);
+    let p0 = PairTarget::new(&ctx, w, h).unwrap();
+    let reduction = Reduction::new(&ctx, w, h).unwrap();
+    let mut marks = vec![0.0f32; w * h];
+    marks[5 * w + 7] = 1.0;
+    marks[40 * w + 60] = 1.0;
+    p0.p0.upload_f32(&marks).unwrap();
+    for scheme in [Scheme::Hierarchical, Scheme::Reduced, Scheme::Full] {
+        let read = reduction.read(&ctx, &p0, scheme).unwrap();
+        assert_eq!(read.decoded.caps.len(), 2, "{scheme:?}");
+    }
+    marks[40 * w + 61] = f32::NAN;
+    p0.p0.upload_f32(&marks).unwrap();
+    // The encoders pass it on to the level each scheme reads first.
+    for (scheme, pass) in [
+        (Scheme::Hierarchical, "encode P2 -> P3 (4x4)"),
+        (Scheme::Reduced, "encode P0 -> P1' (8x8)"),
+        (Scheme::Full, "streaming AABB test (Table I)"),
+    ] {
+        let err = reduction.read(&ctx, &p0, scheme).unwrap_err().to_string();
+        assert!(
+            err.contains("collide: the CAP marks of P0")
+                && err.contains(&format!("pass '{pass}'"))
+                && err.contains("NaN"),
+            "{scheme:?}: {err}"
+        );
+    }
+}
+
+/// The tori scaled by ~10^25 (here 2^83, and 2^-70, so that scaling is exact in
+/// f32 and the geometry is the same): with the default options the pipeline reports exactly
+/// the pairs of the unscaled tori (exact predicate, brute force). Möller's float test
+/// answered 1048 pairs, 564 false, at 10^25.
+#[test]
+fn default_pipeline_reports_the_same_pairs_at_extreme_scales() {
+    use classic_gpgpu::collide::scenes::Scene;
+    let ctx = context();
+    let scene = Scene::build("interlocking-tori", Some(800)).unwrap();
+    let (px, py) = scene.frame(3);
+    let (x, y) = (&scene.x.rest, &scene.y.rest);
+    let want = all_pairs(x, &px, y, &py, Predicate::Exact);
+    assert!(want.len() > 20, "{}", want.len());
+    for scale in [1.0, 2f32.powi(83), 2f32.powi(-70)] {
+        let (sx, sy): (Vec<Vec3>, Vec<Vec3>) = (
+            px.iter().map(|p| *p * scale).collect(),
+            py.iter().map(|p| *p * scale).collect(),
+        );
+        let (mx, my) = (
+            Mesh::new(sx.clone(), x.triangles.clone()),
+            Mesh::new(sy.clone(), y.triangles.clone()),
+        );
+        let options = Options {
+            leaf_size: 8,
+            ..Options::default()
+        };
+        let mut collider = StreamingCollider::new(&ctx, &mx, &my, options).unwrap();
+        let got = collider.frame(&sx, &sy).unwrap();
+        assert_eq!(got.pairs, want, "scale {scale:e}");
+    }
+}

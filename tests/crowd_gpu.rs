@@ -608,3 +608,34 @@ fn crowd_command_runs_the_papers_lod_setup_sprites_on_request_and_forced_batches
         );
     }
 }
+
+/// A character placed with a transform the fp32 bone textures cannot hold (scaled by 10^39)
+/// skins to infinities and NaN: reading the vertices back is an error naming the model,
+/// the LOD and the pass, not numbers that poison whatever compares or draws them.
+#[test]
+fn skinned_vertices_that_are_not_finite_are_an_error() {
+    let ctx = context();
+    let model = CharacterModel::build(ModelKind::Soldier).unwrap();
+    let mut renderer = CrowdRenderer::new(&ctx, model).unwrap();
+    let (mut models, phases) = scattered(4);
+    let ids = [0, 1, 2, 3];
+    let instances = Instances {
+        models: &models,
+        phases: &phases,
+    };
+    assert!(renderer.skin_to_vbo(1, &instances, &ids).is_ok());
+    models[2] *= DAffine3::from_scale(DVec3::splat(1e39));
+    let instances = Instances {
+        models: &models,
+        phases: &phases,
+    };
+    let err = renderer
+        .skin_to_vbo(1, &instances, &ids)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("crowd: the skinned vertices of 4 Soldier characters at LOD 1")
+            && err.contains("pass 'crowd pass 1 (skinning)'"),
+        "{err}"
+    );
+}

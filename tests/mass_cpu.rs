@@ -27,6 +27,7 @@ fn tetrahedron_sum(mesh: &Mesh) -> VolumeIntegrals {
         let m =
             |i: usize, j: usize| v / 20.0 * (a[i] * a[j] + b[i] * b[j] + c[i] * c[j] + s[i] * s[j]);
         out += VolumeIntegrals {
+            origin: DVec3::ZERO,
             v,
             x: v * s.x / 4.0,
             y: v * s.y / 4.0,
@@ -108,7 +109,7 @@ fn analytic_matches_tetrahedron_sum_on_irregular_meshes() {
             DQuat::from_euler(glam::EulerRot::XYZ, c[4] as f64, 1.0, c[5] as f64),
             DVec3::new(0.3, -1.0, 2.0),
         );
-        let got = analytic::volume_integrals(&moved).to_array();
+        let got = analytic::volume_integrals(&moved).world().to_array();
         let want = tetrahedron_sum(&moved).to_array();
         let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (g, w) in got.iter().zip(want) {
@@ -190,11 +191,7 @@ fn flipped_triangle_is_reported_as_inconsistent() {
 fn submerged(mesh: &Mesh, level: f32) -> (f64, DVec3, Mesh) {
     let below = clip::below_plane(mesh, level);
     let i = analytic::volume_integrals(&below);
-    let c = if i.v > 0.0 {
-        i.first() / i.v
-    } else {
-        DVec3::ZERO
-    };
+    let c = if i.v > 0.0 { i.centroid() } else { DVec3::ZERO };
     (i.v, c, below)
 }
 
@@ -230,7 +227,7 @@ fn tilted_box_below_plane_matches_tetrahedron_sum_and_is_closed() {
     for level in [-0.5f32, -0.1, 0.0, 0.3] {
         let below = clip::below_plane(&mesh, level);
         assert!(surface::check(&below).is_closed(), "level {level}");
-        let got = analytic::volume_integrals(&below).to_array();
+        let got = analytic::volume_integrals(&below).world().to_array();
         let want = tetrahedron_sum(&below).to_array();
         for (g, w) in got.iter().zip(want) {
             assert!((g - w).abs() < 1e-9, "{g} vs {w}");
@@ -363,7 +360,7 @@ mod pixel_sums {
             let f = Framing::fit(&mesh, 256).unwrap();
             let got = cpu_reference::integrate(&mesh, &f, Some(level as f64));
             let want = analytic::volume_integrals(&clip::below_plane(&mesh, level));
-            let (gc, wc) = (got.first() / got.v, want.first() / want.v);
+            let (gc, wc) = (got.centroid(), want.centroid());
             eprintln!("level {level}: V {} vs {}, c {gc} vs {wc}", got.v, want.v);
             assert!((got.v - want.v).abs() / want.v < 0.005);
             assert!((gc - wc).length() < 0.005);
@@ -413,4 +410,72 @@ fn pixel_centre_cull_keeps_every_triangle_that_makes_a_fragment() {
         dropped > 1000 && kept > 1000,
         "kept {kept}, dropped {dropped}"
     );
+}
+
+/// A cuboid whose corners are exact in f32 however far it lies (sides and offsets with few
+/// significant bits), so the mesh itself is the same solid at every offset.
+fn far_cuboid(size: Vec3, offset: DVec3) -> Mesh {
+    let mesh = cuboid(size, Vec3::ZERO);
+    let moved = transformed(&mesh, DQuat::IDENTITY, offset);
+    for (p, q) in moved.positions.iter().zip(&mesh.positions) {
+        assert_eq!(p.as_dvec3() - offset, q.as_dvec3(), "not exact in f32");
+    }
+    moved
+}
+
+/// Far from the world origin the analytic reference keeps the body's own moments: before
+/// it integrated about its bounding-box centre, a unit cube 10^6 away got Ixx = 0 and
+/// Ixy = 32 (the projection integrals' products of coordinates, ~10^24, cancelled in f64),
+/// and the parallel-axis shift back to the centre of mass cancelled 10^12 against 10^12.
+#[test]
+fn analytic_is_exact_far_from_the_origin() {
+    for (size, offset) in [
+        (DVec3::new(1.0, 2.0, 0.5), DVec3::new(1e6, 0.0, 0.0)),
+        (DVec3::new(1.0, 2.0, 0.5), DVec3::new(1e6, -3e6, 2e6)),
+        (DVec3::new(256.0, 512.0, 128.0), DVec3::new(1e8, 2e8, -3e8)),
+    ] {
+        let want = closed_form::cuboid(size, offset, 1.0);
+        let far = MassProperties::from_integrals(
+            &analytic::volume_integrals(&far_cuboid(size.as_vec3(), offset)),
+            1.0,
+        );
+        let what = format!("{size} at {offset}");
+        assert_close(&what, far.volume, want.volume, 1e-12, 0.0);
+        assert!((far.center_of_mass - offset).length() < 1e-12 * offset.length());
+        // Every entry within 1e-12 of the largest (the products are exactly zero).
+        let err = (far.inertia - want.inertia).to_cols_array();
+        let worst = err.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+        assert!(
+            worst <= 1e-12 * want.inertia.x_axis.x,
+            "{what}: inertia {:?} vs {:?}",
+            far.inertia,
+            want.inertia
+        );
+    }
+}
+
+/// A vertex of a cube pulled out to 10^38 makes a needle of volume ~3.3e37 whose faces
+/// are slivers 10^38 long and 1 wide. The analytic reference keeps them (it once dropped
+/// every face whose area was small next to the square of its distance from the origin,
+/// and answered 0.5) and agrees with the signed tetrahedra.
+#[test]
+fn analytic_keeps_needle_faces_at_extreme_coordinates() {
+    for far in [1e20f32, 1e30, 1e38] {
+        let mut mesh = cuboid(Vec3::ONE, Vec3::ZERO);
+        let corner = mesh
+            .positions
+            .iter()
+            .position(|p| *p == Vec3::splat(0.5))
+            .unwrap();
+        mesh.positions[corner] = Vec3::new(far, 0.5, 0.5);
+        let got = analytic::volume_integrals(&mesh);
+        let want = tetrahedron_sum(&mesh);
+        assert!(want.v > 0.3 * far as f64, "{}", want.v);
+        assert_close(&format!("volume at {far}"), got.v, want.v, 1e-12, 0.0);
+        let (gc, wc) = (got.centroid(), want.centroid());
+        assert!(
+            (gc - wc).length() <= 1e-12 * far as f64,
+            "centroid at {far}: {gc} vs {wc}"
+        );
+    }
 }

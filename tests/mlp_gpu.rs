@@ -293,3 +293,43 @@ fn text_detector_gpu_mask_equals_cpu_mask() {
         );
     }
 }
+
+/// Weights and inputs are checked finite when read, but their products can still overflow
+/// fp32 (the CPU's f32 forward pass overflows alike): such outputs are an error naming the
+/// network, the input vectors and the pass, in both formulations.
+#[test]
+fn outputs_that_overflow_fp32_are_an_error_naming_network_and_pass() {
+    let ctx = context();
+    let gpu = GpuMlp::new(&ctx).unwrap();
+    let layer = |m: usize, n: usize, w: f32, activation| Layer {
+        weights: Array2::from_elem((m, n), w),
+        bias: Array1::zeros(m),
+        activation,
+    };
+    let net = Network::new(vec![
+        layer(3, 2, 1e30, Activation::Identity),
+        layer(1, 3, 1e30, Activation::Sigmoid),
+    ])
+    .unwrap();
+    let mut x = Array2::from_elem((5, 2), 0.5f32);
+    let cpu = forward(CpuProduct::Plain, &net, x.view()).outputs;
+    assert!(cpu.iter().all(|v| v.is_finite()), "{cpu:?}");
+    for (formulation, pass) in [
+        (Formulation::Faithful, "mlp bias + sigmoid"),
+        (Formulation::Packed, "mlp packed bias + sigmoid"),
+    ] {
+        let loaded = gpu.load(&net, formulation).unwrap();
+        assert!(loaded.forward(x.view(), None).is_ok(), "{formulation:?}");
+        // One input vector whose first layer overflows to +inf and -inf: inf - inf is NaN.
+        x[[3, 0]] = 1e10;
+        x[[3, 1]] = -1e10;
+        let err = loaded.forward(x.view(), Some(2)).unwrap_err().to_string();
+        assert!(
+            err.contains("mlp: the outputs of the 2-3-1 network for input vectors 2..4")
+                && err.contains(&format!("pass '{pass}'")),
+            "{formulation:?}: {err}"
+        );
+        x[[3, 0]] = 0.5;
+        x[[3, 1]] = 0.5;
+    }
+}

@@ -14,8 +14,12 @@ void main() {
         int row = 0;
         for (int a = 0; a < 8; a++) {
             ivec2 p = base + ivec2(a, b);
-            if (p.x < size.x && p.y < size.y && texelFetch(u_level, p, 0).r != 0.0)
-                row |= 1 << a;
+            if (p.x >= size.x || p.y >= size.y) continue;
+            float v = texelFetch(u_level, p, 0).r;
+            // A mark that is not a number is passed on as it is, never taken for a CAP:
+            // the readback reports it (P0 holds 0 or 1 unless something went wrong).
+            if (isnan(v) || isinf(v)) { o_mask = vec4(v); return; }
+            if (v != 0.0) row |= 1 << a;
         }
         m[b / 2] |= row << (8 * (b % 2));
     }

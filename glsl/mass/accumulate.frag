@@ -2,9 +2,9 @@
 // Accumulation over peels [paper 4, section 3.3]: adds the integrand targets of one peel
 // into the running sums (the pass blends with ADD). On the first peel it also keeps the
 // faces-down mark that the water patch of section 5.2 needs. Pixels the peel did not
-// reach (depth still at the cleared 1.0) add nothing, so the peel's colour targets never
-// need clearing. They are skipped, not multiplied by zero: a target never written may hold
-// anything, NaN included (softpipe's fresh memory does), and 0 * NaN is NaN.
+// reach (depth still at the cleared 1.0) are discarded, so the peel's colour targets never
+// need clearing: what an earlier peel or body left there is never read (a multiply by
+// zero would still read it, and 0 * inf is NaN).
 uniform sampler2D u_peel_depth;
 uniform sampler2D u_peel0;
 uniform sampler2D u_peel1;
@@ -19,11 +19,7 @@ layout(location = 3) out float o_first_peel_faces_down;
 void main()
 {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    if (texelFetch(u_peel_depth, pixel, 0).r >= 1.0) {
-        o_sum0 = o_sum1 = o_sum2 = vec4(0.0);
-        o_first_peel_faces_down = 0.0;
-        return;
-    }
+    if (texelFetch(u_peel_depth, pixel, 0).r >= 1.0) discard;
     o_sum0 = texelFetch(u_peel0, pixel, 0);
     o_sum1 = texelFetch(u_peel1, pixel, 0);
     o_sum2 = texelFetch(u_peel2, pixel, 0);

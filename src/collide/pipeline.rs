@@ -40,7 +40,7 @@ impl Default for Options {
         Options {
             leaf_size: DEFAULT_LEAF_SIZE,
             readback: ReadbackMode::Auto,
-            predicate: Predicate::Moller,
+            predicate: Predicate::Exact,
             max_tile: None,
         }
     }

@@ -12,8 +12,10 @@ use super::reduction::{
     hierarchy_sizes, Decoded, LevelReader, P0Contents, Scheme, HIER_BLOCK, HIER_LEVELS,
     REDUCED_BLOCK,
 };
-use super::streaming_test::PairTarget;
-use crate::gl::{Context, Framebuffer, GlError, Program, Rect, Texture, TextureFormat};
+use super::streaming_test::{PairTarget, OVERLAP_PASS};
+use crate::gl::{
+    ensure_finite, Context, Framebuffer, GlError, Program, Rect, Texture, TextureFormat,
+};
 use crate::shader;
 use std::time::Instant;
 
@@ -174,12 +176,7 @@ impl Reduction {
         let (w, h) = (self.width, self.height);
         let ((), encode_ms) = crate::gl::query::time_gpu(ctx, || match scheme {
             Scheme::Hierarchical => self.encode_hierarchical(&p0.p0),
-            Scheme::Reduced => self.encode(
-                &self.encode8,
-                &p0.p0,
-                &self.reduced,
-                "encode P0 -> P1' (8x8)",
-            ),
+            Scheme::Reduced => self.encode(&self.encode8, &p0.p0, &self.reduced, ENCODE_8X8_PASS),
             Scheme::Full => Ok(()),
         })?;
         let start = Instant::now();
@@ -200,13 +197,8 @@ impl Reduction {
     }
 
     fn encode_hierarchical(&self, p0: &Texture) -> Result<(), GlError> {
-        let names = [
-            "encode P0 -> P1 (4x4)",
-            "encode P1 -> P2 (4x4)",
-            "encode P2 -> P3 (4x4)",
-        ];
         let mut source = p0;
-        for (level, name) in self.levels.iter().zip(names) {
+        for (level, name) in self.levels.iter().zip(ENCODE_4X4_PASSES) {
             self.encode(&self.encode4, source, level, name)?;
             source = &level.texture;
         }
@@ -226,7 +218,16 @@ impl Reduction {
     }
 }
 
-/// Reads the levels with `glReadPixels`.
+/// The passes that write `P1`, `P2`, `P3` and `P1'` (named in errors).
+const ENCODE_4X4_PASSES: [&str; 3] = [
+    "encode P0 -> P1 (4x4)",
+    "encode P1 -> P2 (4x4)",
+    "encode P2 -> P3 (4x4)",
+];
+const ENCODE_8X8_PASS: &str = "encode P0 -> P1' (8x8)";
+
+/// Reads the levels with `glReadPixels`. Every value read must be finite: the decoders
+/// take any non-zero texel for a CAP, so a NaN would become pairs that do not exist.
 struct GpuLevels<'a> {
     p0: &'a PairTarget,
     reduction: &'a Reduction,
@@ -244,11 +245,22 @@ impl LevelReader for GpuLevels<'_> {
         h: usize,
     ) -> Result<Vec<f32>, GlError> {
         let rect = Rect::new(x as u32, y as u32, w as u32, h as u32);
-        let framebuffer = match level {
-            0 => &self.p0.framebuffer,
-            l => &self.reduction.levels[l - 1].framebuffer,
+        let (framebuffer, pass) = match level {
+            0 => (&self.p0.framebuffer, OVERLAP_PASS),
+            l => (
+                &self.reduction.levels[l - 1].framebuffer,
+                ENCODE_4X4_PASSES[l - 1],
+            ),
         };
-        framebuffer.read_f32(0, rect)
+        let values = framebuffer.read_f32(0, rect)?;
+        // An encoder passes a non-finite mark of its input on unchanged, so one read at a
+        // coarser level started in P0.
+        let what = match level {
+            0 => "collide: the CAP marks of P0".to_string(),
+            l => format!("collide: the CAP marks of P0, as carried to P{l}"),
+        };
+        ensure_finite(values.iter().copied(), &what, pass)?;
+        Ok(values)
     }
 
     fn read_reduced(
@@ -260,6 +272,11 @@ impl LevelReader for GpuLevels<'_> {
     ) -> Result<Vec<[f32; 4]>, GlError> {
         let rect = Rect::new(x as u32, y as u32, w as u32, h as u32);
         let flat = self.reduction.reduced.framebuffer.read_f32(0, rect)?;
+        ensure_finite(
+            flat.iter().copied(),
+            "collide: the CAP marks of P0, as carried to P1'",
+            ENCODE_8X8_PASS,
+        )?;
         Ok(flat
             .chunks_exact(4)
             .map(|c| [c[0], c[1], c[2], c[3]])

@@ -11,6 +11,9 @@ use crate::gl::{
 };
 use crate::shader;
 
+/// The pass that writes `P0` (named in errors).
+pub const OVERLAP_PASS: &str = "streaming AABB test (Table I)";
+
 /// The render target `P0` (R32F: one float per pair) with its depth-stencil buffer, reused
 /// by every tile [Sec. 5.5].
 pub struct PairTarget {
@@ -92,9 +95,7 @@ impl StreamingTest {
         y: &AabbTextures,
     ) -> Result<u64, GlError> {
         target.framebuffer.clear_color(0, [0.0; 4])?;
-        let mut pass = target
-            .framebuffer
-            .pass(&self.overlap, "streaming AABB test (Table I)")?;
+        let mut pass = target.framebuffer.pass(&self.overlap, OVERLAP_PASS)?;
         pass.state(DrawState {
             stencil: Some(StencilTest::equal(1)),
             ..DrawState::default()

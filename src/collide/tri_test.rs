@@ -2,7 +2,8 @@
 //! paper's reference 39: Möller 1997, "A fast triangle-triangle intersection test"), on the
 //! CPU, for every triangle pair of every colliding AABB pair.
 //!
-//! Two predicates share one entry point, [`triangles_intersect`]:
+//! Two predicates share one entry point, [`triangles_intersect`]; the exact one is the
+//! default (see [`Predicate`]):
 //! - [`Predicate::Moller`]: Möller's interval test, written here without the epsilon
 //!   snapping of the original code, with its coplanar case (edge/edge tests and
 //!   point-in-triangle in the projection plane). Inputs are f32; arithmetic is f64.
@@ -23,13 +24,18 @@ use super::aabb::Aabb;
 use glam::{DVec3, Vec3};
 use robust::{Coord, Coord3D};
 
-/// Which triangle/triangle predicate decides a pair.
+/// Which triangle/triangle predicate decides a pair. The default is exact: it decides
+/// every pair of the f32 input exactly, touching contacts included, at any scale, for
+/// 2-16% more triangle-test time on the six paper scenes. Möller's float test (the paper's)
+/// misses or invents contacts where triangles touch (a vertex or an edge on the other
+/// triangle), and far from unit scale (10^24, 10^-30) its products of four plane distances
+/// overflow or underflow f64 and it reports pairs that do not touch.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub enum Predicate {
     /// Möller 1997 in floating point.
-    #[default]
     Moller,
     /// Exact orientation predicates.
+    #[default]
     Exact,
 }
 

@@ -18,6 +18,9 @@ use crate::shader;
 use super::bone_textures::BoneTextures;
 use super::vertex_textures::VertexTextures;
 
+/// The name of pass 1 (errors name it).
+pub const SKINNING_PASS: &str = "crowd pass 1 (skinning)";
+
 /// Characters per render-target row: 2048-byte vertex stride / 16 bytes per RGBA32F texel.
 pub const MAX_ROW_CHARACTERS: u32 = 2048 / 16;
 
@@ -109,9 +112,7 @@ impl Pass1 {
                 vertices.vertices, target.characters, target.vertices, bones.capacity
             )));
         }
-        let mut pass = target
-            .framebuffer
-            .pass(&self.program, "crowd pass 1 (skinning)")?;
+        let mut pass = target.framebuffer.pass(&self.program, SKINNING_PASS)?;
         pass.texture("u_position", &vertices.position)
             .texture("u_normal", &vertices.normal)
             .texture("u_bone_index", &vertices.bone_index)

@@ -92,6 +92,16 @@ impl SkinnedVbo {
         (self.positions_texels() + self.first_texel(c)) * TEXEL_BYTES
     }
 
+    /// The texels (positions, then normals) that hold characters `0..n`.
+    pub fn used_texels(&self, n: u32) -> impl Iterator<Item = usize> + '_ {
+        let (w, m) = (self.row_characters as usize, self.vertices as usize);
+        let normals = self.positions_texels();
+        (0..n).flat_map(move |c| {
+            let first = self.first_texel(c);
+            (0..m).flat_map(move |v| [first + v * w, normals + first + v * w])
+        })
+    }
+
     /// Reads back character `c`'s skinned positions and normals (xyzw each), for tests.
     pub fn read_character(&self, c: u32) -> Result<SkinnedColumn, GlError> {
         let all: Vec<[f32; 4]> = self.buffer.read()?;

@@ -15,7 +15,7 @@ use std::time::Instant;
 use glam::{DAffine3, Vec3};
 use serde::Serialize;
 
-use crate::gl::{query, Buffer, BufferUsage, Context, Framebuffer, GlError};
+use crate::gl::{ensure_finite, query, Buffer, BufferUsage, Context, Framebuffer, GlError};
 
 use super::bone_textures::BoneTextures;
 use super::character::{CharacterModel, ModelKind};
@@ -469,6 +469,15 @@ impl CrowdRenderer {
             )?;
             batch.vbo.copy_from(&batch.target, count as u32)?;
             let all: Vec<[f32; 4]> = batch.vbo.buffer.read()?;
+            let what = format!(
+                "crowd: the skinned vertices of {count} {:?} characters (batch {b}) at LOD {lod}",
+                self.model.kind
+            );
+            ensure_finite(
+                batch.vbo.used_texels(count as u32).flat_map(|t| all[t]),
+                &what,
+                super::pass1_skinning::SKINNING_PASS,
+            )?;
             columns.extend((0..count as u32).map(|c| batch.vbo.column_of(&all, c)));
         }
         Ok(columns)

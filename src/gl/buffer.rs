@@ -118,12 +118,17 @@ impl Buffer {
         self.obj.ctx.check("buffer replace")
     }
 
-    /// The whole contents, read back to the CPU.
+    /// The whole contents, read back to the CPU. Waits for every queued command first:
+    /// GL promises that the read sees them, but zink on lavapipe (Mesa 22.3) returned a
+    /// buffer that a pixel-pack read (paper 2's render-to-VBO) had only partly filled, the
+    /// first time in a process (crowd_gpu's 300-character check, 3 runs of 3). The CPU
+    /// waits for the data anyway, so the explicit wait costs nothing.
     pub fn read<T: bytemuck::Pod + Default>(&self) -> Result<Vec<T>, GlError> {
         let n = self.len_bytes() / std::mem::size_of::<T>();
         let mut out = vec![T::default(); n];
         let gl = self.obj.ctx.gl();
         unsafe {
+            gl.finish();
             gl.bind_buffer(SCRATCH_TARGET, Some(self.obj.id));
             gl.get_buffer_sub_data(SCRATCH_TARGET, 0, bytemuck::cast_slice_mut(&mut out));
         }

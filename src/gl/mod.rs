@@ -21,6 +21,7 @@
 mod buffer;
 mod context;
 pub mod dump;
+mod finite;
 mod framebuffer;
 mod mesh_buffers;
 mod pass;
@@ -33,6 +34,7 @@ mod uniforms;
 
 pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
 pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
+pub use finite::ensure_finite;
 pub use framebuffer::{Framebuffer, Rect};
 pub use mesh_buffers::MeshBuffers;
 pub use pass::{
@@ -73,6 +75,17 @@ pub enum GlError {
     /// Bad arguments: sizes that do not match, a missing attachment, ...
     #[error("{0}")]
     Invalid(String),
+    /// A result read back from the GPU is NaN or infinite.
+    #[error(
+        "{what}: the GPU gave {value} (value {index} read back from pass '{pass}'); a result \
+         must be a finite number"
+    )]
+    NonFinite {
+        what: String,
+        pass: String,
+        index: usize,
+        value: f64,
+    },
     /// Writing a dump.
     #[error("writing {path}: {message}")]
     Io { path: String, message: String },

@@ -114,12 +114,12 @@ impl Drop for TextureObject {
 }
 
 impl Texture {
-    /// A 1D texture of `width` texels, contents undefined until uploaded or drawn.
+    /// A 1D texture of `width` texels, all zero.
     pub fn new_1d(ctx: &Context, width: u32, format: TextureFormat) -> Result<Texture, GlError> {
         Self::create(ctx, glow::TEXTURE_1D, width, 1, format)
     }
 
-    /// A 2D texture of `width x height` texels, contents undefined until uploaded or drawn.
+    /// A 2D texture of `width x height` texels, all zero (depth and stencil too).
     pub fn new_2d(
         ctx: &Context,
         width: u32,
@@ -202,12 +202,56 @@ impl Texture {
             gl.tex_parameter_i32(target, glow::TEXTURE_MAX_LEVEL, 0);
         }
         texture.set_wrap(Wrap::ClampToEdge);
+        texture.clear_to_zero()?;
         // Out of memory shows up here, whatever the checks setting.
         ctx.check_now(&format!(
             "creating a {width}x{height} {} texture",
             format.name()
         ))?;
         Ok(texture)
+    }
+
+    /// GL leaves a new texture's texels undefined, and softpipe really leaves whatever its
+    /// allocator hands back (a freed texture's NaNs, say), so a pass that reads a texel it
+    /// never drew sees garbage there and zeros on llvmpipe. Every new texture is therefore
+    /// cleared to zero through a throwaway framebuffer: the same start on every renderer,
+    /// at the cost of one clear on the GPU.
+    fn clear_to_zero(&self) -> Result<(), GlError> {
+        let gl = self.obj.ctx.gl();
+        let fbo = unsafe { gl.create_framebuffer() }.map_err(GlError::Invalid)?;
+        unsafe {
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            match self.format() {
+                TextureFormat::Depth24Stencil8 | TextureFormat::Depth32F => {
+                    let stencil = self.format() == TextureFormat::Depth24Stencil8;
+                    let attachment = if stencil {
+                        glow::DEPTH_STENCIL_ATTACHMENT
+                    } else {
+                        glow::DEPTH_ATTACHMENT
+                    };
+                    gl.framebuffer_texture(glow::FRAMEBUFFER, attachment, Some(self.id()), 0);
+                    gl.draw_buffer(glow::NONE);
+                    gl.read_buffer(glow::NONE);
+                    gl.depth_mask(true);
+                    gl.stencil_mask(0xff);
+                    if stencil {
+                        gl.clear_buffer_depth_stencil(glow::DEPTH_STENCIL, 0, 0.0, 0);
+                    } else {
+                        gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[0.0]);
+                    }
+                }
+                _ => {
+                    let attachment = glow::COLOR_ATTACHMENT0;
+                    gl.framebuffer_texture(glow::FRAMEBUFFER, attachment, Some(self.id()), 0);
+                    gl.draw_buffer(attachment);
+                    gl.color_mask(true, true, true, true);
+                    gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
+                }
+            }
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+            gl.delete_framebuffer(fbo);
+        }
+        Ok(())
     }
 
     pub fn width(&self) -> u32 {

@@ -13,14 +13,30 @@ use crate::mesh::Mesh;
 use glam::DVec3;
 
 /// The ten volume integrals of a closed, outward-oriented triangle mesh, exactly (up to
-/// f64 rounding). Degenerate (zero-area) triangles contribute nothing and are skipped.
+/// f64 rounding), about the centre of its bounding box: far from the world origin the
+/// products of coordinates in the projection integrals would otherwise cancel away the
+/// body's own moments. Zero-area triangles contribute nothing and are skipped.
 pub fn volume_integrals(mesh: &Mesh) -> VolumeIntegrals {
+    let origin = bounding_box_centre(mesh);
     let mut t = VolumeSums::default();
     for tri in 0..mesh.triangles.len() {
-        let [a, b, c] = mesh.triangle(tri).map(|p| p.as_dvec3());
+        let [a, b, c] = mesh.triangle(tri).map(|p| p.as_dvec3() - origin);
         t.add_face(&[a, b, c]);
     }
-    t.finish()
+    VolumeIntegrals {
+        origin,
+        ..t.finish()
+    }
+}
+
+/// The centre of the vertices' bounding box (the origin for an empty mesh), in f64.
+fn bounding_box_centre(mesh: &Mesh) -> DVec3 {
+    let mut points = mesh.positions.iter().map(|p| p.as_dvec3());
+    let Some(first) = points.next() else {
+        return DVec3::ZERO;
+    };
+    let (lo, hi) = points.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    (lo + hi) / 2.0
 }
 
 /// The running sums `T0`, `T1`, `T2`, `TP` over the faces.
@@ -76,6 +92,7 @@ impl VolumeSums {
             self.tp.map(|v| v / 2.0),
         );
         VolumeIntegrals {
+            origin: DVec3::ZERO,
             v: self.t0,
             x: t1[0],
             y: t1[1],
@@ -91,16 +108,18 @@ impl VolumeSums {
     }
 }
 
-/// Unit normal of a planar polygon (Newell's method), `None` when its area is zero.
+/// Unit normal of a planar polygon (Newell's method on the edges from its first vertex,
+/// so it does not depend on where the polygon lies), `None` when its area is zero.
+/// A sliver is kept however thin: its contribution is proportional to its area, whatever
+/// the direction its rounded normal takes, and a sliver 10^38 long can hold most of a
+/// body's volume.
 fn face_normal(verts: &[DVec3]) -> Option<DVec3> {
     let mut n = DVec3::ZERO;
-    for (i, p) in verts.iter().enumerate() {
-        let q = verts[(i + 1) % verts.len()];
-        n += p.cross(q);
+    for i in 1..verts.len() - 1 {
+        n += (verts[i] - verts[0]).cross(verts[i + 1] - verts[0]);
     }
     let len = n.length();
-    let scale = verts.iter().map(|p| p.length_squared()).fold(0.0, f64::max);
-    (len > 1e-24 * scale.max(1e-300)).then(|| n / len)
+    (len > 0.0 && len.is_finite()).then(|| n / len)
 }
 
 /// Integrals of `1, a, b, a², ab, b², a³, a²b, ab², b³` over the face's projection onto

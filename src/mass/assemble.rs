@@ -23,13 +23,10 @@ pub struct MassProperties {
 }
 
 impl MassProperties {
-    /// Equations 4-6 for density `density`. A zero volume gives a zero centre of mass.
+    /// Equations 4-6 for density `density`. A zero volume puts the centre of mass at the
+    /// integrals' origin.
     pub fn from_integrals(i: &VolumeIntegrals, density: f64) -> Self {
-        let center = if i.v != 0.0 {
-            i.first() / i.v
-        } else {
-            DVec3::ZERO
-        };
+        let center = i.centroid();
         let s = central_second_moments(i, center);
         let inertia = (DMat3::IDENTITY * (s.x_axis.x + s.y_axis.y + s.z_axis.z) - s) * density;
         Self {
@@ -65,9 +62,10 @@ impl MassProperties {
     }
 }
 
-/// `S_ij = ∫ (x_i − r_i)(x_j − r_j) dV`, by the parallel-axis shift of the raw moments.
+/// `S_ij = ∫ (x_i − r_i)(x_j − r_j) dV`, by the parallel-axis shift of the moments from
+/// their origin (near the solid, so the shift cancels little).
 fn central_second_moments(i: &VolumeIntegrals, r: DVec3) -> DMat3 {
-    let c = i.translated(-r);
+    let c = i.about(r);
     DMat3::from_cols(
         DVec3::new(c.xx, c.xy, c.zx),
         DVec3::new(c.xy, c.yy, c.yz),

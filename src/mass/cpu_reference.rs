@@ -17,7 +17,7 @@ struct Crossing {
     sign: f64,
 }
 
-/// Eq. 4 and 6 summed over pixel centres, like the GPU, in world coordinates. With
+/// Eq. 4 and 6 summed over pixel centres, like the GPU, about the framing centre. With
 /// `water = Some(level)` only the part below the plane `z = level` counts (section 5.2:
 /// crossings above the water are discarded and the water patch is added where the first
 /// crossing below it faces down).
@@ -25,6 +25,7 @@ pub fn integrate(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> VolumeIn
     let crossings = crossings_per_pixel(mesh, framing);
     let n = framing.resolution;
     let water_local = water.map(|level| level - framing.center.z);
+    // Framing-relative sums (the integrands' x, y, z are measured from its centre).
     let mut sum = VolumeIntegrals::default();
     for j in 0..n {
         for i in 0..n {
@@ -46,7 +47,10 @@ pub fn integrate(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> VolumeIn
         }
     }
     let area = framing.pixel_size().powi(2);
-    (sum * area).translated(framing.center)
+    VolumeIntegrals {
+        origin: framing.center,
+        ..sum * area
+    }
 }
 
 /// The most surface crossings of any pixel centre's line (below `water` when given): the
@@ -64,6 +68,7 @@ pub fn layers(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> usize {
 fn integrand(x: f64, y: f64, z: f64, sign: f64) -> VolumeIntegrals {
     let c = sign * z;
     VolumeIntegrals {
+        origin: DVec3::ZERO,
         v: c,
         x: c * x,
         y: c * y,

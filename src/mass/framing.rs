@@ -25,8 +25,8 @@ pub struct Framing {
 
 impl Framing {
     /// The tightest square window around `mesh`'s bounding box that leaves one empty
-    /// pixel on every side, so no fragment is lost at the border. Errors on an empty mesh
-    /// or non-finite coordinates.
+    /// pixel on every side, so no fragment is lost at the border. Errors on an empty mesh,
+    /// non-finite coordinates, or a mesh that is a single point.
     pub fn fit(mesh: &Mesh, resolution: u32) -> Result<Self, String> {
         let (lo, hi) = bounds(mesh.positions.iter().copied())
             .ok_or_else(|| "the mesh has no vertices".to_string())?;
@@ -41,7 +41,13 @@ impl Framing {
         if resolution < 4 {
             return Err(format!("resolution {resolution} is too small (at least 4)"));
         }
-        let extent = (hi - lo).max(DVec3::splat(1e-12));
+        let size = (hi - lo).max_element();
+        if size <= 0.0 {
+            return Err("all of the mesh's vertices are at one point".into());
+        }
+        // A flat body still gets a window and a depth range (a millionth of its size:
+        // the floor scales with the body, which may be 10^-20 or 10^38 across).
+        let extent = (hi - lo).max(DVec3::splat(1e-6 * size));
         let n = resolution as f64;
         let half_width = 0.5 * extent.x.max(extent.y) * n / (n - 2.0);
         Ok(Self {

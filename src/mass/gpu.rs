@@ -1,5 +1,12 @@
 //! The whole method for one body [sections 3-4]: frame it, peel it, reduce, assemble.
 //! (`--below`: the same with the fluid-surface passes of 5.2.)
+//!
+//! The GPU works in fp32, so the body is drawn in a unit frame: its coordinates relative
+//! to the framing centre (subtracted in f64), divided per axis by a power of two that
+//! brings the window and the depth range into [-1, 1]. The integrands then stay below 1
+//! wherever the body lies and whatever its size (a cube of side 10^38, a unit cube 10^6
+//! from the origin), the pixel centres are the world framing's exactly (powers of two
+//! scale without rounding), and the integrals are scaled back in f64.
 
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
@@ -7,15 +14,17 @@ use super::integrands::Soup;
 use super::peel::{Job, Peeler};
 use crate::gl::{query, Context, GlError, Rect};
 use crate::mesh::Mesh;
-use glam::Mat4;
+use glam::{DVec3, Mat4};
 use serde::Serialize;
 use std::path::Path;
 
 /// What the GPU computed for one body.
 #[derive(Clone, Debug, Serialize)]
 pub struct GpuResult {
+    /// About the framing centre.
     pub integrals: VolumeIntegrals,
     pub peels: usize,
+    /// The world framing (the unit frame the GPU draws in is this one scaled).
     pub framing: Framing,
     /// GPU time of all passes (timer query), milliseconds.
     pub gpu_ms: f64,
@@ -36,7 +45,8 @@ impl GpuMass {
     }
 
     /// The ten integrals of `mesh` (below the plane `z = below` when given). Errors on a
-    /// mesh that cannot be framed (empty, non-finite).
+    /// mesh that cannot be framed (empty, non-finite), and on a body the frame cannot see
+    /// (one that covers no pixel centre: thinner than a pixel across).
     pub fn integrate(
         &self,
         mesh: &Mesh,
@@ -44,26 +54,98 @@ impl GpuMass {
         dump: Option<&Path>,
     ) -> Result<GpuResult, GlError> {
         let framing = Framing::fit(mesh, self.resolution).map_err(GlError::Invalid)?;
-        let soup = Soup::new(self.peeler.context(), &[mesh])?;
-        let world: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let unit = UnitFrame::of(&framing);
+        let local: Vec<DVec3> = mesh
+            .positions
+            .iter()
+            .map(|p| unit.to_unit(p.as_dvec3()))
+            .collect();
+        let unit_mesh = Mesh::new(
+            local.iter().map(|p| p.as_vec3()).collect(),
+            mesh.triangles.clone(),
+        );
+        let soup = Soup::new(self.peeler.context(), &[&unit_mesh])?;
         let mut indices = Vec::new();
-        let keep = |tri: &[u32; 3]| framing.may_cover_pixel_centre(tri.map(|i| world[i as usize]));
-        soup.push_triangles(0, &world, keep, &mut indices);
+        let keep = |tri: &[u32; 3]| {
+            unit.framing
+                .may_cover_pixel_centre(tri.map(|i| local[i as usize]))
+        };
+        soup.push_triangles(0, &local, keep, &mut indices);
         soup.set_indices(&indices)?;
         let job = Job {
+            body: "the body",
             indices: (0, indices.len()),
             model: Mat4::IDENTITY,
-            framing,
+            framing: unit.framing,
             tile: Rect::sized(self.resolution, self.resolution),
         };
+        let water = below.map(|level| unit.to_unit(DVec3::new(0.0, 0.0, level)).z);
         let (batch, gpu_ms) = query::time_gpu(self.peeler.context(), || {
-            self.peeler.run(&soup, &[job], below, dump)
+            self.peeler.run(&soup, &[job], water, dump)
         })?;
+        if batch.peels == 0 && below.is_none() && !mesh.triangles.is_empty() {
+            return Err(GlError::Invalid(format!(
+                "the body covers no pixel centre of the {n}x{n} frame (pixels {s:.3e} wide): \
+                 it is thinner than a pixel across (x extent {x:.3e}, y extent {y:.3e}), so \
+                 the image-based method cannot see it; a higher resolution may",
+                n = self.resolution,
+                s = framing.pixel_size(),
+                x = framing_extent(mesh).x,
+                y = framing_extent(mesh).y,
+            )));
+        }
         Ok(GpuResult {
-            integrals: batch.integrals[0],
+            integrals: unit.to_world(&batch.integrals[0]),
             peels: batch.peels,
             framing,
             gpu_ms,
         })
     }
+}
+
+/// The world framing scaled into [-1, 1]: `unit = (world - centre) / scale` per axis.
+struct UnitFrame {
+    center: DVec3,
+    /// Powers of two: (window, window, depth).
+    scale: DVec3,
+    framing: Framing,
+}
+
+impl UnitFrame {
+    fn of(world: &Framing) -> Self {
+        let power_of_two_above = |x: f64| 2f64.powi(x.log2().ceil() as i32);
+        let (xy, z) = (
+            power_of_two_above(world.half_width),
+            power_of_two_above(world.half_depth),
+        );
+        UnitFrame {
+            center: world.center,
+            scale: DVec3::new(xy, xy, z),
+            framing: Framing {
+                center: DVec3::ZERO,
+                half_width: world.half_width / xy,
+                half_depth: world.half_depth / z,
+                resolution: world.resolution,
+            },
+        }
+    }
+
+    fn to_unit(&self, world: DVec3) -> DVec3 {
+        (world - self.center) / self.scale
+    }
+
+    /// Integrals computed in the unit frame (about its centre), as world-unit integrals
+    /// about the world framing centre.
+    fn to_world(&self, unit: &VolumeIntegrals) -> VolumeIntegrals {
+        VolumeIntegrals {
+            origin: self.center,
+            ..unit.stretched(self.scale)
+        }
+    }
+}
+
+/// The extent of the mesh's bounding box (for messages).
+fn framing_extent(mesh: &Mesh) -> DVec3 {
+    let b = mesh.bounds();
+    (b.max - b.min).as_dvec3()
 }

@@ -7,12 +7,20 @@ use glam::DVec3;
 use serde::Serialize;
 use std::ops::{Add, AddAssign, Mul};
 
-/// `∫ f dV` over the solid for f = 1, x, y, z, x², y², z², xy, yz, zx (in that order).
+/// `∫ f dV` over the solid for f = 1, x, y, z, x², y², z², xy, yz, zx (in that order), with
+/// x, y, z measured from [`VolumeIntegrals::origin`].
+///
+/// The origin is a point near the solid (its bounding-box centre, the framing centre), not
+/// the world origin: a unit cube 10^6 away has `∫x² dV` = 10^12 + 1/12 about the world
+/// origin, and the 1/12 that the inertia tensor needs would not survive the subtraction of
+/// `V r²`, even in f64. About a nearby origin every integral keeps its own digits.
 ///
 /// Double precision: the GPU sums are fp32 per pixel, but the accumulation over peels and
-/// the change of origin ([`VolumeIntegrals::translated`]) cancel large terms.
+/// the change of origin ([`VolumeIntegrals::about`]) cancel large terms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct VolumeIntegrals {
+    /// The point the moments are taken about (world coordinates).
+    pub origin: DVec3,
     /// `∫ dV`, the volume `V` of eq. 4.
     pub v: f64,
     /// `∫ x dV`, `∫ y dV`, `∫ z dV` (eq. 4 without the `1/V`).
@@ -30,20 +38,34 @@ pub struct VolumeIntegrals {
 }
 
 impl VolumeIntegrals {
-    /// The first moments as a vector.
+    /// The first moments about the origin as a vector.
     pub fn first(&self) -> DVec3 {
         DVec3::new(self.x, self.y, self.z)
     }
 
-    /// The same solid's integrals in coordinates shifted by `t` (`x' = x + t`):
-    /// `∫x' = ∫x + t V`, `∫x'y' = ∫xy + t_y ∫x + t_x ∫y + t_x t_y V`, and so on.
-    /// The GPU integrates about the framing centre; this moves the result back to the origin.
-    pub fn translated(&self, t: DVec3) -> Self {
+    /// The centroid (centre of mass at uniform density) in world coordinates; the origin
+    /// for a solid of zero volume.
+    pub fn centroid(&self) -> DVec3 {
+        if self.v != 0.0 {
+            self.origin + self.first() / self.v
+        } else {
+            self.origin
+        }
+    }
+
+    /// The same solid's integrals about `origin`: with `x' = x + t`, `t = self.origin -
+    /// origin`, `∫x' = ∫x + t V`, `∫x'y' = ∫xy + t_y ∫x + t_x ∫y + t_x t_y V`, and so on.
+    /// Exact but for rounding; the rounding is small when the two origins are close
+    /// compared with the solid's size (and [`VolumeIntegrals::world`], about the world
+    /// origin, is for comparing results, not for computing with them).
+    pub fn about(&self, origin: DVec3) -> Self {
+        let t = self.origin - origin;
         let v = self.v;
         let m = self.first();
         let second =
             |a: f64, ma: f64, ta: f64, mb: f64, tb: f64| a + ta * mb + tb * ma + ta * tb * v;
         Self {
+            origin,
             v,
             x: m.x + t.x * v,
             y: m.y + t.y * v,
@@ -57,7 +79,32 @@ impl VolumeIntegrals {
         }
     }
 
-    /// The ten values in the order of the struct (for comparisons and JSON).
+    /// About the world origin (to compare results computed about different points).
+    pub fn world(&self) -> Self {
+        self.about(DVec3::ZERO)
+    }
+
+    /// The integrals of the solid stretched by `s` per axis about the origin
+    /// (`x' = s_x x`, ...): `∫ x'^a y'^b z'^c dV' = s_x^(1+a) s_y^(1+b) s_z^(1+c) ∫ x^a y^b
+    /// z^c dV`. Exact when the factors are powers of two.
+    pub fn stretched(&self, s: DVec3) -> Self {
+        let dv = s.x * s.y * s.z;
+        Self {
+            origin: self.origin,
+            v: dv * self.v,
+            x: dv * s.x * self.x,
+            y: dv * s.y * self.y,
+            z: dv * s.z * self.z,
+            xx: dv * s.x * s.x * self.xx,
+            yy: dv * s.y * s.y * self.yy,
+            zz: dv * s.z * s.z * self.zz,
+            xy: dv * s.x * s.y * self.xy,
+            yz: dv * s.y * s.z * self.yz,
+            zx: dv * s.z * s.x * self.zx,
+        }
+    }
+
+    /// The ten values (about the origin) in the order of the struct.
     pub fn to_array(&self) -> [f64; 10] {
         [
             self.v, self.x, self.y, self.z, self.xx, self.yy, self.zz, self.xy, self.yz, self.zx,
@@ -70,10 +117,17 @@ impl VolumeIntegrals {
     }
 }
 
+/// The sum of two solids' integrals, about the first's origin.
 impl Add for VolumeIntegrals {
     type Output = Self;
     fn add(self, o: Self) -> Self {
+        let o = if o.origin == self.origin {
+            o
+        } else {
+            o.about(self.origin)
+        };
         Self {
+            origin: self.origin,
             v: self.v + o.v,
             x: self.x + o.x,
             y: self.y + o.y,
@@ -99,6 +153,7 @@ impl Mul<f64> for VolumeIntegrals {
     fn mul(self, s: f64) -> Self {
         let a = self.to_array().map(|v| v * s);
         Self {
+            origin: self.origin,
             v: a[0],
             x: a[1],
             y: a[2],

@@ -121,12 +121,13 @@ impl Soup {
     }
 }
 
-/// The ten integrals from the three target sums of one body, in world coordinates: the
-/// listing writes `sgn(n_z) z · (x, y, z, 1)`, `x` times that, and `sgn(n_z) z (y², yz, z²)`;
+/// The ten integrals from the three target sums of one body, about the framing centre
+/// (where the listing's `p` is measured from): the listing writes `sgn(n_z) z · (x, y, z, 1)`, `x` times that, and `sgn(n_z) z (y², yz, z²)`;
 /// eq. 4 and 6 add the factors 1/2 and 1/3 and the pixel area `dx dy`.
 pub fn decode(sums: [[f64; 4]; TARGETS], framing: &Framing) -> VolumeIntegrals {
     let [t0, t1, t2] = sums;
     let local = VolumeIntegrals {
+        origin: framing.center,
         v: t0[3],
         x: t0[0],
         y: t0[1],
@@ -138,5 +139,5 @@ pub fn decode(sums: [[f64; 4]; TARGETS], framing: &Framing) -> VolumeIntegrals {
         yz: t2[1] / 2.0,
         zz: t2[2] / 3.0,
     };
-    (local * framing.pixel_size().powi(2)).translated(framing.center)
+    local * framing.pixel_size().powi(2)
 }

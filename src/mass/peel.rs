@@ -15,11 +15,11 @@
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::{self, Soup, TARGETS};
-use super::reduce::Accumulator;
+use super::reduce::{Accumulator, REDUCTION_PASS};
 use crate::gl::dump::{self, DumpRange};
 use crate::gl::{
-    Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, OcclusionQuery, Pass,
-    Primitive, Program, Rect, Texture, TextureFormat,
+    ensure_finite, Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
+    OcclusionQuery, Pass, Primitive, Program, Rect, Texture, TextureFormat,
 };
 use glam::Mat4;
 use std::cell::RefCell;
@@ -28,7 +28,9 @@ use std::path::{Path, PathBuf};
 /// One body of a batch: which triangles of the soup (a range of its index buffer), where
 /// it is, how it is framed, and where its tile lies in the render targets.
 #[derive(Clone, Copy, Debug)]
-pub struct Job {
+pub struct Job<'a> {
+    /// The body, as errors name it ("body 3 (torus)").
+    pub body: &'a str,
     /// (first index, index count) in [`Soup::set_indices`]'s list.
     pub indices: (usize, usize),
     /// Body frame -> world.
@@ -117,6 +119,7 @@ impl Peeler {
 
     /// The ten integrals of every job's body (below `water`, the level of a flat fluid
     /// surface, when given). `dump` receives the colour-encoded integrands of each peel.
+    /// A body whose integrals are not finite is an error naming it.
     pub fn run(
         &self,
         soup: &Soup,
@@ -143,7 +146,14 @@ impl Peeler {
                 };
                 integrands::decode(sums[index], &job.framing)
             })
-            .collect();
+            .collect::<Vec<VolumeIntegrals>>();
+        for (job, i) in jobs.iter().zip(&integrals) {
+            ensure_finite(
+                i.to_array(),
+                &format!("mass: the volume integrals of {}", job.body),
+                REDUCTION_PASS,
+            )?;
+        }
         Ok(BatchResult { integrals, peels })
     }
 

@@ -12,6 +12,9 @@ use crate::gl::{
 use crate::shader;
 use glam::IVec2;
 
+/// The name of the reduction pass, whose sums are what the GPU path reads back.
+pub const REDUCTION_PASS: &str = "mass: sum reduction";
+
 /// The running sums over peels, and the faces-down mark of the first peel.
 pub struct Accumulator {
     program: Program,
@@ -110,8 +113,7 @@ impl Accumulator {
             } else {
                 &self.ping_pong[1 - index]
             };
-            let mut pass =
-                self.ping_pong[index].pass(&self.reduce_program, "mass: sum reduction")?;
+            let mut pass = self.ping_pong[index].pass(&self.reduce_program, REDUCTION_PASS)?;
             pass.viewport(Rect::sized(out_w, out_h))
                 .texture("u_source0", source.color(0))
                 .texture("u_source1", source.color(1))

@@ -16,6 +16,9 @@ pub fn activation_program(ctx: &Context) -> Result<Program, GlError> {
     )
 }
 
+/// The name of the activation pass (the last pass of every layer).
+pub const ACTIVATION_PASS: &str = "mlp bias + sigmoid";
+
 /// Draws `R = sigmoid(W x X + B)` (or `W x X + B` for an identity layer) into `target`.
 pub fn activation_pass(
     program: &Program,
@@ -24,7 +27,7 @@ pub fn activation_pass(
     target: &Framebuffer,
 ) -> Result<(), GlError> {
     target
-        .pass(program, "mlp bias + sigmoid")?
+        .pass(program, ACTIVATION_PASS)?
         .texture("u_product", product)
         .texture("u_bias", &layer.bias)
         .uniform("u_sigmoid", layer.activation == Activation::Sigmoid)

@@ -69,6 +69,8 @@ pub struct GpuNetwork<'a> {
     layers: LayerStack,
     pub(crate) inputs: usize,
     pub(crate) outputs: usize,
+    /// Nodes per layer, as errors name the network ("64-32-1").
+    pub(crate) shape: String,
     /// At most this many inputs summed per product pass (faithful only; `None`: one pass).
     inputs_per_pass: Option<usize>,
     /// Wall-clock milliseconds spent making the weight and bias textures.
@@ -116,6 +118,11 @@ impl GpuMlp {
             layers,
             inputs: net.inputs(),
             outputs: net.outputs(),
+            shape: std::iter::once(net.inputs())
+                .chain(net.layers().iter().map(|l| l.outputs()))
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join("-"),
             inputs_per_pass: None,
             upload_ms: start.elapsed().as_secs_f64() * 1e3,
         })
@@ -161,6 +168,14 @@ impl PassTimers {
 }
 
 impl GpuNetwork<'_> {
+    /// The pass whose output is read back (the last layer's activation).
+    pub(crate) fn last_pass(&self) -> &'static str {
+        match self.layers {
+            LayerStack::Faithful(_) => super::activation::ACTIVATION_PASS,
+            LayerStack::Packed(_) => super::packed::PACKED_ACTIVATION_PASS,
+        }
+    }
+
     pub fn formulation(&self) -> Formulation {
         match self.layers {
             LayerStack::Faithful(_) => Formulation::Faithful,

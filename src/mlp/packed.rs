@@ -144,6 +144,9 @@ fn texel_size(t: &Texture) -> Vec2 {
     Vec2::new(1.0 / t.width() as f32, 1.0 / t.height() as f32)
 }
 
+/// The name of the packed activation pass (the last pass of every layer).
+pub const PACKED_ACTIVATION_PASS: &str = "mlp packed bias + sigmoid";
+
 /// Draws `sigmoid(W x X + B)` on the packed layout into `target`.
 pub fn packed_activation_pass(
     programs: &PackedPrograms,
@@ -152,7 +155,7 @@ pub fn packed_activation_pass(
     target: &Framebuffer,
 ) -> Result<(), GlError> {
     target
-        .pass(&programs.activation, "mlp packed bias + sigmoid")?
+        .pass(&programs.activation, PACKED_ACTIVATION_PASS)?
         .texture("u_product0", &product[0])
         .texture("u_product1", &product[1])
         .texture("u_product2", &product[2])

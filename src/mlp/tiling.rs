@@ -7,7 +7,7 @@
 use super::chain::{Formulation, GpuNetwork, StepTimes};
 use super::network::Network;
 use super::packed::{texels, PACK};
-use crate::gl::{Context, GlError};
+use crate::gl::{ensure_finite, Context, GlError};
 use ndarray::{s, Array2, ArrayView2};
 
 /// The outputs of a (possibly tiled) batch.
@@ -70,6 +70,8 @@ pub fn check_network_fits(
 impl GpuNetwork<'_> {
     /// Runs a batch (L x N, row j = input vector j) through the network in tiles of at most
     /// `max_vectors` input vectors (default and upper limit: what one texture holds).
+    /// Outputs that overflow fp32 (or are NaN) are an error naming the network, the input
+    /// vectors and the pass.
     pub fn forward(
         &self,
         batch: ArrayView2<f32>,
@@ -93,6 +95,11 @@ impl GpuNetwork<'_> {
         for start in (0..batch.nrows()).step_by(tile) {
             let end = (start + tile).min(batch.nrows());
             let (out, t) = self.forward_tile(batch.slice(s![start..end, ..]))?;
+            let what = format!(
+                "mlp: the outputs of the {} network for input vectors {start}..{end}",
+                self.shape
+            );
+            ensure_finite(out.iter().copied(), &what, self.last_pass())?;
             outputs.slice_mut(s![start..end, ..]).assign(&out);
             times.add(&t);
             tiles += 1;

@@ -22,6 +22,6 @@ pub fn submerged(mesh: &Mesh, body: &RigidBody, level: f64) -> Submerged {
     }
     Submerged {
         volume: i.v,
-        center: i.first() / i.v,
+        center: i.centroid(),
     }
 }

@@ -58,14 +58,15 @@ impl GpuSolver {
     /// the triangles that reach below the water (appended to `indices`): the others could
     /// only make fragments the water test discards, and skipping them halves the vertex
     /// work of a floating body.
-    fn job(
+    fn job<'a>(
         &self,
         k: usize,
+        name: &'a str,
         shape: &Shape,
         body: &Body,
         level: f64,
         indices: &mut Vec<u32>,
-    ) -> Result<Job, GlError> {
+    ) -> Result<Job<'a>, GlError> {
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         let world: Vec<DVec3> = shape
             .mesh
@@ -77,7 +78,8 @@ impl GpuSolver {
             lo = lo.min(w);
             hi = hi.max(w);
         }
-        let framing = Framing::fit_box(lo, hi, self.resolution).map_err(GlError::Invalid)?;
+        let framing = Framing::fit_box(lo, hi, self.resolution)
+            .map_err(|e| GlError::Invalid(format!("buoyancy: {name}: {e}")))?;
         // A hair of slack keeps triangles touching the surface (fp32 depths).
         let keep_below = level + 1e-5 * (hi - lo).max_element().max(1.0);
         let first = indices.len();
@@ -88,6 +90,7 @@ impl GpuSolver {
         self.soup.push_triangles(body.shape, &world, keep, indices);
         let (col, row) = (k as u32 % self.columns, k as u32 / self.columns);
         Ok(Job {
+            body: name,
             indices: (first, indices.len() - first),
             model: Mat4::from_rotation_translation(
                 body.rigid.orientation.as_quat(),
@@ -118,12 +121,20 @@ impl SubmergedSolver for GpuSolver {
                 self.capacity
             ));
         }
+        let names: Vec<String> = bodies
+            .iter()
+            .enumerate()
+            .map(|(k, b)| format!("body {k} ({})", shapes[b.shape].name))
+            .collect();
         let run = || -> Result<_, GlError> {
             let mut indices = Vec::new();
             let jobs = bodies
                 .iter()
                 .enumerate()
-                .map(|(k, b)| self.job(k, &shapes[b.shape], b, water.level, &mut indices))
+                .map(|(k, b)| {
+                    let shape = &shapes[b.shape];
+                    self.job(k, &names[k], shape, b, water.level, &mut indices)
+                })
                 .collect::<Result<Vec<_>, _>>()?;
             self.soup.set_indices(&indices)?;
             self.peeler.run(&self.soup, &jobs, Some(water.level), None)
@@ -137,7 +148,7 @@ impl SubmergedSolver for GpuSolver {
                 if i.v > 0.0 {
                     Submerged {
                         volume: i.v,
-                        center: i.first() / i.v,
+                        center: i.centroid(),
                     }
                 } else {
                     Submerged::default()
