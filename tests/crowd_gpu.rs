@@ -634,7 +634,7 @@ fn skinned_vertices_that_are_not_finite_are_an_error() {
         .unwrap_err()
         .to_string();
     assert!(
-        err.contains("crowd: the skinned vertices of 4 Soldier characters at LOD 1")
+        err.contains("crowd: the skinned vertices of 4 Soldier characters (batch 0) at LOD 1")
             && err.contains("pass 'crowd pass 1 (skinning)'"),
         "{err}"
     );
