@@ -5,12 +5,14 @@
 //! OpenGL (through `glow`), shaders in GLSL, on a headless EGL context.
 //!
 //! Layers, and which way the arrows point: `main.rs` -> [`report`] -> the four paper
-//! modules ([`collide`], [`crowd`], [`mlp`], [`mass`]) -> [`mesh`], [`gl`]. Only [`gl`]
+//! modules ([`collide`], [`crowd`], [`mlp`], [`mass`]) and the tutorial's [`lecture3`] ->
+//! [`mesh`], [`gl`]. Only [`gl`]
 //! calls OpenGL or EGL, and it alone holds the code the compiler cannot check (raw GL calls).
 
 pub mod collide;
 pub mod crowd;
 pub mod gl;
+pub mod lecture3;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;

@@ -1,0 +1,24 @@
+//! The tutorial's lecture 3 (Kyoung-Su Oh), beside paper 3's network (module [`crate::mlp`]):
+//! the image pyramid and pyramidal displacement mapping (Oh, Ki & Lee, "Pyramidal displacement
+//! mapping: a GPU based artifacts-free ray tracing through an image pyramid", ACM VRST 2006),
+//! hierarchical quadtree search of a light hierarchy (Ki & Oh, "A GPU-based light hierarchy
+//! for real-time approximate illumination", The Visual Computer 2008), and the lecture's basic
+//! techniques and debugging tips.
+//!
+//! The texts of these sources are not in the project: only the tutorial's programme and the
+//! published abstracts are (`lecture3-sources.md`). Every technique here is therefore a
+//! reconstruction from the abstract and the standard formulation of the idea; each module doc
+//! says which parts are.
+//!
+//! One module per technique, each with its CPU reference:
+//! 1. [`pyramid`]: a max/min quadtree image pyramid built by render passes;
+//!
+//! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
+//! Shaders: `glsl/lecture3/`.
+
+pub mod error;
+pub mod height_map;
+pub mod pyramid;
+
+pub use error::Error;
+pub use height_map::HeightMap;
