@@ -146,3 +146,35 @@ fn linear_filtering_interpolates_a_1d_table() {
     assert_eq!(values[4], 1.0);
     assert_eq!(values[4 * 3], 4.0);
 }
+
+#[test]
+fn texel_fetch_reads_any_mipmap_level() {
+    let ctx = context();
+    let t = Texture::new_2d_mipmapped(&ctx, 8, 4, TextureFormat::R32F, 4).unwrap();
+    let program = Program::rect(&ctx, &[shader!("glsl/test/fetch_level.frag")]).unwrap();
+    let values = |level: u32| -> Vec<f32> {
+        let (w, h) = t.level_size(level);
+        (0..w * h).map(|i| (level * 100 + i) as f32).collect()
+    };
+    for level in 0..4 {
+        t.upload_level_f32(level, &values(level)).unwrap();
+    }
+    for level in 0..4 {
+        let (w, h) = t.level_size(level);
+        let out = Texture::new_2d(&ctx, w, h, TextureFormat::Rgba32F).unwrap();
+        let fb = Framebuffer::new(&ctx, "fetched", &[&out], None).unwrap();
+        fb.pass(&program, "fetch a level")
+            .unwrap()
+            .texture("u_texture", &t)
+            .uniform("u_level", level as i32)
+            .draw_full()
+            .unwrap();
+        let fetched: Vec<f32> = fb
+            .read_f32(0, Rect::sized(w, h))
+            .unwrap()
+            .chunks_exact(4)
+            .map(|c| c[0])
+            .collect();
+        assert_eq!(fetched, values(level), "level {level}");
+    }
+}

@@ -358,6 +358,20 @@ impl Texture {
         self.upload_bytes(x, y, w, h, bytemuck::cast_slice(data))
     }
 
+    /// Replace mipmap level `level` with float data (RGBA32F, R32F), row by row from the
+    /// bottom.
+    pub fn upload_level_f32(&self, level: u32, data: &[f32]) -> Result<(), GlError> {
+        self.expect_kind(true, "upload_level_f32")?;
+        if level >= self.levels() {
+            return Err(GlError::Invalid(format!(
+                "level {level} of a texture with {} levels",
+                self.levels()
+            )));
+        }
+        let (w, h) = self.level_size(level);
+        self.upload_level_bytes(level, 0, 0, w, h, bytemuck::cast_slice(data))
+    }
+
     /// Replace the whole texture with byte data (R8, RGBA8).
     pub fn upload_u8(&self, data: &[u8]) -> Result<(), GlError> {
         if !matches!(self.format(), TextureFormat::R8 | TextureFormat::Rgba8) {
@@ -385,11 +399,22 @@ impl Texture {
     }
 
     fn upload_bytes(&self, x: u32, y: u32, w: u32, h: u32, bytes: &[u8]) -> Result<(), GlError> {
-        if x + w > self.width() || y + h > self.height() {
+        self.upload_level_bytes(0, x, y, w, h, bytes)
+    }
+
+    fn upload_level_bytes(
+        &self,
+        level: u32,
+        x: u32,
+        y: u32,
+        w: u32,
+        h: u32,
+        bytes: &[u8],
+    ) -> Result<(), GlError> {
+        let (level_w, level_h) = self.level_size(level);
+        if x + w > level_w || y + h > level_h {
             return Err(GlError::Invalid(format!(
-                "region {w}x{h} at ({x}, {y}) lies outside a {}x{} texture",
-                self.width(),
-                self.height()
+                "region {w}x{h} at ({x}, {y}) lies outside a {level_w}x{level_h} texture"
             )));
         }
         let expected = w as usize * h as usize * self.format().bytes_per_texel();
@@ -413,7 +438,7 @@ impl Texture {
                     })?;
                 sub_image_1d(
                     self.obj.target,
-                    0,
+                    level as i32,
                     x as i32,
                     w as i32,
                     pixel_format,
@@ -423,7 +448,7 @@ impl Texture {
             } else {
                 gl.tex_sub_image_2d(
                     self.obj.target,
-                    0,
+                    level as i32,
                     x as i32,
                     y as i32,
                     w as i32,
