@@ -11,14 +11,19 @@
 //! says which parts are.
 //!
 //! One module per technique, each with its CPU reference:
-//! 1. [`pyramid`]: a max/min quadtree image pyramid built by render passes;
+//! 1. [`pyramid`]: a max/min quadtree image pyramid built by render passes
+//!    ([`pyramid_atlas`]: the same pyramid in one image, for per-pixel levels);
+//! 2. [`displacement`]: pyramidal displacement mapping, against an exact CPU tracer and
+//!    relief mapping;
 //!
 //! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
 //! Shaders: `glsl/lecture3/`.
 
+pub mod displacement;
 pub mod error;
 pub mod height_map;
 pub mod pyramid;
+pub mod pyramid_atlas;
 
 pub use error::Error;
 pub use height_map::HeightMap;
