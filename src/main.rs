@@ -3,8 +3,10 @@
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use classic_gpgpu::gl::{self, Renderer};
-use classic_gpgpu::report;
+use classic_gpgpu::report::{self, BenchArgs, NoOptions};
 use std::process::ExitCode;
+
+mod cli;
 
 /// The classic GPGPU papers of a 2007 tutorial, reproduced on a headless OpenGL context.
 #[derive(Parser)]
@@ -26,31 +28,31 @@ enum Command {
     /// The renderer in use, why it was chosen, and the limits the papers depend on.
     Info,
     /// Paper 1: every intersecting triangle pair of two meshes, with streaming AABBs.
-    Collide(classic_gpgpu::collide::cli::CollideArgs),
+    Collide(cli::collide::CollideArgs),
     /// Paper 1: a deforming scene of Table III, frame by frame.
-    CollideScene(classic_gpgpu::collide::cli::SceneArgs),
+    CollideScene(cli::collide::SceneArgs),
     /// Paper 1: Tables III-IV and Fig. 7, 10-12 against SOLID and CULLIDE.
-    CollideBench(classic_gpgpu::report::paper1::Paper1Args),
+    CollideBench(BenchArgs<report::paper1::Paper1Args>),
     /// Paper 4: mass properties by depth peeling and reduction, beside Mirtich's method.
-    Mass(classic_gpgpu::mass::cli::MassArgs),
+    Mass(cli::mass::MassArgs),
     /// Paper 4: rigid bodies floating on still water (section 5).
-    Buoyancy(classic_gpgpu::mass::cli::BuoyancyArgs),
+    Buoyancy(cli::mass::BuoyancyArgs),
     /// Paper 4: Table 1, Fig. 4 and Fig. 5 regenerated, and the buoyancy steps per second.
-    MassBench(classic_gpgpu::report::paper4::BenchArgs),
+    MassBench(BenchArgs<NoOptions>),
     /// Check an OBJ file, or write one of the papers' test objects.
     #[command(subcommand)]
-    Mesh(classic_gpgpu::mesh::cli::MeshCommand),
+    Mesh(cli::mesh::MeshCommand),
     /// Regenerate every table and figure of the papers into a report beside the published
     /// numbers (report/index.html, report/results.json, PNG figures).
     Reproduce(report::reproduce::ReproduceArgs),
     /// Paper 2: render a skinned crowd off-screen (two-pass or vertex-shader skinning).
-    Crowd(classic_gpgpu::crowd::cli::CrowdArgs),
+    Crowd(cli::crowd::CrowdArgs),
     /// Paper 2: Table 1 and the LOD runs beside the paper's numbers.
-    CrowdBench(classic_gpgpu::crowd::cli::BenchArgs),
+    CrowdBench(BenchArgs<NoOptions>),
     /// Paper 3 (Oh & Jung 2004): a multilayer perceptron as render passes, text detection.
-    Mlp(classic_gpgpu::mlp::cli::MlpArgs),
+    Mlp(cli::mlp::MlpArgs),
     /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
-    MlpBench(classic_gpgpu::mlp::cli::BenchArgs),
+    MlpBench(BenchArgs<NoOptions>),
 }
 
 /// What every command gets.
@@ -67,6 +69,15 @@ impl Global {
             None => gl::Context::from_env(),
         };
         ctx.context("creating the OpenGL context")
+    }
+
+    /// A `*-bench` command: section `P`, figures in `--out` (default `default_out`).
+    fn bench<P: report::Paper>(
+        &self,
+        args: &BenchArgs<P::Options>,
+        default_out: &str,
+    ) -> anyhow::Result<()> {
+        report::bench_command::<P>(&self.context()?, args, default_out, self.json)
     }
 }
 
@@ -95,38 +106,29 @@ fn main() -> ExitCode {
         renderer: cli.renderer,
         json: cli.json,
     };
+    let json = global.json;
     let result = match cli.command {
         Command::Info => info(&global),
         Command::Collide(a) => global
             .context()
-            .and_then(|ctx| classic_gpgpu::collide::cli::run_collide(&a, &ctx, global.json)),
+            .and_then(|ctx| cli::collide::run_collide(&a, &ctx, json)),
         Command::CollideScene(a) => global
             .context()
-            .and_then(|ctx| classic_gpgpu::collide::cli::run_scene(&a, &ctx, global.json)),
-        Command::CollideBench(a) => global
-            .context()
-            .and_then(|ctx| classic_gpgpu::report::paper1::bench_command(&ctx, &a, global.json)),
+            .and_then(|ctx| cli::collide::run_scene(&a, &ctx, json)),
+        Command::CollideBench(a) => global.bench::<report::paper1::Paper1>(&a, "collide-bench"),
         Command::Mass(a) => global
             .context()
-            .and_then(|c| classic_gpgpu::mass::cli::run_mass(&a, &c, global.json)),
+            .and_then(|c| cli::mass::run_mass(&a, &c, json)),
         Command::Buoyancy(a) => global
             .context()
-            .and_then(|c| classic_gpgpu::mass::cli::run_buoyancy(&a, &c, global.json)),
-        Command::MassBench(a) => global
-            .context()
-            .and_then(|c| classic_gpgpu::report::paper4::run_cli(&a, &c, global.json)),
-        Command::Mesh(command) => classic_gpgpu::mesh::cli::run(&command, global.json),
+            .and_then(|c| cli::mass::run_buoyancy(&a, &c, json)),
+        Command::MassBench(a) => global.bench::<report::paper4::Paper4>(&a, "mass-bench"),
+        Command::Mesh(command) => cli::mesh::run(&command, json),
         Command::Reproduce(args) => reproduce(&global, &args),
-        Command::Crowd(a) => global
-            .context()
-            .and_then(|c| classic_gpgpu::crowd::cli::run(&a, &c, global.json)),
-        Command::CrowdBench(a) => global
-            .context()
-            .and_then(|c| classic_gpgpu::crowd::cli::run_bench(&a, &c, global.json)),
-        Command::Mlp(args) => classic_gpgpu::mlp::cli::run(args, global.json, || global.context()),
-        Command::MlpBench(args) => {
-            classic_gpgpu::mlp::cli::bench(args, global.json, || global.context())
-        }
+        Command::Crowd(a) => global.context().and_then(|c| cli::crowd::run(&a, &c, json)),
+        Command::CrowdBench(a) => global.bench::<report::paper2::Paper2>(&a, "crowd-bench"),
+        Command::Mlp(args) => cli::mlp::run(args, json, || global.context()),
+        Command::MlpBench(a) => global.bench::<report::paper3::Paper3>(&a, "mlp-bench"),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -92,3 +92,27 @@ fn bad_obj_files_are_named_with_their_line() {
     }
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn mesh_generate_refuses_a_triangle_count_it_cannot_make() {
+    let dir = std::env::temp_dir().join(format!("classic-gpgpu-cli-odd-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("cube13.obj");
+    let out = classic_gpgpu(&[
+        "mesh",
+        "generate",
+        "cube",
+        "--triangles",
+        "13",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("13") && err.contains("even"), "{err}");
+    assert!(!path.exists(), "a file was written");
+    let os_errors = classic_gpgpu(&["mesh", "check", dir.join("none.obj").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&os_errors.stderr);
+    assert_eq!(err.matches("os error").count(), 1, "{err}");
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -730,3 +730,53 @@ fn teapot_faces_point_out_of_every_part() {
         "bottom faces up"
     );
 }
+
+const TETRAHEDRON: &str =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+
+#[test]
+fn obj_with_a_byte_order_mark_loads() {
+    let path = write_temp("bom", "bom.obj", &format!("\u{feff}{TETRAHEDRON}"));
+    let mesh = load_obj(&path).unwrap();
+    assert_counts(&mesh, 4, 4);
+}
+
+#[test]
+fn obj_non_utf8_comment_is_accepted_and_a_non_utf8_vertex_names_its_line() {
+    let dir = temp_dir("latin1");
+    let comment = dir.join("comment.obj");
+    let mut bytes = b"# caf\xe9 model\n".to_vec();
+    bytes.extend_from_slice(TETRAHEDRON.as_bytes());
+    std::fs::write(&comment, &bytes).unwrap();
+    assert_counts(&load_obj(&comment).unwrap(), 4, 4);
+
+    let vertex = dir.join("vertex.obj");
+    std::fs::write(&vertex, b"v 0 0 0\nv 1 0 \xe9\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let err = load_obj(&vertex).unwrap_err();
+    assert_eq!(err.line(), Some(2), "{err}");
+    assert!(err.to_string().contains("not UTF-8"), "{err}");
+}
+
+#[test]
+fn obj_error_quotes_at_most_the_start_of_a_huge_line() {
+    let line = format!("f 1 2 {}", "x".repeat(100_000));
+    let (err, message) = load_error("huge_line", &format!("v 0 0 0\nv 1 0 0\nv 0 1 0\n{line}\n"));
+    assert_eq!(err.line(), Some(4), "{message}");
+    assert!(message.len() < 300, "{} bytes of error", message.len());
+    assert!(message.contains("100006 bytes"), "{message}");
+}
+
+#[test]
+fn obj_io_errors_say_read_or_write_and_give_the_os_message_once() {
+    let dir = temp_dir("io_errors");
+    let missing = dir.join("missing.obj");
+    let read = load_obj(&missing).unwrap_err().to_string();
+    assert!(read.contains("cannot read"), "{read}");
+    let write = write_obj(&generate::cube(1.0), dir.join("no/such/folder/x.obj"))
+        .unwrap_err()
+        .to_string();
+    assert!(write.contains("cannot write"), "{write}");
+    for message in [read, write] {
+        assert_eq!(message.matches("os error").count(), 1, "{message}");
+    }
+}

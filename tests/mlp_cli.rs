@@ -157,7 +157,7 @@ fn bench_quick_reports_table_1_beside_the_paper() {
     let v = json_of(&[
         "mlp-bench",
         "--quick",
-        "--out-dir",
+        "--out",
         &dir.display().to_string(),
         "--json",
     ]);

@@ -39,7 +39,6 @@
 pub mod aabb;
 pub mod aabb_textures;
 pub mod brute_force;
-pub mod cli;
 pub mod cullide;
 pub mod deform;
 pub mod global_test;

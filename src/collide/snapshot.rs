@@ -3,10 +3,12 @@
 //! (orange for X, yellow for Y), from an oblique orthographic view. For `collide --dump`.
 
 use super::aabb::Aabb;
+use super::pipeline::{FrameResult, StreamingCollider};
 use crate::gl::{
     dump, Buffer, BufferUsage, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
     Primitive, Program, Texture, TextureFormat, VertexArray,
 };
+use crate::mesh::Mesh;
 use crate::shader;
 use glam::{Mat4, Quat, Vec3};
 use std::path::Path;
@@ -122,4 +124,100 @@ fn oblique_view(b: &Aabb) -> Mat4 {
     let turn = Quat::from_rotation_x(0.45) * Quat::from_rotation_y(-0.6);
     let scale = Mat4::from_scale(Vec3::new(1.0, 1.0, -1.0) / radius);
     scale * Mat4::from_quat(turn) * Mat4::from_translation(-centre)
+}
+
+/// Paper Fig. 1 / 6(a): the models, their colliding triangles and the boxes of the CAPs.
+pub fn frame_png(
+    collider: &StreamingCollider,
+    frame: &FrameResult,
+    (x, y): (&Mesh, &Mesh),
+    path: &Path,
+) -> anyhow::Result<()> {
+    let model = |m: &Mesh, stream: &super::AabbStream, side: usize| {
+        let mut colliding: Vec<u32> = frame
+            .pairs
+            .iter()
+            .map(|p| if side == 0 { p.0 } else { p.1 })
+            .collect();
+        colliding.sort_unstable();
+        colliding.dedup();
+        let boxes = stream.leaf_boxes(&m.positions);
+        let mut leaves: Vec<u32> = frame
+            .cap_leaves
+            .iter()
+            .map(|c| if side == 0 { c.0 } else { c.1 })
+            .collect();
+        leaves.sort_unstable();
+        leaves.dedup();
+        (
+            (0..m.triangles.len()).map(|t| m.triangle(t)).collect(),
+            colliding,
+            leaves.iter().map(|&l| boxes[l as usize]).collect(),
+        )
+    };
+    let (tx, cx, bx) = model(x, &collider.x.stream, 0);
+    let (ty, cy, by) = model(y, &collider.y.stream, 1);
+    write_png(
+        collider.context(),
+        &SnapshotModel {
+            triangles: tx,
+            colliding: &cx,
+            cap_boxes: bx,
+        },
+        &SnapshotModel {
+            triangles: ty,
+            colliding: &cy,
+            cap_boxes: by,
+        },
+        800,
+        path,
+    )?;
+    Ok(())
+}
+
+/// Paper Fig. 6: P0, the hierarchy P1..P3, the reduced P1', and the AABB textures.
+pub fn dump_buffers(collider: &StreamingCollider, dir: &Path) -> anyhow::Result<()> {
+    use super::reduction::Scheme;
+    let ctx = collider.context();
+    // Fill both encodings from the last P0.
+    collider
+        .reduction
+        .read(ctx, &collider.target, Scheme::Hierarchical)?;
+    collider
+        .reduction
+        .read(ctx, &collider.target, Scheme::Reduced)?;
+    let range = dump::DumpRange::Auto;
+    dump::texture_png(
+        &collider.target.p0,
+        &dir.join("P0.png"),
+        dump::DumpRange::Fixed(0.0, 1.0),
+    )?;
+    for (i, t) in collider.reduction.level_textures().into_iter().enumerate() {
+        dump::texture_png(t, &dir.join(format!("P{}.png", i + 1)), range)?;
+    }
+    dump::texture_png(
+        collider.reduction.reduced_texture(),
+        &dir.join("P1_reduced.png"),
+        range,
+    )?;
+    for (name, stream) in [("X", &collider.x), ("Y", &collider.y)] {
+        for (s, (aabb, vertices)) in stream.segments.iter().enumerate() {
+            dump::texture_png(
+                &aabb.t_min,
+                &dir.join(format!("T_min_{name}_{s}.png")),
+                range,
+            )?;
+            dump::texture_png(
+                &aabb.t_max,
+                &dir.join(format!("T_max_{name}_{s}.png")),
+                range,
+            )?;
+            dump::texture_png(
+                &vertices.texture,
+                &dir.join(format!("vertices_{name}_{s}.png")),
+                range,
+            )?;
+        }
+    }
+    Ok(())
 }

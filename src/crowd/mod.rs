@@ -24,7 +24,6 @@ pub mod animation;
 pub mod body_part;
 pub mod bone_textures;
 pub mod character;
-pub mod cli;
 pub mod cpu_skinning;
 pub mod culling;
 pub mod horse;

@@ -30,13 +30,11 @@
 //! | the whole method for one body | [`gpu`] |
 //! | the GPU path's CPU reference | [`cpu_reference`] |
 //! | the paper's test objects [Table 1], OBJ files | [`models`] |
-//! | the `mass` and `buoyancy` commands | [`cli`] |
 //! | buoyancy (section 5) | [`buoyancy`] |
 
 pub mod analytic;
 pub mod assemble;
 pub mod buoyancy;
-pub mod cli;
 pub mod clip;
 pub mod closed_form;
 pub mod cpu_reference;

@@ -22,12 +22,13 @@ impl fmt::Display for Location {
 
 #[derive(Debug, thiserror::Error)]
 pub enum MeshError {
-    #[error("{}: cannot read the mesh file: {source}", path.display())]
-    Io {
-        path: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
+    /// The OS's message is part of this error's text, not a chained source, so that it is
+    /// printed once.
+    #[error("{}: cannot read the mesh file: {io}", path.display())]
+    Io { path: PathBuf, io: std::io::Error },
+
+    #[error("{}: cannot write the mesh file: {io}", path.display())]
+    Write { path: PathBuf, io: std::io::Error },
 
     /// A line the OBJ reader cannot parse. `reason` is `tobj`'s message or ours; `text`
     /// is the offending line when it was found.
@@ -72,10 +73,17 @@ pub enum MeshError {
     },
 }
 
+/// The longest part of an offending line an error quotes.
+const QUOTE_CHARS: usize = 80;
+
 fn quoted(text: &Option<String>) -> String {
-    match text {
-        Some(t) => format!(": `{}`", t.trim()),
-        None => String::new(),
+    let Some(t) = text else {
+        return String::new();
+    };
+    let t = t.trim();
+    match t.char_indices().nth(QUOTE_CHARS) {
+        Some((cut, _)) => format!(": `{}...` ({} bytes in all)", &t[..cut], t.len()),
+        None => format!(": `{t}`"),
     }
 }
 
@@ -87,7 +95,7 @@ impl MeshError {
             | MeshError::NonFinite { at, .. }
             | MeshError::IndexOutOfRange { at, .. }
             | MeshError::Empty { at, .. } => at.line,
-            MeshError::Io { .. } | MeshError::Retessellate { .. } => None,
+            MeshError::Io { .. } | MeshError::Write { .. } | MeshError::Retessellate { .. } => None,
         }
     }
 }

@@ -9,7 +9,6 @@
 //! - [`retessellate`](mod@retessellate): refinement to a requested triangle count.
 //! - [`load_bunny`]: the Stanford bunny shipped in `assets/bunny.obj`.
 
-pub mod cli;
 mod error;
 pub mod generate;
 pub mod obj;

@@ -29,15 +29,46 @@ pub fn load_bunny() -> Mesh {
 /// Reads an OBJ file into one mesh (see the module documentation for what is kept).
 pub fn load_obj(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| MeshError::Io {
+    let bytes = std::fs::read(path).map_err(|io| MeshError::Io {
         path: path.to_owned(),
-        source,
+        io,
     })?;
-    parse_obj(&text, &path.display().to_string())
+    let source = path.display().to_string();
+    parse_obj(&obj_text(&bytes, &source)?, &source)
+}
+
+/// The file as text. OBJ is ASCII in practice, but exporters write names and comments in
+/// other encodings: a line that is not UTF-8 is accepted when it is a comment (its text is
+/// never read) and is an error naming its line otherwise.
+fn obj_text(bytes: &[u8], source: &str) -> Result<String, MeshError> {
+    if let Ok(text) = std::str::from_utf8(bytes) {
+        return Ok(text.to_owned());
+    }
+    let mut text = String::with_capacity(bytes.len());
+    for (i, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        match std::str::from_utf8(line) {
+            Ok(line) => text.push_str(line),
+            Err(_) if line.trim_ascii_start().starts_with(b"#") => text.push('#'),
+            Err(e) => {
+                return Err(MeshError::Malformed {
+                    at: Location {
+                        source: source.to_owned(),
+                        line: Some(i + 1),
+                    },
+                    reason: format!("byte {} of the line is not UTF-8 text", e.valid_up_to() + 1),
+                    text: Some(String::from_utf8_lossy(line).into_owned()),
+                })
+            }
+        }
+        text.push('\n');
+    }
+    Ok(text)
 }
 
 /// Parses OBJ text; `source` names it in errors (a file name, usually).
 pub fn parse_obj(text: &str, source: &str) -> Result<Mesh, MeshError> {
+    // A byte-order mark is not part of the first line's keyword.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let at = |line: Option<usize>| Location {
         source: source.to_owned(),
         line,
@@ -156,9 +187,9 @@ fn vertex_position(args: &[&str]) -> Vec3 {
 /// the same f32), one `f` line per triangle, 1-based.
 pub fn write_obj(mesh: &Mesh, path: impl AsRef<Path>) -> Result<(), MeshError> {
     let path = path.as_ref();
-    std::fs::write(path, to_obj_string(mesh, "")).map_err(|source| MeshError::Io {
+    std::fs::write(path, to_obj_string(mesh, "")).map_err(|io| MeshError::Write {
         path: path.to_owned(),
-        source,
+        io,
     })
 }
 

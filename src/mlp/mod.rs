@@ -16,7 +16,6 @@
 
 pub mod activation;
 pub mod chain;
-pub mod cli;
 pub mod cpu;
 pub mod detect;
 pub mod matmul;

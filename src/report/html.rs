@@ -73,12 +73,23 @@ fn section(s: &Section) -> String {
     }
     if !s.fidelity.is_empty() {
         let fidelity = Table {
-            caption: "Fidelity: the GL feature the paper used, and where this code uses it".into(),
-            header: ["feature", "paper", "code"].map(String::from).to_vec(),
+            caption: "Fidelity: the GL feature the paper used, where this code uses it, and \
+                      what differs from the paper"
+                .into(),
+            header: ["feature", "paper", "code", "deviation"]
+                .map(String::from)
+                .to_vec(),
             rows: s
                 .fidelity
                 .iter()
-                .map(|f| vec![f.feature.clone(), f.paper.clone(), f.code.clone()])
+                .map(|f| {
+                    vec![
+                        f.feature.clone(),
+                        f.paper.clone(),
+                        f.code.clone(),
+                        f.deviation.clone(),
+                    ]
+                })
                 .collect(),
         };
         out.push_str(&table(&fidelity));

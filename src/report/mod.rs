@@ -1,8 +1,11 @@
 //! The reproduction report: each paper's benchmark at the paper's sizes, beside the
 //! published numbers (`assets/paper_tables.toml`), written as HTML, JSON and PNG.
 //!
-//! Each paper plugs in through one file, `report/paperN.rs`, whose `run` measures with the
-//! paper module and returns a [`Section`]. The `*-bench` commands and `reproduce` both call it.
+//! Every section has one shape, the [`Paper`] trait: `measure` runs the paper module at the
+//! paper's sizes and fills a typed, serialisable results struct; `section` turns those results
+//! into tables, claims, figures and the fidelity table. Each section lives in its own folder,
+//! `report/<id>/`, with one file per table or figure. The `*-bench` commands
+//! ([`bench_command`]) and `reproduce` both go through [`run_section`].
 
 pub mod blocks;
 mod html;
@@ -10,12 +13,71 @@ pub mod paper1;
 pub mod paper2;
 pub mod paper3;
 pub mod paper4;
-pub mod paper_tables;
 pub mod plot;
+pub mod published;
 pub mod reproduce;
 
-use serde::Serialize;
-use std::path::PathBuf;
+use anyhow::Context as _;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// One section of the report: a paper (or a lecture, or the shared building blocks).
+///
+/// Adding a section is one type implementing this trait, one results struct, and one folder
+/// under `report/` with a file per table or figure; [`reproduce::stages`] lists it.
+pub trait Paper {
+    /// The section's id, as `reproduce --only` takes it (`paper1`).
+    const ID: &'static str;
+    /// The section's heading in the report.
+    const TITLE: &'static str;
+    /// What the section's `*-bench` command can change beyond [`BenchArgs`]; `reproduce` runs
+    /// with the defaults.
+    type Options: clap::Args + Default;
+    /// Everything one run measures, machine readable: written as the section's `results`.
+    type Results: Serialize;
+
+    /// Run the paper's experiments.
+    fn measure(opts: &BenchOptions, options: &Self::Options) -> anyhow::Result<Self::Results>;
+
+    /// Tables, claims, figures (written under [`BenchOptions::out_dir`]) and fidelity rows from
+    /// the results. `id`, `title` and `results` are filled in by [`run_section`].
+    fn section(opts: &BenchOptions, results: &Self::Results) -> anyhow::Result<Section>;
+}
+
+/// A section without options of its own.
+#[derive(Clone, Copy, Debug, Default, clap::Args)]
+pub struct NoOptions {}
+
+/// The arguments every `*-bench` command takes, and the section's own options.
+#[derive(Clone, Debug, clap::Args)]
+pub struct BenchArgs<O: clap::Args> {
+    /// Small sizes, for CI and smoke tests; the output says so.
+    #[arg(long)]
+    pub quick: bool,
+    /// Where the figures (PNG) go [default: the command's name, e.g. `collide-bench`].
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub options: O,
+}
+
+/// Measure one section and build it, with its id, title and results filled in.
+pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyhow::Result<Section> {
+    let results = P::measure(opts, options)?;
+    let mut section = P::section(opts, &results)?;
+    section.id = P::ID.into();
+    section.title = P::TITLE.into();
+    section.results = serde_json::to_value(&results).context("serialising the results")?;
+    for row in &section.fidelity {
+        anyhow::ensure!(
+            !row.deviation.trim().is_empty(),
+            "section {}: fidelity row '{}' has no deviation",
+            P::ID,
+            row.feature
+        );
+    }
+    Ok(section)
+}
 
 /// What every paper's benchmark gets: the GL context, the size, where figures go.
 pub struct BenchOptions<'a> {
@@ -40,7 +102,7 @@ pub struct Report {
 }
 
 /// One paper's part of the report.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Section {
     /// `paper1` .. `paper4`.
     pub id: String,
@@ -58,7 +120,7 @@ pub struct Section {
 }
 
 /// A table of measured numbers, usually with the paper's numbers in adjacent columns.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Table {
     pub caption: String,
     pub header: Vec<String>,
@@ -66,7 +128,7 @@ pub struct Table {
 }
 
 /// A qualitative or quantitative claim of the paper, and whether it holds here.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Claim {
     pub claim: String,
     pub paper: String,
@@ -76,27 +138,30 @@ pub struct Claim {
 }
 
 /// A PNG written under [`BenchOptions::out_dir`].
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Figure {
     pub file: String,
     pub caption: String,
 }
 
 /// One row of a paper's fidelity table.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Fidelity {
     pub feature: String,
     pub paper: String,
     /// Where this code does it (file path).
     pub code: String,
+    /// What differs from the paper and why ("none" when the code does what the paper says).
+    pub deviation: String,
 }
 
 impl Fidelity {
-    pub fn new(feature: &str, paper: &str, code: &str) -> Fidelity {
+    pub fn new(feature: &str, paper: &str, code: &str, deviation: &str) -> Fidelity {
         Fidelity {
             feature: feature.into(),
             paper: paper.into(),
             code: code.into(),
+            deviation: deviation.into(),
         }
     }
 }
@@ -142,24 +207,23 @@ pub fn progress_bars(json: bool) -> indicatif::MultiProgress {
     }
 }
 
-/// A `*-bench` command: run one paper's section with its figures in `out_dir`, then print
-/// its tables and claims, or the whole section as JSON.
-pub fn bench_command(
+/// A `*-bench` command: run one section with its figures in `--out`, then print its tables
+/// and claims, or the whole section as JSON.
+pub fn bench_command<P: Paper>(
     gl: &crate::gl::Context,
-    run: impl FnOnce(&BenchOptions) -> anyhow::Result<Section>,
-    quick: bool,
-    out_dir: &std::path::Path,
+    args: &BenchArgs<P::Options>,
+    default_out: &str,
     json: bool,
 ) -> anyhow::Result<()> {
-    use anyhow::Context as _;
+    let out_dir = args.out.as_deref().unwrap_or(Path::new(default_out));
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let opts = BenchOptions {
         gl,
-        quick,
+        quick: args.quick,
         out_dir: out_dir.to_path_buf(),
         progress: progress_bars(json),
     };
-    let section = run(&opts)?;
+    let section = run_section::<P>(&opts, &args.options)?;
     if json {
         println!("{}", serde_json::to_string_pretty(&section)?);
     } else {
@@ -202,5 +266,29 @@ impl Table {
             out.push('\n');
         }
         out
+    }
+}
+
+/// A section still built in one piece by its old `run` (papers 1-3, until each is split into
+/// its folder): the results are the section's own JSON.
+#[derive(Clone, Debug)]
+pub struct LegacySection(pub Section);
+
+impl Serialize for LegacySection {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.0.results.serialize(s)
+    }
+}
+
+impl LegacySection {
+    /// The section, every fidelity row without a deviation marked as not yet reviewed.
+    pub fn section(&self) -> Section {
+        let mut section = self.0.clone();
+        for row in &mut section.fidelity {
+            if row.deviation.is_empty() {
+                row.deviation = "not yet reviewed".into();
+            }
+        }
+        section
     }
 }

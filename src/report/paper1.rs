@@ -38,16 +38,10 @@ pub struct Paper1Args {
     /// Skip the leaf-size sweep.
     #[arg(long)]
     pub no_leaf_sweep: bool,
-    /// Small sizes (CI); the report says so.
-    #[arg(long)]
-    pub quick: bool,
-    /// Where PNG figures go.
-    #[arg(long, default_value = "report-paper1")]
-    pub out: std::path::PathBuf,
 }
 
-impl Paper1Args {
-    fn for_quick(quick: bool) -> Paper1Args {
+impl Default for Paper1Args {
+    fn default() -> Paper1Args {
         Paper1Args {
             scenes: Vec::new(),
             frames: None,
@@ -55,9 +49,26 @@ impl Paper1Args {
             leaf_size: None,
             cullide_resolution: PAPER_RESOLUTION,
             no_leaf_sweep: false,
-            quick,
-            out: Default::default(),
         }
+    }
+}
+
+/// The paper-1 section.
+pub struct Paper1;
+
+impl super::Paper for Paper1 {
+    const ID: &'static str = "paper1";
+    const TITLE: &'static str =
+        "Paper 1: collision detection with streaming AABBs (Zhang & Kim 2007)";
+    type Options = Paper1Args;
+    type Results = super::LegacySection;
+
+    fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<super::LegacySection> {
+        run_with(opts, args).map(super::LegacySection)
+    }
+
+    fn section(_: &BenchOptions, results: &super::LegacySection) -> anyhow::Result<Section> {
+        Ok(results.section())
     }
 }
 
@@ -87,12 +98,8 @@ pub struct SceneRun {
     pub snapshot: Option<String>,
 }
 
-pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
-    run_with(opts, &Paper1Args::for_quick(opts.quick))
-}
-
 pub fn run_with(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Section> {
-    let quick = opts.quick || args.quick;
+    let quick = opts.quick;
     let frames = args.frames.unwrap_or(if quick { 3 } else { 20 });
     let triangles = args.triangles.or(if quick { Some(2000) } else { None });
     let scenes: Vec<String> = if args.scenes.is_empty() {
@@ -355,7 +362,12 @@ fn run_scene(
             let mx = crate::mesh::Mesh::new(px.clone(), x.triangles.clone());
             let my = crate::mesh::Mesh::new(py.clone(), y.triangles.clone());
             let file = format!("paper1_fig8-9_{}.png", scene.name);
-            crate::collide::cli::snapshot(&stream, &s, (&mx, &my), &opts.out_dir.join(&file))?;
+            crate::collide::snapshot::frame_png(
+                &stream,
+                &s,
+                (&mx, &my),
+                &opts.out_dir.join(&file),
+            )?;
             out.snapshot = Some(file);
         }
     }
@@ -508,40 +520,47 @@ fn f2(v: f64) -> String {
 }
 
 /// The paper's numbers, row by row, from `assets/paper_tables.toml`.
-struct PaperTables(toml::Table);
+struct PaperTables(&'static super::published::Paper1);
 
 impl PaperTables {
-    fn load() -> PaperTables {
-        let tables = super::paper_tables::load();
-        PaperTables(
-            tables
-                .get("paper1")
-                .and_then(|v| v.as_table())
-                .cloned()
-                .unwrap_or_default(),
-        )
+    fn load() -> anyhow::Result<PaperTables> {
+        Ok(PaperTables(&super::published::Published::get()?.paper1))
     }
 
     /// Row of `table` for scene `name` (Table III's order), as cells.
     fn row(&self, table: &str, name: &str) -> Vec<String> {
         let i = SCENES.iter().position(|&s| s == name).unwrap_or(0);
-        self.0
-            .get(table)
-            .and_then(|t| t.get("rows"))
-            .and_then(|r| r.as_array())
-            .and_then(|r| r.get(i))
-            .and_then(|r| r.as_array())
-            .map(|cells| cells.iter().map(cell).collect())
-            .unwrap_or_default()
-    }
-}
-
-fn cell(v: &toml::Value) -> String {
-    match v {
-        toml::Value::Float(f) => format!("{f}"),
-        toml::Value::Integer(i) => format!("{i}"),
-        toml::Value::String(s) => s.clone(),
-        _ => "-".into(),
+        let f = |v: f64| format!("{v}");
+        match table {
+            "table3" => self.0.table3.get(i).map(|r| {
+                vec![
+                    r.scene.to_string(),
+                    r.models.clone(),
+                    r.tris_each.to_string(),
+                    r.caps.to_string(),
+                    r.pctps.to_string(),
+                    r.ctps.to_string(),
+                    f(r.overlap),
+                    f(r.readback_encode),
+                    f(r.readback_decode),
+                    f(r.tri_test),
+                    f(r.texture_download),
+                    f(r.stream_update),
+                    f(r.total),
+                ]
+            }),
+            _ => self.0.table4.get(i).map(|r| {
+                vec![
+                    r.scene.to_string(),
+                    f(r.pruning),
+                    f(r.tri_test),
+                    r.pctps.to_string(),
+                    r.ctps.to_string(),
+                    f(r.missing_percent),
+                ]
+            }),
+        }
+        .unwrap_or_default()
     }
 }
 
@@ -796,7 +815,7 @@ fn section(
     args: &Paper1Args,
 ) -> anyhow::Result<Section> {
     let renderer = opts.gl.info().renderer_line();
-    let paper = PaperTables::load();
+    let paper = PaperTables::load()?;
     let (cmp, ratios_solid, ratios_cullide) = comparison(runs, &renderer);
     let mut all_tables = vec![
         table3(runs, &paper, &renderer, frames),
@@ -1043,7 +1062,7 @@ fn figures(
 }
 
 fn fidelity() -> Vec<Fidelity> {
-    let row = Fidelity::new;
+    let row = |f: &str, p: &str, c: &str| Fidelity::new(f, p, c, "");
     vec![
         row(
             "1D float AABB textures T_min/T_max",
@@ -1096,19 +1115,4 @@ fn fidelity() -> Vec<Fidelity> {
             "src/collide/cullide.rs",
         ),
     ]
-}
-
-/// `collide-bench`: run, then print the tables (or the section as JSON).
-pub fn bench_command(
-    ctx: &crate::gl::Context,
-    args: &Paper1Args,
-    json_out: bool,
-) -> anyhow::Result<()> {
-    super::bench_command(
-        ctx,
-        |opts| run_with(opts, args),
-        args.quick,
-        &args.out,
-        json_out,
-    )
 }

@@ -15,7 +15,7 @@ use crate::crowd::scene::{self, Config, RunStats};
 use crate::crowd::{sprites, CharacterModel, ModelKind};
 use crate::gl::dump::{self, DumpRange};
 use crate::report::plot::{Plot, Series};
-use crate::report::{paper_tables, BenchOptions, Claim, Fidelity, Figure, Section, Table};
+use crate::report::{published, BenchOptions, Claim, Fidelity, Figure, Section, Table};
 
 /// Character counts measured in quick mode (the paper's first three rows).
 const QUICK_COUNTS: [usize; 3] = [1, 16, 64];
@@ -81,17 +81,6 @@ fn frames_for(n: usize, quick: bool) -> usize {
     }
 }
 
-fn numbers(value: &toml::Value) -> Vec<f64> {
-    value
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|v| v.as_float().or(v.as_integer().map(|i| i as f64)))
-                .collect()
-        })
-        .unwrap_or_default()
-}
-
 /// One of the paper's Fig. 3-5 runs.
 struct PaperRun {
     figure: String,
@@ -101,20 +90,20 @@ struct PaperRun {
     fps: f64,
 }
 
-fn paper_runs(paper: &toml::Value) -> Vec<PaperRun> {
-    let runs = paper.get("runs").and_then(|r| r.as_array()).cloned();
-    runs.unwrap_or_default()
+fn paper_runs(paper: &published::Paper2) -> Vec<PaperRun> {
+    paper
+        .runs
         .iter()
         .map(|r| PaperRun {
-            figure: r["figure"].as_str().unwrap_or("").to_string(),
-            kind: if r["model"].as_str() == Some("horse") {
+            figure: r.figure.clone(),
+            kind: if r.model == "horse" {
                 ModelKind::Horse
             } else {
                 ModelKind::Soldier
             },
-            characters: r["characters"].as_integer().unwrap_or(0) as usize,
-            lod: r["lod_and_culling"].as_bool().unwrap_or(false),
-            fps: r["fps"].as_integer().unwrap_or(0) as f64,
+            characters: r.characters,
+            lod: r.lod_and_culling,
+            fps: r.fps,
         })
         .collect()
 }
@@ -139,13 +128,9 @@ impl Measured {
 
 /// Runs the benchmark and returns the section.
 pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
-    let tables = paper_tables::load();
-    let paper = &tables["paper2"];
-    let table1 = &paper["table1"];
-    let paper_counts: Vec<usize> = numbers(&table1["characters"])
-        .iter()
-        .map(|&x| x as usize)
-        .collect();
+    let paper = &published::Published::get()?.paper2;
+    let table1 = &paper.table1;
+    let paper_counts: Vec<usize> = table1.characters.clone();
     let counts: Vec<usize> = if opts.quick {
         QUICK_COUNTS.to_vec()
     } else {
@@ -160,7 +145,12 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
 
     let renderer_name = opts.gl.info().renderer.clone();
     let paper_fps = |key: &str, n: usize| -> Option<f64> {
-        let row = numbers(&table1[key]);
+        let row = match key {
+            "soldier_vs" => &table1.soldier_vs,
+            "soldier_two_pass" => &table1.soldier_two_pass,
+            "horse_vs" => &table1.horse_vs,
+            _ => &table1.horse_two_pass,
+        };
         paper_counts
             .iter()
             .position(|&c| c == n)
@@ -625,7 +615,7 @@ fn stage_claim(counts: &[usize], measured: &Measured, renderer: &str) -> Option<
 }
 
 fn fidelity_rows() -> Vec<Fidelity> {
-    let row = Fidelity::new;
+    let row = |f: &str, p: &str, c: &str| Fidelity::new(f, p, c, "");
     vec![
         row(
             "Vertex data in 1D float textures",
@@ -673,4 +663,22 @@ fn fidelity_rows() -> Vec<Fidelity> {
             "src/crowd/steering.rs",
         ),
     ]
+}
+
+/// The paper-2 section.
+pub struct Paper2;
+
+impl super::Paper for Paper2 {
+    const ID: &'static str = "paper2";
+    const TITLE: &'static str = "Kang & Han 2006: Real-Time Animation of Large Crowds";
+    type Options = super::NoOptions;
+    type Results = super::LegacySection;
+
+    fn measure(opts: &BenchOptions, _: &super::NoOptions) -> anyhow::Result<super::LegacySection> {
+        run(opts).map(super::LegacySection)
+    }
+
+    fn section(_: &BenchOptions, results: &super::LegacySection) -> anyhow::Result<Section> {
+        Ok(results.section())
+    }
 }

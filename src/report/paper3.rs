@@ -104,13 +104,13 @@ pub fn run(opts: &BenchOptions) -> anyhow::Result<Section> {
     figures.push(gflops_plot(opts, &measurements)?);
     let renderer = ctx.info().renderer_line();
     let load = load_average();
-    let paper = crate::report::paper_tables::load();
-    let table1 = &paper["paper3"]["table1"];
-    let number = |key: &str| {
-        table1
-            .get(key)
-            .and_then(|v| v.as_float())
-            .unwrap_or(f64::NAN)
+    let table1 = &crate::report::published::Published::get()?.paper3.table1;
+    let number = |key: &str| match key {
+        "gpu_texture_creation" => table1.gpu_texture_creation,
+        "gpu_matrix_multiplication" => table1.gpu_matrix_multiplication,
+        "gpu_sigmoid" => table1.gpu_sigmoid,
+        "cpu_matrix_multiplication" => table1.cpu_matrix_multiplication,
+        _ => unreachable!("paper 3's Table 1 has no {key}"),
     };
     let paper_row = &measurements[..Method::ALL.len()];
     let get = |m: Method| paper_row.iter().find(|r| r.method == m).expect("measured");
@@ -574,7 +574,7 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
 }
 
 fn fidelity() -> Vec<Fidelity> {
-    let row = Fidelity::new;
+    let row = |f: &str, p: &str, c: &str| Fidelity::new(f, p, c, "");
     vec![
         row(
             "Matrix product as one rectangle (Moravanszky): each vertex carries the row of W and the column of X, each pixel takes one inner product",
@@ -612,4 +612,22 @@ fn fidelity() -> Vec<Fidelity> {
             "src/mlp/synth.rs, src/mlp/train.rs",
         ),
     ]
+}
+
+/// The paper-3 section.
+pub struct Paper3;
+
+impl super::Paper for Paper3 {
+    const ID: &'static str = "paper3";
+    const TITLE: &'static str = "Paper 3: Oh & Jung 2004, GPU implementation of neural networks";
+    type Options = super::NoOptions;
+    type Results = super::LegacySection;
+
+    fn measure(opts: &BenchOptions, _: &super::NoOptions) -> anyhow::Result<super::LegacySection> {
+        run(opts).map(super::LegacySection)
+    }
+
+    fn section(_: &BenchOptions, results: &super::LegacySection) -> anyhow::Result<Section> {
+        Ok(results.section())
+    }
 }

@@ -2,7 +2,7 @@
 //! a staging folder beside the target and swapped in only when every section succeeded, so a
 //! failed run never leaves a half-written report where a good one was.
 
-use super::{html, BenchOptions, Report, Section};
+use super::{html, run_section, BenchOptions, Paper, Report, Section};
 use crate::gl;
 use anyhow::{bail, Context as _};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
@@ -19,19 +19,25 @@ pub struct Stage {
     pub run: fn(&BenchOptions) -> anyhow::Result<Section>,
 }
 
-/// Every stage, in report order. Each paper adds its line here.
+impl Stage {
+    /// The stage of section `P`, run with its default options.
+    pub fn of<P: Paper>() -> Stage {
+        Stage {
+            id: P::ID,
+            title: P::TITLE,
+            run: |opts| run_section::<P>(opts, &P::Options::default()),
+        }
+    }
+}
+
+/// Every stage, in report order. Each section adds its line here.
 pub fn stages() -> Vec<Stage> {
-    let stage = |id, title, run| Stage { id, title, run };
     vec![
-        stage("blocks", "building blocks", super::blocks::run),
-        stage("paper1", "paper 1: streaming AABBs", super::paper1::run),
-        stage("paper2", "paper 2: crowd skinning", super::paper2::run),
-        stage("paper3", "paper 3: neural networks", super::paper3::run),
-        stage(
-            "paper4",
-            "paper 4: mass properties and buoyancy",
-            super::paper4::run,
-        ),
+        Stage::of::<super::blocks::Blocks>(),
+        Stage::of::<super::paper1::Paper1>(),
+        Stage::of::<super::paper2::Paper2>(),
+        Stage::of::<super::paper3::Paper3>(),
+        Stage::of::<super::paper4::Paper4>(),
     ]
 }
 
@@ -44,9 +50,14 @@ pub struct ReproduceArgs {
     /// Only these sections (comma separated ids: blocks, paper1, paper2, paper3, paper4).
     #[arg(long, value_delimiter = ',')]
     pub only: Vec<String>,
-    /// Where the report goes.
+    /// Where the report goes. With --only, the sections run are merged into the report
+    /// already there (made on the same renderer at the same sizes).
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
+    /// With --only, replace a report that cannot be merged with (another renderer or other
+    /// sizes) by one holding just the sections run now.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Run the stages and write the report to `args.out`; returns the report.
@@ -56,21 +67,16 @@ pub fn reproduce(
     progress: MultiProgress,
 ) -> anyhow::Result<Report> {
     let all = stages();
-    for id in &args.only {
-        if !all.iter().any(|s| s.id == id) {
-            let known: Vec<&str> = all.iter().map(|s| s.id).collect();
-            bail!(
-                "--only: unknown section '{id}' (known: {})",
-                known.join(", ")
-            );
-        }
-    }
-    let chosen: Vec<&Stage> = all
-        .iter()
-        .filter(|s| args.only.is_empty() || args.only.iter().any(|o| o == s.id))
-        .collect();
+    let chosen = chosen_stages(&all, &args.only)?;
+    check_out(&args.out)?;
+    let kept = kept_sections(ctx, args, &chosen)?;
+    remove_stale_staging(&args.out);
     let staging = staging_dir(&args.out)?;
-    let result = run_stages(ctx, args, &chosen, &staging, progress);
+    let result = run_stages(ctx, args, &chosen, &staging, progress).and_then(|mut report| {
+        merge_kept(&mut report, kept, &all, &args.out, &staging)?;
+        write_report(&report, &staging)?;
+        Ok(report)
+    });
     match result {
         Ok(report) => {
             swap_in(&staging, &args.out)?;
@@ -82,6 +88,168 @@ pub fn reproduce(
                 "the report was not written; {} is left as it was",
                 args.out.display()
             )))
+        }
+    }
+}
+
+/// The stages `--only` names (all of them when it names none), in report order.
+fn chosen_stages<'a>(all: &'a [Stage], only: &[String]) -> anyhow::Result<Vec<&'a Stage>> {
+    for id in only {
+        if !all.iter().any(|s| s.id == id) {
+            let known: Vec<&str> = all.iter().map(|s| s.id).collect();
+            bail!(
+                "--only: unknown section '{id}' (known: {})",
+                known.join(", ")
+            );
+        }
+    }
+    Ok(all
+        .iter()
+        .filter(|s| only.is_empty() || only.iter().any(|o| o == s.id))
+        .collect())
+}
+
+/// Refuse, before any work, an `--out` that is a file or a folder that is not a report.
+fn check_out(out: &Path) -> anyhow::Result<()> {
+    if !out.exists() {
+        return Ok(());
+    }
+    if !out.is_dir() {
+        bail!(
+            "--out {}: exists and is not a folder; choose another --out",
+            out.display()
+        );
+    }
+    let empty = std::fs::read_dir(out)
+        .with_context(|| format!("--out {}: cannot read the folder", out.display()))?
+        .next()
+        .is_none();
+    if !empty && !out.join("results.json").is_file() {
+        bail!(
+            "--out {}: exists and is not a classic-gpgpu report (no results.json); choose \
+             another --out",
+            out.display()
+        );
+    }
+    Ok(())
+}
+
+/// With `--only`, the sections of the report already in `--out` that this run keeps: all
+/// but those it runs again. The old report must come from the same renderer and sizes, or
+/// `--force` must say to drop it.
+fn kept_sections(
+    ctx: &gl::Context,
+    args: &ReproduceArgs,
+    chosen: &[&Stage],
+) -> anyhow::Result<Vec<Section>> {
+    let path = args.out.join("results.json");
+    if args.only.is_empty() || !path.is_file() {
+        return Ok(Vec::new());
+    }
+    let refuse = |why: String| -> anyhow::Result<Vec<Section>> {
+        if args.force {
+            return Ok(Vec::new());
+        }
+        bail!(
+            "--only: {why}; merging would mix them. Pass --force to replace the report with \
+             only the sections run now, or choose another --out"
+        )
+    };
+    let old: serde_json::Value = match std::fs::read_to_string(&path)
+        .map_err(anyhow::Error::from)
+        .and_then(|text| Ok(serde_json::from_str(&text)?))
+    {
+        Ok(old) => old,
+        Err(e) => return refuse(format!("{} cannot be read ({e})", path.display())),
+    };
+    let renderer = ctx.info().renderer.as_str();
+    let old_renderer = old["renderer"]["renderer"].as_str().unwrap_or("unknown");
+    if old_renderer != renderer {
+        return refuse(format!(
+            "the report in {} was made on {old_renderer}, this run is on {renderer}",
+            args.out.display()
+        ));
+    }
+    if old["quick"].as_bool() != Some(args.quick) {
+        let sizes = |quick| {
+            if quick {
+                "--quick sizes"
+            } else {
+                "the papers' sizes"
+            }
+        };
+        return refuse(format!(
+            "the report in {} has {}, this run {}",
+            args.out.display(),
+            sizes(!args.quick),
+            sizes(args.quick)
+        ));
+    }
+    let sections: Vec<Section> = match serde_json::from_value(old["sections"].clone()) {
+        Ok(sections) => sections,
+        Err(e) => return refuse(format!("{} has no readable sections ({e})", path.display())),
+    };
+    Ok(sections
+        .into_iter()
+        .filter(|s| !chosen.iter().any(|c| c.id == s.id))
+        .collect())
+}
+
+/// Add the kept sections to the new report in report order, and copy their figures from
+/// the old report into the staging folder.
+fn merge_kept(
+    report: &mut Report,
+    kept: Vec<Section>,
+    all: &[Stage],
+    out: &Path,
+    staging: &Path,
+) -> anyhow::Result<()> {
+    for section in &kept {
+        for figure in &section.figures {
+            let (from, to) = (out.join(&figure.file), staging.join(&figure.file));
+            if let Some(parent) = to.parent() {
+                std::fs::create_dir_all(parent)?;
+            }
+            std::fs::copy(&from, &to).with_context(|| {
+                format!("keeping section {}: copying {}", section.id, from.display())
+            })?;
+        }
+    }
+    report.sections.extend(kept);
+    let rank = |id: &str| all.iter().position(|s| s.id == id).unwrap_or(all.len());
+    report.sections.sort_by_key(|s| rank(&s.id));
+    Ok(())
+}
+
+/// Staging folders (and moved-aside old reports) of runs that were killed: `.NAME.staging-PID`
+/// beside `out` whose process is gone.
+fn remove_stale_staging(out: &Path) {
+    let (Some(parent), Some(name)) = (out.parent(), out.file_name()) else {
+        return;
+    };
+    let parent = if parent.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        parent
+    };
+    if !Path::new("/proc/self").exists() {
+        return; // no way to tell a live process from a dead one
+    }
+    let prefix = format!(".{}.staging-", name.to_string_lossy());
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = file_name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let pid = rest.split('.').next().unwrap_or("");
+        let alive = pid.parse::<u32>().is_ok_and(|pid| {
+            pid == std::process::id() || Path::new(&format!("/proc/{pid}")).exists()
+        });
+        if !alive {
+            std::fs::remove_dir_all(entry.path()).ok();
         }
     }
 }
@@ -132,22 +300,23 @@ fn run_stages(
         overall.inc(1);
     }
     overall.finish_and_clear();
-    let report = Report {
+    Ok(Report {
         renderer: ctx.info().clone(),
         cpu: cpu_name(),
         date: utc_now(),
         quick: args.quick,
         elapsed_s: start.elapsed().as_secs_f64(),
         sections,
-    };
+    })
+}
+
+fn write_report(report: &Report, staging: &Path) -> anyhow::Result<()> {
     std::fs::write(
         staging.join("results.json"),
-        serde_json::to_string_pretty(&report)?,
+        serde_json::to_string_pretty(report)?,
     )
     .context("writing results.json")?;
-    std::fs::write(staging.join("index.html"), html::page(&report))
-        .context("writing index.html")?;
-    Ok(report)
+    std::fs::write(staging.join("index.html"), html::page(report)).context("writing index.html")
 }
 
 /// A fresh staging folder beside `out` (same file system, so the swap is a rename).
@@ -173,12 +342,7 @@ fn staging_dir(out: &Path) -> anyhow::Result<PathBuf> {
 fn swap_in(staging: &Path, out: &Path) -> anyhow::Result<()> {
     let old = staging.with_extension("old");
     if out.exists() {
-        if !out.join("results.json").exists() && std::fs::read_dir(out)?.next().is_some() {
-            bail!(
-                "{} exists and is not a classic-gpgpu report; choose another --out",
-                out.display()
-            );
-        }
+        check_out(out)?;
         std::fs::rename(out, &old)
             .with_context(|| format!("moving the old {} aside", out.display()))?;
     }

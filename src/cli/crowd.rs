@@ -7,12 +7,11 @@ use std::path::PathBuf;
 use anyhow::{bail, Context as _};
 use serde_json::json;
 
-use crate::gl::{dump, Context};
-use crate::report;
+use classic_gpgpu::gl::{dump, Context};
 
-use super::character::{CharacterModel, ModelKind};
-use super::renderer::{CrowdRenderer, Method};
-use super::scene::{self, RunStats};
+use classic_gpgpu::crowd::character::{CharacterModel, ModelKind};
+use classic_gpgpu::crowd::renderer::{CrowdRenderer, Method};
+use classic_gpgpu::crowd::scene::{self, RunStats};
 
 /// Arguments of `crowd`.
 #[derive(clap::Args, Debug, Clone)]
@@ -158,20 +157,4 @@ fn print_text(ctx: &Context, s: &RunStats, png: &Option<PathBuf>, batch: u32) {
     if let Some(path) = png {
         println!("snapshot        {}", path.display());
     }
-}
-
-/// Arguments of `crowd-bench`.
-#[derive(clap::Args, Debug, Clone)]
-pub struct BenchArgs {
-    /// Small sizes (up to 64 characters, LOD runs at a tenth) for a quick look or CI.
-    #[arg(long)]
-    pub quick: bool,
-    /// Where the figures (PNG) go.
-    #[arg(long, default_value = "target/crowd-bench")]
-    pub out: PathBuf,
-}
-
-/// Runs `crowd-bench`: Table 1 and the LOD runs beside the paper's numbers.
-pub fn run_bench(args: &BenchArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
-    report::bench_command(ctx, report::paper2::run, args.quick, &args.out, json)
 }

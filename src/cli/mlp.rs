@@ -1,13 +1,15 @@
 //! `classic-gpgpu mlp run | detect | train` and `classic-gpgpu mlp-bench`.
 
-use super::chain::{Formulation, GpuMlp, StepTimes};
-use super::cpu::{forward, CpuProduct};
-use super::detect::{classify_cpu, classify_gpu, mask_image, shipped_detector, THRESHOLD};
-use super::network::{parse_inputs, Network};
-use super::train::{evaluate, train, window_set, TrainConfig};
-use super::window::WINDOW_INPUTS;
-use crate::gl::Context;
 use anyhow::Context as _;
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::mlp::chain::{Formulation, GpuMlp, StepTimes};
+use classic_gpgpu::mlp::cpu::{forward, CpuProduct};
+use classic_gpgpu::mlp::detect::{
+    classify_cpu, classify_gpu, mask_image, shipped_detector, THRESHOLD,
+};
+use classic_gpgpu::mlp::network::{parse_inputs, Network};
+use classic_gpgpu::mlp::train::{evaluate, train, window_set, TrainConfig};
+use classic_gpgpu::mlp::window::WINDOW_INPUTS;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -327,31 +329,4 @@ fn train_detector(args: TrainArgs, json: bool) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&report)?);
     }
     Ok(())
-}
-
-/// `classic-gpgpu mlp-bench`.
-#[derive(clap::Args, Debug)]
-pub struct BenchArgs {
-    /// Small sizes (CI smoke test); the report says so.
-    #[arg(long)]
-    quick: bool,
-    /// Where figures are written.
-    #[arg(long, default_value = "target/mlp-bench")]
-    out_dir: PathBuf,
-}
-
-/// Runs paper 3's benchmark and prints its tables (or the section as JSON).
-pub fn bench(
-    args: BenchArgs,
-    json: bool,
-    context: impl FnOnce() -> anyhow::Result<Context>,
-) -> anyhow::Result<()> {
-    let ctx = context()?;
-    crate::report::bench_command(
-        &ctx,
-        crate::report::paper3::run,
-        args.quick,
-        &args.out_dir,
-        json,
-    )
 }

@@ -1,8 +1,10 @@
 //! `classic-gpgpu mesh`: check an OBJ the way the papers' commands will read it, and write
 //! the papers' test objects as OBJ files.
 
-use super::{generate, load_bunny, load_obj, retessellate, write_obj, Mesh, Pipe, TorusKnot};
-use anyhow::{bail, Context as _};
+use anyhow::bail;
+use classic_gpgpu::mesh::{
+    generate, load_bunny, load_obj, retessellate, write_obj, Mesh, Pipe, TorusKnot,
+};
 use serde_json::json;
 use std::path::PathBuf;
 
@@ -75,10 +77,23 @@ pub fn run(command: &MeshCommand, json: bool) -> anyhow::Result<()> {
                 bail!("{} exists; pass --force to replace it", out.display());
             }
             let mut mesh = shape.mesh();
-            if let Some(n) = triangles {
-                mesh = retessellate(&mesh, *n)?;
+            if let Some(n) = *triangles {
+                mesh = retessellate(&mesh, n)?;
+                if mesh.triangle_count() != n {
+                    let parity = if mesh.is_closed() && n % 2 == 1 {
+                        " (a closed mesh has an even number of triangles)"
+                    } else {
+                        ""
+                    };
+                    bail!(
+                        "--triangles {n}: the {} refines to {} triangles, not {n}{parity}; nothing \
+                         was written",
+                        format!("{shape:?}").to_lowercase(),
+                        mesh.triangle_count()
+                    );
+                }
             }
-            write_obj(&mesh, out).with_context(|| format!("writing {}", out.display()))?;
+            write_obj(&mesh, out)?;
             let summary = json!({
                 "shape": format!("{shape:?}").to_lowercase(),
                 "vertices": mesh.vertex_count(),

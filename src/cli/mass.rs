@@ -1,12 +1,12 @@
 //! The `mass` and `buoyancy` commands.
 
-use super::assemble::MassProperties;
-use super::buoyancy::{batch::GpuSolver, render, scene, simulation};
-use super::framing::Framing;
-use super::gpu::{GpuMass, GpuResult};
-use super::{analytic, clip, models, surface};
-use crate::gl::Context;
 use anyhow::{bail, Context as _};
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::mass::assemble::MassProperties;
+use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene, simulation};
+use classic_gpgpu::mass::framing::Framing;
+use classic_gpgpu::mass::gpu::{GpuMass, GpuResult};
+use classic_gpgpu::mass::{analytic, clip, models, surface};
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -297,7 +297,7 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         Some(_) => Some(render::FrameRenderer::new(ctx, &sim.shapes, 640, 400)?),
         None => None,
     };
-    let progress = crate::mass::progress_bar(args.steps as u64, json_out, "buoyancy steps");
+    let progress = classic_gpgpu::mass::progress_bar(args.steps as u64, json_out, "buoyancy steps");
     let mut step_ms = Vec::with_capacity(args.steps);
     let mut peels = Vec::with_capacity(args.steps);
     for step in 0..args.steps {

@@ -1,14 +1,15 @@
 //! The commands `collide` (two static meshes) and `collide-scene` (a deforming scene of
 //! Table III, frame by frame). `collide-bench` lives in `report::paper1`.
 
-use super::pipeline::{FrameResult, Options, StreamingCollider};
-use super::reduction_gpu::ReadbackMode;
-use super::scenes::{Scene, SCENES};
-use super::stream_setup::auto_leaf_size_for_pair;
-use super::tri_test::Predicate;
-use crate::gl::{dump, Context};
-use crate::mesh::Mesh;
 use anyhow::Context as _;
+use classic_gpgpu::collide::pipeline::{FrameResult, Options, StreamingCollider};
+use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
+use classic_gpgpu::collide::scenes::{Scene, SCENES};
+use classic_gpgpu::collide::snapshot::{dump_buffers, frame_png};
+use classic_gpgpu::collide::stream_setup::auto_leaf_size_for_pair;
+use classic_gpgpu::collide::tri_test::Predicate;
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::mesh::Mesh;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
@@ -67,10 +68,10 @@ pub struct CollideArgs {
 
 /// `collide`: one frame of the pipeline on two static meshes; `json` prints one object.
 pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
-    let load = |p: &Path| -> anyhow::Result<crate::mesh::Mesh> {
-        let mesh =
-            crate::mesh::load_obj(p).with_context(|| format!("reading model {}", p.display()))?;
-        super::stream_setup::validate_mesh(&mesh)
+    let load = |p: &Path| -> anyhow::Result<classic_gpgpu::mesh::Mesh> {
+        let mesh = classic_gpgpu::mesh::load_obj(p)
+            .with_context(|| format!("reading model {}", p.display()))?;
+        classic_gpgpu::collide::stream_setup::validate_mesh(&mesh)
             .with_context(|| format!("model {}", p.display()))?;
         Ok(mesh)
     };
@@ -84,7 +85,7 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     let frame = collider.frame(&x.positions, &y.positions)?;
     if let Some(dir) = &args.dump {
         dump_buffers(&collider, dir)?;
-        snapshot(&collider, &frame, (&x, &y), &dir.join("snapshot.png"))?;
+        frame_png(&collider, &frame, (&x, &y), &dir.join("snapshot.png"))?;
     }
     let renderer = ctx.info().renderer_line();
     let report = json!({
@@ -212,101 +213,4 @@ fn print_frame(f: &FrameResult) {
         t.update,
         t.total
     );
-}
-
-/// Paper Fig. 1 / 6(a): the models, their colliding triangles and the boxes of the CAPs.
-pub fn snapshot(
-    collider: &StreamingCollider,
-    frame: &FrameResult,
-    (x, y): (&crate::mesh::Mesh, &crate::mesh::Mesh),
-    path: &Path,
-) -> anyhow::Result<()> {
-    use super::snapshot::{write_png, SnapshotModel};
-    let model = |m: &crate::mesh::Mesh, stream: &super::AabbStream, side: usize| {
-        let mut colliding: Vec<u32> = frame
-            .pairs
-            .iter()
-            .map(|p| if side == 0 { p.0 } else { p.1 })
-            .collect();
-        colliding.sort_unstable();
-        colliding.dedup();
-        let boxes = stream.leaf_boxes(&m.positions);
-        let mut leaves: Vec<u32> = frame
-            .cap_leaves
-            .iter()
-            .map(|c| if side == 0 { c.0 } else { c.1 })
-            .collect();
-        leaves.sort_unstable();
-        leaves.dedup();
-        (
-            (0..m.triangles.len()).map(|t| m.triangle(t)).collect(),
-            colliding,
-            leaves.iter().map(|&l| boxes[l as usize]).collect(),
-        )
-    };
-    let (tx, cx, bx) = model(x, &collider.x.stream, 0);
-    let (ty, cy, by) = model(y, &collider.y.stream, 1);
-    write_png(
-        collider.context(),
-        &SnapshotModel {
-            triangles: tx,
-            colliding: &cx,
-            cap_boxes: bx,
-        },
-        &SnapshotModel {
-            triangles: ty,
-            colliding: &cy,
-            cap_boxes: by,
-        },
-        800,
-        path,
-    )?;
-    Ok(())
-}
-
-/// Paper Fig. 6: P0, the hierarchy P1..P3, the reduced P1', and the AABB textures.
-pub fn dump_buffers(collider: &StreamingCollider, dir: &Path) -> anyhow::Result<()> {
-    use super::reduction::Scheme;
-    let ctx = collider.context();
-    // Fill both encodings from the last P0.
-    collider
-        .reduction
-        .read(ctx, &collider.target, Scheme::Hierarchical)?;
-    collider
-        .reduction
-        .read(ctx, &collider.target, Scheme::Reduced)?;
-    let range = dump::DumpRange::Auto;
-    dump::texture_png(
-        &collider.target.p0,
-        &dir.join("P0.png"),
-        dump::DumpRange::Fixed(0.0, 1.0),
-    )?;
-    for (i, t) in collider.reduction.level_textures().into_iter().enumerate() {
-        dump::texture_png(t, &dir.join(format!("P{}.png", i + 1)), range)?;
-    }
-    dump::texture_png(
-        collider.reduction.reduced_texture(),
-        &dir.join("P1_reduced.png"),
-        range,
-    )?;
-    for (name, stream) in [("X", &collider.x), ("Y", &collider.y)] {
-        for (s, (aabb, vertices)) in stream.segments.iter().enumerate() {
-            dump::texture_png(
-                &aabb.t_min,
-                &dir.join(format!("T_min_{name}_{s}.png")),
-                range,
-            )?;
-            dump::texture_png(
-                &aabb.t_max,
-                &dir.join(format!("T_max_{name}_{s}.png")),
-                range,
-            )?;
-            dump::texture_png(
-                &vertices.texture,
-                &dir.join(format!("vertices_{name}_{s}.png")),
-                range,
-            )?;
-        }
-    }
-    Ok(())
 }

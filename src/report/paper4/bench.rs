@@ -1,0 +1,347 @@
+//! The measurements: every paper object at every resolution against Mirtich's analytic
+//! method (Fig. 4-5, Table 1), the 50-body buoyancy scene (section 5.3, Fig. 9), and the peels
+//! of a buoyant bunny (Fig. 10).
+
+use crate::gl::Context;
+use crate::mass::buoyancy::simulation::{AnalyticSolver, Simulation, SubmergedSolver};
+use crate::mass::buoyancy::{batch::GpuSolver, render::FrameRenderer, scene};
+use crate::mass::gpu::GpuMass;
+use crate::mass::{analytic, models, surface, MassProperties};
+use crate::mesh::Mesh;
+use crate::report::BenchOptions;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Everything the section measures.
+#[derive(Clone, Debug, Serialize)]
+pub struct Paper4Results {
+    pub renderer: String,
+    pub quick: bool,
+    pub objects: Vec<ObjectRun>,
+    pub buoyancy: BuoyancyRun,
+    /// Peels of the buoyant bunny dumped for Fig. 10 (`fig10_bunny/peel<k>_target0.png`).
+    pub fig10_peels: usize,
+}
+
+/// One paper object at every resolution.
+#[derive(Clone, Debug, Serialize)]
+pub struct ObjectRun {
+    pub object: String,
+    pub vertices: usize,
+    pub faces: usize,
+    pub closed: bool,
+    /// Peels at 32x32 with the object turned 90 degrees about x (the paper's views are not
+    /// published; a torus seen edge-on has four layers, face-on two).
+    pub peels_turned_90_about_x: usize,
+    pub analytic: AnalyticReference,
+    /// Median wall clock of Mirtich's method (ms).
+    pub analytic_ms: f64,
+    pub resolutions: Vec<ResolutionRow>,
+    /// Where the GPU wall time meets the analytic time (see [`break_even`]).
+    pub break_even: String,
+}
+
+/// The exact mass properties (Mirtich, f64) the errors are measured against.
+#[derive(Clone, Debug, Serialize)]
+pub struct AnalyticReference {
+    pub volume: f64,
+    pub inertia: [[f64; 3]; 3],
+}
+
+/// One resolution of one object.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ResolutionRow {
+    pub resolution: u32,
+    pub peels: usize,
+    pub relative_error: RelativeErrors,
+    /// Median GPU time of the passes (timer query).
+    pub gpu_ms: f64,
+    /// Median wall clock of one call.
+    pub gpu_wall_ms: f64,
+}
+
+/// Fig. 4's four quantities.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct RelativeErrors {
+    pub mass: f64,
+    #[serde(rename = "Ixx")]
+    pub ixx: f64,
+    #[serde(rename = "Iyy")]
+    pub iyy: f64,
+    #[serde(rename = "Izz")]
+    pub izz: f64,
+}
+
+impl RelativeErrors {
+    /// Mass, Ixx, Iyy, Izz in Fig. 4's order.
+    pub fn all(&self) -> [f64; 4] {
+        [self.mass, self.ixx, self.iyy, self.izz]
+    }
+}
+
+/// The 50-body scene of section 5.3.
+#[derive(Clone, Debug, Serialize)]
+pub struct BuoyancyRun {
+    pub bodies: usize,
+    pub resolution: u32,
+    pub steps: usize,
+    pub settle_steps: usize,
+    pub mean_step_ms: f64,
+    pub steps_per_second: f64,
+    pub buoyancy_share: f64,
+    pub max_peels: usize,
+    pub mean_peels: f64,
+    pub cpu_solver_steps_per_second: f64,
+    pub batched_ms: f64,
+    pub one_body_at_a_time_ms: f64,
+    /// Fig. 9: the scene after the run (file in the output folder).
+    pub frame: String,
+}
+
+/// The resolutions of Fig. 4-5.
+pub fn resolutions(quick: bool) -> Vec<u32> {
+    if quick {
+        vec![8, 16, 32, 64, 128]
+    } else {
+        vec![8, 16, 32, 64, 128, 256, 512]
+    }
+}
+
+/// Timed runs per measurement (the median is kept).
+pub fn runs(quick: bool) -> usize {
+    if quick {
+        3
+    } else {
+        5
+    }
+}
+
+pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
+    let bar = opts.progress.add(indicatif::ProgressBar::new(
+        models::PAPER_OBJECTS.len() as u64
+    ));
+    bar.set_message("mass properties, paper objects");
+    let mut objects = Vec::new();
+    for name in models::PAPER_OBJECTS {
+        objects.push(measure_object(
+            opts.gl,
+            name,
+            &resolutions(opts.quick),
+            runs(opts.quick),
+        )?);
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let steps = if opts.quick { 20 } else { 200 };
+    Ok(Paper4Results {
+        renderer: opts.gl.info().renderer_line(),
+        quick: opts.quick,
+        objects,
+        buoyancy: measure_buoyancy(opts, steps)?,
+        fig10_peels: buoyant_bunny_peels(opts)?,
+    })
+}
+
+/// Median of `runs` timings (ms) of `work`.
+fn median_ms(runs: usize, mut work: impl FnMut() -> anyhow::Result<f64>) -> anyhow::Result<f64> {
+    let mut t = (0..runs)
+        .map(|_| work())
+        .collect::<anyhow::Result<Vec<f64>>>()?;
+    t.sort_by(f64::total_cmp);
+    Ok(t[t.len() / 2])
+}
+
+/// Fig. 4 and 5 for one object at every resolution.
+fn measure_object(
+    ctx: &Context,
+    name: &str,
+    resolutions: &[u32],
+    runs: usize,
+) -> anyhow::Result<ObjectRun> {
+    let mesh = models::paper_object(name).expect("a paper object");
+    let exact = MassProperties::from_integrals(&analytic::volume_integrals(&mesh), 1.0);
+    let analytic_ms = median_ms(runs.max(5), || {
+        let start = Instant::now();
+        std::hint::black_box(analytic::volume_integrals(&mesh));
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    })?;
+    let mut rows = Vec::new();
+    for &n in resolutions {
+        let gpu = GpuMass::new(ctx, n)?;
+        let first = gpu.integrate(&mesh, None, None)?;
+        let got = MassProperties::from_integrals(&first.integrals, 1.0);
+        let [mass, ixx, iyy, izz] = got.relative_errors(&exact);
+        let mut timer = Vec::new();
+        let wall = median_ms(runs, || {
+            let start = Instant::now();
+            let r = gpu.integrate(&mesh, None, None)?;
+            timer.push(r.gpu_ms);
+            Ok(start.elapsed().as_secs_f64() * 1e3)
+        })?;
+        timer.sort_by(f64::total_cmp);
+        rows.push(ResolutionRow {
+            resolution: n,
+            peels: first.peels,
+            relative_error: RelativeErrors {
+                mass,
+                ixx,
+                iyy,
+                izz,
+            },
+            gpu_ms: timer[timer.len() / 2],
+            gpu_wall_ms: wall,
+        });
+    }
+    let turn = glam::Quat::from_rotation_x(std::f32::consts::FRAC_PI_2);
+    let turned = Mesh::new(
+        mesh.positions.iter().map(|p| turn * *p).collect(),
+        mesh.triangles.clone(),
+    );
+    let turned_peels = GpuMass::new(ctx, 32)?.integrate(&turned, None, None)?.peels;
+    Ok(ObjectRun {
+        object: name.to_string(),
+        vertices: mesh.positions.len(),
+        faces: mesh.triangles.len(),
+        closed: surface::check(&mesh).is_closed(),
+        peels_turned_90_about_x: turned_peels,
+        analytic: AnalyticReference {
+            volume: exact.volume,
+            inertia: exact.inertia_rows(),
+        },
+        analytic_ms,
+        break_even: break_even(analytic_ms, &rows),
+        resolutions: rows,
+    })
+}
+
+/// The resolution at which the GPU wall time equals the analytic time (log-log interpolation
+/// between measured resolutions), as text.
+fn break_even(analytic_ms: f64, rows: &[ResolutionRow]) -> String {
+    let t = analytic_ms;
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (r.resolution as f64, r.gpu_wall_ms))
+        .collect();
+    if pts.first().is_some_and(|p| p.1 >= t) {
+        return format!(
+            "GPU slower at every resolution (from {}x{})",
+            pts[0].0, pts[0].0
+        );
+    }
+    for w in pts.windows(2) {
+        let ((n0, t0), (n1, t1)) = (w[0], w[1]);
+        if t0 < t && t1 >= t {
+            let f = (t.ln() - t0.ln()) / (t1.ln() - t0.ln());
+            let n = (n0.ln() + f * (n1.ln() - n0.ln())).exp();
+            return format!("{n:.0}x{n:.0}");
+        }
+    }
+    let last = pts.last().map(|p| p.0).unwrap_or(0.0);
+    format!("GPU faster at every resolution (up to {last}x{last})")
+}
+
+/// The buoyancy scene: mean step time, the buoyancy share, peels.
+fn measure_buoyancy(opts: &BenchOptions, steps: usize) -> anyhow::Result<BuoyancyRun> {
+    let ctx = opts.gl;
+    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+    let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
+    // The bodies start in the air; time them once they are in the water (after 1 s, past
+    // the first plunge), as the paper's average over its interactive run would.
+    let settle = 60;
+    let bar = opts
+        .progress
+        .add(indicatif::ProgressBar::new((settle + steps) as u64));
+    bar.set_message("buoyancy, 50 bodies");
+    for _ in 0..settle {
+        sim.step(&mut solver).map_err(anyhow::Error::msg)?;
+        bar.inc(1);
+    }
+    let (mut total, mut buoyancy_ms, mut max_peels, mut sum_peels) = (0.0, 0.0, 0, 0);
+    for _ in 0..steps {
+        let start = Instant::now();
+        let subs = solver
+            .submerged(&sim.shapes, &sim.bodies, &sim.water)
+            .map_err(anyhow::Error::msg)?;
+        buoyancy_ms += start.elapsed().as_secs_f64() * 1e3;
+        sim.apply(&subs);
+        total += start.elapsed().as_secs_f64() * 1e3;
+        max_peels = max_peels.max(solver.last_peels);
+        sum_peels += solver.last_peels;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let cpu_steps_per_s = cpu_solver_rate(settle, steps)?;
+    let (batched_ms, one_by_one_ms) =
+        batching_gain(ctx, &sim, &mut solver, if steps > 50 { 20 } else { 5 })?;
+    let frame = "buoyancy_frame.png";
+    FrameRenderer::new(ctx, &sim.shapes, 800, 500)?.write_png(&sim, &opts.out_dir.join(frame))?;
+    Ok(BuoyancyRun {
+        bodies: sim.bodies.len(),
+        resolution: 32,
+        steps,
+        settle_steps: settle,
+        mean_step_ms: total / steps as f64,
+        steps_per_second: 1e3 * steps as f64 / total,
+        buoyancy_share: buoyancy_ms / total,
+        max_peels,
+        mean_peels: sum_peels as f64 / steps as f64,
+        cpu_solver_steps_per_second: cpu_steps_per_s,
+        batched_ms,
+        one_body_at_a_time_ms: one_by_one_ms,
+        frame: frame.into(),
+    })
+}
+
+/// Steps per second of the same scene with the CPU reference solver (clip + Mirtich).
+fn cpu_solver_rate(settle: usize, steps: usize) -> anyhow::Result<f64> {
+    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+    let mut cpu = AnalyticSolver;
+    for _ in 0..settle {
+        sim.step(&mut cpu).map_err(anyhow::Error::msg)?;
+    }
+    let start = Instant::now();
+    for _ in 0..steps {
+        sim.step(&mut cpu).map_err(anyhow::Error::msg)?;
+    }
+    Ok(steps as f64 / start.elapsed().as_secs_f64())
+}
+
+/// The submerged parts of the scene's current state, all bodies as tiles of one target
+/// versus one body per round of passes (what batching saves), mean milliseconds of `reps`.
+fn batching_gain(
+    ctx: &Context,
+    sim: &Simulation,
+    batched: &mut GpuSolver,
+    reps: usize,
+) -> anyhow::Result<(f64, f64)> {
+    let mut single = GpuSolver::new(ctx, &sim.shapes, 1, 32)?;
+    // Interleaved, so that a change of load on a shared machine hits both alike.
+    let (mut batched_ms, mut single_ms) = (0.0, 0.0);
+    for _ in 0..reps {
+        let start = Instant::now();
+        batched
+            .submerged(&sim.shapes, &sim.bodies, &sim.water)
+            .map_err(anyhow::Error::msg)?;
+        batched_ms += start.elapsed().as_secs_f64() * 1e3;
+        let start = Instant::now();
+        for body in &sim.bodies {
+            single
+                .submerged(&sim.shapes, std::slice::from_ref(body), &sim.water)
+                .map_err(anyhow::Error::msg)?;
+        }
+        single_ms += start.elapsed().as_secs_f64() * 1e3;
+    }
+    Ok((batched_ms / reps as f64, single_ms / reps as f64))
+}
+
+/// Fig. 10: the integrands of each peel of a buoyant bunny (the part below the water when the
+/// water line passes through its centre of mass), dumped at 128x128; returns the peel count.
+fn buoyant_bunny_peels(opts: &BenchOptions) -> anyhow::Result<usize> {
+    let bunny = models::paper_object("bunny").expect("bunny");
+    let centre =
+        MassProperties::from_integrals(&analytic::volume_integrals(&bunny), 1.0).center_of_mass;
+    let dump_dir = opts.out_dir.join(super::fig10::DIR);
+    Ok(GpuMass::new(opts.gl, 128)?
+        .integrate(&bunny, Some(centre.z), Some(&dump_dir))?
+        .peels)
+}

@@ -1,0 +1,51 @@
+//! Section 5.3: the 50-body buoyancy scene beside the paper's frame rate.
+
+use super::bench::Paper4Results;
+use crate::report::published;
+use crate::report::Table;
+
+pub fn table(results: &Paper4Results, paper: &published::Paper4) -> Table {
+    let b = &results.buoyancy;
+    let row = |measure: &str, ours: String, paper: String| vec![measure.to_string(), ours, paper];
+    Table {
+        caption: format!(
+            "Section 5.3: {} bodies at {}x{} on {} (paper: GeForce 7800 GTX)",
+            b.bodies, b.resolution, b.resolution, results.renderer
+        ),
+        header: ["measure", "ours", "paper"].map(String::from).to_vec(),
+        rows: vec![
+            row(
+                "steps per second",
+                format!("{:.1}", b.steps_per_second),
+                format!("{}", paper.buoyancy.frames_per_second),
+            ),
+            row(
+                "steps per second, CPU reference solver (clip + Mirtich)",
+                format!("{:.1}", b.cpu_solver_steps_per_second),
+                "-".into(),
+            ),
+            row(
+                "share of step time in buoyancy",
+                format!("{:.0}%", 100.0 * b.buoyancy_share),
+                format!("over {:.0}%", 100.0 * paper.buoyancy.buoyancy_share),
+            ),
+            row(
+                "buoyancy of 50 bodies: tiles of one target vs one body at a time (ms)",
+                format!("{:.1} vs {:.1}", b.batched_ms, b.one_body_at_a_time_ms),
+                "-".into(),
+            ),
+            row(
+                "deepest peel (mean)",
+                format!("{} ({:.1})", b.max_peels, b.mean_peels),
+                format!(
+                    "{} (teapot, bunny; mostly {})",
+                    paper.buoyancy.peels_teapot_bunny_max,
+                    paper
+                        .buoyancy
+                        .peels_teapot_bunny_typical
+                        .replace(" or ", "-")
+                ),
+            ),
+        ],
+    }
+}

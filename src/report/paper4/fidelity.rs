@@ -1,0 +1,43 @@
+//! The GL features of paper 4, where this code uses them, and what differs.
+
+use crate::report::Fidelity;
+
+pub fn rows() -> Vec<Fidelity> {
+    vec![
+        Fidelity::new(
+            "integrands of eq. 4 and 6 in a fragment shader, three render targets (MRT)",
+            "GLSL listing, section 3.1",
+            "cg_ports/mass_integrands.frag",
+            "GLSL 1.10 ported to 330: gl_FragData becomes an output array; the listing's lost \
+             closing brace restored; a prelude renames its main() so the peel test runs first",
+        ),
+        Fidelity::new(
+            "depth peeling until an occlusion query counts nothing",
+            "section 3.2",
+            "src/mass/peel.rs, src/gl/peel.rs",
+            "each peel is added into running sums by blending instead of keeping the n layers \
+             and reducing each; the bodies of a batch are tiles of one target, each with its \
+             own occlusion query",
+        ),
+        Fidelity::new(
+            "summation by ping-pong buffer reduction",
+            "section 3.3, Fig. 2",
+            "src/mass/reduce.rs, src/gl/reduce.rs",
+            "the three integrand targets are reduced together (MRT), one texel per body tile",
+        ),
+        Fidelity::new(
+            "n + 2 passes: fluid depth, peels below it, fluid patch where pass 1 faced down",
+            "section 5.2, Fig. 7-8",
+            "src/mass/peel.rs, glsl/mass/peel_main.frag, glsl/mass/water_patch.frag",
+            "the paper's stencil bit (first peel faced down) is an extra colour output here; \
+             the water is a plane, not a height field",
+        ),
+        Fidelity::new(
+            "Mirtich's analytic algorithm as the baseline",
+            "section 4 [13]",
+            "src/mass/analytic.rs",
+            "computed in f64 on the CPU; the paper's test meshes are not published, so the \
+             objects are this project's generators and the Stanford bunny",
+        ),
+    ]
+}

@@ -1,0 +1,26 @@
+//! Fig. 9 and 10: the buoyancy scene's last frame, and the peels of a buoyant bunny.
+
+use super::bench::Paper4Results;
+use crate::report::Figure;
+
+/// The folder (under the output folder) of Fig. 10's peel dumps.
+pub const DIR: &str = "fig10_bunny";
+
+pub fn figures(results: &Paper4Results) -> Vec<Figure> {
+    let mut figures = vec![Figure {
+        file: results.buoyancy.frame.clone(),
+        caption: "Fig. 9: the 50-body scene after the benchmark run (gravity blue, buoyancy \
+                  yellow)"
+            .into(),
+    }];
+    for k in 1..=results.fig10_peels {
+        figures.push(Figure {
+            file: format!("{DIR}/peel{k}_target0.png"),
+            caption: format!(
+                "Fig. 10: bunny below the water, peel {k}, target 0 (rx, ry, rz, V integrands), \
+                 128x128"
+            ),
+        });
+    }
+    figures
+}

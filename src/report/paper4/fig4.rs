@@ -1,0 +1,73 @@
+//! Fig. 4: relative error of mass and the three diagonal moments against resolution.
+
+use super::bench::Paper4Results;
+use crate::report::plot::{Plot, Series};
+use crate::report::{BenchOptions, Figure, Table};
+
+/// Fig. 4's quantities, in the order of [`super::bench::RelativeErrors::all`].
+const QUANTITIES: [&str; 4] = ["mass", "Ixx", "Iyy", "Izz"];
+
+pub fn table(results: &Paper4Results) -> Table {
+    let mut table = Table {
+        caption: "Fig. 4: relative error against Mirtich's analytic result (%)".into(),
+        header: ["object", "resolution"]
+            .into_iter()
+            .chain(QUANTITIES)
+            .map(String::from)
+            .collect(),
+        rows: Vec::new(),
+    };
+    for o in &results.objects {
+        for r in &o.resolutions {
+            let n = r.resolution;
+            table.rows.push(
+                [o.object.clone(), format!("{n}x{n}")]
+                    .into_iter()
+                    .chain(
+                        r.relative_error
+                            .all()
+                            .iter()
+                            .map(|v| format!("{:.3}", 100.0 * v)),
+                    )
+                    .collect(),
+            );
+        }
+    }
+    table
+}
+
+/// One log-log plot per quantity.
+pub fn figures(opts: &BenchOptions, results: &Paper4Results) -> anyhow::Result<Vec<Figure>> {
+    let mut figures = Vec::new();
+    for (k, quantity) in QUANTITIES.iter().enumerate() {
+        let plot = Plot {
+            title: format!("Fig. 4: relative error of {quantity}"),
+            x_label: "resolution (pixels per side)".into(),
+            y_label: "relative error".into(),
+            log_x: true,
+            log_y: true,
+            series: results
+                .objects
+                .iter()
+                .map(|o| {
+                    Series::new(
+                        &o.object,
+                        o.resolutions
+                            .iter()
+                            .map(|r| (r.resolution as f64, r.relative_error.all()[k].max(1e-9)))
+                            .collect(),
+                    )
+                })
+                .collect(),
+        };
+        let file = format!("fig4_{}.png", quantity.to_lowercase());
+        plot.write_png(&opts.out_dir.join(&file))?;
+        figures.push(Figure {
+            file,
+            caption: format!(
+                "Fig. 4: relative error of {quantity} against resolution, each object"
+            ),
+        });
+    }
+    Ok(figures)
+}
