@@ -15,6 +15,8 @@
 //!    ([`pyramid_atlas`]: the same pyramid in one image, for per-pixel levels);
 //! 2. [`displacement`]: pyramidal displacement mapping, against an exact CPU tracer and
 //!    relief mapping;
+//! 3. [`light_hierarchy`]: VPLs in an image, clustered into a pyramid, gathered by a
+//!    quadtree search in the fragment shader, against the brute-force sum;
 //!
 //! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
 //! Shaders: `glsl/lecture3/`.
@@ -22,6 +24,7 @@
 pub mod displacement;
 pub mod error;
 pub mod height_map;
+pub mod light_hierarchy;
 pub mod pyramid;
 pub mod pyramid_atlas;
 
