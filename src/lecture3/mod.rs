@@ -17,12 +17,14 @@
 //!    relief mapping;
 //! 3. [`light_hierarchy`]: VPLs in an image, clustered into a pyramid, gathered by a
 //!    quadtree search in the fragment shader, against the brute-force sum;
+//! 4. [`function_texture`]: a costly function in a 1D lookup texture, against computing it;
 //!
 //! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
 //! Shaders: `glsl/lecture3/`.
 
 pub mod displacement;
 pub mod error;
+pub mod function_texture;
 pub mod height_map;
 pub mod light_hierarchy;
 pub mod pyramid;
