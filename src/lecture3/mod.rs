@@ -18,6 +18,8 @@
 //! 3. [`light_hierarchy`]: VPLs in an image, clustered into a pyramid, gathered by a
 //!    quadtree search in the fragment shader, against the brute-force sum;
 //! 4. [`function_texture`]: a costly function in a 1D lookup texture, against computing it;
+//! 5. [`random_texture`]: a generator per texel advanced by ping-pong passes, bit-exact with
+//!    the CPU;
 //!
 //! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
 //! Shaders: `glsl/lecture3/`.
@@ -29,6 +31,7 @@ pub mod height_map;
 pub mod light_hierarchy;
 pub mod pyramid;
 pub mod pyramid_atlas;
+pub mod random_texture;
 
 pub use error::Error;
 pub use height_map::HeightMap;
