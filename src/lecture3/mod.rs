@@ -20,10 +20,13 @@
 //! 4. [`function_texture`]: a costly function in a 1D lookup texture, against computing it;
 //! 5. [`random_texture`]: a generator per texel advanced by ping-pong passes, bit-exact with
 //!    the CPU;
+//! 6. [`depth_mask`]: an `if` removed with the depth buffer (early depth test, counted by an
+//!    occlusion query);
 //!
 //! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
 //! Shaders: `glsl/lecture3/`.
 
+pub mod depth_mask;
 pub mod displacement;
 pub mod error;
 pub mod function_texture;
