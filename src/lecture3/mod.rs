@@ -22,10 +22,12 @@
 //!    the CPU;
 //! 6. [`depth_mask`]: an `if` removed with the depth buffer (early depth test, counted by an
 //!    occlusion query);
+//! 7. [`blend_histogram`]: a histogram by additive blending of points, equal to the CPU's.
 //!
 //! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
 //! Shaders: `glsl/lecture3/`.
 
+pub mod blend_histogram;
 pub mod depth_mask;
 pub mod displacement;
 pub mod error;
