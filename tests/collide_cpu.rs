@@ -126,3 +126,18 @@ fn automatic_leaf_size_bounds_the_stream_and_keeps_the_default_for_the_papers_to
     assert!(AabbStream::build(&large, n).unwrap().len() <= bound);
     assert!(AabbStream::build(&large, n / 2).unwrap().len() > bound);
 }
+
+#[test]
+fn readback_modes_and_predicates_parse_their_names_and_refuse_others() {
+    use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
+    for mode in ReadbackMode::ALL {
+        assert_eq!(mode.to_string().parse::<ReadbackMode>(), Ok(mode));
+    }
+    for predicate in Predicate::ALL {
+        assert_eq!(predicate.to_string().parse::<Predicate>(), Ok(predicate));
+    }
+    let e = "fast".parse::<ReadbackMode>().unwrap_err();
+    assert!(e.contains("fast") && e.contains("hierarchical"), "{e}");
+    let e = "fuzzy".parse::<Predicate>().unwrap_err();
+    assert!(e.contains("fuzzy") && e.contains("exact"), "{e}");
+}

@@ -8,6 +8,7 @@
 
 use classic_gpgpu::mlp::cpu::{error_bound, forward, CpuProduct};
 use classic_gpgpu::mlp::detect::{classify_cpu, classify_gpu, shipped_detector, THRESHOLD};
+use classic_gpgpu::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 use classic_gpgpu::mlp::{Activation, Formulation, GpuMlp, Layer, Network};
 use common::context;
 use ndarray::{Array1, Array2};
@@ -120,6 +121,67 @@ fn batches_beyond_a_tile_are_split_and_give_the_same_outputs() {
     }
 }
 
+/// The paper's pass split, with the per-pass input limit forced small (down to one input per
+/// pass). Each pass after the first starts from the running sum of the ones before, read
+/// exactly from an R32F texel, and adds its inputs in order, so the split sums the same terms in
+/// the same order as one pass: it is held to the same fp32 bound (`error_bound`, twice for two
+/// evaluations) against the one-pass outputs and against the CPU.
+#[test]
+fn products_split_into_passes_equal_one_pass_and_the_cpu() {
+    let ctx = context();
+    let gpu = GpuMlp::new(&ctx).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(15);
+    let shapes: [&[usize]; 3] = [&[13, 5], &[121, 30, 1], &[33, 17, 6, 11]];
+    for sizes in shapes {
+        let net = random_network(&mut rng, sizes);
+        let x = random_batch(&mut rng, 37, sizes[0]);
+        let cpu = forward(CpuProduct::Plain, &net, x.view()).outputs;
+        let bound = error_bound(&net, x.view());
+        let one_pass = gpu.load(&net, Formulation::Faithful).unwrap();
+        let whole = one_pass.forward(x.view(), None).unwrap();
+        assert_eq!(whole.product_passes, vec![1; sizes.len() - 1]);
+        for limit in [1, 3, 7, RADEON_9700_INPUTS_PER_PASS] {
+            let split = gpu
+                .load(&net, Formulation::Faithful)
+                .unwrap()
+                .split_products(Some(limit))
+                .unwrap();
+            // and in tiles, so that the ping-pong targets are remade per tile
+            let out = split.forward(x.view(), Some(16)).unwrap();
+            let passes: Vec<usize> = sizes.windows(2).map(|s| s[0].div_ceil(limit)).collect();
+            assert_eq!(out.product_passes, passes, "{sizes:?}, {limit} per pass");
+            assert_eq!(out.tiles, 3);
+            let what = format!("{sizes:?}, {limit} inputs per pass");
+            assert_within(
+                &out.outputs,
+                &whole.outputs,
+                &bound,
+                &format!("{what} vs one pass"),
+            );
+            assert_within(&out.outputs, &cpu, &bound, &format!("{what} vs CPU"));
+        }
+    }
+}
+
+#[test]
+fn a_pass_split_of_zero_or_of_the_packed_passes_is_refused() {
+    let ctx = context();
+    let gpu = GpuMlp::new(&ctx).unwrap();
+    let net = random_network(&mut ChaCha8Rng::seed_from_u64(2), &[6, 3]);
+    let zero = gpu
+        .load(&net, Formulation::Faithful)
+        .unwrap()
+        .split_products(Some(0));
+    let e = zero.err().expect("refused").to_string();
+    assert!(e.contains("at least one input"), "{e}");
+    let packed = gpu
+        .load(&net, Formulation::Packed)
+        .unwrap()
+        .split_products(Some(3));
+    let e = packed.err().expect("refused").to_string();
+    assert!(e.contains("faithful") && e.contains("packed"), "{e}");
+}
+
 #[test]
 fn layers_wider_than_a_texture_are_refused_clearly() {
     let ctx = context();
@@ -189,24 +251,38 @@ fn text_detector_gpu_mask_equals_cpu_mask() {
         .to_luma8();
     // a 120 x 80 crop with text and ruled lines keeps llvmpipe quick
     let image = image::imageops::crop_imm(&photo, 60, 20, 120, 80).to_image();
-    let cpu = classify_cpu(&net, &image, CpuProduct::Optimised, 1 << 16);
+    let cpu = classify_cpu(&net, &image, CpuProduct::Optimised, 1 << 16).outputs;
     let windows = classic_gpgpu::mlp::window::window_batch(&image, 0..image.height());
     let bound = error_bound(&net, windows.view());
-    for formulation in [Formulation::Faithful, Formulation::Packed] {
-        let loaded = gpu.load(&net, formulation).unwrap();
-        let (out, _) = classify_gpu(&loaded, &image, 1 << 16).unwrap();
+    for (formulation, inputs_per_pass) in [
+        (Formulation::Faithful, None),
+        (Formulation::Faithful, Some(RADEON_9700_INPUTS_PER_PASS)),
+        (Formulation::Packed, None),
+    ] {
+        let loaded = gpu
+            .load(&net, formulation)
+            .unwrap()
+            .split_products(inputs_per_pass)
+            .unwrap();
+        let out = classify_gpu(&loaded, &image, 1 << 16, None)
+            .unwrap()
+            .outputs;
         let mut undecided = 0;
         for (p, (&g, &c)) in out.iter().zip(&cpu).enumerate() {
             let allowed = 2.0 * bound[[p, 0]];
             assert!(
                 (g - c).abs() <= allowed,
-                "{formulation:?} pixel {p}: {g} vs {c}"
+                "{formulation:?} {inputs_per_pass:?} pixel {p}: {g} vs {c}"
             );
             // a pixel may flip only when its CPU output is within the tolerance of 1/2
             if (c - THRESHOLD).abs() <= allowed {
                 undecided += 1;
             } else {
-                assert_eq!(g > THRESHOLD, c > THRESHOLD, "{formulation:?} pixel {p}");
+                assert_eq!(
+                    g > THRESHOLD,
+                    c > THRESHOLD,
+                    "{formulation:?} {inputs_per_pass:?} pixel {p}"
+                );
             }
         }
         let text = cpu.iter().filter(|&&c| c > THRESHOLD).count();

@@ -82,15 +82,12 @@ fn quick_reproduction_writes_every_section_and_keeps_a_good_report_on_failure() 
     let stderr = String::from_utf8_lossy(&failed.stderr);
     assert!(stderr.contains("left as it was"), "{stderr}");
     assert_eq!(std::fs::read(out.join("results.json")).unwrap(), before);
+    // This run's staging folders only: other runs may be going on in the same folder.
+    let staging_prefix = format!(".{}.staging-", out.file_name().unwrap().to_string_lossy());
     let leftovers: Vec<_> = std::fs::read_dir(out.parent().unwrap())
         .unwrap()
         .filter_map(|e| e.ok())
-        .filter(|e| e.file_name().to_string_lossy().contains(".staging-"))
-        .filter(|e| {
-            e.file_name()
-                .to_string_lossy()
-                .contains("classic-gpgpu-report")
-        })
+        .filter(|e| e.file_name().to_string_lossy().starts_with(&staging_prefix))
         .collect();
     assert!(leftovers.is_empty(), "staging folders left behind");
 

@@ -1,11 +1,9 @@
-#version 330 core
-// Oh & Jung 2004, section 3, eq. 2: the pixel shader of the matrix product. Pixel (i, j)
-// computes the inner product W_i . X_j, stepping along row i of texture W and column j of
-// texture X with nearest-texel lookups, summed in order k = 1..N.
+// Oh & Jung 2004, section 3, eq. 2: the pixel shader of the matrix product's first (or only)
+// rendering pass. Pixel (i, j) sums the terms k_begin .. k_end - 1 of W_i . X_j
+// (glsl/mlp/inner_product.frag); with the whole range 0 .. N it is the product in one pass.
 
-uniform sampler2D u_w; // N wide, M high, R32F: texel (k, i) = w_ik
-uniform sampler2D u_x; // L wide, N high, R32F: texel (j, k) = x_kj
-uniform int u_n;       // N, the inputs of the layer
+uniform int u_k_begin; // the first input of this pass
+uniform int u_k_end;   // one past the last
 
 in float v_w_row;
 in float v_x_column;
@@ -13,11 +11,5 @@ in float v_x_column;
 layout(location = 0) out float o_product; // texture W x X, L wide, M high
 
 void main() {
-    float dk = 1.0 / float(u_n);
-    float sum = 0.0;
-    for (int k = 0; k < u_n; ++k) {
-        float s = (float(k) + 0.5) * dk; // the centre of the kth texel along the inner product
-        sum += texture(u_w, vec2(s, v_w_row)).r * texture(u_x, vec2(v_x_column, s)).r;
-    }
-    o_product = sum;
+    o_product = inner_product(v_w_row, v_x_column, u_k_begin, u_k_end, 0.0);
 }

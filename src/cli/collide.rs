@@ -1,7 +1,9 @@
 //! The commands `collide` (two static meshes) and `collide-scene` (a deforming scene of
-//! Table III, frame by frame). `collide-bench` lives in `report::paper1`.
+//! Table III, frame by frame). `collide-bench` is `report::paper1`'s section, run through
+//! `report::bench_command`.
 
 use anyhow::Context as _;
+use clap::builder::TypedValueParser as _;
 use classic_gpgpu::collide::pipeline::{FrameResult, Options, StreamingCollider};
 use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
 use classic_gpgpu::collide::scenes::{Scene, SCENES};
@@ -21,7 +23,7 @@ pub struct PipelineArgs {
     #[arg(long)]
     pub leaf_size: Option<usize>,
     /// Stream reduction scheme; `auto` calibrates all three on this renderer and picks by eta.
-    #[arg(long, value_enum, default_value_t = ReadbackMode::Auto)]
+    #[arg(long, default_value_t = ReadbackMode::Auto, value_parser = readback_parser())]
     pub readback: ReadbackMode,
     /// Decide triangle pairs with exact orientation predicates instead of floating point.
     #[arg(long)]
@@ -30,6 +32,12 @@ pub struct PipelineArgs {
     /// renderer's maximum texture size.
     #[arg(long)]
     pub max_tile: Option<usize>,
+}
+
+/// `--readback`: the names of [`ReadbackMode`], listed in `--help`, parsed by its `FromStr`.
+fn readback_parser() -> impl clap::builder::TypedValueParser<Value = ReadbackMode> {
+    clap::builder::PossibleValuesParser::new(ReadbackMode::ALL.map(ReadbackMode::name))
+        .try_map(|name| name.parse::<ReadbackMode>())
 }
 
 impl PipelineArgs {

@@ -1,15 +1,20 @@
-//! `classic-gpgpu mlp run | detect | train` and `classic-gpgpu mlp-bench`.
+//! `classic-gpgpu mlp run | detect | train` (paper 3); `mlp-bench` goes through
+//! [`classic_gpgpu::report::bench_command`].
 
-use anyhow::Context as _;
+use anyhow::{bail, Context as _};
 use classic_gpgpu::gl::Context;
-use classic_gpgpu::mlp::chain::{Formulation, GpuMlp, StepTimes};
+use classic_gpgpu::mlp::chain::{Formulation, GpuMlp, GpuNetwork, StepTimes};
 use classic_gpgpu::mlp::cpu::{forward, CpuProduct};
 use classic_gpgpu::mlp::detect::{
-    classify_cpu, classify_gpu, mask_image, shipped_detector, THRESHOLD,
+    classify_cpu, classify_gpu, mask_image, shipped_detector, Classified, THRESHOLD,
 };
+use classic_gpgpu::mlp::labelled::LabelledImage;
 use classic_gpgpu::mlp::network::{parse_inputs, Network};
-use classic_gpgpu::mlp::train::{evaluate, train, window_set, TrainConfig};
+use classic_gpgpu::mlp::train::{
+    evaluate, labelled_window_sets, train, window_set, TrainConfig, WindowSet, HELD_OUT_EVERY,
+};
 use classic_gpgpu::mlp::window::WINDOW_INPUTS;
+use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -26,23 +31,51 @@ enum MlpCommand {
     Run(RunArgs),
     /// Classifies every pixel of a grey image as text / non-text (11 x 11 windows, one batch).
     Detect(DetectArgs),
-    /// Trains the text detector on synthetic text (reproduces assets/mlp/text_detector.json).
+    /// Trains a text detector for `mlp detect --network`: on synthetic text (the default, which
+    /// reproduces assets/mlp/text_detector.json) or on your own image + mask pairs.
     Train(TrainArgs),
 }
 
 /// Where the network is evaluated.
 #[derive(clap::Args, Debug)]
 struct Engine {
-    /// GPU formulation: the paper's one-value-per-texel passes, or the packed RGBA passes.
-    #[arg(long, value_enum, default_value = "faithful")]
-    formulation: Formulation,
-    /// Evaluate on the CPU instead of the GPU.
+    /// GPU formulation: the paper's one-value-per-texel passes, or the packed RGBA passes
+    /// [default: faithful].
+    #[arg(long, value_enum, conflicts_with = "cpu")]
+    formulation: Option<FormulationArg>,
+    /// Evaluate on the CPU instead of the GPU. The GPU's options (--formulation,
+    /// --max-vectors, --inputs-per-pass) do not apply and are refused with it.
     #[arg(long, value_enum)]
     cpu: Option<CpuChoice>,
-    /// At most this many input vectors per texture (default: the renderer's maximum texture
-    /// size; the paper's board allowed 2048). Larger batches are split into tiles.
-    #[arg(long)]
+    /// At most this many input vectors per texture (default and upper limit: the renderer's
+    /// maximum texture size; the paper's board allowed 2048). Larger batches are split into
+    /// tiles.
+    #[arg(long, conflicts_with = "cpu", value_parser = at_least_one)]
     max_vectors: Option<usize>,
+    /// Sum at most this many of a layer's inputs per matrix-product pass, splitting each
+    /// product into as many passes as that takes, as the paper's GPU required (15 is our
+    /// estimate for its ATI RADEON 9700 PRO). Faithful formulation only [default: one pass per
+    /// product].
+    #[arg(long, conflicts_with = "cpu", value_parser = at_least_one)]
+    inputs_per_pass: Option<usize>,
+}
+
+/// The library's [`Formulation`], as the command line names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum FormulationArg {
+    /// The paper's: one float per texel, one inner product per fragment.
+    Faithful,
+    /// Four floats per texel, a 4 x 4 block of outputs per fragment (MRT).
+    Packed,
+}
+
+impl From<FormulationArg> for Formulation {
+    fn from(f: FormulationArg) -> Formulation {
+        match f {
+            FormulationArg::Faithful => Formulation::Faithful,
+            FormulationArg::Packed => Formulation::Packed,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -62,6 +95,38 @@ impl From<CpuChoice> for CpuProduct {
     }
 }
 
+impl Engine {
+    fn formulation(&self) -> Formulation {
+        self.formulation.unwrap_or(FormulationArg::Faithful).into()
+    }
+
+    /// How the outputs were computed, as the JSON reports name it.
+    fn evaluated_by(&self) -> &'static str {
+        match (self.cpu, self.formulation()) {
+            (Some(CpuChoice::Plain), _) => "cpu-plain",
+            (Some(CpuChoice::Optimised), _) => "cpu-optimised",
+            (None, Formulation::Packed) => "gpu-packed",
+            (None, Formulation::Faithful) => "gpu-faithful",
+        }
+    }
+
+    /// The network's textures, its products split as `--inputs-per-pass` asks.
+    fn load<'g>(&self, gpu: &'g GpuMlp, net: &Network) -> anyhow::Result<GpuNetwork<'g>> {
+        Ok(gpu
+            .load(net, self.formulation())?
+            .split_products(self.inputs_per_pass)?)
+    }
+}
+
+/// A count that must be at least 1.
+fn at_least_one(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(0) => Err("must be at least 1".into()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 #[derive(clap::Args, Debug)]
 struct RunArgs {
     /// Network JSON: {"layers":[{"weights":[[..N..] x M],"bias":[..M..],"activation":"sigmoid"|"identity"}, ...]}
@@ -78,10 +143,15 @@ struct RunArgs {
 struct DetectArgs {
     /// The image (any format the `image` crate reads; colour is converted to grey).
     image: PathBuf,
-    /// Where to write the classified image (black = text).
+    /// Where to write the classified image (black = text). Never the input image; an existing
+    /// file only with --force.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// A network file to use instead of the shipped detector (121 inputs, 1 output).
+    /// Replace --out if it exists (never the input image).
+    #[arg(long, requires = "out")]
+    force: bool,
+    /// The network to classify with, e.g. one `mlp train` wrote (121 inputs, 1 output)
+    /// [default: the shipped detector, assets/mlp/text_detector.json, built into the binary].
     #[arg(long)]
     network: Option<PathBuf>,
     /// Output above which a pixel is text.
@@ -93,19 +163,38 @@ struct DetectArgs {
 
 #[derive(clap::Args, Debug)]
 struct TrainArgs {
-    /// Where to write the trained network.
-    #[arg(long, default_value = "assets/mlp/text_detector.json")]
+    /// Where to write the trained network (JSON); `mlp detect IMAGE --network FILE` classifies
+    /// with it. An existing file is replaced only with --force.
+    #[arg(long, default_value = "text_detector.json")]
     out: PathBuf,
-    /// Seed of the synthetic data, the initial weights and the sample order.
+    /// Replace --out if it exists (never one of the --pair files).
+    #[arg(long)]
+    force: bool,
+    /// Train on your own labelled image instead of synthetic text: the image (any format the
+    /// `image` crate reads; colour becomes grey) and its mask, the same size, where dark pixels
+    /// (grey below 128) are text and light ones are not, as `mlp detect --out` draws them.
+    /// Repeat for more pairs.
+    #[arg(long, num_args = 2, value_names = ["IMAGE", "MASK"], action = clap::ArgAction::Append)]
+    pair: Vec<PathBuf>,
+    /// At most this many text and this many non-text windows from each image [default: 30
+    /// per synthetic image, 2000 per --pair image].
+    #[arg(long, value_parser = at_least_one)]
+    windows_per_class: Option<usize>,
+    /// Seed of the synthetic data or of the window sampling, the initial weights and the
+    /// sample order.
     #[arg(long, default_value_t = TrainConfig::default().seed)]
     seed: u64,
     /// Training epochs.
-    #[arg(long, default_value_t = TrainConfig::default().epochs)]
+    #[arg(long, default_value_t = TrainConfig::default().epochs, value_parser = at_least_one)]
     epochs: usize,
-    /// Synthetic training images.
-    #[arg(long, default_value_t = TrainConfig::default().images)]
+    /// Synthetic training images (without --pair).
+    #[arg(long, default_value_t = TrainConfig::default().images, value_parser = at_least_one,
+          conflicts_with = "pair")]
     images: usize,
 }
+
+/// Windows sampled from each --pair image unless --windows-per-class says otherwise.
+const PAIR_WINDOWS_PER_CLASS: usize = 2000;
 
 /// Runs an `mlp` subcommand; `context` makes the GL context when one is needed.
 pub fn run(
@@ -126,13 +215,60 @@ fn read_network(path: &Path) -> anyhow::Result<Network> {
     Network::from_json(&text).with_context(|| format!("bad network file {}", path.display()))
 }
 
-/// Outputs (L x M) of a batch, where it ran, its step times and tiles.
+fn read_grey(path: &Path, what: &str) -> anyhow::Result<image::GrayImage> {
+    Ok(image::open(path)
+        .with_context(|| format!("cannot read the {what} {}", path.display()))?
+        .to_luma8())
+}
+
+/// Refuses to write `out` over one of `inputs` (ever), or over an existing file without
+/// `force`; checked before any work is done.
+fn check_output(out: &Path, inputs: &[&Path], force: bool) -> anyhow::Result<()> {
+    if let Some(input) = inputs.iter().find(|input| same_file(out, input)) {
+        bail!(
+            "--out {} is the input {}; an input is never overwritten (not even with --force), \
+             so write the result to another file",
+            out.display(),
+            input.display()
+        );
+    }
+    if out.exists() && !force {
+        bail!("--out {} exists; pass --force to replace it", out.display());
+    }
+    Ok(())
+}
+
+/// Whether two paths name one existing file (through links, `.`/`..`, or hard links).
+fn same_file(a: &Path, b: &Path) -> bool {
+    let (Ok(a), Ok(b)) = (std::fs::canonicalize(a), std::fs::canonicalize(b)) else {
+        return false;
+    };
+    a == b || same_inode(&a, &b)
+}
+
+#[cfg(unix)]
+fn same_inode(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(a), Ok(b)) => (a.dev(), a.ino()) == (b.dev(), b.ino()),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_inode(_: &Path, _: &Path) -> bool {
+    false
+}
+
+/// Outputs (L x M) of a batch, where it ran, its step times, tiles and passes.
 struct Evaluated {
     outputs: ndarray::Array2<f32>,
     renderer: String,
     times: StepTimes,
-    network_upload_ms: f64,
+    /// `None` on the CPU.
+    network_upload_ms: Option<f64>,
     tiles: usize,
+    product_passes: Vec<usize>,
 }
 
 fn evaluate_batch(
@@ -152,30 +288,33 @@ fn evaluate_batch(
                 activation: result.activation.as_secs_f64() * 1e3,
                 ..StepTimes::default()
             },
-            network_upload_ms: 0.0,
+            network_upload_ms: None,
             tiles: 1,
+            product_passes: Vec::new(),
         });
     }
     let ctx = context()?;
     let gpu = GpuMlp::new(&ctx)?;
-    let loaded = gpu.load(net, engine.formulation)?;
+    let loaded = engine.load(&gpu, net)?;
     let result = loaded.forward(batch, engine.max_vectors)?;
     Ok(Evaluated {
         outputs: result.outputs,
         renderer: ctx.info().renderer_line(),
         times: result.times,
-        network_upload_ms: loaded.upload_ms,
+        network_upload_ms: Some(loaded.upload_ms),
         tiles: result.tiles,
+        product_passes: result.product_passes,
     })
 }
 
-fn timings_json(e: &Evaluated) -> serde_json::Value {
-    serde_json::json!({
-        "texture_creation": e.times.texture_creation,
-        "matmul": e.times.matmul,
-        "activation": e.times.activation,
-        "readback": e.times.readback,
-        "network_upload": e.network_upload_ms,
+/// The step times; the GPU-only steps are null on the CPU rather than a zero never measured.
+fn timings_json(times: &StepTimes, on_gpu: bool) -> serde_json::Value {
+    let gpu_only = |ms: f64| on_gpu.then_some(ms);
+    json!({
+        "texture_creation": gpu_only(times.texture_creation),
+        "matmul": times.matmul,
+        "activation": times.activation,
+        "readback": gpu_only(times.readback),
     })
 }
 
@@ -190,19 +329,23 @@ fn run_network(
     let inputs = parse_inputs(&text, net.inputs())
         .with_context(|| format!("bad input file {}", args.input.display()))?;
     let result = evaluate_batch(&net, inputs.view(), &args.engine, context)?;
+    anyhow::ensure!(
+        result.outputs.iter().all(|v| v.is_finite()),
+        "{} on {}: an output is not a finite number",
+        args.network.display(),
+        args.input.display()
+    );
     let outputs: Vec<Vec<f32>> = result.outputs.outer_iter().map(|r| r.to_vec()).collect();
     if json {
-        let report = serde_json::json!({
+        let mut timings = timings_json(&result.times, args.engine.cpu.is_none());
+        timings["network_upload"] = json!(result.network_upload_ms);
+        let report = json!({
             "renderer": result.renderer,
-            "evaluated_by": match args.engine.cpu {
-                Some(CpuChoice::Plain) => "cpu-plain",
-                Some(CpuChoice::Optimised) => "cpu-optimised",
-                None if args.engine.formulation == Formulation::Packed => "gpu-packed",
-                None => "gpu-faithful",
-            },
+            "evaluated_by": args.engine.evaluated_by(),
             "tiles": result.tiles,
+            "product_passes": result.product_passes,
             "outputs": outputs,
-            "timings_ms": timings_json(&result),
+            "timings_ms": timings,
         });
         println!("{report}");
     } else {
@@ -212,12 +355,29 @@ fn run_network(
             println!("{}", cells.join(" "));
         }
         let t = &result.times;
-        println!(
-            "# ms: texture creation {:.3}, matrix product {:.3}, bias + sigmoid {:.3}, readback {:.3}",
-            t.texture_creation, t.matmul, t.activation, t.readback
-        );
+        match args.engine.cpu {
+            Some(_) => println!(
+                "# ms: matrix product {:.3}, bias + sigmoid {:.3}",
+                t.matmul, t.activation
+            ),
+            None => println!(
+                "# ms: texture creation {:.3}, matrix product {:.3} ({} pass(es) per layer), \
+                 bias + sigmoid {:.3}, readback {:.3}",
+                t.texture_creation,
+                t.matmul,
+                passes_text(&result.product_passes),
+                t.activation,
+                t.readback
+            ),
+        }
     }
     Ok(())
+}
+
+/// "9 + 2": the product passes of each layer.
+fn passes_text(per_layer: &[usize]) -> String {
+    let counts: Vec<String> = per_layer.iter().map(usize::to_string).collect();
+    counts.join(" + ")
 }
 
 fn detect(
@@ -225,6 +385,11 @@ fn detect(
     json: bool,
     context: impl FnOnce() -> anyhow::Result<Context>,
 ) -> anyhow::Result<()> {
+    if let Some(out) = &args.out {
+        let mut inputs = vec![args.image.as_path()];
+        inputs.extend(args.network.as_deref());
+        check_output(out, &inputs, args.force)?;
+    }
     let net = match &args.network {
         Some(path) => read_network(path)?,
         None => shipped_detector().context("the shipped detector")?,
@@ -235,25 +400,37 @@ fn detect(
         net.inputs(),
         net.outputs()
     );
-    let image = image::open(&args.image)
-        .with_context(|| format!("cannot read the image {}", args.image.display()))?
-        .to_luma8();
+    let image = read_grey(&args.image, "image")?;
     let start = Instant::now();
-    let (outputs, renderer, times) = match args.engine.cpu {
+    let (classified, renderer, product_passes) = match args.engine.cpu {
         Some(cpu) => {
             let kind = CpuProduct::from(cpu);
-            let out = classify_cpu(&net, &image, kind, 1 << 18);
-            (out, kind.name().to_string(), StepTimes::default())
+            let classified = classify_cpu(&net, &image, kind, 1 << 18);
+            (classified, kind.name().to_string(), Vec::new())
         }
         None => {
             let ctx = context()?;
             let gpu = GpuMlp::new(&ctx)?;
-            let loaded = gpu.load(&net, args.engine.formulation)?;
-            let (out, times) = classify_gpu(&loaded, &image, 1 << 18)?;
-            (out, ctx.info().renderer_line(), times)
+            let loaded = args.engine.load(&gpu, &net)?;
+            let classified = classify_gpu(&loaded, &image, 1 << 18, args.engine.max_vectors)?;
+            (
+                classified,
+                ctx.info().renderer_line(),
+                loaded.product_passes(),
+            )
         }
     };
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let Classified {
+        outputs,
+        times,
+        batches,
+    } = classified;
+    anyhow::ensure!(
+        outputs.iter().all(|v| v.is_finite()),
+        "{}: a pixel's network output is not a finite number",
+        args.image.display()
+    );
     let mask = mask_image(&outputs, image.width(), image.height(), args.threshold);
     let text_pixels = outputs.iter().filter(|&&v| v > args.threshold).count();
     if let Some(out) = &args.out {
@@ -262,22 +439,22 @@ fn detect(
     }
     let fraction = text_pixels as f64 / outputs.len() as f64;
     if json {
-        let report = serde_json::json!({
+        let mut timings = timings_json(&times, args.engine.cpu.is_none());
+        timings["wall"] = json!(wall_ms);
+        let report = json!({
             "image": args.image.display().to_string(),
             "width": image.width(),
             "height": image.height(),
+            "network": args.network.as_ref().map(|p| p.display().to_string()),
             "renderer": renderer,
+            "evaluated_by": args.engine.evaluated_by(),
+            "batches": batches,
+            "product_passes": product_passes,
             "text_pixels": text_pixels,
             "text_fraction": fraction,
             "threshold": args.threshold,
             "out": args.out.as_ref().map(|p| p.display().to_string()),
-            "timings_ms": {
-                "texture_creation": times.texture_creation,
-                "matmul": times.matmul,
-                "activation": times.activation,
-                "readback": times.readback,
-                "wall": wall_ms,
-            },
+            "timings_ms": timings,
         });
         println!("{report}");
     } else {
@@ -297,28 +474,104 @@ fn detect(
     Ok(())
 }
 
+/// The training and held-out windows, and what they came from (for the report).
+struct TrainingData {
+    train: WindowSet,
+    held_out: WindowSet,
+    source: serde_json::Value,
+}
+
+/// Synthetic text (the shipped detector's data), held out: images of the next seed.
+fn synthetic_data(config: &TrainConfig) -> TrainingData {
+    let held_out_images = (config.images / 4).max(1);
+    TrainingData {
+        train: window_set(config.seed, config.images, config.windows_per_class),
+        held_out: window_set(
+            config.seed.wrapping_add(1),
+            held_out_images,
+            config.windows_per_class,
+        ),
+        source: json!({
+            "synthetic_images": config.images,
+            "held_out": format!(
+                "{held_out_images} other synthetic images (seed {})",
+                config.seed.wrapping_add(1)
+            ),
+        }),
+    }
+}
+
+/// The user's image + mask pairs, held out: one window in [`HELD_OUT_EVERY`].
+fn pair_data(pairs: &[PathBuf], config: &TrainConfig) -> anyhow::Result<TrainingData> {
+    let mut pages = Vec::new();
+    let mut described = Vec::new();
+    for pair in pairs.chunks(2) {
+        let [image_path, mask_path] = pair else {
+            bail!("--pair takes two files, an image and its mask");
+        };
+        let image = read_grey(image_path, "training image")?;
+        let mask = read_grey(mask_path, "mask")?;
+        let page = LabelledImage::from_mask(image, &mask)
+            .with_context(|| format!("--pair {} {}", image_path.display(), mask_path.display()))?;
+        described.push(json!({
+            "image": image_path.display().to_string(),
+            "mask": mask_path.display().to_string(),
+            "pixels": page.text.len(),
+            "text_pixels": page.text_pixels(),
+        }));
+        pages.push(page);
+    }
+    let (train, held_out) = labelled_window_sets(&pages, config.windows_per_class, config.seed)
+        .context("--pair masks")?;
+    Ok(TrainingData {
+        train,
+        held_out,
+        source: json!({
+            "pairs": described,
+            "held_out": format!("1 in {HELD_OUT_EVERY} of the windows sampled from the same images"),
+        }),
+    })
+}
+
 fn train_detector(args: TrainArgs, json: bool) -> anyhow::Result<()> {
+    let inputs: Vec<&Path> = args.pair.iter().map(PathBuf::as_path).collect();
+    check_output(&args.out, &inputs, args.force)?;
+    let own = !args.pair.is_empty();
+    let defaults = TrainConfig::default();
     let config = TrainConfig {
         seed: args.seed,
         epochs: args.epochs,
-        images: args.images,
-        ..TrainConfig::default()
+        images: if own {
+            args.pair.len() / 2
+        } else {
+            args.images
+        },
+        windows_per_class: args.windows_per_class.unwrap_or(if own {
+            PAIR_WINDOWS_PER_CLASS
+        } else {
+            defaults.windows_per_class
+        }),
+        ..defaults
     };
-    let set = window_set(config.seed, config.images, config.windows_per_class);
-    let trained = train(&config, &set);
-    // held-out images from another seed
-    let test = window_set(
-        config.seed.wrapping_add(1),
-        config.images / 4,
-        config.windows_per_class,
-    );
-    let outputs = forward(CpuProduct::Optimised, &trained.network, test.inputs.view()).outputs;
-    let quality = evaluate(outputs.column(0), &test.labels, THRESHOLD);
+    let data = if own {
+        pair_data(&args.pair, &config)?
+    } else {
+        synthetic_data(&config)
+    };
+    let trained = train(&config, &data.train);
+    let outputs = forward(
+        CpuProduct::Optimised,
+        &trained.network,
+        data.held_out.inputs.view(),
+    )
+    .outputs;
+    let quality = evaluate(outputs.column(0), &data.held_out.labels, THRESHOLD);
     std::fs::write(&args.out, trained.network.to_json() + "\n")
         .with_context(|| format!("cannot write {}", args.out.display()))?;
-    let report = serde_json::json!({
+    let report = json!({
         "config": config,
-        "training_windows": set.labels.len(),
+        "data": data.source,
+        "training_windows": data.train.labels.len(),
         "loss_per_epoch": trained.loss_per_epoch,
         "held_out": quality,
         "out": args.out.display().to_string(),
@@ -326,7 +579,23 @@ fn train_detector(args: TrainArgs, json: bool) -> anyhow::Result<()> {
     if json {
         println!("{report}");
     } else {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        let loss = &trained.loss_per_epoch;
+        println!(
+            "trained on {} windows for {} epochs (loss {:.4} -> {:.4}); held out ({}): \
+             accuracy {:.1}%, precision {:.1}%, recall {:.1}%",
+            data.train.labels.len(),
+            config.epochs,
+            loss.first().copied().unwrap_or_default(),
+            loss.last().copied().unwrap_or_default(),
+            data.source["held_out"].as_str().unwrap_or(""),
+            100.0 * quality.accuracy,
+            100.0 * quality.precision,
+            100.0 * quality.recall
+        );
+        println!(
+            "network written to {0}; classify with it: classic-gpgpu mlp detect IMAGE --network {0}",
+            args.out.display()
+        );
     }
     Ok(())
 }

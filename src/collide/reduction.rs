@@ -14,12 +14,22 @@
 //! references.
 
 /// Which readback a frame used.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Scheme {
     Hierarchical,
     Reduced,
     Full,
+}
+
+impl std::fmt::Display for Scheme {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Scheme::Hierarchical => "hierarchical",
+            Scheme::Reduced => "reduced",
+            Scheme::Full => "full",
+        })
+    }
 }
 
 /// `P0` pixels per `P1'` texel side in the reduced scheme, and per `P_{i+1}` texel side in

@@ -14,7 +14,7 @@ use crate::shader;
 use std::time::Instant;
 
 /// How the CAPs are read back.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ReadbackMode {
     /// Per frame, the scheme the calibration found fastest at this frame's `eta`.
@@ -23,6 +23,46 @@ pub enum ReadbackMode {
     Hierarchical,
     Reduced,
     Full,
+}
+
+impl ReadbackMode {
+    /// Every mode, as its name parses.
+    pub const ALL: [ReadbackMode; 4] = [
+        ReadbackMode::Auto,
+        ReadbackMode::Hierarchical,
+        ReadbackMode::Reduced,
+        ReadbackMode::Full,
+    ];
+
+    /// The name [`std::str::FromStr`] takes (and serde writes): `auto`, `hierarchical`...
+    pub fn name(self) -> &'static str {
+        match self {
+            ReadbackMode::Auto => "auto",
+            ReadbackMode::Hierarchical => "hierarchical",
+            ReadbackMode::Reduced => "reduced",
+            ReadbackMode::Full => "full",
+        }
+    }
+}
+
+impl std::fmt::Display for ReadbackMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for ReadbackMode {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<ReadbackMode, String> {
+        ReadbackMode::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = ReadbackMode::ALL.iter().map(|m| m.name()).collect();
+                format!("unknown readback '{s}' (one of: {})", names.join(", "))
+            })
+    }
 }
 
 /// One encoded level: an R32F (`P1..P3`) or RGBA32F (`P1'`) texture and its framebuffer.

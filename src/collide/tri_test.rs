@@ -24,13 +24,43 @@ use glam::{DVec3, Vec3};
 use robust::{Coord, Coord3D};
 
 /// Which triangle/triangle predicate decides a pair.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub enum Predicate {
     /// Möller 1997 in floating point.
     #[default]
     Moller,
     /// Exact orientation predicates.
     Exact,
+}
+
+impl Predicate {
+    /// Every predicate, as its name parses.
+    pub const ALL: [Predicate; 2] = [Predicate::Moller, Predicate::Exact];
+
+    /// The name [`std::str::FromStr`] takes: `moller` or `exact`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Predicate::Moller => "moller",
+            Predicate::Exact => "exact",
+        }
+    }
+}
+
+impl std::fmt::Display for Predicate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Predicate {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Predicate, String> {
+        Predicate::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| format!("unknown triangle predicate '{s}' (moller or exact)"))
+    }
 }
 
 /// Do the closed triangles `a` and `b` share a point?

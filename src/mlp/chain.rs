@@ -4,7 +4,7 @@
 //! output is read back.
 
 use super::activation::{activation_pass, activation_program};
-use super::matmul::{float_target, product_pass, product_program};
+use super::matmul::{float_target, pass_ranges, product_passes, product_targets, ProductPrograms};
 use super::network::Network;
 use super::packed::{
     packed_activation_pass, packed_inputs, packed_layer, packed_product_pass, packed_target,
@@ -17,7 +17,7 @@ use serde::Serialize;
 use std::time::Instant;
 
 /// Which GPU formulation evaluates the network.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Formulation {
     /// The paper's: one float per texel, one inner product per fragment.
@@ -37,6 +37,11 @@ pub struct StepTimes {
 }
 
 impl StepTimes {
+    /// All four steps.
+    pub fn total(&self) -> f64 {
+        self.texture_creation + self.matmul + self.activation + self.readback
+    }
+
     pub fn add(&mut self, other: &StepTimes) {
         self.texture_creation += other.texture_creation;
         self.matmul += other.matmul;
@@ -48,7 +53,7 @@ impl StepTimes {
 /// The compiled programs of both formulations on one context.
 pub struct GpuMlp {
     ctx: Context,
-    product: Program,
+    product: ProductPrograms,
     activation: Program,
     packed: PackedPrograms,
 }
@@ -64,6 +69,8 @@ pub struct GpuNetwork<'a> {
     layers: LayerStack,
     pub(crate) inputs: usize,
     pub(crate) outputs: usize,
+    /// At most this many inputs summed per product pass (faithful only; `None`: one pass).
+    inputs_per_pass: Option<usize>,
     /// Wall-clock milliseconds spent making the weight and bias textures.
     pub upload_ms: f64,
 }
@@ -73,7 +80,7 @@ impl GpuMlp {
     pub fn new(ctx: &Context) -> Result<GpuMlp, GlError> {
         let mlp = GpuMlp {
             ctx: ctx.clone(),
-            product: product_program(ctx)?,
+            product: ProductPrograms::new(ctx)?,
             activation: activation_program(ctx)?,
             packed: PackedPrograms::new(ctx)?,
         };
@@ -109,6 +116,7 @@ impl GpuMlp {
             layers,
             inputs: net.inputs(),
             outputs: net.outputs(),
+            inputs_per_pass: None,
             upload_ms: start.elapsed().as_secs_f64() * 1e3,
         })
     }
@@ -128,11 +136,11 @@ impl PassTimers {
         }
     }
 
-    fn time(
+    fn time<T>(
         ctx: &Context,
         into: &mut Vec<TimerQuery>,
-        pass: impl FnOnce() -> Result<(), GlError>,
-    ) -> Result<(), GlError> {
+        pass: impl FnOnce() -> Result<T, GlError>,
+    ) -> Result<T, GlError> {
         let query = TimerQuery::new(ctx)?;
         query.begin();
         let result = pass();
@@ -157,6 +165,37 @@ impl GpuNetwork<'_> {
         match self.layers {
             LayerStack::Faithful(_) => Formulation::Faithful,
             LayerStack::Packed(_) => Formulation::Packed,
+        }
+    }
+
+    /// Splits every matrix product into rendering passes of at most `inputs` of the layer's N
+    /// inputs each, as the paper's GPU required (see [`super::matmul`]); `None` keeps one pass
+    /// per product. Only the faithful formulation is split: the packed one is not the paper's.
+    pub fn split_products(mut self, inputs: Option<usize>) -> Result<Self, GlError> {
+        if inputs == Some(0) {
+            return Err(GlError::Invalid(
+                "a product pass must sum at least one input (inputs per pass is 0)".into(),
+            ));
+        }
+        if inputs.is_some() && self.formulation() == Formulation::Packed {
+            return Err(GlError::Invalid(
+                "the product is split into passes only in the paper's faithful formulation; the \
+                 packed formulation always takes one pass"
+                    .into(),
+            ));
+        }
+        self.inputs_per_pass = inputs;
+        Ok(self)
+    }
+
+    /// The rendering passes of each layer's matrix product, for one tile of input vectors.
+    pub fn product_passes(&self) -> Vec<usize> {
+        match &self.layers {
+            LayerStack::Faithful(layers) => layers
+                .iter()
+                .map(|l| pass_ranges(l.n as usize, self.inputs_per_pass).len())
+                .collect(),
+            LayerStack::Packed(layers) => vec![1; layers.len()],
         }
     }
 
@@ -186,9 +225,10 @@ impl GpuNetwork<'_> {
         let mut timers = PassTimers::new();
         let mut last = None;
         for layer in layers {
-            let product = float_target(ctx, "mlp W x X", l, layer.m)?;
-            PassTimers::time(ctx, &mut timers.matmul, || {
-                product_pass(&gpu.product, layer, &x, &product)
+            let ranges = pass_ranges(layer.n as usize, self.inputs_per_pass);
+            let targets = product_targets(ctx, l, layer.m, ranges.len())?;
+            let product = PassTimers::time(ctx, &mut timers.matmul, || {
+                product_passes(&gpu.product, layer, &x, &targets, &ranges)
             })?;
             let result = float_target(ctx, "mlp R", l, layer.m)?;
             PassTimers::time(ctx, &mut timers.activation, || {

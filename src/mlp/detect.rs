@@ -2,7 +2,7 @@
 //! network in one batch; the output compared with a threshold gives the classified image,
 //! where a black pixel is a text pixel.
 
-use super::chain::GpuNetwork;
+use super::chain::{GpuNetwork, StepTimes};
 use super::cpu::{forward, CpuProduct};
 use super::network::{FormatError, Network};
 use super::window::window_batch;
@@ -20,47 +20,71 @@ pub fn shipped_detector() -> Result<Network, FormatError> {
     Network::from_json(DETECTOR_JSON)
 }
 
-/// The network output of every pixel (row-major), on the CPU, the image in bands of rows
-/// so that a band's batch stays near `max_batch` input vectors.
+/// The network output of every pixel (row-major), the time spent in each step, and how many
+/// batches went through the network (GPU: texture tiles; CPU: bands of rows).
+#[derive(Clone, Debug)]
+pub struct Classified {
+    pub outputs: Vec<f32>,
+    pub times: StepTimes,
+    pub batches: usize,
+}
+
+/// The image's rows in bands whose batch stays near `max_batch` input vectors.
+fn bands(image: &GrayImage, max_batch: usize) -> Vec<std::ops::Range<u32>> {
+    let rows_per_band = (max_batch / image.width().max(1) as usize).clamp(1, u32::MAX as usize);
+    (0..image.height())
+        .step_by(rows_per_band)
+        .map(|y| y..(y + rows_per_band as u32).min(image.height()))
+        .collect()
+}
+
+/// Every pixel through the network on the CPU, the image in bands of rows of about
+/// `max_batch` input vectors; the product and activation times are measured (the GPU-only
+/// steps, texture creation and readback, stay zero).
 pub fn classify_cpu(
     net: &Network,
     image: &GrayImage,
     kind: CpuProduct,
     max_batch: usize,
-) -> Vec<f32> {
-    let rows_per_band = (max_batch / image.width().max(1) as usize).max(1) as u32;
-    let mut outputs = Vec::with_capacity((image.width() * image.height()) as usize);
-    let mut y = 0;
-    while y < image.height() {
-        let end = (y + rows_per_band).min(image.height());
-        let batch = window_batch(image, y..end);
-        outputs.extend(forward(kind, net, batch.view()).outputs.column(0).iter());
-        y = end;
+) -> Classified {
+    let mut classified = Classified {
+        outputs: Vec::with_capacity((image.width() * image.height()) as usize),
+        times: StepTimes::default(),
+        batches: 0,
+    };
+    for rows in bands(image, max_batch) {
+        let batch = window_batch(image, rows);
+        let result = forward(kind, net, batch.view());
+        classified.outputs.extend(result.outputs.column(0).iter());
+        classified.times.matmul += result.product.as_secs_f64() * 1e3;
+        classified.times.activation += result.activation.as_secs_f64() * 1e3;
+        classified.batches += 1;
     }
-    outputs
+    classified
 }
 
-/// The network output of every pixel on the GPU: the windows of a band of rows accumulated
-/// into one batch (tiled to the texture size by [`GpuNetwork::forward`]). Also returns the
-/// summed step times.
+/// Every pixel through the network on the GPU: the windows of a band of rows accumulated into
+/// one batch, split into tiles of at most `max_vectors` input vectors by
+/// [`GpuNetwork::forward`] (default: one texture's worth).
 pub fn classify_gpu(
     net: &GpuNetwork,
     image: &GrayImage,
     max_batch: usize,
-) -> Result<(Vec<f32>, super::chain::StepTimes), GlError> {
-    let rows_per_band = (max_batch / image.width().max(1) as usize).max(1) as u32;
-    let mut outputs = Vec::with_capacity((image.width() * image.height()) as usize);
-    let mut times = super::chain::StepTimes::default();
-    let mut y = 0;
-    while y < image.height() {
-        let end = (y + rows_per_band).min(image.height());
-        let batch = window_batch(image, y..end);
-        let result = net.forward(batch.view(), None)?;
-        outputs.extend(result.outputs.column(0).iter());
-        times.add(&result.times);
-        y = end;
+    max_vectors: Option<usize>,
+) -> Result<Classified, GlError> {
+    let mut classified = Classified {
+        outputs: Vec::with_capacity((image.width() * image.height()) as usize),
+        times: StepTimes::default(),
+        batches: 0,
+    };
+    for rows in bands(image, max_batch) {
+        let batch = window_batch(image, rows);
+        let result = net.forward(batch.view(), max_vectors)?;
+        classified.outputs.extend(result.outputs.column(0).iter());
+        classified.times.add(&result.times);
+        classified.batches += result.tiles;
     }
-    Ok((outputs, times))
+    Ok(classified)
 }
 
 /// The classified image: black where the output exceeds `threshold` (text), white elsewhere.
@@ -101,7 +125,10 @@ mod tests {
             GrayImage::from_fn(23, 9, |x, y| image::Luma([((x * 37 + y * 91) % 256) as u8]));
         let whole = classify_cpu(&net, &image, CpuProduct::Plain, 1 << 20);
         let banded = classify_cpu(&net, &image, CpuProduct::Plain, 50);
-        assert_eq!(whole, banded);
+        assert_eq!((whole.batches, banded.batches), (1, 5)); // 2 rows of 23 per band
+        assert_eq!(whole.outputs, banded.outputs);
+        assert!(whole.times.matmul > 0.0 && whole.times.activation > 0.0);
+        let whole = whole.outputs;
         let mask = mask_image(&whole, 23, 9, THRESHOLD);
         let black = whole.iter().filter(|&&v| v > THRESHOLD).count();
         assert_eq!(mask.pixels().filter(|p| p.0[0] == 0).count(), black);

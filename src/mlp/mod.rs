@@ -7,17 +7,19 @@
 //! On the CPU a batch is stored L x N, row j being the paper's column X_j.
 //!
 //! One file per step: [`network`] (the network and input files), [`cpu`] (the CPU baselines
-//! and references), [`textures`] (texture creation), [`matmul`] (the matrix-product pass),
+//! and references), [`textures`] (texture creation), [`matmul`] (the matrix-product passes),
 //! [`activation`] (the bias + sigmoid pass), [`chain`] (layers chained through render
 //! targets), [`packed`] (the faster RGBA formulation), [`tiling`] (batches beyond the maximum
-//! texture size), [`window`] (the 11 x 11 input windows of section 4), [`synth`] (synthetic
-//! training images), [`train`] (backpropagation), [`detect`] (classifying every pixel of an
-//! image), [`cli`] (the `mlp` commands). Shaders: `glsl/mlp/`.
+//! texture size), [`window`] (the 11 x 11 input windows of section 4), [`labelled`] (images
+//! and their per-pixel truth), [`synth`] (synthetic training images), [`train`]
+//! (backpropagation), [`detect`] (classifying every pixel of an image). Shaders: `glsl/mlp/`.
+//! The `mlp` commands live in the binary (`src/cli/mlp.rs`).
 
 pub mod activation;
 pub mod chain;
 pub mod cpu;
 pub mod detect;
+pub mod labelled;
 pub mod matmul;
 pub mod network;
 pub mod packed;

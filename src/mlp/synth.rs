@@ -7,15 +7,10 @@
 //! gaps inside a letter count as text, blank space between words does not). Everything
 //! comes from one seeded ChaCha8 generator, so a seed gives the same images everywhere.
 
+use super::labelled::LabelledImage;
 use font8x8::legacy::BASIC_LEGACY;
 use image::GrayImage;
 use rand::Rng;
-
-/// A synthetic image and its per-pixel truth (true = text), row-major.
-pub struct LabelledImage {
-    pub image: GrayImage,
-    pub text: Vec<bool>,
-}
 
 /// Side of the square synthetic images.
 pub const SYNTH_SIZE: u32 = 96;

@@ -20,6 +20,8 @@ pub struct GpuForward {
     pub tiles: usize,
     /// Input vectors per tile.
     pub tile_vectors: usize,
+    /// Rendering passes of each layer's matrix product, per tile.
+    pub product_passes: Vec<usize>,
 }
 
 /// The largest side of a texture that is also a render target.
@@ -100,6 +102,7 @@ impl GpuNetwork<'_> {
             times,
             tiles,
             tile_vectors: tile,
+            product_passes: self.product_passes(),
         })
     }
 }

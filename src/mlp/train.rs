@@ -8,8 +8,9 @@
 //! while training, and the shift is folded into the first bias at the end, so the shipped
 //! network takes grey values in [0, 1] like [`super::window`] makes them.
 
+use super::labelled::LabelledImage;
 use super::network::{Activation, Layer, Network};
-use super::synth::{labelled_image, SYNTH_SIZE};
+use super::synth::labelled_image;
 use super::window::{window_vector, WINDOW_INPUTS};
 use ndarray::{Array1, Array2, ArrayView1};
 use rand::seq::SliceRandom;
@@ -74,25 +75,100 @@ pub struct Trained {
 /// `per_class` non-text pixels of each, at random positions.
 pub fn window_set(seed: u64, images: usize, per_class: usize) -> WindowSet {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut rows: Vec<f32> = Vec::new();
-    let mut labels = Vec::new();
-    let mut window = [0.0f32; WINDOW_INPUTS];
+    let (mut rows, mut labels) = (Vec::new(), Vec::new());
     for _ in 0..images {
         let page = labelled_image(&mut rng);
-        let (mut text, mut plain): (Vec<usize>, Vec<usize>) =
-            (0..page.text.len()).partition(|&p| page.text[p]);
-        for (pixels, label) in [(&mut text, 1.0), (&mut plain, 0.0)] {
-            let (chosen, _) = pixels.partial_shuffle(&mut rng, per_class);
-            for &p in chosen.iter() {
-                let (x, y) = (p as u32 % SYNTH_SIZE, p as u32 / SYNTH_SIZE);
-                window_vector(&page.image, x, y, &mut window);
-                rows.extend_from_slice(&window);
-                labels.push(label);
-            }
-        }
+        sample_windows(&mut rng, &page, per_class, &mut rows, &mut labels);
     }
     let inputs = Array2::from_shape_vec((labels.len(), WINDOW_INPUTS), rows).expect("shape");
     WindowSet { inputs, labels }
+}
+
+/// Up to `per_class` text and `per_class` non-text windows of `page` at random positions,
+/// appended to `rows` (121 values each) and `labels`.
+fn sample_windows(
+    rng: &mut ChaCha8Rng,
+    page: &LabelledImage,
+    per_class: usize,
+    rows: &mut Vec<f32>,
+    labels: &mut Vec<f32>,
+) {
+    let width = page.image.width();
+    let mut window = [0.0f32; WINDOW_INPUTS];
+    let (mut text, mut plain): (Vec<usize>, Vec<usize>) =
+        (0..page.text.len()).partition(|&p| page.text[p]);
+    for (pixels, label) in [(&mut text, 1.0), (&mut plain, 0.0)] {
+        let (chosen, _) = pixels.partial_shuffle(rng, per_class);
+        for &p in chosen.iter() {
+            let (x, y) = (p as u32 % width, p as u32 / width);
+            window_vector(&page.image, x, y, &mut window);
+            rows.extend_from_slice(&window);
+            labels.push(label);
+        }
+    }
+}
+
+/// One window in this many is held out of training, for evaluation.
+pub const HELD_OUT_EVERY: usize = 5;
+
+/// Why the user's labelled images cannot train a detector.
+#[derive(Debug, PartialEq, Eq, thiserror::Error)]
+pub enum TrainDataError {
+    #[error(
+        "the masks mark no pixel as text (text is dark, below 128, as in the masks `mlp \
+         detect --out` writes); a detector needs text and non-text examples"
+    )]
+    NoText,
+    #[error(
+        "the masks mark every pixel as text (text is dark, below 128); a detector needs text \
+         and non-text examples"
+    )]
+    NoBackground,
+}
+
+/// Windows of the user's labelled images: up to `per_class` text and `per_class` non-text
+/// windows of each image (seeded), shuffled, then split into a training set and a held-out set
+/// of one window in [`HELD_OUT_EVERY`] (other windows of the same images).
+pub fn labelled_window_sets(
+    pages: &[LabelledImage],
+    per_class: usize,
+    seed: u64,
+) -> Result<(WindowSet, WindowSet), TrainDataError> {
+    if pages.iter().all(|p| p.text_pixels() == 0) {
+        return Err(TrainDataError::NoText);
+    }
+    if pages.iter().all(|p| p.text_pixels() == p.text.len()) {
+        return Err(TrainDataError::NoBackground);
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (mut rows, mut labels) = (Vec::new(), Vec::new());
+    for page in pages {
+        sample_windows(&mut rng, page, per_class, &mut rows, &mut labels);
+    }
+    let mut order: Vec<usize> = (0..labels.len()).collect();
+    order.shuffle(&mut rng);
+    let subset = |keep: &dyn Fn(usize) -> bool| {
+        let chosen: Vec<usize> = order
+            .iter()
+            .enumerate()
+            .filter(|&(position, _)| keep(position))
+            .map(|(_, &s)| s)
+            .collect();
+        let flat: Vec<f32> = chosen
+            .iter()
+            .flat_map(|&s| {
+                rows[s * WINDOW_INPUTS..(s + 1) * WINDOW_INPUTS]
+                    .iter()
+                    .copied()
+            })
+            .collect();
+        WindowSet {
+            inputs: Array2::from_shape_vec((chosen.len(), WINDOW_INPUTS), flat).expect("shape"),
+            labels: chosen.iter().map(|&s| labels[s]).collect(),
+        }
+    };
+    let held_out = |position: usize| position % HELD_OUT_EVERY == HELD_OUT_EVERY - 1;
+    Ok((subset(&|p| !held_out(p)), subset(&held_out)))
 }
 
 /// Trains a 121-`hidden`-1 sigmoid network by online backpropagation.
@@ -293,6 +369,41 @@ mod tests {
         for (g, e) in got.iter().zip(&expect) {
             assert!((g - e).abs() < 1e-5, "{g} {e}");
         }
+    }
+
+    #[test]
+    fn labelled_windows_are_split_and_one_class_masks_refused() {
+        let image = image::GrayImage::from_fn(10, 6, |x, y| image::Luma([(x * 20 + y) as u8]));
+        let text: Vec<bool> = (0..60).map(|p| p % 10 < 3).collect(); // 18 text pixels
+        let page = LabelledImage {
+            image: image.clone(),
+            text,
+        };
+        let (train, held_out) = labelled_window_sets(&[page], 100, 1).unwrap();
+        assert_eq!(train.labels.len() + held_out.labels.len(), 60);
+        assert_eq!(held_out.labels.len(), 60 / HELD_OUT_EVERY);
+        let text_windows = train
+            .labels
+            .iter()
+            .chain(&held_out.labels)
+            .filter(|&&t| t == 1.0);
+        assert_eq!(text_windows.count(), 18);
+        // each window is its pixel's: row j of the inputs is the window of a pixel of its class
+        let mut window = [0.0f32; WINDOW_INPUTS];
+        let found = (0..60u32).any(|p| {
+            window_vector(&image, p % 10, p / 10, &mut window);
+            window[..] == train.inputs.row(0).as_slice().unwrap()[..]
+                && (p % 10 < 3) == (train.labels[0] == 1.0)
+        });
+        assert!(found);
+        let blank = |text| LabelledImage {
+            image: image.clone(),
+            text: vec![text; 60],
+        };
+        let e = labelled_window_sets(&[blank(false)], 10, 1).err();
+        assert_eq!(e, Some(TrainDataError::NoText));
+        let e = labelled_window_sets(&[blank(true)], 10, 1).err();
+        assert_eq!(e, Some(TrainDataError::NoBackground));
     }
 
     #[test]

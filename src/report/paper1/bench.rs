@@ -1,0 +1,527 @@
+//! The measurements: every scene of Table III through the streaming pipeline, SOLID and
+//! CULLIDE frame by frame (Tables III-IV, Fig. 8-12); CULLIDE's resolution; the readback
+//! curves of Fig. 7; the three readback schemes on real frames; the leaf-size sweep.
+//! Numbers only: the tables and figures are built from [`Paper1Results`] elsewhere.
+
+use super::Paper1Args;
+use crate::collide::cullide::{Cullide, CullideResult};
+use crate::collide::pipeline::{FrameResult, Options, StreamingCollider};
+use crate::collide::reduction_gpu::{self, CalibrationPoint, ReadbackMode, Reduction};
+use crate::collide::scenes::{Scene, SCENES};
+use crate::collide::stream_setup::{auto_leaf_size_for_pair, max_slots, DEFAULT_LEAF_SIZE};
+use crate::collide::streaming_test::PairTarget;
+use crate::collide::tri_test::{test_caps, ModelView, Predicate, PrimitiveResult};
+use crate::collide::{solid, AabbStream};
+use crate::mesh::Mesh;
+use crate::report::BenchOptions;
+use glam::Vec3;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Everything the section measures.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Paper1Results {
+    pub renderer: String,
+    pub quick: bool,
+    pub setup: Setup,
+    pub scenes: Vec<SceneRun>,
+    pub cullide_resolutions: CullideResolutions,
+    /// Fig. 7: every scheme at each `eta`, on random `P0` contents.
+    pub fig7: Vec<CalibrationPoint>,
+    /// The first calibrated `eta` from which the hierarchical scheme is not the fastest.
+    pub threshold_eta: Option<f64>,
+    pub readback_schemes: ReadbackSchemes,
+    /// Empty when the sweep was skipped.
+    pub leaf_sweep: Vec<SweepPoint>,
+}
+
+/// How the run was set up.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Setup {
+    /// Frames per scene, after one warm-up frame.
+    pub frames: usize,
+    /// Triangles per model when not the paper's.
+    pub triangles: Option<usize>,
+    /// The leaf size given on the command line; `None`: chosen per model.
+    pub forced_leaf_size: Option<usize>,
+    /// The automatic leaf size's bound on stream slots for this renderer.
+    pub max_slots: usize,
+    pub software_renderer: bool,
+    pub cullide_resolution: u32,
+    /// Side of Fig. 7's `P0`.
+    pub fig7_p0: usize,
+}
+
+/// Averages over the frames of one scene.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct SceneRun {
+    pub name: String,
+    pub label: String,
+    pub triangles: usize,
+    /// Leaf size `n` used for this scene.
+    pub leaf_size: usize,
+    pub leaves: [usize; 2],
+    pub p0: [usize; 2],
+    pub frames: usize,
+    pub stream: FrameResult,
+    pub schemes: Vec<String>,
+    /// SOLID: refit, traversal and triangle test, ms; and its CAPs.
+    pub solid_refit: f64,
+    pub solid_traverse: f64,
+    pub solid_tri: f64,
+    /// Frames in which SOLID's pairs equal the streaming pairs.
+    pub solid_agrees: usize,
+    pub cullide: CullideResult,
+    pub cullide_missing_percent: f64,
+    /// Per-frame totals (ms) for Fig. 10-12: streaming, SOLID, CULLIDE.
+    pub series: [Vec<f64>; 3],
+    /// The Fig. 8-9 style snapshot of the last frame (file in the output folder).
+    pub snapshot: Option<String>,
+}
+
+impl SceneRun {
+    /// The paper's culling time of Fig. 10-11: overlap test, readback and stream update.
+    pub fn stream_cull_ms(&self) -> f64 {
+        let t = &self.stream.timings;
+        t.overlap + t.encode + t.readback + t.update
+    }
+
+    /// SOLID's culling: refit and traversal.
+    pub fn solid_cull_ms(&self) -> f64 {
+        self.solid_refit + self.solid_traverse
+    }
+
+    /// CULLIDE's whole frame: pruning and the triangle test.
+    pub fn cullide_total_ms(&self) -> f64 {
+        self.cullide.pruning_ms + self.cullide.tri_test_ms
+    }
+}
+
+/// CULLIDE at several resolutions on the interlocking tori (Sec. 7.4.2).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct CullideResolutions {
+    pub frames: usize,
+    pub rows: Vec<CullideResolutionRow>,
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct CullideResolutionRow {
+    pub resolution: u32,
+    /// Pruning + triangle test, mean ms per frame.
+    pub ms: f64,
+    pub pctps: u64,
+    pub missing_percent: f64,
+}
+
+/// Each readback scheme forced in turn on the interlocking tori's frames.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct ReadbackSchemes {
+    pub p0: usize,
+    pub frames: usize,
+    pub rows: Vec<SchemeRun>,
+}
+
+/// Means per frame of one scheme.
+#[derive(Clone, Debug, Serialize)]
+pub struct SchemeRun {
+    pub scheme: ReadbackMode,
+    pub eta: f64,
+    pub encode_ms: f64,
+    pub decode_ms: f64,
+    pub bytes: f64,
+}
+
+/// The default leaf size, justified: interlocking tori at several `n`.
+#[derive(Clone, Debug, Serialize)]
+pub struct SweepPoint {
+    pub leaf_size: usize,
+    pub p0: usize,
+    pub total_ms: f64,
+    pub overlap_ms: f64,
+    pub tri_ms: f64,
+    pub pctps: u64,
+}
+
+/// Triangles per model for the fixed studies (tori): the paper's 15K, or 2000 in quick mode.
+fn study_triangles(quick: bool) -> Option<usize> {
+    if quick {
+        Some(2000)
+    } else {
+        None
+    }
+}
+
+pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1Results> {
+    let quick = opts.quick;
+    let frames = args.frames.unwrap_or(if quick { 3 } else { 20 });
+    let triangles = args.triangles.or(study_triangles(quick));
+    let scenes: Vec<String> = if args.scenes.is_empty() {
+        SCENES.iter().map(|s| s.to_string()).collect()
+    } else {
+        args.scenes.clone()
+    };
+    let bar = opts.progress.add(indicatif::ProgressBar::new(
+        (scenes.len() * (frames + 1)) as u64,
+    ));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} frames")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let mut runs = Vec::new();
+    for name in &scenes {
+        bar.set_message(format!("paper 1: {name}"));
+        runs.push(run_scene(opts, name, frames, triangles, args, &bar)?);
+    }
+    bar.finish_and_clear();
+    let fig7_p0 = if quick { 512 } else { 2048 };
+    let fig7 = readback_curve(opts, fig7_p0, quick)?;
+    let tori_leaf_size = args.leaf_size.unwrap_or(DEFAULT_LEAF_SIZE);
+    let software = opts.gl.info().is_software();
+    Ok(Paper1Results {
+        renderer: opts.gl.info().renderer_line(),
+        quick,
+        setup: Setup {
+            frames,
+            triangles,
+            forced_leaf_size: args.leaf_size,
+            max_slots: max_slots(software),
+            software_renderer: software,
+            cullide_resolution: args.cullide_resolution,
+            fig7_p0,
+        },
+        scenes: runs,
+        cullide_resolutions: cullide_resolutions(opts, tori_leaf_size)?,
+        threshold_eta: reduction_gpu::measured_threshold(&fig7),
+        fig7,
+        readback_schemes: readback_schemes(opts, tori_leaf_size, frames)?,
+        leaf_sweep: if args.no_leaf_sweep {
+            Vec::new()
+        } else {
+            leaf_sweep(opts)?
+        },
+    })
+}
+
+/// One model as the tests see it: mesh, current positions, stream.
+type Model<'a> = (&'a Mesh, &'a [Vec3], &'a AabbStream);
+
+fn model_view<'a>(m: Model<'a>) -> ModelView<'a> {
+    ModelView {
+        triangles: &m.0.triangles,
+        positions: m.1,
+        stream: m.2,
+    }
+}
+
+/// SOLID's answer (equal to the exact one: see the tests): refit, traverse, triangle test.
+fn solid_pairs(x: Model, y: Model) -> PrimitiveResult {
+    let bx = solid::refit(x.2, x.1);
+    let by = solid::refit(y.2, y.1);
+    let caps = solid::overlapping_leaves(x.2, &bx, y.2, &by);
+    test_caps(model_view(x), model_view(y), &caps, Predicate::Moller)
+}
+
+/// CULLIDE at several resolutions on the interlocking tori: "a higher image space
+/// resolution can reduce missing collisions, but then it requires more time" (Sec. 7.4.2).
+fn cullide_resolutions(
+    opts: &BenchOptions,
+    leaf_size: usize,
+) -> anyhow::Result<CullideResolutions> {
+    let scene = Scene::build("interlocking-tori", study_triangles(opts.quick))?;
+    let (x, y) = (&scene.x.rest, &scene.y.rest);
+    let sx = AabbStream::build(x, leaf_size)?;
+    let sy = AabbStream::build(y, leaf_size)?;
+    let frames = if opts.quick { 1 } else { 3 };
+    let mut rows = Vec::new();
+    for resolution in [256u32, 512, 1024, 2048] {
+        let mut cullide = Cullide::new(opts.gl, (x, &sx), (y, &sy), resolution)?;
+        let (mut ms, mut missed, mut exact_total, mut pctps) = (0.0, 0, 0, 0);
+        for f in 0..=frames {
+            let (px, py) = scene.frame(f);
+            let c = cullide.frame(&px, &py, Predicate::Moller)?;
+            if f == 0 {
+                continue;
+            }
+            let exact = solid_pairs((x, &px, &sx), (y, &py, &sy));
+            missed += exact.pairs.len() - c.pairs.len();
+            exact_total += exact.pairs.len();
+            ms += c.pruning_ms + c.tri_test_ms;
+            pctps += c.pctps;
+        }
+        rows.push(CullideResolutionRow {
+            resolution,
+            ms: ms / frames as f64,
+            pctps: pctps / frames as u64,
+            missing_percent: 100.0 * missed as f64 / exact_total.max(1) as f64,
+        });
+    }
+    Ok(CullideResolutions { frames, rows })
+}
+
+/// The three readback schemes on the real interlocking-tori frames, each forced in turn.
+fn readback_schemes(
+    opts: &BenchOptions,
+    leaf_size: usize,
+    frames: usize,
+) -> anyhow::Result<ReadbackSchemes> {
+    let scene = Scene::build("interlocking-tori", study_triangles(opts.quick))?;
+    let mut rows = Vec::new();
+    let mut p0 = 0;
+    for scheme in [
+        ReadbackMode::Hierarchical,
+        ReadbackMode::Reduced,
+        ReadbackMode::Full,
+    ] {
+        let options = Options {
+            leaf_size,
+            readback: scheme,
+            ..Options::default()
+        };
+        let mut c = StreamingCollider::new(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
+        p0 = c.target.width();
+        let (mut enc, mut dec, mut bytes, mut eta) = (0.0, 0.0, 0u64, 0.0);
+        for f in 0..=frames {
+            let (px, py) = scene.frame(f);
+            let r = c.frame(&px, &py)?;
+            if f > 0 {
+                enc += r.timings.encode;
+                dec += r.timings.readback;
+                bytes += r.readback_bytes;
+                eta += r.eta;
+            }
+        }
+        let n = frames.max(1) as f64;
+        rows.push(SchemeRun {
+            scheme,
+            eta: eta / n,
+            encode_ms: enc / n,
+            decode_ms: dec / n,
+            bytes: bytes as f64 / n,
+        });
+    }
+    Ok(ReadbackSchemes { p0, frames, rows })
+}
+
+fn run_scene(
+    opts: &BenchOptions,
+    name: &str,
+    frames: usize,
+    triangles: Option<usize>,
+    args: &Paper1Args,
+    bar: &indicatif::ProgressBar,
+) -> anyhow::Result<SceneRun> {
+    let ctx = opts.gl;
+    let scene = Scene::build(name, triangles)?;
+    let (x, y) = (&scene.x.rest, &scene.y.rest);
+    let leaf_size = match args.leaf_size {
+        Some(n) => n,
+        None => auto_leaf_size_for_pair(x, y, ctx.info().is_software())?,
+    };
+    let options = Options {
+        leaf_size,
+        readback: ReadbackMode::Auto,
+        ..Options::default()
+    };
+    let mut stream = StreamingCollider::new(ctx, x, y, options)?;
+    let mut cullide = Cullide::new(
+        ctx,
+        (x, &stream.x.stream),
+        (y, &stream.y.stream),
+        args.cullide_resolution,
+    )?;
+    let mut out = SceneRun {
+        name: scene.name.into(),
+        label: scene.label.clone(),
+        triangles: scene.triangles,
+        leaf_size,
+        leaves: [stream.x.stream.leaves.len(), stream.y.stream.leaves.len()],
+        p0: [stream.target.width(), stream.target.height()],
+        ..SceneRun::default()
+    };
+    let mut missed = 0usize;
+    let mut exact_total = 0usize;
+    // Frame 0 warms up shader compilation and is not counted.
+    for f in 0..=frames {
+        let (px, py) = scene.frame(f);
+        let s = stream.frame(&px, &py)?;
+        // SOLID: refit, traverse, the same triangle test.
+        let t = Instant::now();
+        let bx = solid::refit(&stream.x.stream, &px);
+        let by = solid::refit(&stream.y.stream, &py);
+        let refit = t.elapsed().as_secs_f64() * 1e3;
+        let t = Instant::now();
+        let caps = solid::overlapping_leaves(&stream.x.stream, &bx, &stream.y.stream, &by);
+        let traverse = t.elapsed().as_secs_f64() * 1e3;
+        let t = Instant::now();
+        let sp = test_caps(
+            model_view((x, &px, &stream.x.stream)),
+            model_view((y, &py, &stream.y.stream)),
+            &caps,
+            Predicate::Moller,
+        );
+        let solid_tri = t.elapsed().as_secs_f64() * 1e3;
+        let c = cullide.frame(&px, &py, Predicate::Moller)?;
+        bar.inc(1);
+        if f == 0 {
+            continue;
+        }
+        out.solid_agrees += usize::from(sp.pairs == s.pairs);
+        let found = c
+            .pairs
+            .iter()
+            .filter(|p| s.pairs.binary_search(p).is_ok())
+            .count();
+        missed += s.pairs.len() - found;
+        exact_total += s.pairs.len();
+        out.series[0].push(s.timings.total);
+        out.series[1].push(refit + traverse + solid_tri);
+        out.series[2].push(c.pruning_ms + c.tri_test_ms);
+        accumulate(&mut out, &s, refit, traverse, solid_tri, &c);
+        if f == frames {
+            // Fig. 8-9: a snapshot of the last frame.
+            let mx = Mesh::new(px.clone(), x.triangles.clone());
+            let my = Mesh::new(py.clone(), y.triangles.clone());
+            let file = super::fig8_9::file(scene.name);
+            crate::collide::snapshot::frame_png(
+                &stream,
+                &s,
+                (&mx, &my),
+                &opts.out_dir.join(&file),
+            )?;
+            out.snapshot = Some(file);
+        }
+    }
+    average(&mut out, frames.max(1) as f64);
+    out.frames = frames;
+    out.cullide_missing_percent = if exact_total == 0 {
+        0.0
+    } else {
+        100.0 * missed as f64 / exact_total as f64
+    };
+    Ok(out)
+}
+
+fn accumulate(
+    out: &mut SceneRun,
+    s: &FrameResult,
+    refit: f64,
+    traverse: f64,
+    solid_tri: f64,
+    c: &CullideResult,
+) {
+    let a = &mut out.stream;
+    a.caps += s.caps;
+    a.pctps += s.pctps;
+    a.ctps += s.ctps;
+    a.eta += s.eta;
+    a.readback_bytes += s.readback_bytes;
+    let (t, u) = (&mut a.timings, &s.timings);
+    t.overlap += u.overlap;
+    t.encode += u.encode;
+    t.readback += u.readback;
+    t.tri_test += u.tri_test;
+    t.download += u.download;
+    t.update += u.update;
+    t.total += u.total;
+    if let Some(scheme) = s.scheme {
+        let name = format!("{scheme:?}").to_lowercase();
+        if !out.schemes.contains(&name) {
+            out.schemes.push(name);
+        }
+    }
+    out.solid_refit += refit;
+    out.solid_traverse += traverse;
+    out.solid_tri += solid_tri;
+    let k = &mut out.cullide;
+    k.pruning_ms += c.pruning_ms;
+    k.tri_test_ms += c.tri_test_ms;
+    k.pctps += c.pctps;
+    k.ctps += c.ctps;
+    k.queries += c.queries;
+}
+
+fn average(out: &mut SceneRun, n: f64) {
+    let a = &mut out.stream;
+    let avg = |v: usize| (v as f64 / n).round() as usize;
+    a.caps = avg(a.caps);
+    a.ctps = avg(a.ctps);
+    a.pctps = (a.pctps as f64 / n).round() as u64;
+    a.eta /= n;
+    a.readback_bytes = (a.readback_bytes as f64 / n).round() as u64;
+    let t = &mut a.timings;
+    for v in [
+        &mut t.overlap,
+        &mut t.encode,
+        &mut t.readback,
+        &mut t.tri_test,
+        &mut t.download,
+        &mut t.update,
+        &mut t.total,
+    ] {
+        *v /= n;
+    }
+    out.solid_refit /= n;
+    out.solid_traverse /= n;
+    out.solid_tri /= n;
+    let k = &mut out.cullide;
+    k.pruning_ms /= n;
+    k.tri_test_ms /= n;
+    k.pctps = (k.pctps as f64 / n).round() as u64;
+    k.ctps = avg(k.ctps);
+    k.queries = avg(k.queries);
+}
+
+/// Fig. 7: encode and read+decode time of each scheme against eta, on a `size x size` P0
+/// (the paper's 2048 x 2048; 512 x 512 in quick mode).
+fn readback_curve(
+    opts: &BenchOptions,
+    size: usize,
+    quick: bool,
+) -> anyhow::Result<Vec<CalibrationPoint>> {
+    let target = PairTarget::new(opts.gl, size, size)?;
+    let reduction = Reduction::new(opts.gl, size, size)?;
+    let etas = [
+        1e-5, 3e-5, 1e-4, 3e-4, 6e-4, 9.5e-4, 2e-3, 5e-3, 1e-2, 3e-2, 1e-1,
+    ];
+    Ok(reduction_gpu::calibrate(
+        opts.gl,
+        &target,
+        &reduction,
+        &etas,
+        if quick { 1 } else { 5 },
+        7,
+    )?)
+}
+
+fn leaf_sweep(opts: &BenchOptions) -> anyhow::Result<Vec<SweepPoint>> {
+    let scene = Scene::build("interlocking-tori", study_triangles(opts.quick))?;
+    let frames = if opts.quick { 2 } else { 5 };
+    let mut out = Vec::new();
+    for n in [4, 8, 16, 32, 64] {
+        let options = Options {
+            leaf_size: n,
+            ..Options::default()
+        };
+        let mut c = StreamingCollider::new(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
+        let mut p = SweepPoint {
+            leaf_size: n,
+            p0: c.target.width().max(c.target.height()),
+            total_ms: 0.0,
+            overlap_ms: 0.0,
+            tri_ms: 0.0,
+            pctps: 0,
+        };
+        for f in 0..=frames {
+            let (px, py) = scene.frame(f);
+            let r = c.frame(&px, &py)?;
+            if f > 0 {
+                p.total_ms += r.timings.total / frames as f64;
+                p.overlap_ms += r.timings.overlap / frames as f64;
+                p.tri_ms += r.timings.tri_test / frames as f64;
+                p.pctps += r.pctps / frames as u64;
+            }
+        }
+        out.push(p);
+    }
+    Ok(out)
+}

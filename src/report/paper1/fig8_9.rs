@@ -1,0 +1,21 @@
+//! Fig. 8-9: a snapshot of each scene's last frame (written by the bench, which holds the GL
+//! state): the models, their colliding triangles and the CAP boxes.
+
+use super::bench::SceneRun;
+use crate::report::Figure;
+
+/// The snapshot's file name for scene `name`.
+pub fn file(name: &str) -> String {
+    format!("paper1_fig8-9_{name}.png")
+}
+
+pub fn figure(run: &SceneRun) -> Option<Figure> {
+    run.snapshot.as_ref().map(|file| Figure {
+        file: file.clone(),
+        caption: format!(
+            "Fig. 8-9: {} at the last frame; colliding triangles red, CAP boxes orange (X) and \
+             yellow (Y)",
+            run.label
+        ),
+    })
+}

@@ -1,0 +1,413 @@
+//! The measurements: the detector network and a wide layer, each evaluated four ways side by
+//! side (Table 1 and the throughput table), and text.png classified on the GPU and the CPU
+//! (Fig. 2). Fig. 2's images are written here, with the outputs at hand.
+
+use crate::gl::Context;
+use crate::mlp::cpu::{forward, CpuProduct};
+use crate::mlp::detect::{classify_cpu, classify_gpu, mask_image, shipped_detector, THRESHOLD};
+use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
+use crate::mlp::tiling::max_vectors_per_texture;
+use crate::mlp::window::window_batch;
+use crate::mlp::{Activation, Formulation, GpuMlp, Layer, Network, StepTimes};
+use crate::report::BenchOptions;
+use anyhow::Context as _;
+use image::GrayImage;
+use ndarray::{s, Array1, Array2};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+
+/// The evaluation photograph (assets/mlp/README.md).
+const TEXT_PNG: &[u8] = include_bytes!("../../../assets/mlp/text.png");
+
+/// Fig. 2(a) and 2(b), written into the output folder.
+pub const FIG2A_FILE: &str = "paper3_fig2a_text.png";
+pub const FIG2B_FILE: &str = "paper3_fig2b_mask.png";
+
+/// Everything the section measures.
+#[derive(Clone, Debug, Serialize)]
+pub struct Paper3Results {
+    pub renderer: String,
+    pub quick: bool,
+    /// Timed runs per measurement (the median is kept), after one warm-up run.
+    pub repeats: usize,
+    /// The 1-minute load average at the end, to read software-renderer timings against.
+    pub load_average_1min: Option<f64>,
+    /// Every case and method; the first case's rows are Table 1's.
+    pub measurements: Vec<Measurement>,
+    pub detection: Detection,
+}
+
+impl Paper3Results {
+    /// The rows of the first case, the paper's shape (Table 1).
+    pub fn paper_case(&self) -> Vec<&Measurement> {
+        let first = &self.measurements[0].case;
+        self.measurements
+            .iter()
+            .filter(|m| &m.case == first)
+            .collect()
+    }
+
+    /// The first case's row of `method`.
+    pub fn paper_row(&self, method: Method) -> &Measurement {
+        self.paper_case()
+            .into_iter()
+            .find(|m| m.method == method)
+            .expect("every method is measured on every case")
+    }
+}
+
+/// The ways of evaluating a network, measured side by side.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Method {
+    /// The paper's passes, each product in one pass.
+    GpuFaithful,
+    /// The paper's passes, each product split into passes of at most
+    /// [`RADEON_9700_INPUTS_PER_PASS`] inputs, as the paper's board required.
+    GpuMultiPass,
+    GpuPacked,
+    CpuPlain,
+    CpuOptimised,
+}
+
+impl Method {
+    pub const ALL: [Method; 5] = [
+        Method::GpuFaithful,
+        Method::GpuMultiPass,
+        Method::GpuPacked,
+        Method::CpuPlain,
+        Method::CpuOptimised,
+    ];
+
+    pub fn label(self) -> String {
+        match self {
+            Method::GpuFaithful => "GPU faithful (1 float/texel)".into(),
+            Method::GpuMultiPass => format!(
+                "GPU faithful, {RADEON_9700_INPUTS_PER_PASS} inputs/pass (RADEON 9700 estimate)"
+            ),
+            Method::GpuPacked => "GPU packed (RGBA, 4x4/fragment)".into(),
+            Method::CpuPlain => "CPU plain loop".into(),
+            Method::CpuOptimised => "CPU matrixmultiply sgemm".into(),
+        }
+    }
+
+    /// The GPU formulation and per-pass input limit, or `None` for the CPU.
+    fn gpu(self) -> Option<(Formulation, Option<usize>)> {
+        match self {
+            Method::GpuFaithful => Some((Formulation::Faithful, None)),
+            Method::GpuMultiPass => {
+                Some((Formulation::Faithful, Some(RADEON_9700_INPUTS_PER_PASS)))
+            }
+            Method::GpuPacked => Some((Formulation::Packed, None)),
+            Method::CpuPlain | Method::CpuOptimised => None,
+        }
+    }
+}
+
+/// Median step times of one method on one case, and how far its outputs are from CPU plain.
+#[derive(Clone, Debug, Serialize)]
+pub struct Measurement {
+    pub case: String,
+    pub method: Method,
+    /// [N, M] of every layer.
+    pub layers: Vec<[usize; 2]>,
+    pub vectors: usize,
+    pub tiles: usize,
+    /// Rendering passes of each layer's matrix product per tile (empty on the CPU).
+    pub product_passes: Vec<usize>,
+    pub times_ms: StepTimes,
+    pub total_ms: f64,
+    /// From the median product time.
+    pub matmul_gflops: f64,
+    /// From the fastest product time: the renderer's capability when the machine is shared.
+    pub best_matmul_gflops: f64,
+    pub max_abs_diff_vs_cpu_plain: f32,
+}
+
+/// Fig. 2: text.png classified by both GPU formulations and the CPU.
+#[derive(Clone, Debug, Serialize)]
+pub struct Detection {
+    pub width: u32,
+    pub height: u32,
+    /// Pixels the CPU (sgemm) calls text.
+    pub cpu_text_pixels: usize,
+    pub faithful: DetectionRun,
+    pub packed: DetectionRun,
+}
+
+impl Detection {
+    pub fn pixels(&self) -> usize {
+        (self.width * self.height) as usize
+    }
+}
+
+/// One GPU formulation's classification of text.png.
+#[derive(Clone, Debug, Serialize)]
+pub struct DetectionRun {
+    pub text_pixels: usize,
+    /// Share of pixels given the same class as the CPU.
+    pub agreement_with_cpu: f64,
+    pub times_ms: StepTimes,
+}
+
+/// One network and batch to measure.
+struct Case {
+    name: String,
+    network: Network,
+    batch: Array2<f32>,
+    /// Input vectors per texture (the paper's 2048 for its own row, else the renderer's max).
+    max_vectors: Option<usize>,
+}
+
+/// Timed runs per measurement.
+pub fn repeats(quick: bool) -> usize {
+    if quick {
+        1
+    } else {
+        5
+    }
+}
+
+pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
+    let ctx = opts.gl;
+    let gpu = GpuMlp::new(ctx)?;
+    let photo = image::load_from_memory(TEXT_PNG)
+        .context("decoding assets/mlp/text.png")?
+        .to_luma8();
+    let cases = cases(ctx, &photo, opts.quick)?;
+    let repeats = repeats(opts.quick);
+    let bar = opts.progress.add(indicatif::ProgressBar::new(
+        (cases.len() * Method::ALL.len()) as u64,
+    ));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("paper 3 {bar:30} {pos}/{len} {msg}")
+            .expect("template"),
+    );
+    let mut measurements = Vec::new();
+    for case in &cases {
+        let reference = forward(CpuProduct::Plain, &case.network, case.batch.view()).outputs;
+        for method in Method::ALL {
+            bar.set_message(format!("{} / {}", case.name, method.label()));
+            measurements.push(measure_case(&gpu, case, method, repeats, &reference)?);
+            bar.inc(1);
+        }
+    }
+    bar.finish_and_clear();
+    let detection = detect_photo(opts, &gpu, &photo)?;
+    Ok(Paper3Results {
+        renderer: ctx.info().renderer_line(),
+        quick: opts.quick,
+        repeats,
+        load_average_1min: load_average(),
+        measurements,
+        detection,
+    })
+}
+
+/// The 1-minute load average (Linux).
+fn load_average() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/loadavg").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
+/// The cases: the paper's shape (one 2048-vector texture), one texture at this renderer's
+/// maximum, the whole photograph (tiled), and a wide synthetic network.
+fn cases(ctx: &Context, photo: &GrayImage, quick: bool) -> anyhow::Result<Vec<Case>> {
+    let detector = shipped_detector()?;
+    let all = window_batch(photo, 0..photo.height());
+    let max = max_vectors_per_texture(ctx, Formulation::Faithful);
+    let first = |l: usize| all.slice(s![..l.min(all.nrows()), ..]).to_owned();
+    let paper_l = if quick { 512 } else { 2048 };
+    let mut cases = vec![Case {
+        name: format!("121-30-1, L = {paper_l} (paper: <= 2048 per texture)"),
+        network: detector.clone(),
+        batch: first(paper_l),
+        max_vectors: Some(2048),
+    }];
+    if quick {
+        cases.push(wide_case(128, 2048));
+        return Ok(cases);
+    }
+    let one_texture = max.min(all.nrows());
+    cases.push(Case {
+        name: format!("121-30-1, L = {one_texture} (one texture)"),
+        network: detector.clone(),
+        batch: first(one_texture),
+        max_vectors: None,
+    });
+    cases.push(Case {
+        name: format!("121-30-1, L = {} (all of text.png)", all.nrows()),
+        network: detector,
+        batch: all,
+        max_vectors: None,
+    });
+    cases.push(wide_case(512, 4096));
+    Ok(cases)
+}
+
+/// A `width`-`width` sigmoid layer on `l` random vectors (seeded).
+fn wide_case(width: usize, l: usize) -> Case {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let r = 1.0 / (width as f32).sqrt();
+    let network = Network::new(vec![Layer {
+        weights: Array2::from_shape_simple_fn((width, width), || rng.gen_range(-r..r)),
+        bias: Array1::from_shape_simple_fn(width, || rng.gen_range(-0.5..0.5)),
+        activation: Activation::Sigmoid,
+    }])
+    .expect("valid");
+    let batch = Array2::from_shape_simple_fn((l, width), || rng.gen_range(0.0..1.0));
+    Case {
+        name: format!("{width}-{width}, L = {l} (wide layer)"),
+        network,
+        batch,
+        max_vectors: None,
+    }
+}
+
+/// One run of `method` on `case`.
+struct Run {
+    times: StepTimes,
+    tiles: usize,
+    product_passes: Vec<usize>,
+    outputs: Array2<f32>,
+}
+
+fn run_once(gpu: &GpuMlp, case: &Case, method: Method) -> anyhow::Result<Run> {
+    if let Some((formulation, inputs_per_pass)) = method.gpu() {
+        let loaded = gpu
+            .load(&case.network, formulation)?
+            .split_products(inputs_per_pass)?;
+        let out = loaded.forward(case.batch.view(), case.max_vectors)?;
+        return Ok(Run {
+            times: out.times,
+            tiles: out.tiles,
+            product_passes: out.product_passes,
+            outputs: out.outputs,
+        });
+    }
+    let kind = if method == Method::CpuPlain {
+        CpuProduct::Plain
+    } else {
+        CpuProduct::Optimised
+    };
+    let out = forward(kind, &case.network, case.batch.view());
+    let times = StepTimes {
+        matmul: out.product.as_secs_f64() * 1e3,
+        activation: out.activation.as_secs_f64() * 1e3,
+        ..StepTimes::default()
+    };
+    Ok(Run {
+        times,
+        tiles: 1,
+        product_passes: Vec::new(),
+        outputs: out.outputs,
+    })
+}
+
+fn measure_case(
+    gpu: &GpuMlp,
+    case: &Case,
+    method: Method,
+    repeats: usize,
+    reference: &Array2<f32>,
+) -> anyhow::Result<Measurement> {
+    let mut runs = Vec::new();
+    // one run more than counted: the first draw of a program compiles its shader variant
+    // (llvmpipe JIT), and llvmpipe's first timer query of a context reads garbage
+    for round in 0..=repeats {
+        let run = run_once(gpu, case, method)?;
+        if round > 0 {
+            runs.push(run);
+        }
+    }
+    let median = |f: fn(&StepTimes) -> f64| {
+        let mut v: Vec<f64> = runs.iter().map(|r| f(&r.times)).collect();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let times = StepTimes {
+        texture_creation: median(|t| t.texture_creation),
+        matmul: median(|t| t.matmul),
+        activation: median(|t| t.activation),
+        readback: median(|t| t.readback),
+    };
+    let flops = case.network.flops_per_input() * case.batch.nrows() as f64;
+    let fastest = runs
+        .iter()
+        .map(|r| r.times.matmul)
+        .fold(f64::INFINITY, f64::min);
+    let outputs = &runs[0].outputs;
+    anyhow::ensure!(
+        outputs.iter().all(|v| v.is_finite()),
+        "{}: {} gave a non-finite output",
+        case.name,
+        method.label()
+    );
+    let diff = outputs
+        .iter()
+        .zip(reference.iter())
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    Ok(Measurement {
+        case: case.name.clone(),
+        method,
+        layers: case
+            .network
+            .layers()
+            .iter()
+            .map(|l| [l.inputs(), l.outputs()])
+            .collect(),
+        vectors: case.batch.nrows(),
+        tiles: runs[0].tiles,
+        product_passes: runs[0].product_passes.clone(),
+        total_ms: times.total(),
+        matmul_gflops: flops / (times.matmul * 1e-3) / 1e9,
+        best_matmul_gflops: flops / (fastest * 1e-3) / 1e9,
+        times_ms: times,
+        max_abs_diff_vs_cpu_plain: diff,
+    })
+}
+
+/// Fig. 2 regenerated: text.png classified on the GPU (both formulations) and the CPU; the
+/// test image and the faithful GPU's mask are written as Fig. 2(a) and 2(b).
+fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow::Result<Detection> {
+    let net = shipped_detector()?;
+    let (width, height) = photo.dimensions();
+    let cpu = classify_cpu(&net, photo, CpuProduct::Optimised, 1 << 18).outputs;
+    photo
+        .save(opts.out_dir.join(FIG2A_FILE))
+        .with_context(|| format!("writing {FIG2A_FILE}"))?;
+    let classify = |formulation: Formulation| -> anyhow::Result<DetectionRun> {
+        let loaded = gpu.load(&net, formulation)?;
+        let classified = classify_gpu(&loaded, photo, 1 << 18, None)?;
+        let out = classified.outputs;
+        anyhow::ensure!(
+            out.iter().all(|v| v.is_finite()),
+            "text.png: the {formulation:?} GPU passes gave a non-finite output"
+        );
+        if formulation == Formulation::Faithful {
+            mask_image(&out, width, height, THRESHOLD)
+                .save(opts.out_dir.join(FIG2B_FILE))
+                .with_context(|| format!("writing {FIG2B_FILE}"))?;
+        }
+        let same = out
+            .iter()
+            .zip(&cpu)
+            .filter(|(g, c)| (**g > THRESHOLD) == (**c > THRESHOLD))
+            .count();
+        Ok(DetectionRun {
+            text_pixels: out.iter().filter(|&&v| v > THRESHOLD).count(),
+            agreement_with_cpu: same as f64 / cpu.len() as f64,
+            times_ms: classified.times,
+        })
+    };
+    let faithful = classify(Formulation::Faithful)?;
+    let packed = classify(Formulation::Packed)?;
+    Ok(Detection {
+        width,
+        height,
+        cpu_text_pixels: cpu.iter().filter(|&&v| v > THRESHOLD).count(),
+        faithful,
+        packed,
+    })
+}

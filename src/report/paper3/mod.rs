@@ -1,0 +1,80 @@
+//! Paper 3's section (Oh & Jung 2004): Table 1 (texture creation, matrix product, sigmoid; GPU
+//! vs CPU) beside the published numbers (`[paper3]` of `assets/paper_tables.toml`), the
+//! GFLOP/s of both GPU formulations against both CPU baselines measured side by side in one
+//! run, Fig. 2 (the classified text image), and apart from the paper's claims this project's
+//! own targets.
+
+mod bench;
+mod claims;
+mod fidelity;
+mod fig2;
+mod gflops;
+mod table1;
+mod targets;
+
+pub use bench::{Detection, DetectionRun, Measurement, Method, Paper3Results};
+
+use super::published::Published;
+use super::{BenchOptions, NoOptions, Paper, Section};
+use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
+
+/// The paper-3 section.
+pub struct Paper3;
+
+impl Paper for Paper3 {
+    const ID: &'static str = "paper3";
+    const TITLE: &'static str = "Paper 3: Oh & Jung 2004, GPU implementation of neural networks";
+    type Options = NoOptions;
+    type Results = Paper3Results;
+
+    fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Paper3Results> {
+        bench::measure(opts)
+    }
+
+    fn section(opts: &BenchOptions, results: &Paper3Results) -> anyhow::Result<Section> {
+        let paper = &Published::get()?.paper3.table1;
+        let mut figures = fig2::figures();
+        figures.push(gflops::figure(opts, results)?);
+        Ok(Section {
+            summary: summary(results),
+            tables: vec![
+                table1::table(results, paper),
+                gflops::table(results),
+                fig2::table(results),
+                targets::table(results),
+            ],
+            claims: claims::claims(results, paper),
+            figures,
+            fidelity: fidelity::rows(),
+            ..Section::default()
+        })
+    }
+}
+
+fn summary(results: &Paper3Results) -> String {
+    format!(
+        "The text detector's MLP (11 x 11 window = 121 inputs, 30 hidden sigmoid nodes, 1 \
+         output; weights trained here on synthetic text, assets/mlp/text_detector.json) and a \
+         wider synthetic network, each evaluated five ways in one run on {}: the paper's render \
+         passes (one float per texel, one inner product per fragment), once with each product \
+         in one pass and once split into passes of at most {} inputs, our estimate of what the \
+         paper's ATI RADEON 9700 PRO allowed, a packed variant (RGBA \
+         texels, 4 x 4 outputs per fragment), the plain CPU loop the paper compared with, and \
+         matrixmultiply's sgemm. GPU passes are timed with GL timer queries, texture creation \
+         and CPU work with the wall clock; each figure is the median of {} run(s) after a \
+         warm-up run; {} cores, load average {} at the end (a software renderer shares the CPU \
+         with whatever else runs).{} The batches are windows of scikit-image's text.png.",
+        results.renderer,
+        RADEON_9700_INPUTS_PER_PASS,
+        results.repeats,
+        std::thread::available_parallelism().map_or(0, usize::from),
+        results
+            .load_average_1min
+            .map_or("unknown".to_string(), |l| format!("{l:.1}")),
+        if results.quick {
+            " QUICK MODE: reduced sizes."
+        } else {
+            ""
+        }
+    )
+}
