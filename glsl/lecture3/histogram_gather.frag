@@ -1,12 +1,13 @@
 #version 330 core
 // The histogram without blending, for comparison: each bin's pixel reads every value and
 // adds those that fall in it (bins x values reads, and a loop the blending version does not
-// need).
+// need). llvmpipe ends a shader's loops after 65535 iterations in all, so the caller keeps
+// the count within that.
 
 uniform sampler2D u_values;
 uniform sampler2D u_weights;
 uniform bool u_weighted;
-uniform int u_columns;
+uniform int u_columns;    // the value texture's width
 uniform int u_count;      // values
 uniform float u_lo;
 uniform float u_scale;

@@ -82,6 +82,10 @@ pub struct Values {
 /// The most values one histogram counts exactly (fp32 sums of 1.0).
 pub const MAX_VALUES: usize = 1 << 24;
 
+/// The most values the gather pass reads: its loop runs once per value, and llvmpipe ends a
+/// shader's loops after 65535 iterations in all (nested loops share the count), silently.
+pub const MAX_GATHER_VALUES: usize = 65535;
+
 impl Values {
     /// Uploads `values` (finite) and optional `weights` (finite, one per value).
     pub fn new(ctx: &Context, values: &[f32], weights: Option<&[f32]>) -> Result<Values, Error> {
@@ -135,7 +139,7 @@ impl Values {
 pub enum Method {
     /// One point per value, added by the blending unit.
     Blend,
-    /// Each bin's pixel loops over every value.
+    /// Each bin's pixel loops over every value (at most [`MAX_GATHER_VALUES`]).
     Gather,
 }
 
@@ -164,6 +168,13 @@ impl Histogram {
 
     /// Draws the histogram of `values` into the target.
     pub fn draw(&self, values: &Values, method: Method) -> Result<(), GlError> {
+        if method == Method::Gather && values.count > MAX_GATHER_VALUES {
+            return Err(GlError::Invalid(format!(
+                "the gather histogram reads at most {MAX_GATHER_VALUES} values (one loop \
+                 iteration each; llvmpipe stops loops there), not {}",
+                values.count
+            )));
+        }
         self.target.clear_color(0, [0.0; 4])?;
         let program = match method {
             Method::Blend => &self.points,

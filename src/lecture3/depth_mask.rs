@@ -112,10 +112,11 @@ pub struct DepthMask {
     query: OcclusionQuery,
 }
 
-/// Checks a mask fraction (0..=1) and an iteration count (1..=65536).
-fn check(fraction: f32, iterations: u32) -> Result<(), Error> {
+/// Checks a mask fraction (0..=1) and an iteration count (1..=16384: llvmpipe stops a
+/// shader's loops after 65535 iterations).
+pub fn check_parameters(fraction: f32, iterations: u32) -> Result<(), Error> {
     check_range("--fraction", fraction as f64, 0.0, 1.0)?;
-    check_range("--iterations", iterations as f64, 1.0, 65536.0)
+    check_range("--iterations", iterations as f64, 1.0, 16384.0)
 }
 
 impl DepthMask {
@@ -158,7 +159,7 @@ impl DepthMask {
 
     /// The branching shader over every pixel; the fragments it ran (every pixel).
     pub fn run_branching(&self, fraction: f32, iterations: u32) -> Result<u64, Error> {
-        check(fraction, iterations)?;
+        check_parameters(fraction, iterations)?;
         self.target.clear_color(0, [0.0; 4])?;
         self.query.begin();
         let drawn = self
@@ -177,7 +178,7 @@ impl DepthMask {
     /// The mask into the depth buffer, then the expensive shader behind the depth test; the
     /// fragments that ran the expensive shader.
     pub fn run_masked(&self, fraction: f32, iterations: u32) -> Result<u64, Error> {
-        check(fraction, iterations)?;
+        check_parameters(fraction, iterations)?;
         self.target.clear_color(0, [0.0; 4])?;
         self.target
             .pass(&self.write_depth, "mask into depth")?

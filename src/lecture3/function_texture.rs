@@ -191,16 +191,17 @@ impl FunctionPasses {
         self.target.width() as u64 * self.target.height() as u64 * per_pixel as u64
     }
 
-    /// One pass: every pixel sums `per_pixel` values (a power of two; the whole pass below
-    /// 2^22 samples, so that positions stay exact in fp32).
+    /// One pass: every pixel sums `per_pixel` values (a power of two up to 4096, a loop
+    /// well within llvmpipe's 65535 iterations; the whole pass below 2^22 samples, so that
+    /// positions stay exact in fp32).
     pub fn run(&self, evaluation: Evaluation, per_pixel: u32) -> Result<(), Error> {
         let total = self.total(per_pixel);
-        if !per_pixel.is_power_of_two() || total > 1 << 22 {
+        if !per_pixel.is_power_of_two() || per_pixel > 4096 || total > 1 << 22 {
             return Err(Error::input(
                 "--per-pixel",
                 format!(
-                    "{per_pixel} values per pixel: a power of two, with at most 2^22 samples in \
-                     the pass"
+                    "{per_pixel} values per pixel: a power of two up to 4096, with at most 2^22 \
+                     samples in the pass"
                 ),
             ));
         }

@@ -82,43 +82,90 @@ impl Reference {
     }
 }
 
+/// What the comparison says of one pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// The ray grazes the box's silhouette (or misses the box): not compared.
+    NotCompared,
+    /// Ill-conditioned: not judged.
+    Ambiguous,
+    /// Within tolerance, on the exact surface.
+    Exact,
+    /// On the exact surface but outside the DELTA / SLACK tolerance.
+    OutsideTolerance,
+    /// On another surface than the exact one, or a wrong hit / miss.
+    WrongSurface,
+}
+
+/// The exact tracer's answers for every pixel of a view, traced once and used to judge any
+/// number of frames of that view.
+pub struct ReferenceImage {
+    /// `None` for pixels not compared (silhouette or outside the box).
+    pixels: Vec<Option<Reference>>,
+}
+
+impl ReferenceImage {
+    /// Traces every pixel of `camera` (three times: exact, raised and lowered by DELTA).
+    pub fn trace(surface: &Surface, camera: &Camera) -> ReferenceImage {
+        let eye = camera.eye.as_dvec3();
+        let scale = surface.world_to_grid().as_dvec3();
+        let (wp, hp) = surface.patches();
+        let pixels = (0..camera.width * camera.height)
+            .map(|i| {
+                let dir = camera.pixel_direction(i % camera.width, i / camera.width);
+                // Silhouette pixels: rasterisation and the analytic box may disagree there.
+                match box_interval(eye * scale, dir * scale, wp as f64, hp as f64) {
+                    Some((t0, t1)) if t1 - t0 > SLACK => Some(Reference {
+                        exact: trace(surface, eye, dir, 0.0),
+                        raised: trace(surface, eye, dir, DELTA),
+                        lowered: trace(surface, eye, dir, -DELTA),
+                    }),
+                    _ => None,
+                }
+            })
+            .collect();
+        ReferenceImage { pixels }
+    }
+
+    /// Judges a frame of the same view.
+    pub fn judge(&self, pixels: &[Pixel]) -> (Comparison, Vec<Verdict>) {
+        let mut c = Comparison::default();
+        let verdicts = pixels
+            .iter()
+            .zip(&self.pixels)
+            .map(|(pixel, reference)| {
+                if *pixel == Pixel::Unfinished {
+                    c.unfinished += 1;
+                }
+                let Some(reference) = reference else {
+                    return Verdict::NotCompared;
+                };
+                c.compared += 1;
+                c.exact_hits += reference.exact.is_some() as usize;
+                if reference.ambiguous() {
+                    c.ambiguous += 1;
+                    return Verdict::Ambiguous;
+                }
+                let within = reference.within_tolerance(pixel);
+                let wrong = reference.wrong_surface(pixel);
+                c.outside_tolerance += !within as usize;
+                c.wrong_surface += wrong as usize;
+                if let (Pixel::Hit { tau, .. }, Some(e)) = (*pixel, reference.exact) {
+                    c.max_tau_error = c.max_tau_error.max((tau - e.tau).abs());
+                }
+                match (wrong, within) {
+                    (true, _) => Verdict::WrongSurface,
+                    (false, false) => Verdict::OutsideTolerance,
+                    (false, true) => Verdict::Exact,
+                }
+            })
+            .collect();
+        (c, verdicts)
+    }
+}
+
 /// Compares `pixels` (a frame of `camera`, row by row from the bottom) with the exact tracer.
 pub fn compare(surface: &Surface, camera: &Camera, pixels: &[Pixel]) -> Comparison {
-    let eye = camera.eye.as_dvec3();
-    let scale = surface.world_to_grid().as_dvec3();
-    let (wp, hp) = surface.patches();
-    let mut c = Comparison::default();
-    for (i, pixel) in pixels.iter().enumerate() {
-        let (px, py) = (i as u32 % camera.width, i as u32 / camera.width);
-        let dir = camera.pixel_direction(px, py);
-        if *pixel == Pixel::Unfinished {
-            c.unfinished += 1;
-        }
-        // Silhouette pixels: rasterisation and the analytic box may disagree there.
-        match box_interval(eye * scale, dir * scale, wp as f64, hp as f64) {
-            Some((t0, t1)) if t1 - t0 > SLACK => {}
-            _ => continue,
-        }
-        c.compared += 1;
-        let reference = Reference {
-            exact: trace(surface, eye, dir, 0.0),
-            raised: trace(surface, eye, dir, DELTA),
-            lowered: trace(surface, eye, dir, -DELTA),
-        };
-        c.exact_hits += reference.exact.is_some() as usize;
-        if reference.ambiguous() {
-            c.ambiguous += 1;
-            continue;
-        }
-        if !reference.within_tolerance(pixel) {
-            c.outside_tolerance += 1;
-        }
-        if reference.wrong_surface(pixel) {
-            c.wrong_surface += 1;
-        }
-        if let (Pixel::Hit { tau, .. }, Some(e)) = (*pixel, reference.exact) {
-            c.max_tau_error = c.max_tau_error.max((tau - e.tau).abs());
-        }
-    }
-    c
+    ReferenceImage::trace(surface, camera).judge(pixels).0
 }

@@ -23,7 +23,9 @@ pub struct IndirectLighting {
 }
 
 impl IndirectLighting {
-    /// `vpl_size` (a power of two, 2 to 2048) VPLs a side; a `width x height` picture.
+    /// `vpl_size` (a power of two, 2 to 128) VPLs a side; a `width x height` picture. The
+    /// brute-force gather loops once per VPL, and llvmpipe stops a shader's loops after 65535
+    /// iterations in all: 128^2 = 16384 stays well within.
     pub fn new(
         ctx: &Context,
         scene: Scene,
@@ -31,10 +33,10 @@ impl IndirectLighting {
         width: u32,
         height: u32,
     ) -> Result<IndirectLighting, Error> {
-        if !vpl_size.is_power_of_two() || !(2..=2048).contains(&vpl_size) {
+        if !vpl_size.is_power_of_two() || !(2..=128).contains(&vpl_size) {
             return Err(Error::input(
                 "--vpls",
-                format!("{vpl_size} VPLs a side: a power of two from 2 to 2048 is needed"),
+                format!("{vpl_size} VPLs a side: a power of two from 2 to 128 is needed"),
             ));
         }
         let (vertices, vertex_count) = scene.vertex_array(ctx)?;
