@@ -24,6 +24,19 @@
 //!    occlusion query);
 //! 7. [`blend_histogram`]: a histogram by additive blending of points, equal to the CPU's.
 //!
+//! The other two debugging tips live in the GL layer: drawing the intermediate data
+//! ([`crate::gl::dump`], used for every picture of the report section) and coping with shader
+//! compile errors ([`crate::gl::Program`] names the file and line, with the source around it).
+//! Not built: octrees on the GPU, subsurface scattering and environment lighting (named by
+//! the programme and the light-hierarchy abstract).
+//!
+//! Renderer notes found on the way (Mesa 22.3): softpipe takes `texelFetch`'s level of detail
+//! from the first pixel of each 2x2 quad (hence [`pyramid_atlas`]) and read row 0 for row 1 of
+//! a 2D texture in the vertex stage (hence vertex buffers in [`blend_histogram`]); llvmpipe
+//! stops a shader's loops after 65535 iterations in all, silently (hence the limits on loop
+//! counts in [`light_hierarchy`], [`function_texture`], [`depth_mask`] and the gather
+//! histogram).
+//!
 //! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
 //! Shaders: `glsl/lecture3/`.
 
