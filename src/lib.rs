@@ -6,9 +6,10 @@
 //!
 //! Layers, and which way the arrows point: the binary (`main.rs` and its `cli/`, which parse
 //! arguments and print) -> [`report`] -> the four paper modules ([`collide`], [`crowd`],
-//! [`mlp`], [`mass`]) -> [`mesh`], [`gl`]. A paper module is the algorithm alone: no command
-//! line, no report, no other paper. Only [`gl`] calls OpenGL or EGL, and it alone holds the
-//! code the compiler cannot check (raw GL calls): `unsafe` is denied everywhere else.
+//! [`mlp`], [`mass`]) and the tutorial's [`lecture3`] -> [`mesh`], [`gl`]. A paper module is
+//! the algorithm alone: no command line, no report, no other paper. Only [`gl`] calls OpenGL
+//! or EGL, and it alone holds the code the compiler cannot check (raw GL calls): `unsafe` is
+//! denied everywhere else.
 
 #![deny(unsafe_code)]
 
@@ -17,6 +18,7 @@ pub mod crowd;
 // Raw GL and EGL calls, behind safe RAII types; GL ids never leave the module.
 #[allow(unsafe_code)]
 pub mod gl;
+pub mod lecture3;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;

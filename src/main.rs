@@ -53,6 +53,12 @@ enum Command {
     Mlp(cli::mlp::MlpArgs),
     /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
     MlpBench(BenchArgs<NoOptions>),
+    /// The tutorial's lecture 3: image pyramids, pyramidal displacement mapping, quadtree
+    /// search of a light hierarchy, and the lecture's texture and debugging techniques.
+    #[command(subcommand)]
+    Lecture3(cli::lecture3::Lecture3Command),
+    /// Lecture 3's section: every technique against its CPU reference, tables and figures.
+    Lecture3Bench(BenchArgs<report::lecture3::Lecture3Options>),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -136,6 +142,12 @@ fn main() -> ExitCode {
         Command::CrowdBench(a) => global.bench::<report::paper2::Paper2>(&a, "crowd-bench"),
         Command::Mlp(args) => cli::mlp::run(args, json, || global.context()),
         Command::MlpBench(a) => global.bench::<report::paper3::Paper3>(&a, "mlp-bench"),
+        Command::Lecture3(c) => global
+            .context()
+            .and_then(|ctx| cli::lecture3::run(&c, &ctx, json)),
+        Command::Lecture3Bench(a) => {
+            global.bench::<report::lecture3::Lecture3>(&a, "lecture3-bench")
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

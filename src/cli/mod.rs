@@ -4,6 +4,7 @@
 
 pub mod collide;
 pub mod crowd;
+pub mod lecture3;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;

@@ -63,6 +63,14 @@ pub fn to_rgba8(texture: &Texture, range: DumpRange) -> Result<Vec<u8>, GlError>
                 .collect();
             map_floats(&depth, 1, range)
         }
+        TextureFormat::Rgba32Ui => {
+            let values: Vec<f32> = texture
+                .download_u32()?
+                .into_iter()
+                .map(|v| v as f32)
+                .collect();
+            map_floats(&values, 4, range)
+        }
     })
 }
 

@@ -53,12 +53,35 @@ impl Framebuffer {
         colors: &[&Texture],
         depth: Option<&Texture>,
     ) -> Result<Framebuffer, GlError> {
+        Self::new_at_level(ctx, name, colors, depth, 0)
+    }
+
+    /// A framebuffer drawing into mipmap level `level` of each attachment (one level of an
+    /// image pyramid); its size is that level's size. See [`Framebuffer::new`].
+    pub fn new_at_level(
+        ctx: &Context,
+        name: &str,
+        colors: &[&Texture],
+        depth: Option<&Texture>,
+        level: u32,
+    ) -> Result<Framebuffer, GlError> {
         let first = colors
             .first()
             .copied()
             .or(depth)
             .ok_or_else(|| GlError::Invalid(format!("framebuffer {name} has no attachment")))?;
-        let (width, height) = (first.width(), first.height());
+        if let Some(t) = colors
+            .iter()
+            .copied()
+            .chain(depth)
+            .find(|t| level >= t.levels())
+        {
+            return Err(GlError::Invalid(format!(
+                "framebuffer {name}: level {level} of a texture with {} levels",
+                t.levels()
+            )));
+        }
+        let (width, height) = first.level_size(level);
         let max = ctx
             .info()
             .limits
@@ -71,11 +94,10 @@ impl Framebuffer {
             )));
         }
         for t in colors.iter().copied().chain(depth) {
-            if (t.width(), t.height()) != (width, height) {
+            let (w, h) = t.level_size(level);
+            if (w, h) != (width, height) {
                 return Err(GlError::Invalid(format!(
-                    "framebuffer {name}: attachments differ in size ({}x{} and {width}x{height})",
-                    t.width(),
-                    t.height()
+                    "framebuffer {name}: attachments differ in size ({w}x{h} and {width}x{height})"
                 )));
             }
         }
@@ -109,7 +131,7 @@ impl Framebuffer {
                     glow::FRAMEBUFFER,
                     glow::COLOR_ATTACHMENT0 + i as u32,
                     Some(t.id()),
-                    0,
+                    level as i32,
                 );
             }
             if let Some(d) = depth {
@@ -118,7 +140,7 @@ impl Framebuffer {
                 } else {
                     glow::DEPTH_ATTACHMENT
                 };
-                gl.framebuffer_texture(glow::FRAMEBUFFER, attachment, Some(d.id()), 0);
+                gl.framebuffer_texture(glow::FRAMEBUFFER, attachment, Some(d.id()), level as i32);
             }
         }
         fb.bind();
@@ -267,7 +289,7 @@ impl Framebuffer {
     /// Read a rectangle of colour attachment `index` as bytes (R8: 1 per texel; RGBA8: 4).
     pub fn read_u8(&self, index: usize, rect: Rect) -> Result<Vec<u8>, GlError> {
         let format = self.color_format(index)?;
-        if format.is_float() {
+        if !matches!(format, TextureFormat::R8 | TextureFormat::Rgba8) {
             return Err(GlError::Invalid(format!(
                 "read_u8 of a {} attachment of {}",
                 format.name(),
@@ -276,6 +298,26 @@ impl Framebuffer {
         }
         let mut out = vec![0u8; rect.area() * format.components()];
         self.read_color(index, rect, glow::PixelPackData::Slice(Some(&mut out)))?;
+        Ok(out)
+    }
+
+    /// Read a rectangle of colour attachment `index` as unsigned integers (RGBA32UI: 4 per
+    /// texel).
+    pub fn read_u32(&self, index: usize, rect: Rect) -> Result<Vec<u32>, GlError> {
+        let format = self.color_format(index)?;
+        if format != TextureFormat::Rgba32Ui {
+            return Err(GlError::Invalid(format!(
+                "read_u32 of a {} attachment of {}",
+                format.name(),
+                self.name
+            )));
+        }
+        let mut out = vec![0u32; rect.area() * format.components()];
+        self.read_color(
+            index,
+            rect,
+            glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut out))),
+        )?;
         Ok(out)
     }
 

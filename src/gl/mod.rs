@@ -42,7 +42,7 @@ pub use pass::{
 };
 pub use program::{Program, ShaderError, ShaderSource};
 pub use query::{OcclusionQuery, TimerQuery};
-pub use texture::{Texture, TextureFormat, Wrap};
+pub use texture::{Filter, Texture, TextureFormat, Wrap};
 
 /// Everything that can go wrong in the GL layer, each naming what was being done.
 #[derive(Debug, thiserror::Error)]

@@ -19,6 +19,8 @@ pub enum TextureFormat {
     Depth32F,
     /// 24-bit depth and an 8-bit stencil (paper 1's stencil mask, paper 4's stencil bit).
     Depth24Stencil8,
+    /// Four unsigned 32-bit integers (`usampler2D`, `uvec4` outputs): generator states.
+    Rgba32Ui,
 }
 
 impl TextureFormat {
@@ -37,13 +39,14 @@ impl TextureFormat {
                 glow::DEPTH_STENCIL,
                 glow::UNSIGNED_INT_24_8,
             ),
+            TextureFormat::Rgba32Ui => (glow::RGBA32UI, glow::RGBA_INTEGER, glow::UNSIGNED_INT),
         }
     }
 
     /// Values per texel in the upload/download arrays.
     pub fn components(self) -> usize {
         match self {
-            TextureFormat::Rgba32F | TextureFormat::Rgba8 => 4,
+            TextureFormat::Rgba32F | TextureFormat::Rgba8 | TextureFormat::Rgba32Ui => 4,
             _ => 1,
         }
     }
@@ -51,7 +54,7 @@ impl TextureFormat {
     /// Bytes per texel in the upload/download arrays.
     pub fn bytes_per_texel(self) -> usize {
         match self {
-            TextureFormat::Rgba32F => 16,
+            TextureFormat::Rgba32F | TextureFormat::Rgba32Ui => 16,
             TextureFormat::R8 => 1,
             _ => 4,
         }
@@ -80,6 +83,7 @@ impl TextureFormat {
             TextureFormat::Rgba8 => "RGBA8",
             TextureFormat::Depth32F => "DEPTH_COMPONENT32F",
             TextureFormat::Depth24Stencil8 => "DEPTH24_STENCIL8",
+            TextureFormat::Rgba32Ui => "RGBA32UI",
         }
     }
 }
@@ -89,6 +93,15 @@ impl TextureFormat {
 pub enum Wrap {
     ClampToEdge,
     Repeat,
+}
+
+/// How texture lookups between texels are filtered (both minification and magnification).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Filter {
+    /// The nearest texel (the GPGPU default: read values, never blend them).
+    Nearest,
+    /// Linear interpolation between the nearest texels (a function stored in a texture).
+    Linear,
 }
 
 /// A 1D or 2D texture with nearest filtering (GPGPU reads texels, never blends them).
@@ -105,6 +118,8 @@ struct TextureObject {
     width: u32,
     height: u32,
     format: TextureFormat,
+    /// Mipmap levels allocated (1 for a plain texture).
+    levels: u32,
 }
 
 impl Drop for TextureObject {
@@ -116,7 +131,7 @@ impl Drop for TextureObject {
 impl Texture {
     /// A 1D texture of `width` texels, all zero.
     pub fn new_1d(ctx: &Context, width: u32, format: TextureFormat) -> Result<Texture, GlError> {
-        Self::create(ctx, glow::TEXTURE_1D, width, 1, format)
+        Self::create(ctx, glow::TEXTURE_1D, width, 1, format, 1)
     }
 
     /// A 2D texture of `width x height` texels, all zero (depth and stencil too).
@@ -126,7 +141,26 @@ impl Texture {
         height: u32,
         format: TextureFormat,
     ) -> Result<Texture, GlError> {
-        Self::create(ctx, glow::TEXTURE_2D, width, height, format)
+        Self::create(ctx, glow::TEXTURE_2D, width, height, format, 1)
+    }
+
+    /// A 2D texture with `levels` mipmap levels (level k is `max(1, width >> k)` by
+    /// `max(1, height >> k)`), contents undefined until uploaded or drawn: an image pyramid.
+    /// Lookups take the nearest texel of the nearest level; `texelFetch` reads any level.
+    pub fn new_2d_mipmapped(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        format: TextureFormat,
+        levels: u32,
+    ) -> Result<Texture, GlError> {
+        let possible = 32 - width.max(height).max(1).leading_zeros();
+        if levels == 0 || levels > possible {
+            return Err(GlError::Invalid(format!(
+                "a {width}x{height} texture has 1 to {possible} mipmap levels, not {levels}"
+            )));
+        }
+        Self::create(ctx, glow::TEXTURE_2D, width, height, format, levels)
     }
 
     /// A 2D RGBA32F or R32F texture holding `data` (row by row from the bottom).
@@ -148,6 +182,7 @@ impl Texture {
         width: u32,
         height: u32,
         format: TextureFormat,
+        levels: u32,
     ) -> Result<Texture, GlError> {
         let max = ctx.info().limits.max_texture_size;
         if width == 0 || height == 0 || width > max || height > max {
@@ -168,39 +203,43 @@ impl Texture {
                 width,
                 height,
                 format,
+                levels,
             }),
         };
         unsafe {
             gl.bind_texture(target, Some(id));
-            let empty = glow::PixelUnpackData::Slice(None);
-            if target == glow::TEXTURE_1D {
-                gl.tex_image_1d(
-                    target,
-                    0,
-                    internal as i32,
-                    width as i32,
-                    0,
-                    pixel_format,
-                    pixel_type,
-                    empty,
-                );
-            } else {
-                gl.tex_image_2d(
-                    target,
-                    0,
-                    internal as i32,
-                    width as i32,
-                    height as i32,
-                    0,
-                    pixel_format,
-                    pixel_type,
-                    empty,
-                );
+            for level in 0..levels {
+                let (w, h) = texture.level_size(level);
+                let empty = glow::PixelUnpackData::Slice(None);
+                if target == glow::TEXTURE_1D {
+                    gl.tex_image_1d(
+                        target,
+                        level as i32,
+                        internal as i32,
+                        w as i32,
+                        0,
+                        pixel_format,
+                        pixel_type,
+                        empty,
+                    );
+                } else {
+                    gl.tex_image_2d(
+                        target,
+                        level as i32,
+                        internal as i32,
+                        w as i32,
+                        h as i32,
+                        0,
+                        pixel_format,
+                        pixel_type,
+                        empty,
+                    );
+                }
             }
-            gl.tex_parameter_i32(target, glow::TEXTURE_MIN_FILTER, glow::NEAREST as i32);
             gl.tex_parameter_i32(target, glow::TEXTURE_MAG_FILTER, glow::NEAREST as i32);
-            gl.tex_parameter_i32(target, glow::TEXTURE_MAX_LEVEL, 0);
         }
+        texture.set_filter(Filter::Nearest);
+        texture.set_level_range(0, levels - 1)?;
         texture.set_wrap(Wrap::ClampToEdge);
         texture.clear_to_zero()?;
         // Out of memory shows up here, whatever the checks setting.
@@ -221,31 +260,51 @@ impl Texture {
         let fbo = unsafe { gl.create_framebuffer() }.map_err(GlError::Invalid)?;
         unsafe {
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            match self.format() {
-                TextureFormat::Depth24Stencil8 | TextureFormat::Depth32F => {
-                    let stencil = self.format() == TextureFormat::Depth24Stencil8;
-                    let attachment = if stencil {
-                        glow::DEPTH_STENCIL_ATTACHMENT
-                    } else {
-                        glow::DEPTH_ATTACHMENT
-                    };
-                    gl.framebuffer_texture(glow::FRAMEBUFFER, attachment, Some(self.id()), 0);
-                    gl.draw_buffer(glow::NONE);
-                    gl.read_buffer(glow::NONE);
-                    gl.depth_mask(true);
-                    gl.stencil_mask(0xff);
-                    if stencil {
-                        gl.clear_buffer_depth_stencil(glow::DEPTH_STENCIL, 0, 0.0, 0);
-                    } else {
-                        gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[0.0]);
+            // Every mipmap level: a level drawn later from the one below may still be read
+            // before it is drawn.
+            for level in 0..self.obj.levels as i32 {
+                match self.format() {
+                    TextureFormat::Depth24Stencil8 | TextureFormat::Depth32F => {
+                        let stencil = self.format() == TextureFormat::Depth24Stencil8;
+                        let attachment = if stencil {
+                            glow::DEPTH_STENCIL_ATTACHMENT
+                        } else {
+                            glow::DEPTH_ATTACHMENT
+                        };
+                        gl.framebuffer_texture(
+                            glow::FRAMEBUFFER,
+                            attachment,
+                            Some(self.id()),
+                            level,
+                        );
+                        gl.draw_buffer(glow::NONE);
+                        gl.read_buffer(glow::NONE);
+                        gl.depth_mask(true);
+                        gl.stencil_mask(0xff);
+                        if stencil {
+                            gl.clear_buffer_depth_stencil(glow::DEPTH_STENCIL, 0, 0.0, 0);
+                        } else {
+                            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[0.0]);
+                        }
                     }
-                }
-                _ => {
-                    let attachment = glow::COLOR_ATTACHMENT0;
-                    gl.framebuffer_texture(glow::FRAMEBUFFER, attachment, Some(self.id()), 0);
-                    gl.draw_buffer(attachment);
-                    gl.color_mask(true, true, true, true);
-                    gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
+                    format => {
+                        let attachment = glow::COLOR_ATTACHMENT0;
+                        gl.framebuffer_texture(
+                            glow::FRAMEBUFFER,
+                            attachment,
+                            Some(self.id()),
+                            level,
+                        );
+                        gl.draw_buffer(attachment);
+                        gl.color_mask(true, true, true, true);
+                        // An integer target is cleared with integers (a float clear of it is
+                        // undefined).
+                        if format == TextureFormat::Rgba32Ui {
+                            gl.clear_buffer_u32_slice(glow::COLOR, 0, &[0; 4]);
+                        } else {
+                            gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
+                        }
+                    }
                 }
             }
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
@@ -265,6 +324,17 @@ impl Texture {
     }
     pub fn is_1d(&self) -> bool {
         self.obj.target == glow::TEXTURE_1D
+    }
+    /// Mipmap levels (1 unless made by [`Texture::new_2d_mipmapped`]).
+    pub fn levels(&self) -> u32 {
+        self.obj.levels
+    }
+    /// The size of mipmap level `level`.
+    pub fn level_size(&self, level: u32) -> (u32, u32) {
+        (
+            (self.obj.width >> level).max(1),
+            (self.obj.height >> level).max(1),
+        )
     }
     pub(super) fn id(&self) -> glow::Texture {
         self.obj.id
@@ -297,6 +367,43 @@ impl Texture {
         }
     }
 
+    /// How lookups filter. Mipmapped textures filter within the nearest level, never between
+    /// levels.
+    pub fn set_filter(&self, filter: Filter) {
+        let (min, mag) = match (filter, self.obj.levels > 1) {
+            (Filter::Nearest, false) => (glow::NEAREST, glow::NEAREST),
+            (Filter::Nearest, true) => (glow::NEAREST_MIPMAP_NEAREST, glow::NEAREST),
+            (Filter::Linear, false) => (glow::LINEAR, glow::LINEAR),
+            (Filter::Linear, true) => (glow::LINEAR_MIPMAP_NEAREST, glow::LINEAR),
+        };
+        let gl = self.obj.ctx.gl();
+        unsafe {
+            gl.bind_texture(self.obj.target, Some(self.obj.id));
+            gl.tex_parameter_i32(self.obj.target, glow::TEXTURE_MIN_FILTER, min as i32);
+            gl.tex_parameter_i32(self.obj.target, glow::TEXTURE_MAG_FILTER, mag as i32);
+        }
+    }
+
+    /// Which mipmap levels lookups may read: `base..=max` (`texelFetch` level 0 is `base`).
+    /// A pass that renders level k from level k - 1 of the same texture restricts the range
+    /// to `k - 1..=k - 1`, so that the level it writes is not one it can read (no feedback
+    /// loop, GL 4.5 section 9.3.1); [`Texture::new_2d_mipmapped`] leaves every level readable.
+    pub fn set_level_range(&self, base: u32, max: u32) -> Result<(), GlError> {
+        if base > max || max >= self.obj.levels {
+            return Err(GlError::Invalid(format!(
+                "levels {base}..={max} of a texture with {} levels",
+                self.obj.levels
+            )));
+        }
+        let gl = self.obj.ctx.gl();
+        unsafe {
+            gl.bind_texture(self.obj.target, Some(self.obj.id));
+            gl.tex_parameter_i32(self.obj.target, glow::TEXTURE_BASE_LEVEL, base as i32);
+            gl.tex_parameter_i32(self.obj.target, glow::TEXTURE_MAX_LEVEL, max as i32);
+        }
+        Ok(())
+    }
+
     /// Replace the whole texture with float data (RGBA32F, R32F, DEPTH32F).
     pub fn upload_f32(&self, data: &[f32]) -> Result<(), GlError> {
         self.upload_region_f32(0, 0, self.width(), self.height(), data)
@@ -315,6 +422,20 @@ impl Texture {
         self.upload_bytes(x, y, w, h, bytemuck::cast_slice(data))
     }
 
+    /// Replace mipmap level `level` with float data (RGBA32F, R32F), row by row from the
+    /// bottom.
+    pub fn upload_level_f32(&self, level: u32, data: &[f32]) -> Result<(), GlError> {
+        self.expect_kind(true, "upload_level_f32")?;
+        if level >= self.levels() {
+            return Err(GlError::Invalid(format!(
+                "level {level} of a texture with {} levels",
+                self.levels()
+            )));
+        }
+        let (w, h) = self.level_size(level);
+        self.upload_level_bytes(level, 0, 0, w, h, bytemuck::cast_slice(data))
+    }
+
     /// Replace the whole texture with byte data (R8, RGBA8).
     pub fn upload_u8(&self, data: &[u8]) -> Result<(), GlError> {
         if !matches!(self.format(), TextureFormat::R8 | TextureFormat::Rgba8) {
@@ -323,9 +444,13 @@ impl Texture {
         self.upload_bytes(0, 0, self.width(), self.height(), data)
     }
 
-    /// Replace the whole texture with packed 32-bit words (DEPTH24_STENCIL8: depth << 8 | stencil).
+    /// Replace the whole texture with 32-bit words (DEPTH24_STENCIL8: depth << 8 | stencil;
+    /// RGBA32UI: four per texel).
     pub fn upload_u32(&self, data: &[u32]) -> Result<(), GlError> {
-        if self.format() != TextureFormat::Depth24Stencil8 {
+        if !matches!(
+            self.format(),
+            TextureFormat::Depth24Stencil8 | TextureFormat::Rgba32Ui
+        ) {
             return Err(self.wrong_kind("upload_u32"));
         }
         self.upload_bytes(
@@ -338,11 +463,22 @@ impl Texture {
     }
 
     fn upload_bytes(&self, x: u32, y: u32, w: u32, h: u32, bytes: &[u8]) -> Result<(), GlError> {
-        if x + w > self.width() || y + h > self.height() {
+        self.upload_level_bytes(0, x, y, w, h, bytes)
+    }
+
+    fn upload_level_bytes(
+        &self,
+        level: u32,
+        x: u32,
+        y: u32,
+        w: u32,
+        h: u32,
+        bytes: &[u8],
+    ) -> Result<(), GlError> {
+        let (level_w, level_h) = self.level_size(level);
+        if x + w > level_w || y + h > level_h {
             return Err(GlError::Invalid(format!(
-                "region {w}x{h} at ({x}, {y}) lies outside a {}x{} texture",
-                self.width(),
-                self.height()
+                "region {w}x{h} at ({x}, {y}) lies outside a {level_w}x{level_h} texture"
             )));
         }
         let expected = w as usize * h as usize * self.format().bytes_per_texel();
@@ -366,7 +502,7 @@ impl Texture {
                     })?;
                 sub_image_1d(
                     self.obj.target,
-                    0,
+                    level as i32,
                     x as i32,
                     w as i32,
                     pixel_format,
@@ -376,7 +512,7 @@ impl Texture {
             } else {
                 gl.tex_sub_image_2d(
                     self.obj.target,
-                    0,
+                    level as i32,
                     x as i32,
                     y as i32,
                     w as i32,
@@ -408,17 +544,40 @@ impl Texture {
         Ok(out)
     }
 
-    /// The whole texture as packed words (DEPTH24_STENCIL8: depth << 8 | stencil).
+    /// The whole texture as words (DEPTH24_STENCIL8: depth << 8 | stencil; RGBA32UI: four
+    /// per texel).
     pub fn download_u32(&self) -> Result<Vec<u32>, GlError> {
-        if self.format() != TextureFormat::Depth24Stencil8 {
+        if !matches!(
+            self.format(),
+            TextureFormat::Depth24Stencil8 | TextureFormat::Rgba32Ui
+        ) {
             return Err(self.wrong_kind("download_u32"));
         }
-        let mut out = vec![0u32; self.len()];
+        let mut out = vec![0u32; self.len() * self.format().components()];
         self.download_bytes(bytemuck::cast_slice_mut(&mut out))?;
         Ok(out)
     }
 
+    /// Mipmap level `level` as floats (RGBA32F, R32F), row by row from the bottom.
+    pub fn download_level_f32(&self, level: u32) -> Result<Vec<f32>, GlError> {
+        self.expect_kind(true, "download_level_f32")?;
+        if level >= self.levels() {
+            return Err(GlError::Invalid(format!(
+                "level {level} of a texture with {} levels",
+                self.levels()
+            )));
+        }
+        let (w, h) = self.level_size(level);
+        let mut out = vec![0f32; (w * h) as usize * self.format().components()];
+        self.download_level_bytes(level, bytemuck::cast_slice_mut(&mut out))?;
+        Ok(out)
+    }
+
     fn download_bytes(&self, out: &mut [u8]) -> Result<(), GlError> {
+        self.download_level_bytes(0, out)
+    }
+
+    fn download_level_bytes(&self, level: u32, out: &mut [u8]) -> Result<(), GlError> {
         let gl = self.obj.ctx.gl();
         let (_, pixel_format, pixel_type) = self.format().gl();
         unsafe {
@@ -427,7 +586,7 @@ impl Texture {
             gl.bind_texture(self.obj.target, Some(self.obj.id));
             gl.get_tex_image(
                 self.obj.target,
-                0,
+                level as i32,
                 pixel_format,
                 pixel_type,
                 glow::PixelPackData::Slice(Some(out)),

@@ -9,6 +9,7 @@
 
 pub mod blocks;
 mod html;
+pub mod lecture3;
 pub mod paper1;
 pub mod paper2;
 pub mod paper3;

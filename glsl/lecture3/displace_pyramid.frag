@@ -1,0 +1,83 @@
+// Pyramidal displacement mapping [Oh, Ki & Lee, VRST 2006; reconstructed from the
+// abstract]: the pixel's ray is traced through the max pyramid of the patch bounds, top
+// down. A node whose highest point the ray stays above while it crosses the node is skipped
+// whole; otherwise the ray advances to where it reaches the node's bound (never past a
+// surface) and descends. At level 0 the ray is intersected with the node's bilinear patch.
+// After leaving a node the traversal climbs one level, so empty space is crossed in large
+// steps. (The fragment stage is displace_common.glsl followed by this file.)
+
+uniform sampler2D u_bounds;   // max pyramid of the patch bounds, as an atlas
+uniform int u_level_x[16];    // where each level starts in the atlas
+uniform int u_level_y[16];
+uniform int u_top;            // the top level (one node)
+uniform int u_max_iterations; // far more than any traversal needs; reaching it is reported
+
+void main() {
+    Ray r = pixel_ray();
+    vec2 box = box_interval(r);
+    if (box.x > box.y) discard;
+    float t = box.x;
+    float t_out = box.y;
+    vec3 entry = r.o + t * r.d;
+    ivec2 cell = clamp(ivec2(floor(entry.xy)), ivec2(0), u_patches - 1);
+    int level = u_top;
+    bool in_entry_cell = true;
+    for (int it = 0; it < u_max_iterations; ++it) {
+        ivec2 node = cell >> level;
+        ivec2 first_cell = node << level;
+        ivec2 last_cell = min(((node + 1) << level) - 1, u_patches - 1);
+        // Where the ray leaves the node (or the box).
+        vec2 t_side = vec2(BIG);
+        for (int k = 0; k < 2; ++k) {
+            if (r.d[k] > 0.0) t_side[k] = (float(last_cell[k] + 1) - r.o[k]) / r.d[k];
+            if (r.d[k] < 0.0) t_side[k] = (float(first_cell[k]) - r.o[k]) / r.d[k];
+        }
+        float t_exit = min(min(t_side.x, t_side.y), t_out);
+        ivec2 at_level = ivec2(u_level_x[level], u_level_y[level]);
+        float bound = texelFetch(u_bounds, at_level + node, 0).r;
+        bool skip = false;
+        if (r.o.z + t * r.d.z > bound) {
+            // The ray is above the node's highest point: where does it come down to it?
+            float t_plane = r.d.z < 0.0 ? (bound - r.o.z) / r.d.z : BIG;
+            if (t_plane >= t_exit) {
+                skip = true; // above the bound all the way across: nothing here
+            } else {
+                // Advance to the bound, still inside this node (clamped against rounding).
+                t = t_plane;
+                ivec2 at = ivec2(floor(r.o.xy + t * r.d.xy));
+                ivec2 moved = clamp(at, first_cell, last_cell);
+                in_entry_cell = in_entry_cell && moved == cell;
+                cell = moved;
+            }
+        }
+        if (!skip && level == 0) {
+            // The finest level: the ray against this bilinear patch.
+            vec3 q = r.o + t * r.d;
+            float u = patch_first_hit(corners(cell), vec3(q.xy - vec2(cell), q.z), r.d,
+                                      max(t_exit - t, 0.0));
+            if (u >= 0.0) {
+                write_hit(r, t + u, in_entry_cell && u == 0.0, float(it + 1));
+                return;
+            }
+            skip = true;
+        }
+        if (!skip) {
+            level -= 1;
+            continue;
+        }
+        // Leave the node through the side it exits by, into the neighbouring cell.
+        if (t_exit >= t_out) discard; // out of the box: a miss
+        t = t_exit;
+        int axis = t_side.x <= t_side.y ? 0 : 1;
+        int other = 1 - axis;
+        ivec2 next;
+        next[axis] = r.d[axis] > 0.0 ? last_cell[axis] + 1 : first_cell[axis] - 1;
+        next[other] = clamp(int(floor(r.o[other] + t * r.d[other])), first_cell[other],
+                            last_cell[other]);
+        if (any(lessThan(next, ivec2(0))) || any(greaterThanEqual(next, u_patches))) discard;
+        cell = next;
+        in_entry_cell = false;
+        level = min(level + 1, u_top);
+    }
+    write_unfinished(float(u_max_iterations));
+}

@@ -1,0 +1,662 @@
+//! `classic-gpgpu lecture3 ...`: one command per technique of the tutorial's lecture 3
+//! (`src/lecture3/`), each running the GPU path beside its CPU reference, printing what they
+//! found (text or `--json`, timings as ratios measured in the same run, the renderer named)
+//! and writing PNGs on request. `lecture3-bench` goes through
+//! [`classic_gpgpu::report::bench_command`].
+
+use anyhow::{bail, Context as _};
+use classic_gpgpu::gl::dump::{texture_png, DumpRange};
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::lecture3::blend_histogram::{self, Bins};
+use classic_gpgpu::lecture3::depth_mask::{self, DepthMask, MaskShape};
+use classic_gpgpu::lecture3::displacement::compare::ReferenceImage;
+use classic_gpgpu::lecture3::displacement::{exact, Camera, DisplacementRenderer, Method, Surface};
+use classic_gpgpu::lecture3::error::check_range;
+use classic_gpgpu::lecture3::function_texture::{Function, FunctionPasses};
+use classic_gpgpu::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
+use classic_gpgpu::lecture3::light_hierarchy::shade::Terms;
+use classic_gpgpu::lecture3::light_hierarchy::Gather;
+use classic_gpgpu::report::lecture3::{self as bench, images::pyramid_png};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+
+/// The lecture-3 techniques.
+#[derive(clap::Subcommand, Debug)]
+pub enum Lecture3Command {
+    /// 1. The max and min image pyramids of a height map, drawn level by level on the GPU and
+    ///    compared with the CPU's.
+    Pyramid(PyramidArgs),
+    /// 2. Pyramidal displacement mapping: a height map on a box, traced per pixel through its
+    ///    max pyramid (or by relief mapping), checked against an exact CPU ray tracer.
+    Displace(DisplaceArgs),
+    /// 3. Indirect light from virtual point lights, gathered by a quadtree search of their
+    ///    hierarchy, against the brute-force sum.
+    Light(LightArgs),
+    /// 4. A function in a 1D texture: interpolation error and speed against computing it.
+    Function(FunctionArgs),
+    /// 5. Random numbers generated into a texture, checked bit for bit against the CPU
+    ///    generator and tested for uniformity and independence.
+    Random(RandomArgs),
+    /// 6. An if removed with the depth buffer: fragments counted, time against branching.
+    DepthMask(DepthMaskArgs),
+    /// 7. A histogram by additive blending of points, against the CPU histogram.
+    Histogram(HistogramArgs),
+    /// Write the generated height map (the shipped assets/lecture3/height.png is --size 64).
+    HeightMap(HeightMapArgs),
+}
+
+/// Where a PNG goes: never over an input, over an existing file only with --force.
+#[derive(clap::Args, Debug)]
+pub struct Output {
+    /// Write the picture to this PNG file.
+    #[arg(long)]
+    png: Option<PathBuf>,
+    /// Replace --png if it exists (never an input).
+    #[arg(long)]
+    force: bool,
+}
+
+impl Output {
+    fn check(&self, inputs: &[&Path]) -> anyhow::Result<()> {
+        match &self.png {
+            Some(out) => check_output(out, inputs, self.force),
+            None => Ok(()),
+        }
+    }
+}
+
+fn check_output(out: &Path, inputs: &[&Path], force: bool) -> anyhow::Result<()> {
+    let same = |a: &Path, b: &Path| match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if let Some(input) = inputs.iter().find(|i| same(out, i)) {
+        bail!(
+            "{} is the input {}; an input is never overwritten (not even with --force)",
+            out.display(),
+            input.display()
+        );
+    }
+    if out.exists() && !force {
+        bail!("{} exists; pass --force to replace it", out.display());
+    }
+    Ok(())
+}
+
+#[derive(clap::Args, Debug)]
+pub struct PyramidArgs {
+    /// A greyscale PNG height map [default: the generated map of assets/lecture3/height.png].
+    #[arg(long)]
+    height: Option<PathBuf>,
+    #[command(flatten)]
+    output: Output,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct DisplaceArgs {
+    /// A greyscale PNG height map (black 0, white 1) [default: the shipped generated map].
+    #[arg(long)]
+    height: Option<PathBuf>,
+    /// Height of a white sample, in units of half the box's longer side.
+    #[arg(long, default_value_t = bench::DEPTH)]
+    depth: f32,
+    /// Image side, pixels.
+    #[arg(long, default_value_t = 256)]
+    size: u32,
+    /// Camera azimuth about the vertical, degrees.
+    #[arg(long, default_value_t = 225.0, allow_negative_numbers = true)]
+    azimuth: f32,
+    /// Camera elevation above the surface, degrees (small: grazing).
+    #[arg(long, default_value_t = 20.0)]
+    elevation: f32,
+    /// Frames of a camera orbiting the box (the azimuth turns 360 / frames per frame).
+    #[arg(long, default_value_t = 1)]
+    frames: u32,
+    /// How each pixel finds its hit.
+    #[arg(long, value_enum, default_value_t = MethodArg::Pyramid)]
+    method: MethodArg,
+    /// Relief mapping's linear steps.
+    #[arg(long, default_value_t = 32)]
+    linear_steps: u32,
+    /// Relief mapping's binary steps.
+    #[arg(long, default_value_t = 8)]
+    binary_steps: u32,
+    /// Skip the exact CPU tracer (its check of the first frame and its time).
+    #[arg(long)]
+    no_check: bool,
+    /// Write frame k to DIR/frame_k.png (DIR is created; existing frames only with --force).
+    #[arg(long, conflicts_with = "png")]
+    out: Option<PathBuf>,
+    #[command(flatten)]
+    output: Output,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum MethodArg {
+    /// Top-down traversal of the max pyramid, exact bilinear patches.
+    Pyramid,
+    /// Relief mapping: linear, then binary search.
+    Relief,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct LightArgs {
+    /// VPLs per side of the VPL image (a power of two).
+    #[arg(long, default_value_t = 64)]
+    vpls: u32,
+    /// Image side, pixels.
+    #[arg(long, default_value_t = 256)]
+    size: u32,
+    /// Criterion: a cluster is one light when its radius < theta x its distance (0: every VPL).
+    #[arg(long, default_value_t = 0.5)]
+    theta: f32,
+    /// Show only the indirect light in --png.
+    #[arg(long)]
+    indirect_only: bool,
+    #[command(flatten)]
+    output: Output,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct FunctionArgs {
+    #[arg(long, value_enum, default_value_t = FunctionArg::Sigmoid)]
+    function: FunctionArg,
+    /// Texels of the lookup table.
+    #[arg(long, default_value_t = 256)]
+    texels: u32,
+    /// Values per pixel of the timed passes (a power of two).
+    #[arg(long, default_value_t = 64)]
+    per_pixel: u32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum FunctionArg {
+    /// Paper 3's 1 / (1 + e^-x) on [-8, 8].
+    Sigmoid,
+    /// A square wave from 16 odd harmonics on [0, 1].
+    SquareWave,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct RandomArgs {
+    /// Generators per side of the texture.
+    #[arg(long, default_value_t = 256)]
+    size: u32,
+    /// Steps (one pass each).
+    #[arg(long, default_value_t = 16)]
+    steps: usize,
+    #[arg(long, default_value_t = 2007)]
+    seed: u64,
+    #[command(flatten)]
+    output: Output,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct DepthMaskArgs {
+    /// Which pixels are active.
+    #[arg(long, value_enum, default_value_t = MaskArg::Scattered)]
+    mask: MaskArg,
+    /// Share of active pixels, 0 to 1.
+    #[arg(long, default_value_t = 0.25)]
+    fraction: f32,
+    /// Sines per active pixel (the expensive work).
+    #[arg(long, default_value_t = 256)]
+    iterations: u32,
+    /// Image side, pixels (a power of two).
+    #[arg(long, default_value_t = 256)]
+    size: u32,
+    #[command(flatten)]
+    output: Output,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum MaskArg {
+    Blobs,
+    Scattered,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct HistogramArgs {
+    /// Count the grey levels (0..1) of this PNG [default: random skewed values].
+    #[arg(long)]
+    image: Option<PathBuf>,
+    /// How many random values without --image.
+    #[arg(long, default_value_t = 1 << 20)]
+    values: usize,
+    #[arg(long, default_value_t = 256)]
+    bins: u32,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct HeightMapArgs {
+    /// Samples per side.
+    #[arg(long, default_value_t = SHIPPED_SIZE)]
+    size: u32,
+    /// Where to write it.
+    #[arg(long)]
+    out: PathBuf,
+    /// Replace --out if it exists.
+    #[arg(long)]
+    force: bool,
+}
+
+/// Runs a `lecture3` subcommand.
+pub fn run(cmd: &Lecture3Command, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    match cmd {
+        Lecture3Command::Pyramid(a) => pyramid(a, ctx, json),
+        Lecture3Command::Displace(a) => displace(a, ctx, json),
+        Lecture3Command::Light(a) => light(a, ctx, json),
+        Lecture3Command::Function(a) => function(a, ctx, json),
+        Lecture3Command::Random(a) => random(a, ctx, json),
+        Lecture3Command::DepthMask(a) => depth_mask(a, ctx, json),
+        Lecture3Command::Histogram(a) => histogram(a, ctx, json),
+        Lecture3Command::HeightMap(a) => height_map(a, json),
+    }
+}
+
+/// Timed runs of the commands' measurements (the median is kept).
+const RUNS: usize = 3;
+
+fn print(json: bool, value: serde_json::Value, text: String) -> anyhow::Result<()> {
+    if json {
+        println!("{}", serde_json::to_string_pretty(&value)?);
+    } else {
+        println!("{text}");
+    }
+    Ok(())
+}
+
+fn load_map(height: Option<&Path>, ctx: &Context) -> anyhow::Result<(HeightMap, String)> {
+    Ok(match height {
+        Some(p) => (
+            HeightMap::load(p, ctx.info().limits.max_texture_size)?,
+            p.display().to_string(),
+        ),
+        None => (
+            HeightMap::generated(SHIPPED_SIZE),
+            "the generated map (assets/lecture3/height.png)".into(),
+        ),
+    })
+}
+
+fn check_size(name: &str, size: u32) -> anyhow::Result<()> {
+    if !(8..=4096).contains(&size) {
+        bail!("{name}: {size} pixels a side; 8 to 4096 are allowed");
+    }
+    Ok(())
+}
+
+fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let inputs: Vec<&Path> = a.height.iter().map(|p| p.as_path()).collect();
+    a.output.check(&inputs)?;
+    let (map, name) = load_map(a.height.as_deref(), ctx)?;
+    let row = bench::pyramid_row(ctx, &map, RUNS)?;
+    if let Some(png) = &a.output.png {
+        pyramid_png(&map, png)?;
+    }
+    if !row.equal_to_cpu {
+        bail!("the GPU pyramid differs from the CPU pyramid (a bug: max and min are exact)");
+    }
+    let renderer = ctx.info().renderer_line();
+    print(
+        json,
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "map": name, "width": map.width(), "height": map.height(),
+                "pyramid": row, "png": a.output.png }),
+        format!(
+            "{name}: {}x{}, {} levels; GPU max and min pyramids equal to the CPU's bit for bit\n\
+             level passes {:.3} ms (GPU), CPU pyramid {:.3} ms: CPU / GPU {:.2} \
+             (renderer: {renderer})",
+            map.width(),
+            map.height(),
+            row.levels,
+            row.gpu_ms,
+            row.cpu_ms,
+            row.cpu_ms / row.gpu_ms
+        ),
+    )
+}
+
+fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let inputs: Vec<&Path> = a.height.iter().map(|p| p.as_path()).collect();
+    a.output.check(&inputs)?;
+    check_size("--size", a.size)?;
+    check_range("--azimuth", a.azimuth as f64, -3600.0, 3600.0)?;
+    check_range("--elevation", a.elevation as f64, 0.1, 89.5)?;
+    if !(1..=360).contains(&a.frames) {
+        bail!("--frames: {} frames; 1 to 360 are allowed", a.frames);
+    }
+    if a.frames > 1 && a.output.png.is_some() {
+        bail!(
+            "--png takes one frame; write --frames {} with --out DIR",
+            a.frames
+        );
+    }
+    if a.linear_steps == 0 || a.linear_steps > 4096 || a.binary_steps > 64 {
+        bail!("--linear-steps must be 1 to 4096 and --binary-steps at most 64");
+    }
+    if let Some(dir) = &a.out {
+        for k in 0..a.frames {
+            check_output(
+                &dir.join(format!("frame_{k:03}.png")),
+                &inputs,
+                a.output.force,
+            )?;
+        }
+    }
+    let (map, name) = load_map(a.height.as_deref(), ctx)?;
+    let renderer = DisplacementRenderer::new(ctx, Surface::new(map, a.depth)?)?;
+    let method = match a.method {
+        MethodArg::Pyramid => Method::Pyramid,
+        MethodArg::Relief => Method::Relief {
+            linear_steps: a.linear_steps,
+            binary_steps: a.binary_steps,
+        },
+    };
+    let target = renderer.target(a.size, a.size)?;
+    let camera = |k: u32| {
+        Camera::orbit(
+            renderer.surface().centre(),
+            bench::DISTANCE,
+            a.azimuth + 360.0 * k as f32 / a.frames as f32,
+            a.elevation,
+            a.size,
+            a.size,
+        )
+    };
+    let first = camera(0);
+    let gpu_ms = bench::gpu_ms(ctx, RUNS, || Ok(renderer.render(&target, &first, method)?))?;
+    let frame = renderer.read(&target)?;
+    frame.check_finished()?;
+    let check = if a.no_check {
+        None
+    } else {
+        let cpu_ms = bench::wall_ms(1, || exact::trace_image(renderer.surface(), &first, 0.0));
+        let (comparison, _) =
+            ReferenceImage::trace(renderer.surface(), &first).judge(&frame.pixels());
+        Some((cpu_ms, comparison))
+    };
+    let mut written = Vec::new();
+    for k in 0..a.frames {
+        renderer.render(&target, &camera(k), method)?;
+        renderer.read(&target)?.check_finished()?;
+        let path = match (&a.out, &a.output.png) {
+            (Some(dir), _) => {
+                std::fs::create_dir_all(dir)
+                    .with_context(|| format!("creating {}", dir.display()))?;
+                dir.join(format!("frame_{k:03}.png"))
+            }
+            (None, Some(png)) => png.clone(),
+            (None, None) => continue,
+        };
+        texture_png(renderer.colour_texture(&target), &path, DumpRange::Auto)?;
+        written.push(path);
+    }
+    let hits = frame
+        .pixels()
+        .iter()
+        .filter(|p| matches!(p, classic_gpgpu::lecture3::displacement::Pixel::Hit { .. }))
+        .count();
+    let renderer_line = ctx.info().renderer_line();
+    let mut text = format!(
+        "{name}, {}: {}x{} pixels, {hits} hit the surface; first frame {:.2} ms of GPU time \
+         (renderer: {renderer_line})",
+        method.name(),
+        a.size,
+        a.size,
+        gpu_ms
+    );
+    if let Some((cpu_ms, c)) = &check {
+        text.push_str(&format!(
+            "\nexact CPU tracer {cpu_ms:.1} ms (CPU / GPU {:.1}); of {} compared pixels: {} on \
+             the wrong surface, {} outside the tolerance, {} ill-conditioned",
+            cpu_ms / gpu_ms,
+            c.compared,
+            c.wrong_surface,
+            c.outside_tolerance,
+            c.ambiguous
+        ));
+    }
+    for p in &written {
+        text.push_str(&format!("\nwrote {}", p.display()));
+    }
+    print(
+        json,
+        json!({
+            "renderer": renderer_line, "gpu_timing": bench::gpu_timing(ctx), "map": name, "method": method, "size": a.size,
+            "hit_pixels": hits, "gpu_ms": gpu_ms,
+            "cpu_exact_ms": check.as_ref().map(|c| c.0),
+            "cpu_over_gpu": check.as_ref().map(|c| c.0 / gpu_ms),
+            "comparison": check.as_ref().map(|c| c.1), "written": written,
+        }),
+        text,
+    )
+}
+
+fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    a.output.check(&[])?;
+    check_size("--size", a.size)?;
+    let gather = Gather::tree(a.theta)?;
+    let (run, lighting) = bench::light_run(ctx, a.vpls, a.size, a.size, &[a.theta], RUNS)?;
+    if let Some(png) = &a.output.png {
+        lighting.gather(gather)?;
+        let terms = if a.indirect_only {
+            Terms::Indirect
+        } else {
+            Terms::Both
+        };
+        lighting.shade(terms, 1.5)?;
+        texture_png(lighting.shade.target.color(0), png, DumpRange::Auto)?;
+    }
+    let row = &run.rows[0];
+    let renderer = ctx.info().renderer_line();
+    print(
+        json,
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "light": run, "png": a.output.png }),
+        format!(
+            "{} VPLs, {} receivers; theta {}: {:.1} nodes per receiver, relative RMS error \
+             {:.2e} against the brute force\nGPU: tree {:.2} ms, brute force {:.2} ms; CPU \
+             brute force (f64) {:.1} ms: CPU / tree {:.1}, CPU / GPU brute force {:.1} \
+             (renderer: {renderer})",
+            run.vpls,
+            run.receivers,
+            row.theta,
+            row.mean_nodes,
+            row.relative_rms_error,
+            row.gpu_ms,
+            run.brute_gpu_ms,
+            run.brute_cpu_ms,
+            run.brute_cpu_ms / row.gpu_ms,
+            run.brute_cpu_ms / run.brute_gpu_ms
+        ),
+    )
+}
+
+fn function(a: &FunctionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let f = match a.function {
+        FunctionArg::Sigmoid => Function::Sigmoid,
+        FunctionArg::SquareWave => Function::SquareWave,
+    };
+    let passes = FunctionPasses::new(ctx, 256, 256)?;
+    let error = bench::function_error_row(ctx, &passes, f, a.texels)?;
+    let speed = bench::function_speed_row(ctx, &passes, f, a.texels, a.per_pixel, RUNS)?;
+    let renderer = ctx.info().renderer_line();
+    print(
+        json,
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "error": error, "speed": speed }),
+        format!(
+            "{} in {} texels: max error {:.2e} (bound {:.2e}), RMS {:.2e}, filter error {:.2e}\n\
+             {} values: computed {:.2} ms, looked up {:.2} ms (computed / looked up {:.2}); \
+             CPU {:.1} ms (CPU / lookup {:.1}) (renderer: {renderer})",
+            f.name(),
+            a.texels,
+            error.max_error,
+            error.bound,
+            error.rms_error,
+            error.filter_error,
+            speed.evaluations,
+            speed.exact_ms,
+            speed.lookup_ms,
+            speed.exact_ms / speed.lookup_ms,
+            speed.cpu_ms,
+            speed.cpu_ms / speed.lookup_ms
+        ),
+    )
+}
+
+fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    a.output.check(&[])?;
+    if !(1..=4096).contains(&a.size) || !(2..=1024).contains(&a.steps) {
+        bail!("--size must be 1 to 4096 generators a side and --steps 2 to 1024");
+    }
+    let dir = std::env::temp_dir().join(format!("classic-gpgpu-random-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let opts = classic_gpgpu::report::BenchOptions {
+        gl: ctx,
+        quick: false,
+        out_dir: dir.clone(),
+        progress: classic_gpgpu::report::progress_bars(true),
+    };
+    let run = bench::random(&opts, a.size, a.steps, a.seed, RUNS);
+    if let (Ok(_), Some(png)) = (&run, &a.output.png) {
+        std::fs::copy(dir.join(bench::images::RANDOM_PNG), png)
+            .with_context(|| format!("writing {}", png.display()))?;
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = run?;
+    if !run.bit_exact {
+        bail!("the GPU generators differ from the CPU generator (a bug: integer arithmetic)");
+    }
+    let renderer = ctx.info().renderer_line();
+    print(
+        json,
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "random": run, "png": a.output.png }),
+        format!(
+            "{0}x{0} generators, {1} steps: bit-exact with the CPU; chi-square {2:.1} (0.1% \
+             limit {3:.1}), serial r {4:.1e}, neighbour r {5:.1e} (|r| < {6:.1e})\nGPU {7:.3} ms \
+             per step, CPU {8:.3} ms: CPU / GPU {9:.2} (renderer: {renderer})",
+            run.side,
+            run.steps,
+            run.chi_square,
+            run.chi_square_critical,
+            run.serial_correlation,
+            run.neighbour_correlation,
+            run.correlation_bound,
+            run.gpu_ms_per_step,
+            run.cpu_ms_per_step,
+            run.cpu_ms_per_step / run.gpu_ms_per_step
+        ),
+    )
+}
+
+fn depth_mask(a: &DepthMaskArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    a.output.check(&[])?;
+    check_size("--size", a.size)?;
+    let shape = match a.mask {
+        MaskArg::Blobs => MaskShape::Blobs,
+        MaskArg::Scattered => MaskShape::Scattered,
+    };
+    let mask = depth_mask::mask(shape, a.size, a.size, 1);
+    let passes = DepthMask::new(ctx, &mask, a.size, a.size)?;
+    let row = bench::depth_mask_row(
+        ctx,
+        &passes,
+        &mask,
+        shape,
+        a.size,
+        a.fraction,
+        a.iterations,
+        RUNS,
+    )?;
+    if row.masked_fragments != row.active {
+        bail!(
+            "the occlusion query counted {} fragments for {} active pixels",
+            row.masked_fragments,
+            row.active
+        );
+    }
+    if let Some(png) = &a.output.png {
+        passes.run_masked(a.fraction, a.iterations)?;
+        texture_png(passes.target.color(0), png, DumpRange::Auto)?;
+    }
+    let renderer = ctx.info().renderer_line();
+    print(
+        json,
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "depth_mask": row, "png": a.output.png }),
+        format!(
+            "{} active of {} pixels; the expensive shader ran {} times behind the depth test, \
+             {} times when branching\nbranching {:.2} ms, depth-masked {:.2} ms: branching / \
+             masked {:.2}; max |GPU - CPU| {:.1e} (renderer: {renderer})",
+            row.active,
+            a.size * a.size,
+            row.masked_fragments,
+            row.branching_fragments,
+            row.branching_ms,
+            row.masked_ms,
+            row.branching_ms / row.masked_ms,
+            row.max_error
+        ),
+    )
+}
+
+fn histogram(a: &HistogramArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let values = match &a.image {
+        Some(path) => {
+            let map = HeightMap::load(path, u32::MAX)?;
+            map.heights().to_vec()
+        }
+        None => {
+            if !(1..=blend_histogram::MAX_VALUES).contains(&a.values) {
+                bail!(
+                    "--values: {} values; 1 to 2^24 can be counted exactly",
+                    a.values
+                );
+            }
+            bench::skewed_values(a.values, 3)
+        }
+    };
+    // Grey levels run from 0 to 1 inclusive: bins over [0, 1 + 1 / bins), so that white
+    // falls in the last bin (with 256 bins, grey level k in bin k).
+    let hi = if a.image.is_some() {
+        1.0 + 1.0 / a.bins as f32
+    } else {
+        1.0
+    };
+    let bins = Bins::new(0.0, hi, a.bins, ctx.info().limits.max_texture_size)?;
+    let with_gather = values.len() <= blend_histogram::MAX_GATHER_VALUES;
+    let row = bench::histogram_row(ctx, &values, bins, with_gather, RUNS)?;
+    if !row.blend_equal || row.gather_equal == Some(false) {
+        bail!("the GPU histogram differs from the CPU histogram (a bug: counts are exact)");
+    }
+    let (cpu, outside) = blend_histogram::cpu_histogram(&values, None, &bins);
+    let renderer = ctx.info().renderer_line();
+    print(
+        json,
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "histogram": row, "counts": cpu,
+                "outside": outside }),
+        format!(
+            "{} values in {} bins over [0, {hi}) ({outside} outside): blended counts equal to \
+             the CPU's\nblending {:.3} ms{}, CPU {:.3} ms: CPU / blending {:.2} (renderer: \
+             {renderer})",
+            row.values,
+            row.bins,
+            row.blend_ms,
+            row.gather_ms
+                .map_or(String::new(), |g| format!(", gather pass {g:.2} ms")),
+            row.cpu_ms,
+            row.cpu_ms / row.blend_ms
+        ),
+    )
+}
+
+fn height_map(a: &HeightMapArgs, json: bool) -> anyhow::Result<()> {
+    if !(2..=4096).contains(&a.size) {
+        bail!("--size: {} samples a side; 2 to 4096 are allowed", a.size);
+    }
+    check_output(&a.out, &[], a.force)?;
+    HeightMap::generated(a.size).save_png(&a.out)?;
+    print(
+        json,
+        json!({ "size": a.size, "written": a.out }),
+        format!("wrote {} ({}x{} samples)", a.out.display(), a.size, a.size),
+    )
+}

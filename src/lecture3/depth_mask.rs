@@ -1,0 +1,220 @@
+//! Technique 6, removing an `if` with the depth buffer (one of the lecture's debugging and
+//! coding tips): a fragment shader that branches on a per-pixel condition before some
+//! expensive work is replaced by two passes: a cheap one that writes the condition into the
+//! depth buffer, and the expensive shader without the `if`, drawn so that the depth test
+//! rejects the pixels that fail the condition before the shader runs (early depth test). An
+//! occlusion query counts the fragments that ran the expensive shader.
+//!
+//! On the GPUs of the time a branch cost both sides wherever the pixels of a group disagreed;
+//! the depth test culls whole pixels before shading. The lecture names the tip only; the
+//! expensive function, the masks and the measures are ours.
+
+use crate::gl::{
+    Compare, Context, DepthTest, DrawState, Framebuffer, GlError, OcclusionQuery, Program, Rect,
+    Texture, TextureFormat,
+};
+use crate::lecture3::error::{check_range, Error};
+use crate::shader;
+use glam::Vec2;
+use serde::Serialize;
+
+/// Which pixels are active.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MaskShape {
+    /// Large smooth regions (neighbouring pixels agree: branches are coherent).
+    Blobs,
+    /// Pixels scattered at random (neighbours disagree: branches diverge).
+    Scattered,
+}
+
+/// A mask of `width x height` distinct values in [0, 1): pixel i's rank among the pixels,
+/// divided by their number, so that `mask < fraction` selects a `fraction` of the pixels
+/// exactly (to one pixel).
+pub fn mask(shape: MaskShape, width: u32, height: u32, seed: u64) -> Vec<f32> {
+    let n = (width * height) as usize;
+    let key: Vec<f64> = (0..n)
+        .map(|i| {
+            let (x, y) = ((i as u32 % width) as f64, (i as u32 / width) as f64);
+            let (u, v) = (x / width as f64, y / height as f64);
+            match shape {
+                MaskShape::Blobs => {
+                    let s = seed as f64 * 0.37;
+                    (u * 7.0 + s).sin() * (v * 5.0 - s).cos()
+                        + 0.6 * (u * 3.0 + v * 4.0 + 2.0 * s).sin()
+                }
+                MaskShape::Scattered => {
+                    let mut z = seed ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+                    z = (z ^ (z >> 31)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                    z = (z ^ (z >> 29)).wrapping_mul(0x94d0_49bb_1331_11eb);
+                    (z >> 11) as f64
+                }
+            }
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| key[a].total_cmp(&key[b]).then(a.cmp(&b)));
+    let mut out = vec![0.0f32; n];
+    for (rank, &i) in order.iter().enumerate() {
+        out[i] = (rank as f64 / n as f64) as f32;
+    }
+    out
+}
+
+/// The expensive function at pixel (x, y) of a `width x height` target, in f64.
+pub fn expensive(x: u32, y: u32, width: u32, height: u32, iterations: u32) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let u = (x as f64 + 0.5) / width as f64;
+    let v = tau * (y as f64 + 0.5) / height as f64;
+    (1..=iterations)
+        .map(|k| ((tau * (k as f64 * u).fract() + v).sin()) / k as f64)
+        .sum()
+}
+
+/// The picture on the CPU: the expensive function where the mask is active, 0 elsewhere;
+/// and how many pixels are active.
+pub fn cpu_picture(
+    mask: &[f32],
+    width: u32,
+    height: u32,
+    fraction: f32,
+    iterations: u32,
+) -> (Vec<f64>, u64) {
+    let mut active = 0;
+    let picture = mask
+        .iter()
+        .enumerate()
+        .map(|(i, &m)| {
+            if m < fraction {
+                active += 1;
+                expensive(
+                    i as u32 % width,
+                    i as u32 / width,
+                    width,
+                    height,
+                    iterations,
+                )
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    (picture, active)
+}
+
+/// Both versions, their mask and their target (R32F colour, 32-bit depth).
+pub struct DepthMask {
+    branching: Program,
+    write_depth: Program,
+    masked: Program,
+    mask: Texture,
+    pub target: Framebuffer,
+    query: OcclusionQuery,
+}
+
+/// Checks a mask fraction (0..=1) and an iteration count (1..=16384: llvmpipe stops a
+/// shader's loops after 65535 iterations).
+pub fn check_parameters(fraction: f32, iterations: u32) -> Result<(), Error> {
+    check_range("--fraction", fraction as f64, 0.0, 1.0)?;
+    check_range("--iterations", iterations as f64, 1.0, 16384.0)
+}
+
+impl DepthMask {
+    /// For a `width x height` mask (powers of two).
+    pub fn new(ctx: &Context, mask: &[f32], width: u32, height: u32) -> Result<DepthMask, Error> {
+        if !width.is_power_of_two() || !height.is_power_of_two() {
+            return Err(Error::input(
+                "--size",
+                format!("{width}x{height}: both sides must be powers of two"),
+            ));
+        }
+        if mask.len() != (width * height) as usize {
+            return Err(Error::input(
+                "mask",
+                format!("{} values for {width}x{height} pixels", mask.len()),
+            ));
+        }
+        let common = shader!("glsl/lecture3/depth_mask_common.glsl");
+        let colour = Texture::new_2d(ctx, width, height, TextureFormat::R32F)?;
+        let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
+        Ok(DepthMask {
+            branching: Program::rect(
+                ctx,
+                &[common, shader!("glsl/lecture3/depth_mask_branching.frag")],
+            )?,
+            write_depth: Program::rect(ctx, &[shader!("glsl/lecture3/depth_mask_write.frag")])?,
+            masked: Program::rect(
+                ctx,
+                &[common, shader!("glsl/lecture3/depth_mask_masked.frag")],
+            )?,
+            mask: Texture::from_f32(ctx, width, height, TextureFormat::R32F, mask)?,
+            target: Framebuffer::new(ctx, "depth mask picture", &[&colour], Some(&depth))?,
+            query: OcclusionQuery::new(ctx)?,
+        })
+    }
+
+    fn size(&self) -> Vec2 {
+        Vec2::new(self.target.width() as f32, self.target.height() as f32)
+    }
+
+    /// The branching shader over every pixel; the fragments it ran (every pixel).
+    pub fn run_branching(&self, fraction: f32, iterations: u32) -> Result<u64, Error> {
+        check_parameters(fraction, iterations)?;
+        self.target.clear_color(0, [0.0; 4])?;
+        self.query.begin();
+        let drawn = self
+            .target
+            .pass(&self.branching, "branching shader")?
+            .texture("u_mask", &self.mask)
+            .uniform("u_fraction", fraction)
+            .uniform("u_iterations", iterations as i32)
+            .uniform("u_size", self.size())
+            .draw_full();
+        self.query.end();
+        drawn?;
+        Ok(self.query.samples()?)
+    }
+
+    /// The mask into the depth buffer, then the expensive shader behind the depth test; the
+    /// fragments that ran the expensive shader.
+    pub fn run_masked(&self, fraction: f32, iterations: u32) -> Result<u64, Error> {
+        check_parameters(fraction, iterations)?;
+        self.target.clear_color(0, [0.0; 4])?;
+        self.target
+            .pass(&self.write_depth, "mask into depth")?
+            .texture("u_mask", &self.mask)
+            .uniform("u_fraction", fraction)
+            .state(DrawState {
+                depth: Some(DepthTest {
+                    func: Compare::Always,
+                    write: true,
+                }),
+                color_write: false,
+                ..DrawState::default()
+            })
+            .draw_full()?;
+        self.query.begin();
+        let drawn = self
+            .target
+            .pass(&self.masked, "expensive shader behind the depth test")?
+            .uniform("u_iterations", iterations as i32)
+            .uniform("u_size", self.size())
+            .state(DrawState {
+                depth: Some(DepthTest {
+                    func: Compare::Greater,
+                    write: false,
+                }),
+                ..DrawState::default()
+            })
+            .draw_full();
+        self.query.end();
+        drawn?;
+        Ok(self.query.samples()?)
+    }
+
+    /// The picture of the last run, row by row from the bottom.
+    pub fn read(&self) -> Result<Vec<f32>, GlError> {
+        self.target
+            .read_f32(0, Rect::sized(self.target.width(), self.target.height()))
+    }
+}

@@ -1,0 +1,105 @@
+//! The CPU reference: an exact ray tracer of the same bilinear height field, in f64. It walks
+//! every patch the ray crosses, in order (a 2D grid walk, no pyramid), and solves each
+//! patch's quadratic ([`super::patch`]); the first root is the hit.
+//!
+//! `offset` raises every height by that much. A tracer whose answer is the exact hit of the
+//! field perturbed by at most `delta` hits no earlier than `trace(.., +delta)` and no later
+//! than `trace(.., -delta)`: that is how the tests state the GPU's tolerance.
+
+use super::camera::Camera;
+use super::patch::{first_hit, Segment};
+use super::surface::Surface;
+use glam::DVec3;
+use serde::Serialize;
+
+/// Where a ray first meets the height field.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Hit {
+    /// Distance from the eye along the unit world direction.
+    pub tau: f64,
+    /// The hit in grid space (x, y in patches, z the height).
+    pub grid: DVec3,
+    /// The ray entered the box through a side below the surface: it hit the box's wall.
+    pub wall: bool,
+}
+
+/// The parameter interval in which the ray `o + tau d` (grid space) is inside the box
+/// `[0, wp] x [0, hp] x [0, 1]`, from tau = 0 on; `None` if it never is.
+pub fn box_interval(o: DVec3, d: DVec3, wp: f64, hp: f64) -> Option<(f64, f64)> {
+    let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+    for (o, d, hi) in [(o.x, d.x, wp), (o.y, d.y, hp), (o.z, d.z, 1.0)] {
+        if d == 0.0 {
+            if o < 0.0 || o > hi {
+                return None;
+            }
+            continue;
+        }
+        let (a, b) = ((0.0 - o) / d, (hi - o) / d);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    (t0 <= t1).then_some((t0, t1))
+}
+
+/// The ray from `eye` along unit `dir` (world), traced through the height field raised by
+/// `offset`.
+pub fn trace(surface: &Surface, eye: DVec3, dir: DVec3, offset: f64) -> Option<Hit> {
+    let scale = surface.world_to_grid().as_dvec3();
+    let (o, d) = (eye * scale, dir * scale);
+    let (wp, hp) = surface.patches();
+    let (t_in, t_out) = box_interval(o, d, wp as f64, hp as f64)?;
+    let mut t = t_in;
+    let start = o + t * d;
+    let mut i = (start.x.floor() as i64).clamp(0, wp as i64 - 1);
+    let mut j = (start.y.floor() as i64).clamp(0, hp as i64 - 1);
+    let exit = |cell: i64, o: f64, d: f64| {
+        if d > 0.0 {
+            (cell as f64 + 1.0 - o) / d
+        } else if d < 0.0 {
+            (cell as f64 - o) / d
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut first = true;
+    loop {
+        let (tx, ty) = (exit(i, o.x, d.x), exit(j, o.y, d.y));
+        let t_exit = tx.min(ty).min(t_out);
+        let p = o + t * d;
+        let segment = Segment {
+            start: [p.x - i as f64, p.y - j as f64, p.z],
+            step: [d.x, d.y, d.z],
+            length: (t_exit - t).max(0.0),
+        };
+        if let Some(u) = first_hit(surface.corners(i as u32, j as u32, offset), &segment) {
+            let tau = t + u;
+            return Some(Hit {
+                tau,
+                grid: o + tau * d,
+                wall: first && u == 0.0,
+            });
+        }
+        if t_exit >= t_out {
+            return None;
+        }
+        if tx <= ty {
+            i += d.x.signum() as i64;
+        } else {
+            j += d.y.signum() as i64;
+        }
+        if i < 0 || j < 0 || i >= wp as i64 || j >= hp as i64 {
+            return None;
+        }
+        t = t_exit;
+        first = false;
+    }
+}
+
+/// Every pixel of `camera`'s image traced (row by row from the bottom).
+pub fn trace_image(surface: &Surface, camera: &Camera, offset: f64) -> Vec<Option<Hit>> {
+    let eye = camera.eye.as_dvec3();
+    (0..camera.height)
+        .flat_map(|py| (0..camera.width).map(move |px| (px, py)))
+        .map(|(px, py)| trace(surface, eye, camera.pixel_direction(px, py), offset))
+        .collect()
+}

@@ -1,0 +1,296 @@
+//! The GPU tracers: the displaced box drawn with back faces culled, each fragment tracing its
+//! pixel's ray, by the pyramid traversal or by relief mapping's search, into three targets:
+//! the hit (grid position and ray parameter), statistics (iterations, surface or wall) and a
+//! shaded colour, plus the hit's depth.
+
+use super::bounds::BoundPyramidBuilder;
+use super::camera::Camera;
+use super::surface::Surface;
+use crate::gl::{
+    Compare, Context, DepthTest, DrawState, Face, Framebuffer, GlError, Pass, Primitive, Program,
+    Rect, Texture, TextureFormat,
+};
+use crate::lecture3::error::Error;
+use crate::lecture3::pyramid::{Extreme, Pyramid};
+use crate::lecture3::pyramid_atlas::{AtlasBuilder, PyramidAtlas};
+use crate::shader;
+use glam::{DVec3, IVec2, Vec2};
+use serde::Serialize;
+
+/// How the fragment shader finds the hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Top-down traversal of the max pyramid, exact bilinear intersection at the finest level.
+    Pyramid,
+    /// Relief mapping: equal linear steps along the ray, then binary search.
+    Relief {
+        linear_steps: u32,
+        binary_steps: u32,
+    },
+}
+
+impl Method {
+    /// Relief mapping with a generous budget: 32 linear steps, then 8 binary steps.
+    pub const RELIEF: Method = Method::Relief {
+        linear_steps: 32,
+        binary_steps: 8,
+    };
+
+    pub fn name(&self) -> String {
+        match self {
+            Method::Pyramid => "pyramid".into(),
+            Method::Relief {
+                linear_steps,
+                binary_steps,
+            } => format!("relief {linear_steps}+{binary_steps}"),
+        }
+    }
+}
+
+/// A surface ready to be traced on the GPU: its height texture and bound pyramid.
+pub struct DisplacementRenderer {
+    ctx: Context,
+    surface: Surface,
+    heights: Texture,
+    bounds: Pyramid,
+    bounds_atlas: PyramidAtlas,
+    pyramid_program: Program,
+    relief_program: Program,
+}
+
+/// Where frames are drawn: hit, statistics and colour targets and a depth buffer.
+pub struct FrameTarget {
+    framebuffer: Framebuffer,
+}
+
+/// What the fragment of one pixel found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Pixel {
+    /// No fragment, or the ray left the box without a hit.
+    Miss,
+    Hit {
+        /// Grid position (x, y in patches, z the height).
+        grid: DVec3,
+        /// Distance from the eye.
+        tau: f64,
+        wall: bool,
+        iterations: u32,
+    },
+    /// The traversal ran out of iterations (a bug if it ever happens).
+    Unfinished,
+}
+
+/// A frame read back.
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    hit: Vec<f32>,
+    stats: Vec<f32>,
+    /// RGBA8, row by row from the bottom.
+    pub colour: Vec<u8>,
+    /// Window depth, 1 where nothing was hit.
+    pub depth: Vec<f32>,
+}
+
+impl Frame {
+    pub fn pixel(&self, px: u32, py: u32) -> Pixel {
+        let i = (py * self.width + px) as usize;
+        let (hit, stats) = (&self.hit[4 * i..4 * i + 4], &self.stats[4 * i..4 * i + 4]);
+        if stats[1] < 0.0 {
+            return Pixel::Unfinished;
+        }
+        if stats[1] == 0.0 {
+            return Pixel::Miss;
+        }
+        Pixel::Hit {
+            grid: DVec3::new(hit[0] as f64, hit[1] as f64, hit[2] as f64),
+            tau: hit[3] as f64,
+            wall: stats[1] == 2.0,
+            iterations: stats[0] as u32,
+        }
+    }
+
+    /// Every pixel, row by row from the bottom.
+    pub fn pixels(&self) -> Vec<Pixel> {
+        (0..self.height)
+            .flat_map(|py| (0..self.width).map(move |px| (px, py)))
+            .map(|(px, py)| self.pixel(px, py))
+            .collect()
+    }
+
+    /// Pixels whose traversal did not end; an error if there is any.
+    pub fn check_finished(&self) -> Result<(), Error> {
+        let unfinished = self
+            .pixels()
+            .iter()
+            .filter(|p| **p == Pixel::Unfinished)
+            .count();
+        if unfinished > 0 {
+            return Err(Error::Result(format!(
+                "{unfinished} pixels' traversals did not end within their iteration bound"
+            )));
+        }
+        Ok(())
+    }
+}
+
+impl DisplacementRenderer {
+    /// Uploads the height map and draws its bound pyramid.
+    pub fn new(ctx: &Context, surface: Surface) -> Result<DisplacementRenderer, Error> {
+        let map = &surface.map;
+        let heights = Texture::from_f32(
+            ctx,
+            map.width(),
+            map.height(),
+            TextureFormat::R32F,
+            map.heights(),
+        )?;
+        let bounds =
+            BoundPyramidBuilder::new(ctx)?.build(&heights, surface.patches(), Extreme::Max)?;
+        let bounds_atlas = AtlasBuilder::new(ctx)?.atlas(&bounds.texture)?;
+        let vertex = [shader!("glsl/lecture3/displace_box.vert")];
+        let common = shader!("glsl/lecture3/displace_common.glsl");
+        Ok(DisplacementRenderer {
+            ctx: ctx.clone(),
+            pyramid_program: Program::new(
+                ctx,
+                &vertex,
+                &[common, shader!("glsl/lecture3/displace_pyramid.frag")],
+            )?,
+            relief_program: Program::new(
+                ctx,
+                &vertex,
+                &[common, shader!("glsl/lecture3/displace_relief.frag")],
+            )?,
+            surface,
+            heights,
+            bounds,
+            bounds_atlas,
+        })
+    }
+
+    pub fn surface(&self) -> &Surface {
+        &self.surface
+    }
+
+    /// The bound pyramid (max of each patch's corners, then max per node).
+    pub fn bounds(&self) -> &Pyramid {
+        &self.bounds
+    }
+
+    /// The bound pyramid as the traversal reads it, in one image.
+    pub fn bounds_atlas(&self) -> &PyramidAtlas {
+        &self.bounds_atlas
+    }
+
+    /// Targets for `width x height` frames.
+    pub fn target(&self, width: u32, height: u32) -> Result<FrameTarget, GlError> {
+        let hit = Texture::new_2d(&self.ctx, width, height, TextureFormat::Rgba32F)?;
+        let stats = Texture::new_2d(&self.ctx, width, height, TextureFormat::Rgba32F)?;
+        let colour = Texture::new_2d(&self.ctx, width, height, TextureFormat::Rgba8)?;
+        let depth = Texture::new_2d(&self.ctx, width, height, TextureFormat::Depth32F)?;
+        Ok(FrameTarget {
+            framebuffer: Framebuffer::new(
+                &self.ctx,
+                "displacement frame",
+                &[&hit, &stats, &colour],
+                Some(&depth),
+            )?,
+        })
+    }
+
+    /// The largest number of loop iterations a traversal may take: far more than a ray that
+    /// crosses every patch once needs (each patch visited once, each level entered and left).
+    pub fn max_iterations(&self) -> i32 {
+        let (wp, hp) = self.surface.patches();
+        4 * (wp + hp + 2) as i32 * (self.bounds.levels() as i32 + 1)
+    }
+
+    /// Draws one frame into `target` (its size must be the camera's).
+    pub fn render(
+        &self,
+        target: &FrameTarget,
+        camera: &Camera,
+        method: Method,
+    ) -> Result<(), GlError> {
+        let fb = &target.framebuffer;
+        if (fb.width(), fb.height()) != (camera.width, camera.height) {
+            return Err(GlError::Invalid(format!(
+                "a {}x{} camera drawing into a {}x{} target",
+                camera.width,
+                camera.height,
+                fb.width(),
+                fb.height()
+            )));
+        }
+        fb.clear_colors([0.0; 4])?;
+        fb.clear_depth_stencil(1.0, 0)?;
+        let program = match method {
+            Method::Pyramid => &self.pyramid_program,
+            Method::Relief { .. } => &self.relief_program,
+        };
+        let mut pass = fb.pass(program, "displacement mapping")?;
+        self.set_frame_uniforms(&mut pass, camera);
+        match method {
+            Method::Pyramid => pass
+                .texture("u_bounds", &self.bounds_atlas.texture)
+                .uniform("u_level_x", &self.bounds_atlas.offsets_x()[..])
+                .uniform("u_level_y", &self.bounds_atlas.offsets_y()[..])
+                .uniform("u_top", self.bounds.levels() as i32 - 1)
+                .uniform("u_max_iterations", self.max_iterations()),
+            Method::Relief {
+                linear_steps,
+                binary_steps,
+            } => pass
+                .uniform("u_linear_steps", linear_steps.max(1) as i32)
+                .uniform("u_binary_steps", binary_steps as i32),
+        };
+        pass.state(DrawState {
+            depth: Some(DepthTest {
+                func: Compare::Less,
+                write: true,
+            }),
+            cull: Some(Face::Back),
+            ..DrawState::default()
+        })
+        .draw_attributeless(Primitive::Triangles, 36, 1)
+    }
+
+    fn set_frame_uniforms(&self, pass: &mut Pass, camera: &Camera) {
+        let frame = camera.ray_frame();
+        let (wp, hp) = self.surface.patches();
+        pass.texture("u_heights", &self.heights)
+            .uniform(
+                "u_viewport",
+                Vec2::new(camera.width as f32, camera.height as f32),
+            )
+            .uniform("u_eye", camera.eye)
+            .uniform("u_forward", frame.forward)
+            .uniform("u_right", frame.right)
+            .uniform("u_up", frame.up)
+            .uniform("u_world_to_grid", self.surface.world_to_grid())
+            .uniform("u_patches", IVec2::new(wp as i32, hp as i32))
+            .uniform("u_view_projection", camera.view_projection())
+            .uniform("u_box", self.surface.size);
+    }
+
+    /// The frame in `target`, read back.
+    pub fn read(&self, target: &FrameTarget) -> Result<Frame, GlError> {
+        let fb = &target.framebuffer;
+        let rect = Rect::sized(fb.width(), fb.height());
+        Ok(Frame {
+            width: fb.width(),
+            height: fb.height(),
+            hit: fb.read_f32(0, rect)?,
+            stats: fb.read_f32(1, rect)?,
+            colour: fb.read_u8(2, rect)?,
+            depth: fb.read_depth(rect)?,
+        })
+    }
+
+    /// The colour target, for PNG dumps.
+    pub fn colour_texture<'a>(&self, target: &'a FrameTarget) -> &'a Texture {
+        target.framebuffer.color(2)
+    }
+}

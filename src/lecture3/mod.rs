@@ -1,0 +1,55 @@
+//! The tutorial's lecture 3 (Kyoung-Su Oh), beside paper 3's network (module [`crate::mlp`]):
+//! the image pyramid and pyramidal displacement mapping (Oh, Ki & Lee, "Pyramidal displacement
+//! mapping: a GPU based artifacts-free ray tracing through an image pyramid", ACM VRST 2006),
+//! hierarchical quadtree search of a light hierarchy (Ki & Oh, "A GPU-based light hierarchy
+//! for real-time approximate illumination", The Visual Computer 2008), and the lecture's basic
+//! techniques and debugging tips.
+//!
+//! The texts of these sources are not in the project: only the tutorial's programme and the
+//! published abstracts are (`lecture3-sources.md`). Every technique here is therefore a
+//! reconstruction from the abstract and the standard formulation of the idea; each module doc
+//! says which parts are.
+//!
+//! One module per technique, each with its CPU reference:
+//! 1. [`pyramid`]: a max/min quadtree image pyramid built by render passes
+//!    ([`pyramid_atlas`]: the same pyramid in one image, for per-pixel levels);
+//! 2. [`displacement`]: pyramidal displacement mapping, against an exact CPU tracer and
+//!    relief mapping;
+//! 3. [`light_hierarchy`]: VPLs in an image, clustered into a pyramid, gathered by a
+//!    quadtree search in the fragment shader, against the brute-force sum;
+//! 4. [`function_texture`]: a costly function in a 1D lookup texture, against computing it;
+//! 5. [`random_texture`]: a generator per texel advanced by ping-pong passes, bit-exact with
+//!    the CPU;
+//! 6. [`depth_mask`]: an `if` removed with the depth buffer (early depth test, counted by an
+//!    occlusion query);
+//! 7. [`blend_histogram`]: a histogram by additive blending of points, equal to the CPU's.
+//!
+//! The other two debugging tips live in the GL layer: drawing the intermediate data
+//! ([`crate::gl::dump`], used for every picture of the report section) and coping with shader
+//! compile errors ([`crate::gl::Program`] names the file and line, with the source around it).
+//! Not built: octrees on the GPU, subsurface scattering and environment lighting (named by
+//! the programme and the light-hierarchy abstract).
+//!
+//! Renderer notes found on the way (Mesa 22.3): softpipe takes `texelFetch`'s level of detail
+//! from the first pixel of each 2x2 quad (hence [`pyramid_atlas`]) and read row 0 for row 1 of
+//! a 2D texture in the vertex stage (hence vertex buffers in [`blend_histogram`]); llvmpipe
+//! stops a shader's loops after 65535 iterations in all, silently (hence the limits on loop
+//! counts in [`light_hierarchy`], [`function_texture`], [`depth_mask`] and the gather
+//! histogram).
+//!
+//! Shared: [`height_map`] (any greyscale image as a height field; the shipped map), [`error`].
+//! Shaders: `glsl/lecture3/`.
+
+pub mod blend_histogram;
+pub mod depth_mask;
+pub mod displacement;
+pub mod error;
+pub mod function_texture;
+pub mod height_map;
+pub mod light_hierarchy;
+pub mod pyramid;
+pub mod pyramid_atlas;
+pub mod random_texture;
+
+pub use error::Error;
+pub use height_map::HeightMap;

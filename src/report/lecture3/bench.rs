@@ -1,0 +1,680 @@
+//! The measurements of the lecture-3 section, one function per technique. Each runs the GPU
+//! path and its CPU reference side by side in one run, checks that they agree, and times
+//! both (GL timer queries for GPU passes, wall clock for the CPU). The `lecture3` commands
+//! call the same functions.
+
+use super::images;
+use super::results::*;
+use crate::gl::{Context, TimerQuery};
+use crate::lecture3::blend_histogram::{self, Bins, Histogram, Values};
+use crate::lecture3::depth_mask::{self, DepthMask, MaskShape};
+use crate::lecture3::displacement::compare::ReferenceImage;
+use crate::lecture3::displacement::{exact, Camera, DisplacementRenderer, Method, Pixel, Surface};
+use crate::lecture3::function_texture::{
+    error_against_exact, sample_x, Evaluation, Function, FunctionPasses, FunctionTable,
+};
+use crate::lecture3::light_hierarchy::gather::MIN_DISTANCE;
+use crate::lecture3::light_hierarchy::light::brute_force;
+use crate::lecture3::light_hierarchy::{Gather, IndirectLighting, Scene};
+use crate::lecture3::pyramid::{cpu_pyramid, Extreme, PyramidBuilder};
+use crate::lecture3::random_texture::statistics::{
+    chi_square, chi_square_critical, correlation, correlation_bound,
+};
+use crate::lecture3::random_texture::{HybridTaus, RandomTexture};
+use crate::lecture3::HeightMap;
+use crate::report::BenchOptions;
+use std::path::Path;
+use std::time::Instant;
+
+/// Timed runs per measurement (the median is kept).
+pub fn runs(quick: bool) -> usize {
+    if quick {
+        3
+    } else {
+        5
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// How [`gpu_ms`] times GPU work on this renderer.
+pub fn gpu_timing(ctx: &Context) -> &'static str {
+    if ctx.info().is_software() {
+        "wall clock to glFinish"
+    } else {
+        "GL timer query"
+    }
+}
+
+/// Median GPU time of `work`, after one warm-up run: a GL timer query on a GPU; on a software
+/// rasterizer the wall clock from glFinish to glFinish, because llvmpipe's TIME_ELAPSED
+/// queries miss most of the rasterisation, which runs in its worker threads when the scene is
+/// flushed (measured here: 5 ms by the query for a pass that took 22 ms to finish).
+pub fn gpu_ms(
+    ctx: &Context,
+    runs: usize,
+    mut work: impl FnMut() -> anyhow::Result<()>,
+) -> anyhow::Result<f64> {
+    work()?;
+    ctx.finish_all();
+    let software = ctx.info().is_software();
+    let query = TimerQuery::new(ctx)?;
+    let mut times = Vec::with_capacity(runs);
+    for _ in 0..runs.max(1) {
+        if software {
+            ctx.finish_all();
+            let start = Instant::now();
+            work()?;
+            ctx.finish_all();
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        } else {
+            query.begin();
+            let done = work();
+            query.end();
+            done?;
+            times.push(query.milliseconds()?);
+        }
+    }
+    Ok(median(times))
+}
+
+/// Median wall clock of `work`.
+pub fn wall_ms<T>(runs: usize, mut work: impl FnMut() -> T) -> f64 {
+    median(
+        (0..runs.max(1))
+            .map(|_| {
+                let start = Instant::now();
+                std::hint::black_box(work());
+                start.elapsed().as_secs_f64() * 1e3
+            })
+            .collect(),
+    )
+}
+
+/// Everything, at the section's sizes.
+pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lecture3Results> {
+    let ctx = opts.gl;
+    let quick = opts.quick;
+    let runs = runs(quick);
+    let map = match height {
+        Some(path) => HeightMap::load(path, ctx.info().limits.max_texture_size)?,
+        None => HeightMap::generated(crate::lecture3::height_map::SHIPPED_SIZE),
+    };
+    let map_name = height.map_or_else(
+        || format!("{} (generated)", crate::lecture3::height_map::SHIPPED_PATH),
+        |p| p.display().to_string(),
+    );
+    let stage = |name: &str| {
+        let bar = opts.progress.add(indicatif::ProgressBar::new_spinner());
+        bar.set_message(format!("lecture 3: {name}"));
+        bar
+    };
+    let bar = stage("image pyramid");
+    let sizes: &[u32] = if quick {
+        &[64, 256]
+    } else {
+        &[64, 256, 1024, 2048]
+    };
+    let pyramid = sizes
+        .iter()
+        .map(|&s| pyramid_row(ctx, &HeightMap::generated(s), runs))
+        .collect::<anyhow::Result<_>>()?;
+    images::pyramid_png(&map, &opts.out_dir.join(images::PYRAMID_PNG))?;
+    bar.finish_and_clear();
+
+    let bar = stage("pyramidal displacement mapping");
+    let displacement = displacement(opts, map, map_name, runs)?;
+    bar.finish_and_clear();
+    let bar = stage("light hierarchy");
+    let light = light(opts, runs)?;
+    bar.finish_and_clear();
+    let bar = stage("function in a texture");
+    let function = function(ctx, quick, runs)?;
+    bar.finish_and_clear();
+    let bar = stage("random numbers in a texture");
+    let random = random(opts, if quick { 64 } else { 256 }, 16, 2007, runs)?;
+    bar.finish_and_clear();
+    let bar = stage("if removed with the depth buffer");
+    let depth_mask = depth_mask(opts, quick, runs)?;
+    bar.finish_and_clear();
+    let bar = stage("histogram by blending");
+    let counts: &[usize] = if quick {
+        &[1 << 14, 65_535]
+    } else {
+        &[65_535, 1 << 20]
+    };
+    let histogram = counts
+        .iter()
+        .map(|&n| {
+            let bins = Bins::new(0.0, 1.0, 256, ctx.info().limits.max_texture_size)?;
+            let gather = n <= blend_histogram::MAX_GATHER_VALUES;
+            histogram_row(ctx, &skewed_values(n, 3), bins, gather, runs)
+        })
+        .collect::<anyhow::Result<_>>()?;
+    bar.finish_and_clear();
+    Ok(Lecture3Results {
+        renderer: ctx.info().renderer_line(),
+        renderer_name: ctx.info().renderer.clone(),
+        software: ctx.info().is_software(),
+        gpu_timing: gpu_timing(ctx).into(),
+        quick,
+        runs,
+        pyramid,
+        displacement,
+        light,
+        function,
+        random,
+        depth_mask,
+        histogram,
+    })
+}
+
+/// Technique 1 on one map: the max and min pyramids on the GPU against the CPU's, and the
+/// times of the level passes and of the CPU pyramid.
+pub fn pyramid_row(ctx: &Context, map: &HeightMap, runs: usize) -> anyhow::Result<PyramidRow> {
+    let builder = PyramidBuilder::new(ctx)?;
+    let (w, h) = (map.width(), map.height());
+    let mut equal = true;
+    let mut gpu = 0.0;
+    for extreme in [Extreme::Max, Extreme::Min] {
+        let pyramid = builder.from_image(w, h, map.heights(), extreme)?;
+        equal &= pyramid.read_levels()? == cpu_pyramid(w, h, map.heights(), extreme);
+        if extreme == Extreme::Max {
+            gpu = gpu_ms(ctx, runs, || Ok(builder.build_levels(&pyramid)?))?;
+        }
+    }
+    let levels = crate::lecture3::pyramid::level_count(w, h);
+    Ok(PyramidRow {
+        size: w.max(h),
+        levels,
+        equal_to_cpu: equal,
+        gpu_ms: gpu,
+        cpu_ms: wall_ms(runs, || cpu_pyramid(w, h, map.heights(), Extreme::Max)),
+    })
+}
+
+/// The elevation of the grazing figure (degrees).
+pub const GRAZING_FIGURE: f32 = 8.0;
+
+/// Box height of a white sample in the section's views.
+pub const DEPTH: f32 = 0.3;
+/// The camera's distance from the box centre.
+pub const DISTANCE: f32 = 3.2;
+
+fn displacement(
+    opts: &BenchOptions,
+    map: HeightMap,
+    map_name: String,
+    runs: usize,
+) -> anyhow::Result<DisplacementRun> {
+    let ctx = opts.gl;
+    let image = if opts.quick { 96 } else { 256 };
+    let map_size = (map.width(), map.height());
+    let renderer = DisplacementRenderer::new(ctx, Surface::new(map, DEPTH)?)?;
+    let elevations = [60.0, 30.0, 15.0, 8.0, 4.0, 2.0];
+    let methods = [
+        Method::Pyramid,
+        Method::Relief {
+            linear_steps: 16,
+            binary_steps: 6,
+        },
+        Method::RELIEF,
+    ];
+    let mut artifacts = Vec::new();
+    for elevation in elevations {
+        let row = artifact_row(&renderer, 225.0, elevation, image, &methods)?;
+        artifacts.push(row.0);
+        if elevation == GRAZING_FIGURE {
+            images::grazing_png(opts, &row.1, image)?;
+        }
+    }
+    images::orbit_png(opts, &renderer, image)?;
+    let map_sizes: &[u32] = if opts.quick {
+        &[64, 256]
+    } else {
+        &[64, 256, 1024]
+    };
+    let speed = map_sizes
+        .iter()
+        .map(|&s| speed_row(ctx, s, image, runs))
+        .collect::<anyhow::Result<_>>()?;
+    Ok(DisplacementRun {
+        map: map_name,
+        map_size,
+        depth: DEPTH,
+        image,
+        artifacts,
+        speed,
+    })
+}
+
+/// One view rendered by each method and judged against the exact tracer (traced once); the
+/// frames (colour, verdicts) kept for the figures.
+pub fn artifact_row(
+    renderer: &DisplacementRenderer,
+    azimuth: f32,
+    elevation: f32,
+    image: u32,
+    methods: &[Method],
+) -> anyhow::Result<(ArtifactRow, Vec<images::JudgedFrame>)> {
+    let camera = Camera::orbit(
+        renderer.surface().centre(),
+        DISTANCE,
+        azimuth,
+        elevation,
+        image,
+        image,
+    );
+    let reference = ReferenceImage::trace(renderer.surface(), &camera);
+    let target = renderer.target(image, image)?;
+    let mut row = ArtifactRow {
+        azimuth,
+        elevation,
+        methods: Vec::new(),
+    };
+    let mut frames = Vec::new();
+    for &method in methods {
+        renderer.render(&target, &camera, method)?;
+        let frame = renderer.read(&target)?;
+        frame.check_finished()?;
+        let (comparison, verdicts) = reference.judge(&frame.pixels());
+        row.methods.push(MethodComparison {
+            method: method.name(),
+            comparison,
+        });
+        frames.push(images::JudgedFrame {
+            method: method.name(),
+            colour: frame.colour,
+            verdicts,
+        });
+    }
+    Ok((row, frames))
+}
+
+/// One map size: pyramid and relief frames timed, against the exact CPU tracer.
+pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: usize) -> anyhow::Result<SpeedRow> {
+    let surface = Surface::new(HeightMap::generated(size), DEPTH)?;
+    let renderer = DisplacementRenderer::new(ctx, surface)?;
+    let camera = Camera::orbit(
+        renderer.surface().centre(),
+        DISTANCE,
+        225.0,
+        30.0,
+        image,
+        image,
+    );
+    let target = renderer.target(image, image)?;
+    let pyramid_ms = gpu_ms(ctx, runs, || {
+        Ok(renderer.render(&target, &camera, Method::Pyramid)?)
+    })?;
+    let frame = renderer.read(&target)?;
+    frame.check_finished()?;
+    let iterations: Vec<u32> = frame
+        .pixels()
+        .iter()
+        .filter_map(|p| match p {
+            Pixel::Hit { iterations, .. } => Some(*iterations),
+            _ => None,
+        })
+        .collect();
+    let relief_ms = gpu_ms(ctx, runs, || {
+        Ok(renderer.render(&target, &camera, Method::RELIEF)?)
+    })?;
+    let cpu_ms = wall_ms(1, || exact::trace_image(renderer.surface(), &camera, 0.0));
+    Ok(SpeedRow {
+        map_size: size,
+        levels: renderer.bounds().levels(),
+        pyramid_ms,
+        pyramid_iterations: iterations.iter().map(|&i| i as f64).sum::<f64>()
+            / iterations.len().max(1) as f64,
+        relief_ms,
+        cpu_ms,
+        hit_pixels: iterations.len(),
+    })
+}
+
+/// The criteria of the error/speed plot.
+pub const THETAS: [f32; 8] = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5];
+
+fn light(opts: &BenchOptions, runs: usize) -> anyhow::Result<LightRun> {
+    let (vpl_side, side) = if opts.quick { (32, 128) } else { (64, 256) };
+    let run = light_run(opts.gl, vpl_side, side, side, &THETAS, runs)?;
+    images::light_pngs(opts, &run.1)?;
+    Ok(run.0)
+}
+
+/// Technique 3: the hierarchy built and every criterion gathered, against the brute force on
+/// the GPU and on the CPU. Returns the pipeline too, for pictures.
+pub fn light_run(
+    ctx: &Context,
+    vpl_side: u32,
+    width: u32,
+    height: u32,
+    thetas: &[f32],
+    runs: usize,
+) -> anyhow::Result<(LightRun, IndirectLighting)> {
+    let lighting = IndirectLighting::new(ctx, Scene::room(), vpl_side, width, height)?;
+    let build_ms = gpu_ms(ctx, runs, || Ok(lighting.build_lights()?))?;
+    lighting.draw_receivers()?;
+    let brute_gpu_ms = gpu_ms(ctx, runs, || Ok(lighting.gather(Gather::BruteForce)?))?;
+    let brute = lighting.gathers.read()?;
+    let receivers = lighting.gbuffer.receivers()?;
+    let levels = lighting.clusters.read_atlas_levels()?;
+    let mut cpu = Vec::new();
+    let brute_cpu_ms = wall_ms(1, || {
+        cpu = receivers
+            .iter()
+            .map(|r| r.map(|r| brute_force(&r, &levels[0], MIN_DISTANCE as f64)))
+            .collect::<Vec<_>>();
+    });
+    let brute_gpu_vs_cpu = brute
+        .iter()
+        .zip(&cpu)
+        .filter_map(|(g, c)| c.map(|c| (g, c)))
+        .map(|(g, c)| {
+            let gpu = glam::DVec3::new(g[0] as f64, g[1] as f64, g[2] as f64);
+            (gpu - c).abs().max_element() / c.max_element().max(1e-30)
+        })
+        .fold(0.0, f64::max);
+    let covered = receivers.iter().filter(|r| r.is_some()).count();
+    let mut rows = Vec::new();
+    for &theta in thetas {
+        let gather = Gather::tree(theta)?;
+        let gpu_ms = gpu_ms(ctx, runs, || Ok(lighting.gather(gather)?))?;
+        let tree = lighting.gathers.read()?;
+        let (mut err, mut norm, mut nodes) = (0.0, 0.0, 0.0);
+        for ((t, b), r) in tree.iter().zip(&brute).zip(&receivers) {
+            if r.is_none() {
+                continue;
+            }
+            for c in 0..3 {
+                err += (t[c] as f64 - b[c] as f64).powi(2);
+                norm += (b[c] as f64).powi(2);
+            }
+            nodes += t[3] as f64;
+        }
+        rows.push(LightRow {
+            theta,
+            relative_rms_error: (err / norm).sqrt(),
+            mean_nodes: nodes / covered.max(1) as f64,
+            gpu_ms,
+        });
+    }
+    let vpls = levels[0].nodes.iter().filter(|v| v.weight > 0.0).count();
+    Ok((
+        LightRun {
+            vpl_side,
+            vpls,
+            image: (width, height),
+            receivers: covered,
+            build_ms,
+            brute_gpu_ms,
+            brute_cpu_ms,
+            brute_gpu_vs_cpu,
+            rows,
+        },
+        lighting,
+    ))
+}
+
+/// The table sizes of the error table.
+pub const TEXELS: [u32; 5] = [16, 64, 256, 1024, 4096];
+
+/// Technique 4: errors per table size, and the speed of computing against looking up.
+pub fn function(ctx: &Context, quick: bool, runs: usize) -> anyhow::Result<FunctionRun> {
+    let side = if quick { 128 } else { 256 };
+    let per_pixel = if quick { 16 } else { 64 };
+    let passes = FunctionPasses::new(ctx, side, side)?;
+    let mut errors = Vec::new();
+    let mut speed = Vec::new();
+    for f in Function::ALL {
+        for texels in TEXELS {
+            errors.push(function_error_row(ctx, &passes, f, texels)?);
+        }
+        speed.push(function_speed_row(ctx, &passes, f, 256, per_pixel, runs)?);
+    }
+    Ok(FunctionRun { errors, speed })
+}
+
+/// One function and table size: the GPU lookup against the exact function and against the
+/// exact interpolation of the same table.
+pub fn function_error_row(
+    ctx: &Context,
+    passes: &FunctionPasses,
+    f: Function,
+    texels: u32,
+) -> anyhow::Result<FunctionErrorRow> {
+    let table = FunctionTable::new(ctx, f, texels)?;
+    passes.run(Evaluation::Lookup(&table), 1)?;
+    let gpu = passes.read()?;
+    let samples = passes.total(1);
+    let (max_error, rms_error) = error_against_exact(f, |s| gpu[s as usize] as f64, samples);
+    let filter_error = (0..samples)
+        .map(|s| (gpu[s as usize] as f64 - table.interpolate(sample_x(f, s, samples))).abs())
+        .fold(0.0, f64::max);
+    Ok(FunctionErrorRow {
+        function: f.name().into(),
+        texels,
+        samples,
+        max_error,
+        rms_error,
+        bound: table.error_bound(),
+        filter_error,
+    })
+}
+
+/// One function: K values per pixel computed, looked up, and computed on the CPU.
+pub fn function_speed_row(
+    ctx: &Context,
+    passes: &FunctionPasses,
+    f: Function,
+    texels: u32,
+    per_pixel: u32,
+    runs: usize,
+) -> anyhow::Result<FunctionSpeedRow> {
+    let table = FunctionTable::new(ctx, f, texels)?;
+    let exact_ms = gpu_ms(ctx, runs, || {
+        Ok(passes.run(Evaluation::Exact(f), per_pixel)?)
+    })?;
+    let lookup_ms = gpu_ms(ctx, runs, || {
+        Ok(passes.run(Evaluation::Lookup(&table), per_pixel)?)
+    })?;
+    let total = passes.total(per_pixel);
+    let cpu_ms = wall_ms(1, || {
+        (0..total)
+            .map(|s| f.exact(sample_x(f, s, total)))
+            .sum::<f64>()
+    });
+    Ok(FunctionSpeedRow {
+        function: f.name().into(),
+        evaluations: total,
+        exact_ms,
+        lookup_ms,
+        cpu_ms,
+    })
+}
+
+/// Technique 5: `side^2` generators for `steps` steps against the CPU generator, the
+/// numbers tested, the times per step.
+pub fn random(
+    opts: &BenchOptions,
+    side: u32,
+    steps: usize,
+    seed: u64,
+    runs: usize,
+) -> anyhow::Result<RandomRun> {
+    let ctx = opts.gl;
+    let gpu = RandomTexture::new(ctx, side, side, seed)?;
+    let n = (side * side) as usize;
+    let mut cpu: Vec<HybridTaus> = (0..n as u64).map(|i| HybridTaus::seeded(seed, i)).collect();
+    let mut streams = vec![Vec::with_capacity(steps); n];
+    let mut bit_exact = true;
+    for _ in 0..steps {
+        gpu.step()?;
+        let values = gpu.values()?;
+        for ((s, g), v) in streams.iter_mut().zip(&mut cpu).zip(&values) {
+            bit_exact &= g.next_f32().to_bits() == v.to_bits();
+            s.push(*v);
+        }
+    }
+    let states: Vec<u32> = cpu.iter().flat_map(|g| g.z).collect();
+    bit_exact &= gpu.states()? == states;
+    let gpu_ms_per_step = gpu_ms(ctx, runs, || Ok(gpu.step()?))?;
+    let cpu_ms_per_step = wall_ms(runs, || cpu.iter_mut().map(|g| g.next_f32()).sum::<f32>());
+    let all: Vec<f32> = streams.iter().flatten().copied().collect();
+    let serial: Vec<(f32, f32)> = streams
+        .iter()
+        .flat_map(|s| s.windows(2).map(|p| (p[0], p[1])))
+        .collect();
+    let neighbours: Vec<(f32, f32)> = (0..n)
+        .filter(|i| (i + 1) % side as usize != 0)
+        .flat_map(|i| (0..steps).map(move |t| (i, t)))
+        .map(|(i, t)| (streams[i][t], streams[i + 1][t]))
+        .collect();
+    // The last step's numbers, counted by technique 7 (additive blending).
+    let last: Vec<f32> = streams.iter().map(|s| s[steps - 1]).collect();
+    let bins = Bins::new(0.0, 1.0, 64, ctx.info().limits.max_texture_size)?;
+    let histogram = Histogram::new(ctx, bins)?;
+    histogram.draw(
+        &Values::new(ctx, &last, None)?,
+        blend_histogram::Method::Blend,
+    )?;
+    crate::gl::dump::texture_png(
+        gpu.value_texture(),
+        &opts.out_dir.join(images::RANDOM_PNG),
+        crate::gl::dump::DumpRange::Fixed(0.0, 1.0),
+    )?;
+    Ok(RandomRun {
+        side,
+        steps,
+        bit_exact,
+        gpu_ms_per_step,
+        cpu_ms_per_step,
+        chi_square: chi_square(&all, 64),
+        chi_square_critical: chi_square_critical(63.0, 3.09),
+        serial_correlation: correlation(&serial),
+        neighbour_correlation: correlation(&neighbours),
+        correlation_bound: correlation_bound(neighbours.len().min(serial.len()), 3.29),
+        histogram: histogram.read()?,
+    })
+}
+
+/// The mask fractions of the depth-mask table.
+pub const FRACTIONS: [f32; 5] = [0.05, 0.25, 0.5, 0.75, 1.0];
+
+fn depth_mask(opts: &BenchOptions, quick: bool, runs: usize) -> anyhow::Result<DepthMaskRun> {
+    let (side, iterations) = if quick { (128, 64) } else { (256, 256) };
+    let mut rows = Vec::new();
+    for shape in [MaskShape::Blobs, MaskShape::Scattered] {
+        let mask = depth_mask::mask(shape, side, side, 1);
+        let passes = DepthMask::new(opts.gl, &mask, side, side)?;
+        for fraction in FRACTIONS {
+            rows.push(depth_mask_row(
+                opts.gl, &passes, &mask, shape, side, fraction, iterations, runs,
+            )?);
+        }
+        if shape == MaskShape::Scattered {
+            passes.run_masked(0.25, iterations)?;
+            crate::gl::dump::texture_png(
+                passes.target.color(0),
+                &opts.out_dir.join(images::DEPTH_MASK_PNG),
+                crate::gl::dump::DumpRange::Auto,
+            )?;
+        }
+    }
+    Ok(DepthMaskRun {
+        side,
+        iterations,
+        rows,
+    })
+}
+
+/// One mask and fraction: both versions timed, their fragments counted, their pictures
+/// checked against the CPU's.
+#[allow(clippy::too_many_arguments)]
+pub fn depth_mask_row(
+    ctx: &Context,
+    passes: &DepthMask,
+    mask: &[f32],
+    shape: MaskShape,
+    side: u32,
+    fraction: f32,
+    iterations: u32,
+    runs: usize,
+) -> anyhow::Result<DepthMaskRow> {
+    depth_mask::check_parameters(fraction, iterations)?;
+    let (cpu, active) = depth_mask::cpu_picture(mask, side, side, fraction, iterations);
+    let error = |gpu: Vec<f32>| {
+        gpu.iter()
+            .zip(&cpu)
+            .map(|(&g, &c)| (g as f64 - c).abs())
+            .fold(0.0, f64::max)
+    };
+    let branching_fragments = passes.run_branching(fraction, iterations)?;
+    let mut max_error = error(passes.read()?);
+    let masked_fragments = passes.run_masked(fraction, iterations)?;
+    max_error = max_error.max(error(passes.read()?));
+    Ok(DepthMaskRow {
+        mask: shape,
+        fraction,
+        active,
+        masked_fragments,
+        branching_fragments,
+        branching_ms: gpu_ms(ctx, runs, || {
+            passes.run_branching(fraction, iterations)?;
+            Ok(())
+        })?,
+        masked_ms: gpu_ms(ctx, runs, || {
+            passes.run_masked(fraction, iterations)?;
+            Ok(())
+        })?,
+        max_error,
+    })
+}
+
+/// `n` values in [0, 1), skewed (a cube of uniform numbers), from the CPU generator.
+pub fn skewed_values(n: usize, seed: u64) -> Vec<f32> {
+    let mut g = HybridTaus::seeded(seed, 0);
+    (0..n).map(|_| g.next_f32().powi(3)).collect()
+}
+
+/// Technique 7: the histogram of `values` into `bins`, blended (and gathered if asked),
+/// against the CPU's.
+pub fn histogram_row(
+    ctx: &Context,
+    values: &[f32],
+    bins: Bins,
+    with_gather: bool,
+    runs: usize,
+) -> anyhow::Result<HistogramRow> {
+    let (cpu, _) = blend_histogram::cpu_histogram(values, None, &bins);
+    let data = Values::new(ctx, values, None)?;
+    let histogram = Histogram::new(ctx, bins)?;
+    let equal = |h: &Histogram| -> anyhow::Result<bool> {
+        Ok(h.read()?.iter().map(|&c| c as f64).eq(cpu.iter().copied()))
+    };
+    let blend_ms = gpu_ms(ctx, runs, || {
+        Ok(histogram.draw(&data, blend_histogram::Method::Blend)?)
+    })?;
+    let blend_equal = equal(&histogram)?;
+    let (gather_ms, gather_equal) = if with_gather {
+        let ms = gpu_ms(ctx, runs, || {
+            Ok(histogram.draw(&data, blend_histogram::Method::Gather)?)
+        })?;
+        (Some(ms), Some(equal(&histogram)?))
+    } else {
+        (None, None)
+    };
+    Ok(HistogramRow {
+        values: values.len(),
+        bins: bins.bins,
+        blend_equal,
+        gather_equal,
+        blend_ms,
+        gather_ms,
+        cpu_ms: wall_ms(runs, || blend_histogram::cpu_histogram(values, None, &bins)),
+    })
+}

@@ -1,0 +1,285 @@
+//! What the sources say (the VRST 2006 and Visual Computer 2008 abstracts, the lecture's
+//! programme), judged on this run. The texts are not available: each claim is the abstract's
+//! or the programme's, in our words.
+
+use super::results::Lecture3Results;
+use crate::report::Claim;
+
+pub fn claims(r: &Lecture3Results) -> Vec<Claim> {
+    vec![
+        pyramids_are_exact(r),
+        artifact_free(r),
+        frame_rate(r),
+        resolution_independence(r),
+        few_light_groups(r),
+        lookup_cheaper(r),
+        random_numbers(r),
+        depth_test_masks(r),
+        depth_test_saves_time(r),
+        blending_histogram(r),
+    ]
+}
+
+fn pyramids_are_exact(r: &Lecture3Results) -> Claim {
+    let all = r.pyramid.iter().all(|p| p.equal_to_cpu);
+    Claim {
+        claim: "1. An image pyramid is built on the GPU, each level from the one below".into(),
+        paper: "lecture 3: image pyramids (no numbers)".into(),
+        measured: format!(
+            "max and min pyramids of {} map sizes (up to {}x{}) equal to the CPU's bit for bit: {}",
+            r.pyramid.len(),
+            r.pyramid.last().map_or(0, |p| p.size),
+            r.pyramid.last().map_or(0, |p| p.size),
+            if all { "all" } else { "NOT all" }
+        ),
+        holds: Some(all),
+    }
+}
+
+fn artifact_free(r: &Lecture3Results) -> Claim {
+    let d = &r.displacement;
+    let pyramid_wrong: usize = d
+        .artifacts
+        .iter()
+        .map(|a| a.methods[0].comparison.wrong_surface + a.methods[0].comparison.outside_tolerance)
+        .sum();
+    let compared: usize = d
+        .artifacts
+        .iter()
+        .map(|a| a.methods[0].comparison.compared)
+        .sum();
+    let relief = d
+        .artifacts
+        .iter()
+        .map(|a| {
+            format!(
+                "{} deg: {}",
+                a.elevation,
+                a.methods[1..]
+                    .iter()
+                    .map(|m| m.comparison.wrong_surface.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" / ")
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    Claim {
+        claim: "2. Pyramidal displacement mapping is free of artifacts, even at grazing angles"
+            .into(),
+        paper: "VRST 2006 abstract: correct images at steep grazing angles, unlike linear \
+                search"
+            .into(),
+        measured: format!(
+            "pyramid traversal: {pyramid_wrong} of {compared} compared pixels off the exact hit \
+             over {} elevations down to {} degrees; relief mapping ({}) on the wrong surface: {relief}",
+            d.artifacts.len(),
+            d.artifacts.last().map_or(0.0, |a| a.elevation),
+            d.artifacts
+                .first()
+                .map(|a| a.methods[1..]
+                    .iter()
+                    .map(|m| m.method.clone())
+                    .collect::<Vec<_>>()
+                    .join(" / "))
+                .unwrap_or_default()
+        ),
+        holds: Some(pyramid_wrong == 0),
+    }
+}
+
+fn frame_rate(r: &Lecture3Results) -> Claim {
+    let d = &r.displacement;
+    let best = d.speed.first();
+    let fps = best.map_or(0.0, |s| 1e3 / s.pyramid_ms);
+    Claim {
+        claim: "2. Pyramidal displacement mapping runs at hundreds of frames per second".into(),
+        paper: "VRST 2006 abstract (GPUs of 2006, their screen sizes)".into(),
+        measured: format!(
+            "{fps:.0} frames/s of GPU time at {0}x{0} pixels with the {1}x{1} map on {2}",
+            d.image,
+            best.map_or(0, |s| s.map_size),
+            r.renderer
+        ),
+        holds: if r.software { None } else { Some(fps >= 100.0) },
+    }
+}
+
+fn resolution_independence(r: &Lecture3Results) -> Claim {
+    let s = &r.displacement.speed;
+    let (first, last) = (s.first(), s.last());
+    let (time_ratio, cpu_ratio, side_ratio, it) = match (first, last) {
+        (Some(a), Some(b)) => (
+            b.pyramid_ms / a.pyramid_ms,
+            b.cpu_ms / a.cpu_ms,
+            b.map_size as f64 / a.map_size as f64,
+            (a.pyramid_iterations, b.pyramid_iterations),
+        ),
+        _ => (f64::NAN, f64::NAN, f64::NAN, (0.0, 0.0)),
+    };
+    Claim {
+        claim: "2. Its speed depends little on the map's resolution".into(),
+        paper: "VRST 2006 abstract".into(),
+        measured: format!(
+            "from a {}x{} to a {}x{} map: GPU frame time x{time_ratio:.2}, iterations per pixel \
+             {:.1} -> {:.1}, while the exact CPU tracer (a walk over every patch crossed) takes \
+             x{cpu_ratio:.1}; judged: frame time grows by less than a quarter of the map side's \
+             factor (x{side_ratio:.0})",
+            first.map_or(0, |a| a.map_size),
+            first.map_or(0, |a| a.map_size),
+            last.map_or(0, |a| a.map_size),
+            last.map_or(0, |a| a.map_size),
+            it.0,
+            it.1
+        ),
+        holds: Some(time_ratio < side_ratio / 4.0),
+    }
+}
+
+/// The error the light-group claim allows (relative RMS, against every VPL).
+const LIGHT_ERROR: f64 = 0.05;
+
+fn few_light_groups(r: &Lecture3Results) -> Claim {
+    let l = &r.light;
+    // The cheapest criterion within the error allowed.
+    let row = l
+        .rows
+        .iter()
+        .filter(|row| row.theta > 0.0 && row.relative_rms_error <= LIGHT_ERROR)
+        .min_by(|a, b| a.mean_nodes.total_cmp(&b.mean_nodes));
+    Claim {
+        claim: "3. A few light groups found by a tree traversal stand in for every light".into(),
+        paper: "Ki & Oh 2008 abstract: approximate illumination from a small number of light \
+                groups"
+            .into(),
+        measured: match row {
+            Some(row) => format!(
+                "the cheapest criterion within {:.0}% relative RMS error, theta {}: {:.0} nodes \
+                 visited per receiver for {} VPLs, error {:.1}%, GPU {:.2} ms against {:.2} ms \
+                 for every VPL",
+                100.0 * LIGHT_ERROR,
+                row.theta,
+                row.mean_nodes,
+                l.vpls,
+                100.0 * row.relative_rms_error,
+                row.gpu_ms,
+                l.brute_gpu_ms
+            ),
+            None => format!("no criterion stays within {:.0}%", 100.0 * LIGHT_ERROR),
+        },
+        holds: row.map(|row| {
+            row.mean_nodes < l.vpls as f64 / 4.0
+                && row.relative_rms_error < 0.05
+                && row.gpu_ms < l.brute_gpu_ms
+        }),
+    }
+}
+
+fn lookup_cheaper(r: &Lecture3Results) -> Claim {
+    let rows = &r.function.speed;
+    Claim {
+        claim: "4. A function stored in a texture is cheaper to look up than to compute".into(),
+        paper: "lecture 3: storing a function in a texture (no numbers)".into(),
+        measured: rows
+            .iter()
+            .map(|s| {
+                format!(
+                    "{}: computed {:.2} ms, looked up {:.2} ms",
+                    s.function, s.exact_ms, s.lookup_ms
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("; "),
+        holds: rows.last().map(|s| s.lookup_ms < s.exact_ms),
+    }
+}
+
+fn random_numbers(r: &Lecture3Results) -> Claim {
+    let x = &r.random;
+    let pass = x.bit_exact
+        && x.chi_square < x.chi_square_critical
+        && x.serial_correlation.abs() < x.correlation_bound
+        && x.neighbour_correlation.abs() < x.correlation_bound;
+    Claim {
+        claim: "5. Random numbers can be generated into a texture by render passes".into(),
+        paper: "lecture 3: generating random numbers into a texture (no numbers)".into(),
+        measured: format!(
+            "bit-exact with the CPU generator: {}; chi-square {:.1} (< {:.1}); correlations \
+             {:.1e} and {:.1e} (|r| < {:.1e})",
+            x.bit_exact,
+            x.chi_square,
+            x.chi_square_critical,
+            x.serial_correlation,
+            x.neighbour_correlation,
+            x.correlation_bound
+        ),
+        holds: Some(pass),
+    }
+}
+
+fn depth_test_masks(r: &Lecture3Results) -> Claim {
+    let rows = &r.depth_mask.rows;
+    let exact = rows.iter().all(|x| x.masked_fragments == x.active);
+    Claim {
+        claim: "6. The depth buffer removes an if: masked pixels never run the shader".into(),
+        paper: "lecture 3, debugging tips: removing if with the depth buffer".into(),
+        measured: format!(
+            "fragments of the expensive shader (occlusion query) = active pixels (CPU) in all \
+             {} cases: {exact}; the pictures equal the CPU's within {:.1e}",
+            rows.len(),
+            rows.iter().map(|x| x.max_error).fold(0.0, f64::max)
+        ),
+        holds: Some(exact),
+    }
+}
+
+fn depth_test_saves_time(r: &Lecture3Results) -> Claim {
+    let rows = &r.depth_mask.rows;
+    let sparse = rows
+        .iter()
+        .filter(|x| x.fraction == 0.05)
+        .map(|x| format!("{:?} x{:.1}", x.mask, x.branching_ms / x.masked_ms))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let faster = rows
+        .iter()
+        .filter(|x| x.fraction == 0.05)
+        .all(|x| x.masked_ms < x.branching_ms);
+    Claim {
+        claim: "6. ... and so saves time where few pixels take the branch".into(),
+        paper: "lecture 3, debugging tips (implied; GPUs of 2007 paid for both sides of a \
+                divergent branch)"
+            .into(),
+        measured: format!(
+            "branching / depth-masked time at 5% active: {sparse} (the masked version pays a \
+             second pass)"
+        ),
+        holds: Some(faster),
+    }
+}
+
+fn blending_histogram(r: &Lecture3Results) -> Claim {
+    let equal = r
+        .histogram
+        .iter()
+        .all(|h| h.blend_equal && h.gather_equal != Some(false));
+    let speed = r
+        .histogram
+        .iter()
+        .filter_map(|h| {
+            h.gather_ms
+                .map(|g| format!("{} values: x{:.0}", h.values, g / h.blend_ms))
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    Claim {
+        claim: "7. Alpha blending simplifies code: a scatter becomes points added by the blender"
+            .into(),
+        paper: "lecture 3, debugging tips: simplifying code with alpha blending".into(),
+        measured: format!(
+            "one draw, no loop; counts equal to the CPU's: {equal}; gather pass / blending time: \
+             {speed}"
+        ),
+        holds: Some(equal),
+    }
+}

@@ -1,0 +1,97 @@
+//! The lecture's techniques, where this code does them, and what differs from the sources.
+//! Every row is a reconstruction from an abstract or a one-line mention in the programme.
+
+use crate::report::Fidelity;
+
+pub fn rows() -> Vec<Fidelity> {
+    vec![
+        Fidelity::new(
+            "image pyramid, each level rendered from the one below",
+            "lecture 3 (programme); VRST 2006 abstract",
+            "src/lecture3/pyramid.rs, glsl/lecture3/pyramid_level.frag",
+            "reconstruction: a max/min mipmap drawn level by level (base/max level narrowed to \
+             avoid a feedback loop); odd sizes padded to a power of two with the identity",
+        ),
+        Fidelity::new(
+            "pyramid read at a per-pixel level",
+            "VRST 2006 abstract (traversal of the pyramid)",
+            "src/lecture3/pyramid_atlas.rs, glsl/lecture3/atlas_copy.frag",
+            "the levels are copied into one atlas image: Mesa's softpipe takes texelFetch's \
+             level per 2x2 quad, so a per-pixel level reads wrong texels there",
+        ),
+        Fidelity::new(
+            "top-down traversal of the max pyramid, safe empty-space skipping",
+            "VRST 2006 abstract",
+            "glsl/lecture3/displace_pyramid.frag, src/lecture3/displacement/bounds.rs",
+            "reconstruction: level 0 bounds each bilinear patch by its corners; a node is \
+             skipped when the ray stays above its bound; the ray climbs one level after each \
+             node it leaves (the paper's exact rule is not known)",
+        ),
+        Fidelity::new(
+            "intersection with the bilinearly interpolated map at the finest level",
+            "VRST 2006 abstract (magnification)",
+            "src/lecture3/displacement/patch.rs, glsl/lecture3/displace_common.glsl",
+            "reconstruction: the ray against each patch's height as a closed-form quadratic; the \
+             paper's mipmap-like prefilter at minification is not reproduced; the map lies on \
+             a box whose side walls are hit too",
+        ),
+        Fidelity::new(
+            "linear + binary search (relief mapping) as the artifact-prone comparison",
+            "VRST 2006 abstract (\"unlike linear search\"); Policarpo et al. 2005",
+            "glsl/lecture3/displace_relief.frag",
+            "budgets 16+6 and 32+8 steps are ours; bilinear interpolation in the shader instead \
+             of the texture unit, so that both methods see the same field",
+        ),
+        Fidelity::new(
+            "VPLs stored in images, clustered into image pyramids",
+            "Ki & Oh 2008 abstract",
+            "src/lecture3/light_hierarchy/{vpl_image,clusters}.rs",
+            "reconstruction: VPLs from a reflective shadow map of one spot light; 2x2 clusters \
+             with flux-weighted position and normal and a bounding radius (the paper's \
+             clustering is described only as simple and fast)",
+        ),
+        Fidelity::new(
+            "tree traversal on the GPU gathering light groups",
+            "Ki & Oh 2008 abstract; lecture 3 (quadtree search)",
+            "glsl/lecture3/vpl_gather_tree.frag",
+            "reconstruction: criterion radius < theta x distance, a stackless Morton-order walk, \
+             distances clamped to 0.1; occlusion ignored as in the paper; no subsurface \
+             scattering or environment light",
+        ),
+        Fidelity::new(
+            "a function stored in a texture",
+            "lecture 3 (programme)",
+            "src/lecture3/function_texture.rs, glsl/lecture3/function_lookup.frag",
+            "the functions (paper 3's sigmoid, a 16-harmonic square wave), the table layout and \
+             the linear filtering are our choices",
+        ),
+        Fidelity::new(
+            "random numbers generated into a texture",
+            "lecture 3 (programme)",
+            "src/lecture3/random_texture.rs, glsl/lecture3/random_step.frag",
+            "the generator is Howes & Thomas's hybrid Tausworthe (GPU Gems 3, 2007) in integer \
+             textures (GL 3.0), not a float-only generator of 2006-era hardware",
+        ),
+        Fidelity::new(
+            "removing an if with the depth buffer",
+            "lecture 3, debugging tips",
+            "src/lecture3/depth_mask.rs, glsl/lecture3/depth_mask_*.frag",
+            "the expensive function and masks are ours; the early depth test is left to the \
+             driver (no GL 4.2 early_fragment_tests)",
+        ),
+        Fidelity::new(
+            "simplifying code with alpha blending",
+            "lecture 3, debugging tips",
+            "src/lecture3/blend_histogram.rs, glsl/lecture3/histogram_*.{vert,frag}",
+            "a histogram as the example is ours; values come from a vertex buffer (softpipe's \
+             vertex-stage texelFetch read the wrong row of a 2D texture)",
+        ),
+        Fidelity::new(
+            "drawing the intermediate data; coping with shader compile errors",
+            "lecture 3, debugging tips",
+            "src/gl/dump.rs, src/gl/program.rs",
+            "every intermediate buffer can be dumped to PNG (this section's pictures); compile \
+             errors name the file and line with the source around it",
+        ),
+    ]
+}

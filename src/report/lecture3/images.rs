@@ -1,0 +1,227 @@
+//! The section's pictures (the tutorial's first debugging tip: look at the intermediate
+//! data): the pyramid levels, displacement-mapped frames and their verdicts against the
+//! exact tracer, the indirect lighting, the random numbers, the depth-masked picture.
+
+use crate::gl::dump::{map_floats, DumpRange};
+use crate::lecture3::displacement::compare::Verdict;
+use crate::lecture3::displacement::{Camera, DisplacementRenderer, Method};
+use crate::lecture3::light_hierarchy::shade::Terms;
+use crate::lecture3::light_hierarchy::{Gather, IndirectLighting};
+use crate::lecture3::pyramid::{cpu_pyramid, Extreme};
+use crate::lecture3::pyramid_atlas::atlas_layout;
+use crate::lecture3::HeightMap;
+use crate::report::BenchOptions;
+use anyhow::Context as _;
+use std::path::Path;
+
+pub const PYRAMID_PNG: &str = "lecture3_pyramid.png";
+pub const ORBIT_PNG: &str = "lecture3_displacement_orbit.png";
+pub const GRAZING_PNG: &str = "lecture3_displacement_grazing.png";
+pub const LIGHT_PNG: &str = "lecture3_indirect_light.png";
+pub const RANDOM_PNG: &str = "lecture3_random.png";
+pub const DEPTH_MASK_PNG: &str = "lecture3_depth_mask.png";
+
+/// An RGBA8 image, rows from the bottom (as GL reads them).
+pub struct Rgba {
+    pub width: u32,
+    pub height: u32,
+    pub data: Vec<u8>,
+}
+
+impl Rgba {
+    pub fn new(width: u32, height: u32) -> Rgba {
+        Rgba {
+            width,
+            height,
+            data: vec![0; (width * height * 4) as usize],
+        }
+    }
+
+    fn put(&mut self, x: u32, y: u32, pixel: [u8; 4]) {
+        let i = ((y * self.width + x) * 4) as usize;
+        self.data[i..i + 4].copy_from_slice(&pixel);
+    }
+
+    /// `other` copied with its bottom-left corner at (x, y).
+    fn paste(&mut self, other: &Rgba, x: u32, y: u32) {
+        for row in 0..other.height {
+            for col in 0..other.width {
+                let i = ((row * other.width + col) * 4) as usize;
+                let p = [
+                    other.data[i],
+                    other.data[i + 1],
+                    other.data[i + 2],
+                    other.data[i + 3],
+                ];
+                self.put(x + col, y + row, p);
+            }
+        }
+    }
+
+    /// Images side by side, `gap` pixels apart.
+    pub fn row(images: &[Rgba], gap: u32) -> Rgba {
+        let width = images.iter().map(|i| i.width + gap).sum::<u32>() - gap;
+        let height = images.iter().map(|i| i.height).max().unwrap_or(1);
+        let mut out = Rgba::new(width, height);
+        let mut x = 0;
+        for image in images {
+            out.paste(image, x, 0);
+            x += image.width + gap;
+        }
+        out
+    }
+
+    /// Images stacked, the first on top.
+    pub fn column(images: &[Rgba], gap: u32) -> Rgba {
+        let height = images.iter().map(|i| i.height + gap).sum::<u32>() - gap;
+        let width = images.iter().map(|i| i.width).max().unwrap_or(1);
+        let mut out = Rgba::new(width, height);
+        let mut y = height;
+        for image in images {
+            y -= image.height;
+            out.paste(image, 0, y);
+            y = y.saturating_sub(gap);
+        }
+        out
+    }
+
+    /// Written as PNG, top row first.
+    pub fn save(&self, path: &Path) -> anyhow::Result<()> {
+        let mut flipped = Vec::with_capacity(self.data.len());
+        for row in self.data.chunks_exact(self.width as usize * 4).rev() {
+            flipped.extend_from_slice(row);
+        }
+        image::save_buffer(
+            path,
+            &flipped,
+            self.width,
+            self.height,
+            image::ColorType::Rgba8,
+        )
+        .with_context(|| format!("writing {}", path.display()))
+    }
+}
+
+/// The max and min pyramids of `map`, each laid out as its atlas (level 0, the levels above
+/// in a column to its right), heights 0..1 as grey, padding magenta.
+pub fn pyramid_png(map: &HeightMap, path: &Path) -> anyhow::Result<()> {
+    let (w, h) = (map.width(), map.height());
+    let pictures: Vec<Rgba> = [Extreme::Max, Extreme::Min]
+        .iter()
+        .map(|&extreme| {
+            let levels = cpu_pyramid(w, h, map.heights(), extreme);
+            let sizes: Vec<_> = levels.iter().map(|l| (l.width, l.height)).collect();
+            let ((aw, ah), offsets) = atlas_layout(&sizes);
+            let mut out = Rgba::new(aw, ah);
+            for (level, &(ox, oy)) in levels.iter().zip(&offsets) {
+                let bytes = map_floats(&level.values, 1, DumpRange::Fixed(0.0, 1.0));
+                for (i, p) in bytes.chunks_exact(4).enumerate() {
+                    let (x, y) = (i as u32 % level.width, i as u32 / level.width);
+                    let padding = level.values[i] == extreme.identity();
+                    let pixel = if padding {
+                        [255, 0, 255, 255]
+                    } else {
+                        [p[0], p[1], p[2], 255]
+                    };
+                    out.put(ox + x, oy + y, pixel);
+                }
+            }
+            out
+        })
+        .collect();
+    Rgba::row(&pictures, 4).save(path)
+}
+
+/// A frame of one method and its verdicts against the exact tracer.
+pub struct JudgedFrame {
+    pub method: String,
+    /// RGBA8, rows from the bottom.
+    pub colour: Vec<u8>,
+    pub verdicts: Vec<Verdict>,
+}
+
+/// The verdicts as colours: exact hits grey, wrong surface red, outside tolerance orange,
+/// ill-conditioned blue, not compared black.
+fn verdict_picture(frame: &JudgedFrame, side: u32) -> Rgba {
+    let mut out = Rgba::new(side, side);
+    for (i, v) in frame.verdicts.iter().enumerate() {
+        let c = &frame.colour[4 * i..4 * i + 4];
+        let grey = ((c[0] as u32 + c[1] as u32 + c[2] as u32) / 6) as u8;
+        let pixel = match v {
+            Verdict::NotCompared => [0, 0, 0, 255],
+            Verdict::Exact => [grey, grey, grey, 255],
+            Verdict::WrongSurface => [230, 30, 30, 255],
+            Verdict::OutsideTolerance => [255, 160, 0, 255],
+            Verdict::Ambiguous => [40, 90, 255, 255],
+        };
+        out.put(i as u32 % side, i as u32 / side, pixel);
+    }
+    out
+}
+
+/// The grazing view: each method's frame above its verdict map.
+pub fn grazing_png(opts: &BenchOptions, frames: &[JudgedFrame], side: u32) -> anyhow::Result<()> {
+    let columns: Vec<Rgba> = frames
+        .iter()
+        .map(|f| {
+            let colour = Rgba {
+                width: side,
+                height: side,
+                data: f.colour.clone(),
+            };
+            Rgba::column(&[colour, verdict_picture(f, side)], 4)
+        })
+        .collect();
+    Rgba::row(&columns, 8).save(&opts.out_dir.join(GRAZING_PNG))
+}
+
+/// Four frames of the camera orbiting the box (pyramid traversal).
+pub fn orbit_png(
+    opts: &BenchOptions,
+    renderer: &DisplacementRenderer,
+    side: u32,
+) -> anyhow::Result<()> {
+    let target = renderer.target(side, side)?;
+    let frames = [20.0f32, 110.0, 200.0, 290.0]
+        .iter()
+        .map(|&azimuth| {
+            let camera = Camera::orbit(
+                renderer.surface().centre(),
+                super::bench::DISTANCE,
+                azimuth,
+                35.0,
+                side,
+                side,
+            );
+            renderer.render(&target, &camera, Method::Pyramid)?;
+            Ok(Rgba {
+                width: side,
+                height: side,
+                data: renderer.read(&target)?.colour,
+            })
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    Rgba::row(&frames, 4).save(&opts.out_dir.join(ORBIT_PNG))
+}
+
+fn shaded(lighting: &IndirectLighting, terms: Terms) -> anyhow::Result<Rgba> {
+    lighting.shade(terms, 1.5)?;
+    let fb = &lighting.shade.target;
+    Ok(Rgba {
+        width: fb.width(),
+        height: fb.height(),
+        data: fb.read_u8(0, crate::gl::Rect::sized(fb.width(), fb.height()))?,
+    })
+}
+
+/// Direct + indirect (brute force), indirect alone (brute force), and indirect alone with
+/// the coarsest criterion of the plot.
+pub fn light_pngs(opts: &BenchOptions, lighting: &IndirectLighting) -> anyhow::Result<()> {
+    lighting.gather(Gather::BruteForce)?;
+    let both = shaded(lighting, Terms::Both)?;
+    let indirect = shaded(lighting, Terms::Indirect)?;
+    let theta = *super::bench::THETAS.last().expect("criteria");
+    lighting.gather(Gather::tree(theta)?)?;
+    let coarse = shaded(lighting, Terms::Indirect)?;
+    Rgba::row(&[both, indirect, coarse], 4).save(&opts.out_dir.join(LIGHT_PNG))
+}

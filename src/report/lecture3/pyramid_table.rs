@@ -1,0 +1,49 @@
+//! Technique 1's table: the max/min pyramid of generated maps, GPU against CPU.
+
+use super::images::PYRAMID_PNG;
+use super::results::Lecture3Results;
+use crate::report::{Figure, Table};
+
+pub fn table(results: &Lecture3Results) -> Table {
+    Table {
+        caption: format!(
+            "1. Image pyramid of the generated map at several sizes: levels drawn one pass each \
+             from the level below (max and min), on {}",
+            results.renderer
+        ),
+        header: [
+            "map",
+            "levels",
+            "GPU = CPU (bit for bit)",
+            "GPU passes (ms)",
+            "CPU (ms)",
+            "CPU / GPU",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: results
+            .pyramid
+            .iter()
+            .map(|r| {
+                vec![
+                    format!("{0}x{0}", r.size),
+                    r.levels.to_string(),
+                    if r.equal_to_cpu { "yes" } else { "NO" }.into(),
+                    format!("{:.3}", r.gpu_ms),
+                    format!("{:.3}", r.cpu_ms),
+                    format!("{:.2}", r.cpu_ms / r.gpu_ms),
+                ]
+            })
+            .collect(),
+    }
+}
+
+pub fn figure() -> Figure {
+    Figure {
+        file: PYRAMID_PNG.into(),
+        caption: "1. The max (left) and min (right) pyramids of the height map, every level laid \
+                  out as the traversals read them (level 0, the levels above to its right); \
+                  padding to a power of two in magenta"
+            .into(),
+    }
+}

@@ -1,0 +1,219 @@
+//! `classic-gpgpu lecture3 ...` as a user meets it: JSON output with the GPU checked against
+//! its CPU reference and timings beside the renderer's name; bad input (missing or non-image
+//! height maps, 1x1 maps, NaN parameters, outputs that exist or are the input) giving a
+//! clear message and a non-zero exit, with nothing overwritten.
+
+use common::{classic_gpgpu, json_of};
+use std::path::PathBuf;
+
+mod common;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lecture3_cli_{}_{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs the binary, requires failure, returns stderr.
+fn fails(args: &[&str]) -> String {
+    let out = classic_gpgpu(args);
+    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(!out.status.success(), "{args:?} succeeded: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    stderr
+}
+
+#[test]
+fn pyramid_and_displace_report_agreement_with_the_cpu_and_timings() {
+    let v = json_of(&["lecture3", "pyramid", "--json"]);
+    assert_eq!(v["pyramid"]["equal_to_cpu"], true);
+    assert!(v["renderer"].as_str().unwrap().contains("OpenGL"));
+    assert!(v["pyramid"]["gpu_ms"].as_f64().unwrap() > 0.0);
+    let dir = scratch("displace");
+    let png = dir.join("frame.png");
+    let v = json_of(&[
+        "lecture3",
+        "displace",
+        "--size",
+        "48",
+        "--elevation",
+        "10",
+        "--png",
+        png.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(v["comparison"]["wrong_surface"], 0);
+    assert_eq!(v["comparison"]["outside_tolerance"], 0);
+    assert!(v["cpu_over_gpu"].as_f64().unwrap() > 0.0);
+    assert_eq!(image::open(&png).unwrap().width(), 48);
+    let v = json_of(&[
+        "lecture3",
+        "displace",
+        "--size",
+        "48",
+        "--frames",
+        "3",
+        "--method",
+        "relief",
+        "--no-check",
+        "--out",
+        dir.join("frames").to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(v["written"].as_array().unwrap().len(), 3);
+    assert!(v["comparison"].is_null());
+}
+
+#[test]
+fn each_technique_runs_and_agrees_with_its_reference() {
+    let v = json_of(&[
+        "lecture3", "light", "--vpls", "8", "--size", "32", "--theta", "0.4", "--json",
+    ]);
+    assert!(v["light"]["brute_gpu_vs_cpu"].as_f64().unwrap() < 1e-3);
+    let v = json_of(&[
+        "lecture3",
+        "function",
+        "--texels",
+        "64",
+        "--per-pixel",
+        "4",
+        "--json",
+    ]);
+    let e = &v["error"];
+    assert!(e["max_error"].as_f64().unwrap() <= e["bound"].as_f64().unwrap() + 1e-6);
+    let v = json_of(&[
+        "lecture3", "random", "--size", "32", "--steps", "4", "--json",
+    ]);
+    assert_eq!(v["random"]["bit_exact"], true);
+    let v = json_of(&[
+        "lecture3",
+        "depth-mask",
+        "--size",
+        "32",
+        "--iterations",
+        "16",
+        "--fraction",
+        "0.3",
+        "--json",
+    ]);
+    let d = &v["depth_mask"];
+    assert_eq!(d["masked_fragments"], d["active"]);
+    let v = json_of(&[
+        "lecture3",
+        "histogram",
+        "--image",
+        concat!(env!("CARGO_MANIFEST_DIR"), "/assets/lecture3/height.png"),
+        "--json",
+    ]);
+    let counts: f64 = v["counts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_f64().unwrap())
+        .sum();
+    assert_eq!(
+        counts,
+        64.0 * 64.0,
+        "every grey level of the shipped map in a bin"
+    );
+    assert_eq!(v["outside"], 0);
+}
+
+#[test]
+fn bad_height_maps_are_named() {
+    let dir = scratch("maps");
+    let missing = dir.join("missing.png");
+    let err = fails(&[
+        "lecture3",
+        "displace",
+        "--height",
+        missing.to_str().unwrap(),
+    ]);
+    assert!(
+        err.contains("missing.png") && err.contains("cannot open"),
+        "{err}"
+    );
+    let text = dir.join("text.png");
+    std::fs::write(&text, "not a picture").unwrap();
+    let err = fails(&["lecture3", "pyramid", "--height", text.to_str().unwrap()]);
+    assert!(
+        err.contains("text.png") && err.contains("not a readable image"),
+        "{err}"
+    );
+    let one = dir.join("one.png");
+    image::save_buffer(&one, &[9], 1, 1, image::ColorType::L8).unwrap();
+    let err = fails(&["lecture3", "displace", "--height", one.to_str().unwrap()]);
+    assert!(err.contains("1x1") && err.contains("2x2"), "{err}");
+}
+
+#[test]
+fn nan_and_out_of_range_parameters_are_named() {
+    for (args, name) in [
+        (&["lecture3", "displace", "--depth", "NaN"][..], "--depth"),
+        (
+            &["lecture3", "displace", "--elevation", "NaN"][..],
+            "--elevation",
+        ),
+        (
+            &["lecture3", "displace", "--elevation", "90"][..],
+            "--elevation",
+        ),
+        (&["lecture3", "light", "--theta", "NaN"][..], "--theta"),
+        (&["lecture3", "light", "--vpls", "256"][..], "--vpls"),
+        (
+            &["lecture3", "depth-mask", "--fraction", "NaN"][..],
+            "--fraction",
+        ),
+        (
+            &["lecture3", "depth-mask", "--iterations", "100000"][..],
+            "--iterations",
+        ),
+        (&["lecture3", "function", "--texels", "1"][..], "--texels"),
+        (&["lecture3", "histogram", "--bins", "0"][..], "--bins"),
+    ] {
+        let err = fails(args);
+        assert!(err.contains(name), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn outputs_are_not_overwritten() {
+    let dir = scratch("outputs");
+    let png = dir.join("exists.png");
+    std::fs::write(&png, "keep me").unwrap();
+    let err = fails(&["lecture3", "pyramid", "--png", png.to_str().unwrap()]);
+    assert!(err.contains("--force"), "{err}");
+    assert_eq!(std::fs::read_to_string(&png).unwrap(), "keep me");
+    let out = classic_gpgpu(&[
+        "lecture3",
+        "pyramid",
+        "--png",
+        png.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(out.status.success());
+    assert!(image::open(&png).is_ok());
+    // The input is never the output, not even with --force.
+    let map = dir.join("map.png");
+    let m = classic_gpgpu(&[
+        "lecture3",
+        "height-map",
+        "--size",
+        "8",
+        "--out",
+        map.to_str().unwrap(),
+    ]);
+    assert!(m.status.success());
+    let before = std::fs::read(&map).unwrap();
+    let err = fails(&[
+        "lecture3",
+        "displace",
+        "--height",
+        map.to_str().unwrap(),
+        "--png",
+        map.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(err.contains("never overwritten"), "{err}");
+    assert_eq!(std::fs::read(&map).unwrap(), before);
+}

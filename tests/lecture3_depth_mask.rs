@@ -1,0 +1,86 @@
+//! Lecture 3, technique 6: an `if` removed with the depth buffer. The occlusion query must
+//! count exactly the active pixels (the CPU counts the mask); both versions must draw the
+//! CPU's picture: the expensive sum of 64 sines within 2e-5 (fp32 sines of phases kept exact,
+//! each within ~1e-6, weighted by 1/k: at most 1e-6 (1 + ln 64) < 6e-6, with room for the sum's
+//! rounding), 0 exactly where the mask is off; and the two versions must agree within 1e-6.
+
+use classic_gpgpu::lecture3::depth_mask::{cpu_picture, mask, DepthMask, MaskShape};
+use common::context;
+
+mod common;
+
+#[test]
+fn masked_and_branching_versions_draw_the_cpu_picture_and_the_query_counts_active_pixels() {
+    let ctx = context();
+    let (w, h, iterations) = (32, 16, 64);
+    for shape in [MaskShape::Blobs, MaskShape::Scattered] {
+        let values = mask(shape, w, h, 5);
+        let passes = DepthMask::new(&ctx, &values, w, h).unwrap();
+        for fraction in [0.0, 0.1, 0.5, 0.9, 1.0] {
+            let (cpu, active) = cpu_picture(&values, w, h, fraction, iterations);
+            assert_eq!(active, (fraction as f64 * (w * h) as f64).ceil() as u64);
+            let ran = passes.run_branching(fraction, iterations).unwrap();
+            assert_eq!(ran, (w * h) as u64, "the branching shader runs everywhere");
+            let branching = passes.read().unwrap();
+            let ran = passes.run_masked(fraction, iterations).unwrap();
+            assert_eq!(
+                ran, active,
+                "{shape:?} {fraction}: fragments behind the depth test"
+            );
+            let masked = passes.read().unwrap();
+            for i in 0..cpu.len() {
+                let what = format!("{shape:?} {fraction}, pixel {i}");
+                if cpu[i] == 0.0 && values[i] >= fraction {
+                    assert_eq!((branching[i], masked[i]), (0.0, 0.0), "{what}");
+                    continue;
+                }
+                assert!(
+                    (branching[i] as f64 - cpu[i]).abs() <= 2e-5,
+                    "{what}: {} vs {}",
+                    branching[i],
+                    cpu[i]
+                );
+                assert!(
+                    (masked[i] as f64 - cpu[i]).abs() <= 2e-5,
+                    "{what}: {} vs {}",
+                    masked[i],
+                    cpu[i]
+                );
+                assert!((masked[i] - branching[i]).abs() <= 1e-6, "{what}");
+            }
+        }
+    }
+}
+
+#[test]
+fn masks_select_the_fraction_asked_for() {
+    for shape in [MaskShape::Blobs, MaskShape::Scattered] {
+        let values = mask(shape, 64, 32, 1);
+        let mut sorted = values.clone();
+        sorted.sort_by(f32::total_cmp);
+        sorted.dedup();
+        assert_eq!(sorted.len(), values.len(), "{shape:?}: distinct values");
+        assert!(sorted[0] == 0.0 && *sorted.last().unwrap() < 1.0);
+    }
+    // Blobs are coherent: most neighbours agree at 50%; scattered pixels do not.
+    let agree = |shape| {
+        let v = mask(shape, 64, 64, 1);
+        (0..64 * 63)
+            .filter(|&i| (v[i] < 0.5) == (v[i + 64] < 0.5))
+            .count() as f64
+            / (64.0 * 63.0)
+    };
+    assert!(agree(MaskShape::Blobs) > 0.9);
+    assert!(agree(MaskShape::Scattered) < 0.6);
+}
+
+#[test]
+fn bad_parameters_are_named() {
+    let ctx = context();
+    let passes = DepthMask::new(&ctx, &mask(MaskShape::Blobs, 8, 8, 1), 8, 8).unwrap();
+    let err = passes.run_masked(f32::NAN, 16).unwrap_err().to_string();
+    assert!(err.contains("--fraction") && err.contains("NaN"), "{err}");
+    let err = passes.run_branching(0.5, 0).unwrap_err().to_string();
+    assert!(err.contains("--iterations"), "{err}");
+    assert!(DepthMask::new(&ctx, &[0.0; 12], 4, 3).is_err());
+}
