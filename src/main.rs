@@ -1,5 +1,7 @@
 //! The `classic-gpgpu` command line: `info`, each paper's commands, and `reproduce`.
 
+#![deny(unsafe_code)]
+
 use anyhow::Context as _;
 use clap::{Parser, Subcommand};
 use classic_gpgpu::gl::{self, Renderer};

@@ -79,16 +79,22 @@ impl Plot {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         }
-        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-        root.fill(&WHITE)?;
-        match (self.log_x, self.log_y) {
-            (false, false) => self.draw(&root, x.0..x.1, y.0..y.1),
-            (true, false) => self.draw(&root, (x.0..x.1).log_scale(), y.0..y.1),
-            (false, true) => self.draw(&root, x.0..x.1, (y.0..y.1).log_scale()),
-            (true, true) => self.draw(&root, (x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
+        // Drawn into a buffer and written with `image`, so plotters needs no PNG encoder of its own.
+        let mut pixels = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area();
+            root.fill(&WHITE)?;
+            match (self.log_x, self.log_y) {
+                (false, false) => self.draw(&root, x.0..x.1, y.0..y.1),
+                (true, false) => self.draw(&root, (x.0..x.1).log_scale(), y.0..y.1),
+                (false, true) => self.draw(&root, x.0..x.1, (y.0..y.1).log_scale()),
+                (true, true) => self.draw(&root, (x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
+            }
+            .with_context(|| format!("drawing {}", path.display()))?;
+            root.present()
+                .with_context(|| format!("drawing {}", path.display()))?;
         }
-        .with_context(|| format!("drawing {}", path.display()))?;
-        root.present()
+        image::save_buffer(path, &pixels, SIZE.0, SIZE.1, image::ColorType::Rgb8)
             .with_context(|| format!("writing {}", path.display()))?;
         Ok(())
     }
