@@ -42,7 +42,10 @@ fn one_d_float_texture(ctx: &gl::Context) -> anyhow::Result<String> {
     let data: Vec<f32> = (0..37).map(|i| (i as f32 * 0.37).sin() * 1e5).collect();
     let t = Texture::new_1d(ctx, data.len() as u32, TextureFormat::R32F)?;
     t.upload_f32(&data)?;
-    ensure!(t.download_f32()? == data, "a 1D R32F texture did not read back as written");
+    ensure!(
+        t.download_f32()? == data,
+        "a 1D R32F texture did not read back as written"
+    );
 
     let table = Texture::new_1d(ctx, 4, TextureFormat::R32F)?;
     table.upload_f32(&[0.0, 1.0, 4.0, 9.0])?;
@@ -52,8 +55,16 @@ fn one_d_float_texture(ctx: &gl::Context) -> anyhow::Result<String> {
     let x = [0.125f32, 0.25, 0.375, 0.5, 0.625, 0.875, 0.0, 1.0];
     let mut worst = 0.0f32;
     for (filter, expected, tolerance) in [
-        (Filter::Nearest, [0.0f32, 1.0, 1.0, 4.0, 4.0, 9.0, 0.0, 9.0], 0.0),
-        (Filter::Linear, [0.0, 0.5, 1.0, 2.5, 4.0, 9.0, 0.0, 9.0], 9.0 / 256.0),
+        (
+            Filter::Nearest,
+            [0.0f32, 1.0, 1.0, 4.0, 4.0, 9.0, 0.0, 9.0],
+            0.0,
+        ),
+        (
+            Filter::Linear,
+            [0.0, 0.5, 1.0, 2.5, 4.0, 9.0, 0.0, 9.0],
+            9.0 / 256.0,
+        ),
     ] {
         table.set_filter(filter);
         fb.pass(&program, "1D lookups")?
@@ -108,7 +119,9 @@ fn mrt(ctx: &gl::Context) -> anyhow::Result<String> {
             }
         }
     }
-    Ok(format!("3 targets of {w}x{h} written in one pass, all exact"))
+    Ok(format!(
+        "3 targets of {w}x{h} written in one pass, all exact"
+    ))
 }
 
 /// A stencil framebuffer with a `mark` rectangle written into its stencil buffer.
@@ -137,8 +150,16 @@ fn stencil(ctx: &gl::Context) -> anyhow::Result<String> {
     let mark = Rect::new(3, 2, 5, 4);
     let (colour, depth, program) = marked_stencil(ctx, mark)?;
     let fb = Framebuffer::new(ctx, "stencil", &[&colour], Some(&depth))?;
-    let marked = fb.read_stencil(fb.rect())?.iter().filter(|&&s| s == 1).count();
-    ensure!(marked == mark.area(), "{marked} stencil values set, CPU {}", mark.area());
+    let marked = fb
+        .read_stencil(fb.rect())?
+        .iter()
+        .filter(|&&s| s == 1)
+        .count();
+    ensure!(
+        marked == mark.area(),
+        "{marked} stencil values set, CPU {}",
+        mark.area()
+    );
     let mut pass = fb.pass(&program, "stencil masked")?;
     pass.state(DrawState {
         stencil: Some(StencilTest::equal(1)),
@@ -159,7 +180,11 @@ fn stencil(ctx: &gl::Context) -> anyhow::Result<String> {
             );
         }
     }
-    Ok(format!("{} marked pixels written, the other {} kept", mark.area(), 16 * 12 - mark.area()))
+    Ok(format!(
+        "{} marked pixels written, the other {} kept",
+        mark.area(),
+        16 * 12 - mark.area()
+    ))
 }
 
 /// The occlusion query counts the samples a stencil-masked pass writes: exactly the marked
@@ -170,7 +195,10 @@ fn occlusion_query(ctx: &gl::Context) -> anyhow::Result<String> {
     let fb = Framebuffer::new(ctx, "occlusion", &[&colour], Some(&depth))?;
     let query = OcclusionQuery::new(ctx)?;
     let mut counts = Vec::new();
-    for (test, want) in [(StencilTest::equal(1), mark.area()), (StencilTest::equal(0), 16 * 12 - mark.area())] {
+    for (test, want) in [
+        (StencilTest::equal(1), mark.area()),
+        (StencilTest::equal(0), 16 * 12 - mark.area()),
+    ] {
         let mut pass = fb.pass(&program, "counted")?;
         pass.state(DrawState {
             stencil: Some(test),
@@ -184,7 +212,10 @@ fn occlusion_query(ctx: &gl::Context) -> anyhow::Result<String> {
         ensure!(got == want as u64, "samples passed {got}, CPU count {want}");
         counts.push(got);
     }
-    Ok(format!("samples passed {} inside and {} outside the mask, as counted", counts[0], counts[1]))
+    Ok(format!(
+        "samples passed {} inside and {} outside the mask, as counted",
+        counts[0], counts[1]
+    ))
 }
 
 /// A timer query around a pass gives a time between 0 and the wall clock around it.
@@ -208,7 +239,10 @@ fn timer_query(ctx: &gl::Context) -> anyhow::Result<String> {
         );
         last = (gpu_ms, wall_ms);
     }
-    Ok(format!("GL timer {:.3} ms within the wall clock {:.3} ms", last.0, last.1))
+    Ok(format!(
+        "GL timer {:.3} ms within the wall clock {:.3} ms",
+        last.0, last.1
+    ))
 }
 
 /// Paper 2's render-to-vertex-buffer: a pass renders positions into a float texture, a PBO
@@ -248,7 +282,10 @@ fn pbo_to_vbo(ctx: &gl::Context) -> anyhow::Result<String> {
             ensure!(got == want, "pixel ({x}, {y}): {got}, CPU says {want}");
         }
     }
-    Ok(format!("{} vertices rendered, copied through a PBO and drawn where the CPU puts them", w * h))
+    Ok(format!(
+        "{} vertices rendered, copied through a PBO and drawn where the CPU puts them",
+        w * h
+    ))
 }
 
 /// Depth peeling a tilted torus: the layers per pixel equal a CPU ray cast through each
@@ -281,9 +318,18 @@ fn depth_peeling(ctx: &gl::Context) -> anyhow::Result<String> {
         counts.len()
     );
     let deepest = expected.iter().copied().max().unwrap_or(0);
-    ensure!(layers as u32 == deepest, "{layers} layers peeled, the CPU finds {deepest}");
-    ensure!(deepest >= 4, "only {deepest} layers: the view is too easy to show peeling");
-    Ok(format!("{layers} layers; {} pixels' counts equal the CPU ray cast", counts.len()))
+    ensure!(
+        layers as u32 == deepest,
+        "{layers} layers peeled, the CPU finds {deepest}"
+    );
+    ensure!(
+        deepest >= 4,
+        "only {deepest} layers: the view is too easy to show peeling"
+    );
+    Ok(format!(
+        "{layers} layers; {} pixels' counts equal the CPU ray cast",
+        counts.len()
+    ))
 }
 
 /// Layers per pixel by casting a ray down -z through each pixel centre, with the vertices
@@ -310,12 +356,20 @@ fn ray_cast_counts(
         }
         let lo = |f: fn(&(f64, f64)) -> f64| v.iter().map(f).fold(f64::MAX, f64::min);
         let hi = |f: fn(&(f64, f64)) -> f64| v.iter().map(f).fold(f64::MIN, f64::max);
-        let (x0, x1) = (lo(|p| p.0).floor().max(0.0) as u32, hi(|p| p.0).ceil().min(w as f64) as u32);
-        let (y0, y1) = (lo(|p| p.1).floor().max(0.0) as u32, hi(|p| p.1).ceil().min(h as f64) as u32);
+        let (x0, x1) = (
+            lo(|p| p.0).floor().max(0.0) as u32,
+            hi(|p| p.0).ceil().min(w as f64) as u32,
+        );
+        let (y0, y1) = (
+            lo(|p| p.1).floor().max(0.0) as u32,
+            hi(|p| p.1).ceil().min(h as f64) as u32,
+        );
         for py in y0..y1 {
             for px in x0..x1 {
                 let (cx, cy) = (px as f64 + 0.5, py as f64 + 0.5);
-                let edge = |a: (f64, f64), b: (f64, f64)| (b.0 - a.0) * (cy - a.1) - (b.1 - a.1) * (cx - a.0);
+                let edge = |a: (f64, f64), b: (f64, f64)| {
+                    (b.0 - a.0) * (cy - a.1) - (b.1 - a.1) * (cx - a.0)
+                };
                 let inside = [edge(v[0], v[1]), edge(v[1], v[2]), edge(v[2], v[0])]
                     .iter()
                     .all(|&e| e * area.signum() > 0.0);
@@ -336,7 +390,9 @@ fn reduction(ctx: &gl::Context) -> anyhow::Result<String> {
     let mut worst: f64 = 0.0;
     let sizes = [(1, 1), (17, 33), (100, 37), (256, 256)];
     for (w, h) in sizes {
-        let data: Vec<f32> = (0..w * h * 4).map(|_| rng.gen_range(-10.0..100.0)).collect();
+        let data: Vec<f32> = (0..w * h * 4)
+            .map(|_| rng.gen_range(-10.0..100.0))
+            .collect();
         let t = Texture::from_f32(ctx, w, h, TextureFormat::Rgba32F, &data)?;
         let sum = gl::reduce::reduce(ctx, &t, ReduceOp::Sum)?;
         let min = gl::reduce::reduce(ctx, &t, ReduceOp::Min)?;
@@ -358,7 +414,12 @@ fn reduction(ctx: &gl::Context) -> anyhow::Result<String> {
                 channel().fold(f32::INFINITY, f32::min),
                 channel().fold(f32::NEG_INFINITY, f32::max),
             );
-            ensure!(min[c] == lo && max[c] == hi, "{w}x{h} channel {c}: min/max {}/{} vs CPU {lo}/{hi}", min[c], max[c]);
+            ensure!(
+                min[c] == lo && max[c] == hi,
+                "{w}x{h} channel {c}: min/max {}/{} vs CPU {lo}/{hi}",
+                min[c],
+                max[c]
+            );
         }
     }
     Ok(format!(

@@ -204,10 +204,16 @@ mod tests {
         };
         let xml = to_junit(&run);
         assert!(xml.contains("tests=\"2\" failures=\"1\""), "{xml}");
-        assert!(xml.contains("name=\"llvmpipe &lt;LLVM &amp; co&gt;\""), "{xml}");
+        assert!(
+            xml.contains("name=\"llvmpipe &lt;LLVM &amp; co&gt;\""),
+            "{xml}"
+        );
         assert_eq!(xml.matches("<testcase ").count(), 2);
         assert_eq!(xml.matches("<failure ").count(), 1);
-        assert!(xml.contains("got &quot;1 &lt; 2&quot;&#10;and more"), "{xml}");
+        assert!(
+            xml.contains("got &quot;1 &lt; 2&quot;&#10;and more"),
+            "{xml}"
+        );
         let text = to_text(&run);
         assert!(text.contains("PASS gl       ok"), "{text}");
         assert!(text.contains("FAIL gl       bad"), "{text}");

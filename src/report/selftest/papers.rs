@@ -10,9 +10,9 @@ use crate::crowd::renderer::Instances;
 use crate::crowd::{CharacterModel, CrowdRenderer, ModelKind};
 use crate::gl::Context;
 use crate::lecture3::pyramid::{cpu_pyramid, Extreme, PyramidBuilder};
+use crate::mass::buoyancy::batch::GpuSolver;
 use crate::mass::buoyancy::forces::Water;
 use crate::mass::buoyancy::simulation::{Shape, Simulation, SubmergedSolver};
-use crate::mass::buoyancy::batch::GpuSolver;
 use crate::mass::framing::Framing;
 use crate::mass::gpu::GpuMass;
 use crate::mass::{cpu_reference, VolumeIntegrals};
@@ -70,7 +70,9 @@ fn soup(n: usize, size: f32, seed: u64) -> Mesh {
             positions.push(c + (Vec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5) * size);
         }
     }
-    let triangles = (0..n as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    let triangles = (0..n as u32)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
     Mesh::new(positions, triangles)
 }
 
@@ -79,8 +81,15 @@ fn soup(n: usize, size: f32, seed: u64) -> Mesh {
 fn collide_pairs(ctx: &Context) -> anyhow::Result<String> {
     let (x, y) = (soup(300, 0.2, 1), soup(200, 0.2, 51));
     let expected = all_pairs(&x, &x.positions, &y, &y.positions, Predicate::Exact);
-    ensure!(!expected.is_empty(), "the soups do not touch: the check would prove nothing");
-    for readback in [ReadbackMode::Hierarchical, ReadbackMode::Reduced, ReadbackMode::Full] {
+    ensure!(
+        !expected.is_empty(),
+        "the soups do not touch: the check would prove nothing"
+    );
+    for readback in [
+        ReadbackMode::Hierarchical,
+        ReadbackMode::Reduced,
+        ReadbackMode::Full,
+    ] {
         let options = Options {
             leaf_size: 4,
             readback,
@@ -134,7 +143,10 @@ fn crowd_skinning(ctx: &Context) -> anyhow::Result<String> {
             let bones = model.skeleton.skinning_matrices(&pose, models[id]);
             let cpu = cpu_skinning::skin(mesh, &bones);
             let positions = &gpu[slot].0;
-            ensure!(positions.len() == mesh.vertex_count(), "LOD {lod}: vertex count");
+            ensure!(
+                positions.len() == mesh.vertex_count(),
+                "LOD {lod}: vertex count"
+            );
             for (v, (p, q)) in positions.iter().zip(&cpu.positions).enumerate() {
                 let err = (DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) - *q)
                     .abs()
@@ -182,8 +194,15 @@ fn mlp_forward(ctx: &Context) -> anyhow::Result<String> {
     let gpu = GpuMlp::new(ctx)?;
     let mut worst = 0.0f32;
     for formulation in [Formulation::Faithful, Formulation::Packed] {
-        let out = gpu.load(&net, formulation)?.forward(x.view(), None)?.outputs;
-        ensure!(out.dim() == cpu.dim(), "{formulation:?}: output shape {:?}", out.dim());
+        let out = gpu
+            .load(&net, formulation)?
+            .forward(x.view(), None)?
+            .outputs;
+        ensure!(
+            out.dim() == cpu.dim(),
+            "{formulation:?}: output shape {:?}",
+            out.dim()
+        );
         for ((j, g), (c, e)) in out.iter().enumerate().zip(cpu.iter().zip(bound.iter())) {
             ensure!(
                 (g - c).abs() <= 2.0 * e,
@@ -236,7 +255,11 @@ fn mass_integrals(ctx: &Context) -> anyhow::Result<String> {
                 .map_err(|e| e.context(format!("below {below:?}")))?,
         );
         let layers = cpu_reference::layers(&torus, &framing, below);
-        ensure!(got.peels == layers, "below {below:?}: {} peels, CPU counts {layers} layers", got.peels);
+        ensure!(
+            got.peels == layers,
+            "below {below:?}: {} peels, CPU counts {layers} layers",
+            got.peels
+        );
     }
     Ok(format!(
         "tilted torus at 32x32, whole and below z = 0.4: ten integrals within {worst:.1e} of the 1e-3 tolerance"
@@ -255,7 +278,12 @@ fn buoyancy_submerged(ctx: &Context) -> anyhow::Result<String> {
     let mut sim = Simulation::new(shapes.clone(), Water::default(), 0.01);
     for k in 0..6 {
         let q = DQuat::from_scaled_axis(DVec3::new(0.3 * k as f64, -0.7, 0.2 * k as f64));
-        sim.add(k % 2, 500.0, DVec3::new(k as f64 * 3.0, 0.0, 0.1 * k as f64 - 0.25), q);
+        sim.add(
+            k % 2,
+            500.0,
+            DVec3::new(k as f64 * 3.0, 0.0, 0.1 * k as f64 - 0.25),
+            q,
+        );
     }
     let mut solver = GpuSolver::new(ctx, &shapes, sim.bodies.len(), 32)?;
     let gpu = solver
@@ -298,14 +326,27 @@ fn pyramid(ctx: &Context) -> anyhow::Result<String> {
         for extreme in [Extreme::Max, Extreme::Min] {
             let cpu = cpu_pyramid(w, h, &image, extreme);
             let gpu = builder.from_image(w, h, &image, extreme)?.read_levels()?;
-            ensure!(gpu.len() == cpu.len(), "{w}x{h} {extreme:?}: {} levels, CPU {}", gpu.len(), cpu.len());
+            ensure!(
+                gpu.len() == cpu.len(),
+                "{w}x{h} {extreme:?}: {} levels, CPU {}",
+                gpu.len(),
+                cpu.len()
+            );
             for (level, (g, c)) in gpu.iter().zip(&cpu).enumerate() {
                 let same = g.values.len() == c.values.len()
-                    && g.values.iter().zip(&c.values).all(|(a, b)| a.to_bits() == b.to_bits());
-                ensure!(same, "{w}x{h} {extreme:?} level {level} differs from the CPU's");
+                    && g.values
+                        .iter()
+                        .zip(&c.values)
+                        .all(|(a, b)| a.to_bits() == b.to_bits());
+                ensure!(
+                    same,
+                    "{w}x{h} {extreme:?} level {level} differs from the CPU's"
+                );
             }
             levels += cpu.len();
         }
     }
-    Ok(format!("{levels} max/min pyramid levels equal the CPU's bit for bit"))
+    Ok(format!(
+        "{levels} max/min pyramid levels equal the CPU's bit for bit"
+    ))
 }
