@@ -161,6 +161,7 @@ pub struct SceneArgs {
 
 /// `collide-scene`: a deforming scene frame by frame; `json` prints one object.
 pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    check_scene_counts(args)?;
     let scene = Scene::build(&args.scene, args.triangles)
         .with_context(|| format!("scenes: {}", SCENES.join(", ")))?;
     let mut collider = StreamingCollider::new(
@@ -193,6 +194,36 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
             "frames": frames,
         });
         println!("{}", serde_json::to_string(&out)?);
+    }
+    Ok(())
+}
+
+/// Memory per triangle of each model, measured: 160 bytes for the pair (interlocking tori,
+/// 20,000 against 200,000 triangles each), rounded up for the streams and the deformation.
+const TRIANGLE_BYTES: u64 = 512;
+/// Memory per frame kept for `--json`, rounded up.
+const FRAME_BYTES: u64 = 1 << 10;
+
+/// `--frames` and `--triangles` of `collide-scene`, checked before the scene is built.
+fn check_scene_counts(args: &SceneArgs) -> anyhow::Result<()> {
+    use super::limits::{check_count, fit_in_memory, gib, memory_budget};
+    let budget = gib(memory_budget());
+    check_count(
+        "--frames",
+        args.frames as u64,
+        fit_in_memory(FRAME_BYTES),
+        &format!("each frame's results take about 1 KiB; {budget} may be used"),
+    )?;
+    if let Some(n) = args.triangles {
+        check_count(
+            "--triangles",
+            n as u64,
+            fit_in_memory(TRIANGLE_BYTES).min(u32::MAX as u64 / 3),
+            &format!(
+                "each triangle of the two models needs about {TRIANGLE_BYTES} bytes of mesh, \
+                 streams and deformation, {budget} may be used, and vertex indices are 32-bit"
+            ),
+        )?;
     }
     Ok(())
 }
