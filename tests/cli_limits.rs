@@ -56,6 +56,24 @@ fn counts_beyond_memory_are_refused_before_allocating() {
             vec!["collide-scene", "interlocking-tori", "--frames", max],
             "--frames",
         ),
+        (vec!["crowd", "--frames", max], "--frames"),
+        (vec!["buoyancy", "--steps", max], "--steps"),
+        (
+            vec![
+                "mesh",
+                "generate",
+                "torus",
+                "--triangles",
+                max,
+                "--out",
+                out,
+            ],
+            "--triangles",
+        ),
+        (
+            vec!["mlp", "train", "--windows-per-class", max, "--out", out],
+            "--windows-per-class",
+        ),
     ] {
         let start = std::time::Instant::now();
         let err = refused(&args);

@@ -122,9 +122,12 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             super::limits::gib(super::limits::memory_budget())
         ),
     )?;
-    if args.frames == 0 {
-        bail!("--frames must be at least 1");
-    }
+    super::limits::check_count(
+        "--frames",
+        args.frames as u64,
+        super::limits::fit_in_memory(1 << 10),
+        "each frame's timings take up to 1 KiB",
+    )?;
     let (w, h) = args.size;
     let [max_w, max_h] = ctx.info().limits.max_viewport_dims;
     if w > max_w || h > max_h {

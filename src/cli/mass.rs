@@ -274,6 +274,8 @@ pub struct BuoyancyArgs {
 
 /// `classic-gpgpu buoyancy`.
 pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
+    let most = super::limits::fit_in_memory(16);
+    super::limits::check_count("--steps", args.steps as u64, most, "16 bytes kept per step")?;
     check_resolution(ctx, args.resolution)?;
     if args.bodies == 0 || args.bodies > 10_000 {
         bail!("--bodies {}: must be between 1 and 10000", args.bodies);

@@ -213,8 +213,14 @@ fn check_training_counts(config: &TrainConfig, own: bool) -> anyhow::Result<()> 
         fit_in_memory(8),
         &format!("a loss of 8 bytes is kept per epoch; {budget} may be used"),
     )?;
+    let window = (WINDOW_INPUTS * 4 + 16) as u64;
+    check_count(
+        "--windows-per-class",
+        config.windows_per_class as u64,
+        fit_in_memory(2 * window),
+        &format!("each window takes {window} bytes; {budget} may be used"),
+    )?;
     if !own {
-        let window = (WINDOW_INPUTS * 4 + 16) as u64;
         let per_image = 2 * config.windows_per_class as u64 * window;
         check_count(
             "--images",
