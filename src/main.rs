@@ -61,6 +61,10 @@ enum Command {
     Lecture3(cli::lecture3::Lecture3Command),
     /// Lecture 3's section: every technique against its CPU reference, tables and figures.
     Lecture3Bench(BenchArgs<report::lecture3::Lecture3Options>),
+    /// Does this renderer do classic GPGPU right? A small workload of every paper and every GL
+    /// feature they use, each against its CPU reference: one pass/fail line per check, a
+    /// non-zero exit if any fails.
+    Selftest(cli::selftest::SelftestArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -150,6 +154,9 @@ fn main() -> ExitCode {
         Command::Lecture3Bench(a) => {
             global.bench::<report::lecture3::Lecture3>(&a, "lecture3-bench")
         }
+        Command::Selftest(a) => global
+            .context()
+            .and_then(|ctx| cli::selftest::run(&a, &ctx, json)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -37,7 +37,8 @@ fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
             pb.to_str().unwrap(),
             "--readback",
             readback,
-            "--exact-predicates",
+            "--predicate",
+            "exact",
             "--leaf-size",
             "6",
             "--dump",
@@ -149,5 +150,64 @@ fn collide_scene_and_bench_print_json() {
     assert!(captions
         .iter()
         .any(|c| c.starts_with("Fig. 7, clustered CAPs")));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Two interlocking tori scaled by 1e25 (a file `mesh check` accepts): by default `collide`
+/// reports exactly the pairs brute force finds with exact arithmetic; `--predicate moller`
+/// is the paper's float test, which at this scale reports pairs that do not touch.
+#[test]
+fn the_default_predicate_is_exact_far_from_unit_scale() {
+    let dir = temp_dir("scale");
+    let scale = Affine3A::from_scale(Vec3::splat(1e25));
+    let a = mesh::torus_with_triangles(1.0, 0.33, 600).transformed(&scale);
+    let b = mesh::torus_with_triangles(1.0, 0.33, 600).transformed(
+        &(scale
+            * Affine3A::from_rotation_translation(
+                Quat::from_rotation_x(1.4),
+                Vec3::new(1.5, 0.1, 0.0),
+            )),
+    );
+    let (pa, pb) = (dir.join("a.obj"), dir.join("b.obj"));
+    mesh::write_obj(&a, &pa).unwrap();
+    mesh::write_obj(&b, &pb).unwrap();
+    let (la, lb) = (mesh::load_obj(&pa).unwrap(), mesh::load_obj(&pb).unwrap());
+    let exact = all_pairs(&la, &la.positions, &lb, &lb.positions, Predicate::Exact);
+    assert!(!exact.is_empty());
+    let pairs = |extra: &[&str]| {
+        let mut args = vec![
+            "collide",
+            pa.to_str().unwrap(),
+            pb.to_str().unwrap(),
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let v = json_of(&args);
+        let pairs: Vec<(u32, u32)> = v["pairs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| (p[0].as_u64().unwrap() as u32, p[1].as_u64().unwrap() as u32))
+            .collect();
+        (v["predicate"].as_str().unwrap().to_string(), pairs)
+    };
+    assert_eq!(pairs(&[]), ("exact".to_string(), exact.clone()));
+    let (name, moller) = pairs(&["--predicate", "moller"]);
+    assert_eq!(name, "moller");
+    let moller_cpu = all_pairs(&la, &la.positions, &lb, &lb.positions, Predicate::Moller);
+    assert_eq!(moller, moller_cpu);
+    assert_ne!(
+        moller, exact,
+        "Möller's float test is exact here: the test shows nothing"
+    );
+    let out = classic_gpgpu(&[
+        "collide",
+        "--predicate",
+        "float",
+        pa.to_str().unwrap(),
+        pb.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("exact"));
     std::fs::remove_dir_all(&dir).ok();
 }

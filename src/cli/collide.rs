@@ -26,13 +26,22 @@ pub struct PipelineArgs {
     /// `paper-switch` is the paper's: hierarchical below eta = 0.095%, reduced from it.
     #[arg(long, default_value_t = ReadbackMode::Auto, value_parser = readback_parser())]
     pub readback: ReadbackMode,
-    /// Decide triangle pairs with exact orientation predicates instead of floating point.
-    #[arg(long)]
-    pub exact_predicates: bool,
+    /// How triangle pairs are decided: `exact` orientation predicates (the default: every
+    /// pair brute force with exact arithmetic finds, at any scale), or `moller`, the paper's
+    /// floating-point test (Möller 1997), which can miss or invent contacts where triangles
+    /// only touch and far from unit scale.
+    #[arg(long, default_value_t = Predicate::Exact, value_parser = predicate_parser())]
+    pub predicate: Predicate,
     /// Largest tile side (slots); default 4096 (the paper's GPU limit), at most the
     /// renderer's maximum texture size.
     #[arg(long)]
     pub max_tile: Option<usize>,
+}
+
+/// `--predicate`: the names of [`Predicate`], listed in `--help`, parsed by its `FromStr`.
+fn predicate_parser() -> impl clap::builder::TypedValueParser<Value = Predicate> {
+    clap::builder::PossibleValuesParser::new(Predicate::ALL.map(Predicate::name))
+        .try_map(|name| name.parse::<Predicate>())
 }
 
 /// `--readback`: the names of [`ReadbackMode`], listed in `--help`, parsed by its `FromStr`.
@@ -51,11 +60,7 @@ impl PipelineArgs {
         Ok(Options {
             leaf_size,
             readback: self.readback,
-            predicate: if self.exact_predicates {
-                Predicate::Exact
-            } else {
-                Predicate::Moller
-            },
+            predicate: self.predicate,
             max_tile: self.max_tile,
         })
     }
@@ -101,6 +106,7 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
         "renderer": renderer,
         "triangles": [x.triangles.len(), y.triangles.len()],
         "leaf_size": collider.options.leaf_size,
+        "predicate": collider.options.predicate.name(),
         "leaves": [collider.x.stream.leaves.len(), collider.y.stream.leaves.len()],
         "stream_lengths": [collider.x.stream.len(), collider.y.stream.len()],
         "tiles": collider.layout.count(),
@@ -155,6 +161,7 @@ pub struct SceneArgs {
 
 /// `collide-scene`: a deforming scene frame by frame; `json` prints one object.
 pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    check_scene_counts(args)?;
     let scene = Scene::build(&args.scene, args.triangles)
         .with_context(|| format!("scenes: {}", SCENES.join(", ")))?;
     let mut collider = StreamingCollider::new(
@@ -187,6 +194,36 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
             "frames": frames,
         });
         println!("{}", serde_json::to_string(&out)?);
+    }
+    Ok(())
+}
+
+/// Memory per triangle of each model, measured: 160 bytes for the pair (interlocking tori,
+/// 20,000 against 200,000 triangles each), rounded up for the streams and the deformation.
+const TRIANGLE_BYTES: u64 = 512;
+/// Memory per frame kept for `--json`, rounded up.
+const FRAME_BYTES: u64 = 1 << 10;
+
+/// `--frames` and `--triangles` of `collide-scene`, checked before the scene is built.
+fn check_scene_counts(args: &SceneArgs) -> anyhow::Result<()> {
+    use super::limits::{check_count, fit_in_memory, gib, memory_budget};
+    let budget = gib(memory_budget());
+    check_count(
+        "--frames",
+        args.frames as u64,
+        fit_in_memory(FRAME_BYTES),
+        &format!("each frame's results take about 1 KiB; {budget} may be used"),
+    )?;
+    if let Some(n) = args.triangles {
+        check_count(
+            "--triangles",
+            n as u64,
+            fit_in_memory(TRIANGLE_BYTES).min(u32::MAX as u64 / 3),
+            &format!(
+                "each triangle of the two models needs about {TRIANGLE_BYTES} bytes of mesh, \
+                 streams and deformation, {budget} may be used, and vertex indices are 32-bit"
+            ),
+        )?;
     }
     Ok(())
 }

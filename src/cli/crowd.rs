@@ -94,6 +94,10 @@ impl From<MethodArg> for Method {
     }
 }
 
+/// Memory per character, measured: 46 KiB (soldier, two-pass, llvmpipe: 512 against 4096
+/// characters), rounded up.
+const CHARACTER_BYTES: u64 = 64 << 10;
+
 /// Parses `WxH`.
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("size '{text}' is not WxH with positive integers (e.g. 800x600)");
@@ -108,12 +112,22 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 /// Runs `crowd`.
 pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
-    if args.characters == 0 {
-        bail!("--characters must be at least 1");
-    }
-    if args.frames == 0 {
-        bail!("--frames must be at least 1");
-    }
+    super::limits::check_count(
+        "--characters",
+        args.characters as u64,
+        super::limits::fit_in_memory(CHARACTER_BYTES),
+        &format!(
+            "each character needs about {} KiB of skinned vertices and instance data; {} may be used",
+            CHARACTER_BYTES >> 10,
+            super::limits::gib(super::limits::memory_budget())
+        ),
+    )?;
+    super::limits::check_count(
+        "--frames",
+        args.frames as u64,
+        super::limits::fit_in_memory(1 << 10),
+        "each frame's timings take up to 1 KiB",
+    )?;
     let (w, h) = args.size;
     let [max_w, max_h] = ctx.info().limits.max_viewport_dims;
     if w > max_w || h > max_h {

@@ -59,9 +59,12 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
 
     let gpu = GpuMass::new(ctx, args.resolution).context("setting up the GPU passes")?;
     // The first run compiles and allocates on the driver side; time the second.
-    gpu.integrate(&mesh, args.below, None)?;
+    let model = || format!("model '{}'", args.model);
+    gpu.integrate(&mesh, args.below, None).with_context(model)?;
     let start = Instant::now();
-    let result = gpu.integrate(&mesh, args.below, args.dump.as_deref())?;
+    let result = gpu
+        .integrate(&mesh, args.below, args.dump.as_deref())
+        .with_context(model)?;
     let gpu_wall_ms = start.elapsed().as_secs_f64() * 1e3;
 
     let start = Instant::now();
@@ -112,6 +115,16 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         print!("{}", output.text());
     }
     Ok(())
+}
+
+/// A table value: fixed point with 6 decimals in 1e-3..1e7, scientific outside (1e38 would
+/// otherwise print as 39 digits).
+fn number(v: f64) -> String {
+    if v == 0.0 || (1e-3..1e7).contains(&v.abs()) {
+        format!("{v:.6}")
+    } else {
+        format!("{v:.6e}")
+    }
 }
 
 struct MassOutput<'a> {
@@ -206,7 +219,7 @@ impl MassOutput<'_> {
             } else {
                 "~0".into()
             };
-            format!("{name:16}{g:>16.6}{w:>16.6}{err:>12}\n")
+            format!("{name:16}{:>16}{:>16}{err:>12}\n", number(g), number(w))
         };
         s += &row("volume", self.got.volume, self.want.volume, 0.0);
         s += &row("mass", self.got.mass, self.want.mass, 0.0);
@@ -261,6 +274,8 @@ pub struct BuoyancyArgs {
 
 /// `classic-gpgpu buoyancy`.
 pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
+    let most = super::limits::fit_in_memory(16);
+    super::limits::check_count("--steps", args.steps as u64, most, "16 bytes kept per step")?;
     check_resolution(ctx, args.resolution)?;
     if args.bodies == 0 || args.bodies > 10_000 {
         bail!("--bodies {}: must be between 1 and 10000", args.bodies);

@@ -76,6 +76,15 @@ pub fn run(command: &MeshCommand, json: bool) -> anyhow::Result<()> {
             if out.exists() && !force {
                 bail!("{} exists; pass --force to replace it", out.display());
             }
+            if let Some(n) = *triangles {
+                // Refining holds the mesh and its edge map: about 128 bytes a triangle.
+                super::limits::check_count(
+                    "--triangles",
+                    n as u64,
+                    super::limits::fit_in_memory(128).min(u32::MAX as u64 / 3),
+                    "refining needs about 128 bytes a triangle, and vertex indices are 32-bit",
+                )?;
+            }
             let mut mesh = shape.mesh();
             if let Some(n) = *triangles {
                 mesh = retessellate(&mesh, n)?;

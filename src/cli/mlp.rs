@@ -118,6 +118,15 @@ impl Engine {
     }
 }
 
+/// A finite number (`--threshold nan` would mark nothing as text without a word).
+fn finite(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) => Err(format!("{v} is not a finite number")),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 /// A count that must be at least 1.
 fn at_least_one(text: &str) -> Result<usize, String> {
     match text.parse::<usize>() {
@@ -141,7 +150,7 @@ struct RunArgs {
 
 #[derive(clap::Args, Debug)]
 struct DetectArgs {
-    /// The image (any format the `image` crate reads; colour is converted to grey).
+    /// The image, PNG (colour is converted to grey).
     image: PathBuf,
     /// Where to write the classified image (black = text). Never the input image; an existing
     /// file only with --force.
@@ -155,7 +164,7 @@ struct DetectArgs {
     #[arg(long)]
     network: Option<PathBuf>,
     /// Output above which a pixel is text.
-    #[arg(long, default_value_t = THRESHOLD)]
+    #[arg(long, default_value_t = THRESHOLD, value_parser = finite, allow_hyphen_values = true)]
     threshold: f32,
     #[command(flatten)]
     engine: Engine,
@@ -170,8 +179,8 @@ struct TrainArgs {
     /// Replace --out if it exists (never one of the --pair files).
     #[arg(long)]
     force: bool,
-    /// Train on your own labelled image instead of synthetic text: the image (any format the
-    /// `image` crate reads; colour becomes grey) and its mask, the same size, where dark pixels
+    /// Train on your own labelled image instead of synthetic text: the image (PNG; colour
+    /// becomes grey) and its mask, the same size, where dark pixels
     /// (grey below 128) are text and light ones are not, as `mlp detect --out` draws them.
     /// Repeat for more pairs.
     #[arg(long, num_args = 2, value_names = ["IMAGE", "MASK"], action = clap::ArgAction::Append)]
@@ -191,6 +200,39 @@ struct TrainArgs {
     #[arg(long, default_value_t = TrainConfig::default().images, value_parser = at_least_one,
           conflicts_with = "pair")]
     images: usize,
+}
+
+/// `--epochs` (a loss is kept per epoch) and `--images` (the windows sampled from them are
+/// held in memory), checked against the memory budget before anything is made.
+fn check_training_counts(config: &TrainConfig, own: bool) -> anyhow::Result<()> {
+    use super::limits::{check_count, fit_in_memory, gib, memory_budget};
+    let budget = gib(memory_budget());
+    check_count(
+        "--epochs",
+        config.epochs as u64,
+        fit_in_memory(8),
+        &format!("a loss of 8 bytes is kept per epoch; {budget} may be used"),
+    )?;
+    let window = (WINDOW_INPUTS * 4 + 16) as u64;
+    check_count(
+        "--windows-per-class",
+        config.windows_per_class as u64,
+        fit_in_memory(2 * window),
+        &format!("each window takes {window} bytes; {budget} may be used"),
+    )?;
+    if !own {
+        let per_image = 2 * config.windows_per_class as u64 * window;
+        check_count(
+            "--images",
+            config.images as u64,
+            fit_in_memory(per_image),
+            &format!(
+                "each image gives up to {} windows of {window} bytes; {budget} may be used",
+                2 * config.windows_per_class
+            ),
+        )?;
+    }
+    Ok(())
 }
 
 /// Windows sampled from each --pair image unless --windows-per-class says otherwise.
@@ -216,6 +258,20 @@ fn read_network(path: &Path) -> anyhow::Result<Network> {
 }
 
 fn read_grey(path: &Path, what: &str) -> anyhow::Result<image::GrayImage> {
+    // Only PNG is built in (the `image` crate's `png` feature): say so, rather than the
+    // crate's "format not supported", when the file is another format.
+    let format = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .ok()
+        .and_then(|r| r.format());
+    if let Some(format) = format.filter(|f| *f != image::ImageFormat::Png) {
+        bail!(
+            "the {what} {} is a {} image; this program reads PNG only: convert it to PNG \
+             first",
+            path.display(),
+            format!("{format:?}").to_uppercase()
+        );
+    }
     Ok(image::open(path)
         .with_context(|| format!("cannot read the {what} {}", path.display()))?
         .to_luma8())
@@ -553,6 +609,7 @@ fn train_detector(args: TrainArgs, json: bool) -> anyhow::Result<()> {
         }),
         ..defaults
     };
+    check_training_counts(&config, own)?;
     let data = if own {
         pair_data(&args.pair, &config)?
     } else {

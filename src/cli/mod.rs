@@ -5,6 +5,8 @@
 pub mod collide;
 pub mod crowd;
 pub mod lecture3;
+pub mod limits;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;
+pub mod selftest;

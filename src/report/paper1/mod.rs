@@ -32,10 +32,10 @@ pub struct Paper1Args {
     #[arg(long, value_delimiter = ',')]
     pub scenes: Vec<String>,
     /// Frames per scene (after one warm-up frame); default 20, or 3 with --quick.
-    #[arg(long)]
+    #[arg(long, value_parser = at_least_one)]
     pub frames: Option<usize>,
     /// Triangles per model instead of the paper's counts.
-    #[arg(long)]
+    #[arg(long, value_parser = at_least_one)]
     pub triangles: Option<usize>,
     /// Leaf size `n` of the streaming pipeline and of SOLID (default: per model, 32 doubled
     /// until the stream has at most 512 slots on a software renderer, 4096 on a GPU).
@@ -47,6 +47,15 @@ pub struct Paper1Args {
     /// Skip the leaf-size sweep.
     #[arg(long)]
     pub no_leaf_sweep: bool,
+}
+
+/// A count of at least 1 (`--frames 0` would leave the figures without a point).
+fn at_least_one(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(0) => Err("must be at least 1".into()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 impl Default for Paper1Args {

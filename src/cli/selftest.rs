@@ -1,0 +1,67 @@
+//! `classic-gpgpu selftest`: every check of [`classic_gpgpu::report::selftest`] on the chosen
+//! renderer; one line per check (or `--json`), a JUnit XML file with `--junit`, and a non-zero
+//! exit when any check fails.
+
+use anyhow::{bail, Context as _};
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::report::selftest;
+use std::path::PathBuf;
+
+/// Arguments of `selftest`.
+#[derive(clap::Args, Debug)]
+pub struct SelftestArgs {
+    /// Also write the results as JUnit XML to this file (replaced if it exists: it is a
+    /// report this command owns, as CI systems expect).
+    #[arg(long, value_name = "FILE")]
+    pub junit: Option<PathBuf>,
+    /// Run only the checks whose name or group contains one of these (comma separated),
+    /// e.g. `--only gl,paper4`.
+    #[arg(long, value_delimiter = ',')]
+    pub only: Vec<String>,
+}
+
+/// Runs `selftest`.
+pub fn run(args: &SelftestArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    if let Some(path) = &args.junit {
+        if path.is_dir() {
+            bail!("--junit {}: is a directory, not a file", path.display());
+        }
+    }
+    let checks: Vec<_> = selftest::checks()
+        .into_iter()
+        .filter(|c| {
+            args.only.is_empty()
+                || args
+                    .only
+                    .iter()
+                    .any(|o| c.name.contains(o.as_str()) || c.group == o)
+        })
+        .collect();
+    if checks.is_empty() {
+        let names: Vec<_> = selftest::checks().iter().map(|c| c.name).collect();
+        bail!(
+            "--only {}: no check matches; the checks are {} (groups gl, paper1-4, lecture3)",
+            args.only.join(","),
+            names.join(", ")
+        );
+    }
+    let results = selftest::run(ctx, &checks);
+    if let Some(path) = &args.junit {
+        std::fs::write(path, selftest::to_junit(&results))
+            .with_context(|| format!("writing the JUnit report {}", path.display()))?;
+    }
+    if json {
+        println!("{}", serde_json::to_string_pretty(&results)?);
+    } else {
+        print!("{}", selftest::to_text(&results));
+    }
+    if !results.all_passed() {
+        bail!(
+            "{} of {} checks failed on {}",
+            results.failed,
+            results.checks.len(),
+            results.renderer
+        );
+    }
+    Ok(())
+}
