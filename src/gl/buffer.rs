@@ -136,6 +136,17 @@ impl Buffer {
         Ok(out)
     }
 
+    /// The first `out.len()` bytes, read back to the CPU (waits like [`Buffer::read`]).
+    pub(super) fn read_into(&self, out: &mut [u8]) -> Result<(), GlError> {
+        let gl = self.obj.ctx.gl();
+        unsafe {
+            gl.finish();
+            gl.bind_buffer(SCRATCH_TARGET, Some(self.obj.id));
+            gl.get_buffer_sub_data(SCRATCH_TARGET, 0, out);
+        }
+        self.obj.ctx.check("buffer read")
+    }
+
     /// Copy `len` bytes from `src` at `src_offset` to this buffer at `dst_offset`, on the GPU.
     pub fn copy_from(
         &self,
