@@ -87,6 +87,9 @@ impl Buffer {
     pub(super) fn id(&self) -> glow::Buffer {
         self.obj.id
     }
+    pub(super) fn context(&self) -> &Context {
+        &self.obj.ctx
+    }
 
     /// Write `data` at `offset` bytes.
     pub fn write<T: bytemuck::Pod>(&self, offset: usize, data: &[T]) -> Result<(), GlError> {

@@ -3,6 +3,7 @@
 //! "append here" that fragment programs of 2007 did not have.
 
 use super::{Buffer, BufferUsage, Context, GlError};
+use glow::HasContext;
 
 /// `count` 32-bit atomic counters in one buffer (`layout(binding = b, offset = 4 * i)
 /// uniform atomic_uint ...` in GLSL, or `atomicAdd` on a storage block).
@@ -38,6 +39,19 @@ impl AtomicCounters {
 }
 
 impl Buffer {
+    /// Bind this buffer to storage-block binding `binding` for the draws that follow (a
+    /// vertex shader reading what a compute pass wrote); compute passes bind their own
+    /// through [`super::Dispatch::storage`].
+    pub fn bind_storage(&self, binding: u32) -> Result<(), GlError> {
+        let ctx = self.context();
+        ctx.require_compute("a shader storage buffer")?;
+        unsafe {
+            ctx.gl()
+                .bind_buffer_base(glow::SHADER_STORAGE_BUFFER, binding, Some(self.id()))
+        };
+        ctx.check("binding a storage buffer")
+    }
+
     /// The first `count` values of type `T`, read back to the CPU: what a compacting pass
     /// wrote, without reading the rest of its worst-case-sized buffer.
     pub fn read_prefix<T: bytemuck::Pod + Default>(&self, count: usize) -> Result<Vec<T>, GlError> {
