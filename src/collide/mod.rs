@@ -16,6 +16,10 @@
 //! auto), [`tri_test`] (Möller 1997, exact predicates), [`tiles`], [`stream_update`] (paper
 //! Table II, `cg_ports/`), [`deform`], and the driver [`pipeline`].
 //!
+//! Then and now (OpenGL 4.3): [`compute_update`] and [`compute_overlap`] are the stream
+//! update and the overlap test with reduction as compute passes (atomic-counter compaction),
+//! driven by [`compute_pipeline`].
+//!
 //! Baselines: [`solid`] (CPU AABB tree refit, Sec. 7.4.1), [`cullide`] (image-space culling
 //! with occlusion queries, Sec. 7.4.2) and [`brute_force`] (all pairs, the reference
 //! answer). [`scenes`] builds the deforming scenes of Table III; `report::paper1` measures
@@ -39,6 +43,9 @@
 pub mod aabb;
 pub mod aabb_textures;
 pub mod brute_force;
+pub mod compute_overlap;
+pub mod compute_pipeline;
+pub mod compute_update;
 pub mod cullide;
 pub mod deform;
 pub mod global_test;

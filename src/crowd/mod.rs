@@ -40,6 +40,7 @@ pub mod animation;
 pub mod body_part;
 pub mod bone_textures;
 pub mod character;
+pub mod compute;
 pub mod cpu_skinning;
 pub mod culling;
 pub mod horse;

@@ -187,7 +187,7 @@ pub struct CrowdRenderer {
 }
 
 /// Colour of each model.
-fn colour_of(kind: ModelKind) -> Vec3 {
+pub(super) fn colour_of(kind: ModelKind) -> Vec3 {
     match kind {
         ModelKind::Soldier => Vec3::new(0.55, 0.6, 0.45),
         ModelKind::Horse => Vec3::new(0.6, 0.42, 0.28),

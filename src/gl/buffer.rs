@@ -87,6 +87,9 @@ impl Buffer {
     pub(super) fn id(&self) -> glow::Buffer {
         self.obj.id
     }
+    pub(super) fn context(&self) -> &Context {
+        &self.obj.ctx
+    }
 
     /// Write `data` at `offset` bytes.
     pub fn write<T: bytemuck::Pod>(&self, offset: usize, data: &[T]) -> Result<(), GlError> {
@@ -134,6 +137,17 @@ impl Buffer {
         }
         self.obj.ctx.check("buffer read")?;
         Ok(out)
+    }
+
+    /// The first `out.len()` bytes, read back to the CPU (waits like [`Buffer::read`]).
+    pub(super) fn read_into(&self, out: &mut [u8]) -> Result<(), GlError> {
+        let gl = self.obj.ctx.gl();
+        unsafe {
+            gl.finish();
+            gl.bind_buffer(SCRATCH_TARGET, Some(self.obj.id));
+            gl.get_buffer_sub_data(SCRATCH_TARGET, 0, out);
+        }
+        self.obj.ctx.check("buffer read")
     }
 
     /// Copy `len` bytes from `src` at `src_offset` to this buffer at `dst_offset`, on the GPU.

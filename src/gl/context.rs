@@ -164,6 +164,8 @@ pub(super) struct Inner {
 /// Entry points glow does not bind, looked up by name.
 pub(super) struct ExtraEntryPoints {
     pub(super) get_query_iv: Option<unsafe extern "system" fn(u32, u32, *mut i32)>,
+    /// glGetProgramiv, for parameters of several values (a compute shader's work group size).
+    pub(super) get_program_iv: Option<unsafe extern "system" fn(u32, u32, *mut i32)>,
     #[allow(clippy::type_complexity)]
     pub(super) tex_sub_image_1d:
         Option<unsafe extern "system" fn(u32, i32, i32, i32, u32, u32, *const c_void)>,
@@ -173,7 +175,10 @@ impl ExtraEntryPoints {
     unsafe fn load(platform: &Platform) -> Self {
         let get_query_iv = platform.proc_address("glGetQueryiv");
         let tex_sub_image_1d = platform.proc_address("glTexSubImage1D");
+        let get_program_iv = platform.proc_address("glGetProgramiv");
         ExtraEntryPoints {
+            get_program_iv: (!get_program_iv.is_null())
+                .then(|| std::mem::transmute(get_program_iv)),
             get_query_iv: (!get_query_iv.is_null()).then(|| std::mem::transmute(get_query_iv)),
             tex_sub_image_1d: (!tex_sub_image_1d.is_null())
                 .then(|| std::mem::transmute(tex_sub_image_1d)),

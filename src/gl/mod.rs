@@ -6,7 +6,10 @@
 //! that draws rectangles or meshes into a framebuffer with a [`DrawState`].
 //!
 //! On top of them sit the two GPGPU building blocks the papers share: ping-pong
-//! [`reduce`]tion and depth [`peel`]ing. [`dump`] writes any texture to PNG, the tutorial's
+//! [`reduce`]tion and depth [`peel`]ing. Beside them, for OpenGL 4.3 contexts, the compute
+//! formulation ([`compute`]): [`ComputeProgram`]s over storage buffers with
+//! [`AtomicCounters`], and the same reduction in work-group shared memory
+//! ([`reduce_shared`]). [`dump`] writes any texture to PNG, the tutorial's
 //! first debugging tip.
 //!
 //! GL errors and framebuffer completeness are checked after every pass when
@@ -19,6 +22,7 @@
 //! `cg_ports/` keeps the names of the papers' printed listings it ports line for line.
 
 mod buffer;
+pub mod compute;
 mod context;
 pub mod dump;
 mod finite;
@@ -29,10 +33,13 @@ pub mod peel;
 mod program;
 pub mod query;
 pub mod reduce;
+pub mod reduce_shared;
+mod storage;
 mod texture;
 mod uniforms;
 
 pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
+pub use compute::{memory_barrier, Barrier, ComputeProgram, Dispatch, COMPUTE_VERSION};
 pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
 pub use finite::ensure_finite;
 pub use framebuffer::{Framebuffer, Rect};
@@ -42,6 +49,7 @@ pub use pass::{
 };
 pub use program::{Program, ShaderError, ShaderSource};
 pub use query::{OcclusionQuery, TimerQuery};
+pub use storage::AtomicCounters;
 pub use texture::{Filter, Texture, TextureFormat, Wrap};
 
 /// Everything that can go wrong in the GL layer, each naming what was being done.

@@ -80,21 +80,41 @@ impl Program {
         vertex: &[ShaderSource],
         fragment: &[ShaderSource],
     ) -> Result<Program, GlError> {
+        Program::link(
+            ctx,
+            &[
+                (glow::VERTEX_SHADER, "vertex", vertex),
+                (glow::FRAGMENT_SHADER, "fragment", fragment),
+            ],
+        )
+    }
+
+    /// Compile each stage `(GL shader kind, stage name, files)` and link them into one program.
+    pub(super) fn link(
+        ctx: &Context,
+        stages: &[(u32, &'static str, &[ShaderSource])],
+    ) -> Result<Program, GlError> {
         let gl = ctx.gl();
-        let files: Vec<&str> = vertex.iter().chain(fragment).map(|s| s.name).collect();
+        let files: Vec<&str> = stages
+            .iter()
+            .flat_map(|(_, _, parts)| parts.iter().map(|s| s.name))
+            .collect();
         let files = files.join(", ");
+        let all: Vec<ShaderSource> = stages
+            .iter()
+            .flat_map(|(_, _, parts)| parts.iter().copied())
+            .collect();
         let id = unsafe { gl.create_program() }.map_err(GlError::Invalid)?;
         let mut program = Program {
             ctx: ctx.clone(),
             id,
             files,
-            uniforms: Declared::parse(&[vertex, fragment].concat()),
+            uniforms: Declared::parse(&all),
             locations: RefCell::new(HashMap::new()),
         };
-        let shaders = [
-            compile(ctx, glow::VERTEX_SHADER, "vertex", vertex),
-            compile(ctx, glow::FRAGMENT_SHADER, "fragment", fragment),
-        ];
+        let shaders = stages
+            .iter()
+            .map(|&(kind, stage, parts)| compile(ctx, kind, stage, parts));
         let mut compiled = Vec::new();
         let mut first_error = None;
         for s in shaders {
@@ -157,6 +177,10 @@ impl Program {
     /// The files this program was built from.
     pub fn files(&self) -> &str {
         &self.files
+    }
+
+    pub(super) fn id(&self) -> glow::Program {
+        self.id
     }
 
     pub(super) fn bind(&self) {

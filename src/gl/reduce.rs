@@ -19,7 +19,7 @@ pub enum ReduceOp {
 
 impl ReduceOp {
     /// (shader op, map to non-zero on the first pass).
-    fn shader(self) -> (i32, bool) {
+    pub(super) fn shader(self) -> (i32, bool) {
         match self {
             ReduceOp::Sum => (0, false),
             ReduceOp::Min => (1, false),

@@ -37,6 +37,7 @@ pub mod assemble;
 pub mod buoyancy;
 pub mod clip;
 pub mod closed_form;
+pub mod compute;
 pub mod cpu_reference;
 pub mod framing;
 pub mod gpu;

@@ -17,6 +17,7 @@
 
 pub mod activation;
 pub mod chain;
+pub mod compute;
 pub mod cpu;
 pub mod detect;
 pub mod labelled;

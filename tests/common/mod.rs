@@ -50,3 +50,20 @@ pub fn json_of(args: &[&str]) -> serde_json::Value {
     );
     serde_json::from_slice(&out.stdout).expect("JSON on stdout")
 }
+
+/// The test context if it runs compute shaders (OpenGL 4.3, llvmpipe). On an older one
+/// (softpipe is 3.3) `None`, after checking that asking for compute is the clear error that
+/// names both versions, so the test can go on to show the classic path still runs.
+pub fn compute_context() -> (Context, bool) {
+    let ctx = context();
+    if ctx.has_compute() {
+        return (ctx, true);
+    }
+    let err = ctx.require_compute("this test").unwrap_err().to_string();
+    let (major, minor) = ctx.info().gl_version;
+    assert!(
+        err.contains("needs OpenGL 4.3") && err.contains(&format!("OpenGL {major}.{minor}")),
+        "{err}"
+    );
+    (ctx, false)
+}

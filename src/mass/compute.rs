@@ -1,0 +1,174 @@
+//! The compute formulation (OpenGL 4.3), "then and now" for sections 2.2-3.3: the volume
+//! integrals by the divergence theorem summed directly over triangles. One compute pass
+//! writes each triangle's signed-tetrahedron integrals (`glsl/mass/compute/
+//! triangle_integrals.comp`), and a reduction in shared memory
+//! ([`crate::gl::reduce_shared`]) sums them per body. Where the paper rasterizes the
+//! projected surface, peels every depth layer and sums pixels, this sums the exact
+//! per-triangle terms: no framing, no resolution, no peels.
+//!
+//! Every body goes through fp32 in a unit frame (its bounding-box centre subtracted in f64,
+//! divided per axis by a power of two), as the classic path does, and the sums are scaled
+//! back in f64.
+
+use super::integrals::VolumeIntegrals;
+use crate::gl::reduce::ReduceOp;
+use crate::gl::reduce_shared::SharedReducer;
+use crate::gl::{
+    ensure_finite, memory_barrier, query, Barrier, Buffer, BufferUsage, ComputeProgram, Context,
+    GlError,
+};
+use crate::mesh::Mesh;
+use crate::shader;
+use glam::{DVec3, Vec4};
+
+/// The integrand pass and the reduction.
+pub struct ComputeMass {
+    ctx: Context,
+    program: ComputeProgram,
+    reducer: SharedReducer,
+}
+
+/// What the compute path found for a set of bodies.
+#[derive(Clone, Debug)]
+pub struct ComputeResult {
+    /// One per body, about its bounding-box centre.
+    pub integrals: Vec<VolumeIntegrals>,
+    /// GPU time of the integrand pass and the reduction (timer query), milliseconds.
+    pub gpu_ms: f64,
+}
+
+/// A body's unit frame: `unit = (world - center) / scale`, scale a power of two per axis.
+fn unit_frame(mesh: &Mesh) -> (DVec3, DVec3) {
+    let b = mesh.bounds();
+    let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+    let center = (lo + hi) / 2.0;
+    let half = ((hi - lo) / 2.0).max(DVec3::splat(f64::MIN_POSITIVE));
+    let scale = half.to_array().map(|h| 2f64.powi(h.log2().ceil() as i32));
+    (center, DVec3::from_array(scale))
+}
+
+impl ComputeMass {
+    /// On a context below OpenGL 4.3, the error naming it.
+    pub fn new(ctx: &Context) -> Result<ComputeMass, GlError> {
+        ctx.require_compute("the compute formulation of paper 4")?;
+        Ok(ComputeMass {
+            ctx: ctx.clone(),
+            program: ComputeProgram::new(
+                ctx,
+                &[shader!("glsl/mass/compute/triangle_integrals.comp")],
+            )?,
+            reducer: SharedReducer::new(ctx)?,
+        })
+    }
+
+    /// The ten integrals of each body, all bodies in one integrand pass and one reduction.
+    pub fn integrate(&self, bodies: &[&Mesh]) -> Result<ComputeResult, GlError> {
+        if bodies.is_empty() {
+            return Ok(ComputeResult {
+                integrals: Vec::new(),
+                gpu_ms: 0.0,
+            });
+        }
+        // Each body's triangles in a segment of `per_body` slots; the rest are zero
+        // triangles, which add nothing.
+        let per_body = bodies
+            .iter()
+            .map(|m| m.triangles.len())
+            .max()
+            .unwrap_or(0)
+            .max(1);
+        let slots = per_body * bodies.len();
+        let mut corners = vec![Vec4::ZERO; 3 * slots];
+        let mut frames = Vec::with_capacity(bodies.len());
+        for (body, mesh) in bodies.iter().enumerate() {
+            if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+                return Err(GlError::Invalid(format!(
+                    "body {body}: vertex {i} is not finite ({:?})",
+                    mesh.positions[i]
+                )));
+            }
+            let (center, scale) = unit_frame(mesh);
+            for (k, tri) in mesh.triangles.iter().enumerate() {
+                for (corner, &v) in tri.iter().enumerate() {
+                    let p = (mesh.positions[v as usize].as_dvec3() - center) / scale;
+                    corners[3 * (body * per_body + k) + corner] = p.as_vec3().extend(1.0);
+                }
+            }
+            frames.push((center, scale));
+        }
+        let input = Buffer::from_slice(&self.ctx, &corners, BufferUsage::Static)?;
+        let terms = Buffer::new(&self.ctx, 3 * slots * 16, BufferUsage::GpuCopy)?;
+        let (sums, gpu_ms) = query::time_gpu(&self.ctx, || {
+            self.program
+                .dispatch("triangle integrals (compute)")
+                .storage(0, &input)
+                .storage(1, &terms)
+                .uniform("u_triangles", slots as u32)
+                .run_over(slots as u32)?;
+            memory_barrier(&self.ctx, &[Barrier::Storage]);
+            self.reducer.reduce_segments(
+                &terms,
+                3 * bodies.len() as u32,
+                per_body as u32,
+                ReduceOp::Sum,
+            )
+        })?;
+        let flat = sums.iter().flatten().copied();
+        ensure_finite(flat, "the volume integrals", "triangle integrals (compute)")?;
+        let n = bodies.len();
+        let integrals = frames
+            .iter()
+            .enumerate()
+            .map(|(body, &(center, scale))| {
+                let [l0, l1, l2] = [sums[body], sums[n + body], sums[2 * n + body]];
+                let f = |x: f32| x as f64;
+                let unit = VolumeIntegrals {
+                    origin: DVec3::ZERO,
+                    v: f(l0[0]),
+                    x: f(l0[1]),
+                    y: f(l0[2]),
+                    z: f(l0[3]),
+                    xx: f(l1[0]),
+                    yy: f(l1[1]),
+                    zz: f(l1[2]),
+                    xy: f(l2[0]),
+                    yz: f(l2[1]),
+                    zx: f(l2[2]),
+                };
+                VolumeIntegrals {
+                    origin: center,
+                    ..unit.stretched(scale)
+                }
+            })
+            .collect();
+        Ok(ComputeResult { integrals, gpu_ms })
+    }
+}
+
+/// The same sum on the CPU in f64 (the compute path's reference): the signed tetrahedra of
+/// every triangle, about `origin`.
+pub fn tetrahedron_sum(mesh: &Mesh, origin: DVec3) -> VolumeIntegrals {
+    let mut out = VolumeIntegrals {
+        origin,
+        ..VolumeIntegrals::default()
+    };
+    for tri in &mesh.triangles {
+        let [a, b, c] = tri.map(|v| mesh.positions[v as usize].as_dvec3() - origin);
+        let det = a.dot(b.cross(c));
+        let s = a + b + c;
+        let sq = a * a + b * b + c * c + s * s;
+        let yzx = |v: DVec3| DVec3::new(v.y, v.z, v.x);
+        let pr = a * yzx(a) + b * yzx(b) + c * yzx(c) + s * yzx(s);
+        out.v += det / 6.0;
+        out.x += det / 24.0 * s.x;
+        out.y += det / 24.0 * s.y;
+        out.z += det / 24.0 * s.z;
+        out.xx += det / 120.0 * sq.x;
+        out.yy += det / 120.0 * sq.y;
+        out.zz += det / 120.0 * sq.z;
+        out.xy += det / 120.0 * pr.x;
+        out.yz += det / 120.0 * pr.y;
+        out.zx += det / 120.0 * pr.z;
+    }
+    out
+}
