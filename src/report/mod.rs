@@ -17,6 +17,7 @@ pub mod paper4;
 pub mod plot;
 pub mod published;
 pub mod reproduce;
+pub mod then_and_now;
 
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
