@@ -95,6 +95,17 @@ impl ThenAndNow {
             }
         }
         caption += &self.verdict;
+        if let Some(frame) = self.stages.last() {
+            if let (Some(a), Some(b)) = (frame.classic_ms, frame.compute_ms) {
+                if a > 0.0 && b > 0.0 {
+                    caption += &format!(
+                        " Measured here, per {}: compute takes {:.2}x the classic time.",
+                        frame.stage,
+                        b / a
+                    );
+                }
+            }
+        }
         Table {
             caption,
             header: [
