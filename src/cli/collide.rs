@@ -4,6 +4,7 @@
 
 use anyhow::Context as _;
 use clap::builder::TypedValueParser as _;
+use classic_gpgpu::collide::compute_pipeline::ComputeCollider;
 use classic_gpgpu::collide::pipeline::{FrameResult, Options, StreamingCollider};
 use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
 use classic_gpgpu::collide::scenes::{Scene, SCENES};
@@ -36,6 +37,10 @@ pub struct PipelineArgs {
     /// renderer's maximum texture size.
     #[arg(long)]
     pub max_tile: Option<usize>,
+    /// The paper's pipeline (classic) or compute passes with an atomic-counter pair list
+    /// (compute, OpenGL 4.3; --readback and --max-tile do not apply).
+    #[arg(long, value_enum, default_value_t)]
+    pub formulation: super::Formulation,
 }
 
 /// `--predicate`: the names of [`Predicate`], listed in `--help`, parsed by its `FromStr`.
@@ -91,6 +96,13 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     };
     let (x, y) = (load(&args.a)?, load(&args.b)?);
     let options = args.pipeline.options(ctx, &x, &y)?;
+    if args.pipeline.formulation == super::Formulation::Compute {
+        anyhow::ensure!(
+            args.dump.is_none(),
+            "--dump writes the classic pipeline's textures; the compute formulation has none"
+        );
+        return run_collide_compute(ctx, &x, &y, options, json);
+    }
     let mut collider =
         StreamingCollider::new(ctx, &x, &y, options).context("setting up the AABB streams")?;
     // The first frame pays for shader compilation (llvmpipe compiles on first draw); the
@@ -104,6 +116,7 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     let renderer = ctx.info().renderer_line();
     let report = json!({
         "renderer": renderer,
+        "formulation": "classic",
         "triangles": [x.triangles.len(), y.triangles.len()],
         "leaf_size": collider.options.leaf_size,
         "predicate": collider.options.predicate.name(),
@@ -144,6 +157,69 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     Ok(())
 }
 
+/// `collide --formulation compute`: the same frame with compute passes.
+fn run_collide_compute(
+    ctx: &Context,
+    x: &Mesh,
+    y: &Mesh,
+    options: Options,
+    json: bool,
+) -> anyhow::Result<()> {
+    let mut collider = ComputeCollider::new(ctx, x, y, options)?;
+    collider.frame(&x.positions, &y.positions)?;
+    let frame = collider.frame(&x.positions, &y.positions)?;
+    let renderer = ctx.info().renderer_line();
+    if json {
+        let report = json!({
+            "renderer": renderer,
+            "formulation": "compute",
+            "triangles": [x.triangles.len(), y.triangles.len()],
+            "leaf_size": collider.options.leaf_size,
+            "leaves": [collider.x.leaves, collider.y.leaves],
+            "caps": frame.caps,
+            "pctps": frame.pctps,
+            "ctps": frame.ctps,
+            "eta": frame.eta,
+            "readback": {"bytes": frame.readback_bytes, "reads": frame.readback_reads},
+            "pairs": frame.pairs.iter().map(|&(a, b)| [a, b]).collect::<Vec<_>>(),
+            "timings_ms": timings_json(&frame),
+        });
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        println!("renderer: {renderer} (compute formulation)");
+        print_frame(&frame);
+        use std::io::Write as _;
+        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+        for (a, b) in &frame.pairs {
+            writeln!(out, "{a} {b}")?;
+        }
+        out.flush()?;
+    }
+    Ok(())
+}
+
+/// Either formulation, frame by frame.
+enum AnyCollider {
+    Classic(Box<StreamingCollider>),
+    Compute(Box<ComputeCollider>),
+}
+
+impl AnyCollider {
+    fn frame(&mut self, px: &[glam::Vec3], py: &[glam::Vec3]) -> anyhow::Result<FrameResult> {
+        match self {
+            AnyCollider::Classic(c) => c.frame(px, py),
+            AnyCollider::Compute(c) => c.frame(px, py),
+        }
+    }
+
+    fn leaves(&self) -> [usize; 2] {
+        match self {
+            AnyCollider::Classic(c) => [c.x.stream.leaves.len(), c.y.stream.leaves.len()],
+            AnyCollider::Compute(c) => [c.x.leaves as usize, c.y.leaves as usize],
+        }
+    }
+}
+
 /// Run a deforming scene of Table III.
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
@@ -164,12 +240,16 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
     check_scene_counts(args)?;
     let scene = Scene::build(&args.scene, args.triangles)
         .with_context(|| format!("scenes: {}", SCENES.join(", ")))?;
-    let mut collider = StreamingCollider::new(
-        ctx,
-        &scene.x.rest,
-        &scene.y.rest,
-        args.pipeline.options(ctx, &scene.x.rest, &scene.y.rest)?,
-    )?;
+    let options = args.pipeline.options(ctx, &scene.x.rest, &scene.y.rest)?;
+    let (rest_x, rest_y) = (&scene.x.rest, &scene.y.rest);
+    let mut collider = match args.pipeline.formulation {
+        super::Formulation::Classic => AnyCollider::Classic(Box::new(StreamingCollider::new(
+            ctx, rest_x, rest_y, options,
+        )?)),
+        super::Formulation::Compute => AnyCollider::Compute(Box::new(ComputeCollider::new(
+            ctx, rest_x, rest_y, options,
+        )?)),
+    };
     let mut frames = Vec::new();
     for f in 0..args.frames {
         let (px, py) = scene.frame(f);
@@ -186,11 +266,12 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
     if json {
         let out = json!({
             "renderer": ctx.info().renderer_line(),
+            "formulation": args.pipeline.formulation.name(),
             "scene": scene.name,
             "label": scene.label,
             "triangles": [scene.triangles, scene.triangles],
-            "leaf_size": collider.options.leaf_size,
-        "leaves": [collider.x.stream.leaves.len(), collider.y.stream.leaves.len()],
+            "leaf_size": options.leaf_size,
+            "leaves": collider.leaves(),
             "frames": frames,
         });
         println!("{}", serde_json::to_string(&out)?);

@@ -11,6 +11,7 @@ use serde_json::json;
 use classic_gpgpu::gl::{dump, Context};
 
 use classic_gpgpu::crowd::character::{CharacterModel, ModelKind};
+use classic_gpgpu::crowd::compute::{self, ComputeCrowd};
 use classic_gpgpu::crowd::renderer::{CrowdRenderer, Method};
 use classic_gpgpu::crowd::scene::{self, RunStats};
 use classic_gpgpu::crowd::LodPolicy;
@@ -56,6 +57,11 @@ pub struct CrowdArgs {
     /// Seed of the crowd's placement and wandering.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// The paper's passes (classic, with --method) or compute skinning into a storage buffer
+    /// drawn directly (compute, OpenGL 4.3; no sprites, --method and the batch sizes do not
+    /// apply).
+    #[arg(long, value_enum, default_value_t)]
+    pub formulation: super::Formulation,
 }
 
 /// The library's [`ModelKind`], as the command line names it.
@@ -135,6 +141,9 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     }
     let (kind, method) = (ModelKind::from(args.model), Method::from(args.method));
     let model = CharacterModel::build(kind).context("building the character model")?;
+    if args.formulation == super::Formulation::Compute {
+        return run_compute(args, ctx, model, json);
+    }
     let mut renderer = CrowdRenderer::new(ctx, model).context("setting up the crowd renderer")?;
     if let Some(batch) = args.vs_batch {
         if batch == 0 {
@@ -176,6 +185,7 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if json {
         let value = json!({
             "renderer": ctx.info().renderer,
+            "formulation": "classic",
             "size": [w, h],
             "vertex_shader_batch": renderer.vertex_shader_batch(),
             "pass1_characters_per_draw": (0..renderer.model.lods.len())
@@ -187,6 +197,83 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&value)?);
     } else {
         print_text(ctx, &stats, &args.png, renderer.vertex_shader_batch());
+    }
+    Ok(())
+}
+
+/// `crowd --formulation compute`.
+fn run_compute(
+    args: &CrowdArgs,
+    ctx: &Context,
+    model: CharacterModel,
+    json: bool,
+) -> anyhow::Result<()> {
+    if args.sprites || args.vs_batch.is_some() || args.skin_batch.is_some() {
+        bail!(
+            "--sprites, --vs-batch and --skin-batch belong to the classic formulation; the \
+             compute formulation skins each LOD in one dispatch and draws it in one call"
+        );
+    }
+    let kind = model.kind;
+    let mut crowd = ComputeCrowd::new(ctx, model).context("setting up the compute crowd")?;
+    let (w, h) = args.size;
+    let target = scene::scene_target(ctx, w, h)?;
+    let aspect = w as f32 / h as f32;
+    let mut scene = if args.lod {
+        scene::lod_scene(
+            kind,
+            args.characters,
+            aspect,
+            args.seed,
+            LodPolicy::default(),
+        )
+    } else {
+        scene::table1_scene(kind, args.characters, aspect, args.seed)
+    };
+    let stats = compute::run(
+        ctx,
+        &mut crowd,
+        &target,
+        &mut scene,
+        args.frames,
+        1.0 / 30.0,
+    )?;
+    if let Some(path) = &args.png {
+        dump::texture_png(target.color(0), path, dump::DumpRange::Auto)
+            .with_context(|| format!("writing the snapshot {}", path.display()))?;
+    }
+    if json {
+        let value = json!({
+            "renderer": ctx.info().renderer,
+            "formulation": "compute",
+            "size": [w, h],
+            "run": stats,
+            "png": args.png,
+        });
+        println!("{}", serde_json::to_string_pretty(&value)?);
+    } else {
+        let p = &stats.passes;
+        println!(
+            "renderer        {} (compute formulation)",
+            ctx.info().renderer
+        );
+        println!("crowd           {} x {}", stats.characters, stats.model);
+        println!(
+            "frame           {:.2} ms wall clock, {:.1} FPS over {} frames",
+            stats.frame_ms, stats.fps, stats.frames
+        );
+        println!(
+            "bone matrices   {:.2} ms (CPU), upload {:.2} ms",
+            p.bones_ms, p.upload_ms
+        );
+        println!(
+            "skinning        {:.2} ms wall clock with glFinish, {:.2} ms GL timer query",
+            p.wall.pass1, p.gl_timer.pass1
+        );
+        println!(
+            "drawing         {:.2} ms wall clock with glFinish, {:.2} ms GL timer query",
+            p.wall.pass2, p.gl_timer.pass2
+        );
     }
     Ok(())
 }

@@ -4,6 +4,7 @@ use anyhow::{bail, Context as _};
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::mass::assemble::MassProperties;
 use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene, simulation};
+use classic_gpgpu::mass::compute::ComputeMass;
 use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::{GpuMass, GpuResult};
 use classic_gpgpu::mass::{analytic, clip, models, surface};
@@ -29,6 +30,10 @@ pub struct MassArgs {
     /// Write the colour-encoded integrand buffers of each peel here as PNG (Fig. 10).
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
+    /// The paper's peeling passes (classic) or one compute pass over the triangles with a
+    /// shared-memory reduction (compute, OpenGL 4.3; whole bodies, so no --below or --dump).
+    #[arg(long, value_enum, default_value_t)]
+    pub formulation: super::Formulation,
 }
 
 /// The largest framebuffer side the commands accept: ten RGBA32F targets of 2048² are
@@ -57,15 +62,20 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
     Framing::fit(&mesh, args.resolution)
         .map_err(|e| anyhow::anyhow!("model '{}': {e}", args.model))?;
 
-    let gpu = GpuMass::new(ctx, args.resolution).context("setting up the GPU passes")?;
-    // The first run compiles and allocates on the driver side; time the second.
     let model = || format!("model '{}'", args.model);
-    gpu.integrate(&mesh, args.below, None).with_context(model)?;
-    let start = Instant::now();
-    let result = gpu
-        .integrate(&mesh, args.below, args.dump.as_deref())
-        .with_context(model)?;
-    let gpu_wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (result, gpu_wall_ms) = match args.formulation {
+        super::Formulation::Classic => {
+            let gpu = GpuMass::new(ctx, args.resolution).context("setting up the GPU passes")?;
+            // The first run compiles and allocates on the driver side; time the second.
+            gpu.integrate(&mesh, args.below, None).with_context(model)?;
+            let start = Instant::now();
+            let result = gpu
+                .integrate(&mesh, args.below, args.dump.as_deref())
+                .with_context(model)?;
+            (result, start.elapsed().as_secs_f64() * 1e3)
+        }
+        super::Formulation::Compute => compute_mass(args, ctx, &mesh).with_context(model)?,
+    };
 
     let start = Instant::now();
     let exact = match args.below {
@@ -95,6 +105,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         eprintln!("warning: model '{}': {w}", args.model);
     }
     let output = MassOutput {
+        formulation: args.formulation.name(),
         model: &args.model,
         vertices: mesh.positions.len(),
         triangles: mesh.triangles.len(),
@@ -127,7 +138,37 @@ fn number(v: f64) -> String {
     }
 }
 
+/// `mass --formulation compute`: the integrals summed over triangles in one compute pass.
+fn compute_mass(
+    args: &MassArgs,
+    ctx: &Context,
+    mesh: &classic_gpgpu::mesh::Mesh,
+) -> anyhow::Result<(GpuResult, f64)> {
+    if args.below.is_some() || args.dump.is_some() {
+        bail!(
+            "--below and --dump need the classic formulation (the compute formulation integrates \
+             whole bodies and has no integrand images)"
+        );
+    }
+    let compute = ComputeMass::new(ctx).context("setting up the compute pass")?;
+    compute.integrate(&[mesh])?;
+    let start = Instant::now();
+    let result = compute.integrate(&[mesh])?;
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let framing = Framing::fit(mesh, args.resolution).map_err(anyhow::Error::msg)?;
+    Ok((
+        GpuResult {
+            integrals: result.integrals[0],
+            peels: 0,
+            framing,
+            gpu_ms: result.gpu_ms,
+        },
+        wall_ms,
+    ))
+}
+
 struct MassOutput<'a> {
+    formulation: &'static str,
     model: &'a str,
     vertices: usize,
     triangles: usize,
@@ -147,6 +188,7 @@ impl MassOutput<'_> {
     fn json(&self) -> serde_json::Value {
         let f = &self.result.framing;
         json!({
+            "formulation": self.formulation,
             "model": self.model,
             "vertices": self.vertices,
             "triangles": self.triangles,

@@ -4,6 +4,7 @@
 use anyhow::{bail, Context as _};
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::mlp::chain::{Formulation, GpuMlp, GpuNetwork, StepTimes};
+use classic_gpgpu::mlp::compute::ComputeMlp;
 use classic_gpgpu::mlp::cpu::{forward, CpuProduct};
 use classic_gpgpu::mlp::detect::{
     classify_cpu, classify_gpu, mask_image, shipped_detector, Classified, THRESHOLD,
@@ -39,8 +40,9 @@ enum MlpCommand {
 /// Where the network is evaluated.
 #[derive(clap::Args, Debug)]
 struct Engine {
-    /// GPU formulation: the paper's one-value-per-texel passes, or the packed RGBA passes
-    /// [default: faithful].
+    /// GPU formulation: the paper's one-value-per-texel passes, the packed RGBA passes (both
+    /// classic), or a tiled shared-memory compute pass per layer (compute, OpenGL 4.3; `mlp
+    /// run` only) [default: faithful].
     #[arg(long, value_enum, conflicts_with = "cpu")]
     formulation: Option<FormulationArg>,
     /// Evaluate on the CPU instead of the GPU. The GPU's options (--formulation,
@@ -67,15 +69,8 @@ enum FormulationArg {
     Faithful,
     /// Four floats per texel, a 4 x 4 block of outputs per fragment (MRT).
     Packed,
-}
-
-impl From<FormulationArg> for Formulation {
-    fn from(f: FormulationArg) -> Formulation {
-        match f {
-            FormulationArg::Faithful => Formulation::Faithful,
-            FormulationArg::Packed => Formulation::Packed,
-        }
-    }
+    /// Compute shaders: each layer one tiled product in shared memory, bias and sigmoid fused.
+    Compute,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -96,13 +91,29 @@ impl From<CpuChoice> for CpuProduct {
 }
 
 impl Engine {
+    /// The classic formulation (`compute` is handled before any texture is made).
     fn formulation(&self) -> Formulation {
-        self.formulation.unwrap_or(FormulationArg::Faithful).into()
+        match self.formulation {
+            Some(FormulationArg::Packed) => Formulation::Packed,
+            _ => Formulation::Faithful,
+        }
+    }
+
+    fn compute(&self) -> bool {
+        self.formulation == Some(FormulationArg::Compute)
+    }
+
+    /// `classic` or `compute`, as the JSON reports say which ran (null on the CPU).
+    fn family(&self) -> Option<&'static str> {
+        self.cpu
+            .is_none()
+            .then(|| if self.compute() { "compute" } else { "classic" })
     }
 
     /// How the outputs were computed, as the JSON reports name it.
     fn evaluated_by(&self) -> &'static str {
         match (self.cpu, self.formulation()) {
+            (None, _) if self.compute() => "gpu-compute",
             (Some(CpuChoice::Plain), _) => "cpu-plain",
             (Some(CpuChoice::Optimised), _) => "cpu-optimised",
             (None, Formulation::Packed) => "gpu-packed",
@@ -350,6 +361,24 @@ fn evaluate_batch(
         });
     }
     let ctx = context()?;
+    if engine.compute() {
+        anyhow::ensure!(
+            engine.max_vectors.is_none() && engine.inputs_per_pass.is_none(),
+            "--max-vectors and --inputs-per-pass split the classic passes; the compute \
+             formulation takes the whole batch and product in one pass per layer"
+        );
+        let mlp = ComputeMlp::new(&ctx)?;
+        let loaded = mlp.load(net)?;
+        let result = loaded.forward(batch)?;
+        return Ok(Evaluated {
+            outputs: result.outputs,
+            renderer: ctx.info().renderer_line(),
+            times: result.times,
+            network_upload_ms: Some(loaded.upload_ms),
+            tiles: 1,
+            product_passes: vec![1; net.layers().len()],
+        });
+    }
     let gpu = GpuMlp::new(&ctx)?;
     let loaded = engine.load(&gpu, net)?;
     let result = loaded.forward(batch, engine.max_vectors)?;
@@ -398,6 +427,7 @@ fn run_network(
         let report = json!({
             "renderer": result.renderer,
             "evaluated_by": args.engine.evaluated_by(),
+            "formulation": args.engine.family(),
             "tiles": result.tiles,
             "product_passes": result.product_passes,
             "outputs": outputs,
@@ -455,6 +485,11 @@ fn detect(
         "the detector network must take {WINDOW_INPUTS} inputs (an 11 x 11 window) and give 1 output; this one takes {} and gives {}",
         net.inputs(),
         net.outputs()
+    );
+    anyhow::ensure!(
+        !args.engine.compute(),
+        "mlp detect runs the classic formulations (faithful, packed) or the CPU; --formulation \
+         compute is for mlp run"
     );
     let image = read_grey(&args.image, "image")?;
     let start = Instant::now();

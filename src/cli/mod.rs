@@ -10,3 +10,25 @@ pub mod mass;
 pub mod mesh;
 pub mod mlp;
 pub mod selftest;
+
+/// `--formulation`: which formulation of a paper's kernels runs (issue 15, "then and now"):
+/// the paper's own, through the graphics pipeline (OpenGL 3.3), or compute shaders (OpenGL
+/// 4.3). `mlp` names its classic formulations `faithful` and `packed` instead of `classic`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Formulation {
+    /// The paper's 2007 formulation through the graphics pipeline.
+    #[default]
+    Classic,
+    /// Compute shaders, storage buffers, shared memory and atomics (OpenGL 4.3).
+    Compute,
+}
+
+impl Formulation {
+    /// The name the JSON reports under `formulation`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Formulation::Classic => "classic",
+            Formulation::Compute => "compute",
+        }
+    }
+}

@@ -10,7 +10,7 @@ use super::global_test::global_boxes_overlap;
 use super::pipeline::{FrameResult, Options};
 use super::stream_setup::{validate_mesh, AabbStream};
 use super::tri_test::{test_caps, ModelView};
-use crate::gl::{memory_barrier, query::time_gpu, Barrier, Context};
+use crate::gl::{memory_barrier, time_finished, Barrier, Context};
 use crate::mesh::Mesh;
 use glam::Vec3;
 use std::time::Instant;
@@ -57,7 +57,8 @@ impl ComputeCollider {
         })
     }
 
-    /// One frame: deformed vertices in, every intersecting triangle pair out. The timings
+    /// One frame: deformed vertices in, every intersecting triangle pair out. The GPU stages
+    /// are timed by wall clock between `glFinish` calls ([`time_finished`]); the timings
     /// use the classic names: `update` the leaf-box pass, `overlap` the pair test with its
     /// compaction, `readback` the count and the list; `stencil` and `encode` stay zero.
     pub fn frame(
@@ -98,7 +99,7 @@ impl ComputeCollider {
         self.y.upload(positions_y)?;
         self.ctx.finish_all();
         out.timings.download = t.elapsed().as_secs_f64() * 1e3;
-        let ((), update_ms) = time_gpu(&self.ctx, || {
+        let ((), update_ms) = time_finished(&self.ctx, || {
             self.update.run(&self.x)?;
             self.update.run(&self.y)?;
             memory_barrier(&self.ctx, &[Barrier::Storage]);
@@ -106,7 +107,8 @@ impl ComputeCollider {
         })?;
         out.timings.update = update_ms;
         // Every leaf pair tested, overlapping ones appended to the list.
-        let ((), overlap_ms) = time_gpu(&self.ctx, || self.overlap.dispatch(&self.x, &self.y))?;
+        let ((), overlap_ms) =
+            time_finished(&self.ctx, || self.overlap.dispatch(&self.x, &self.y))?;
         out.timings.overlap = overlap_ms;
         let t = Instant::now();
         let found = self.overlap.read(&self.x, &self.y)?;

@@ -11,14 +11,15 @@ use std::time::Instant;
 
 use super::bone_textures::matrix_row;
 use super::character::CharacterModel;
-use super::culling::{Camera, FramePlan};
+use super::culling::{plan_frame, Camera, FramePlan};
 use super::pass2_draw::{scene_state, Shading};
 use super::render_to_vbo::SkinnedColumn;
 use super::renderer::{colour_of, FrameStats, Instances};
+use super::scene::{clear, placements, RunStats, Scene};
 use super::validate::SkinnedMesh;
 use crate::gl::{
-    ensure_finite, memory_barrier, query, Barrier, Buffer, BufferUsage, ComputeProgram, Context,
-    Framebuffer, GlError, Primitive, Program, VertexArray,
+    ensure_finite, memory_barrier, time_finished, Barrier, Buffer, BufferUsage, ComputeProgram,
+    Context, Framebuffer, GlError, Primitive, Program, VertexArray,
 };
 use crate::shader;
 
@@ -272,8 +273,8 @@ impl ComputeCrowd {
     }
 }
 
-/// Runs `work`; when `timing`, inside a GL timer query and between `glFinish` calls:
-/// (timer query ms, wall-clock ms), else (0, 0).
+/// Runs `work`; when `timing`, between `glFinish` calls ([`time_finished`]: llvmpipe's
+/// timer queries do not see compute passes): (wall-clock ms, wall-clock ms), else (0, 0).
 fn timed(
     ctx: &Context,
     timing: bool,
@@ -282,12 +283,78 @@ fn timed(
     if !timing {
         return work().map(|()| (0.0, 0.0));
     }
+    let ((), ms) = time_finished(ctx, work)?;
+    Ok((ms, ms))
+}
+
+/// Plans and renders one frame with the compute formulation (the scene cleared first).
+pub fn render_frame(
+    crowd: &mut ComputeCrowd,
+    target: &Framebuffer,
+    scene: &Scene,
+    timing: bool,
+) -> Result<(FrameStats, FramePlan), GlError> {
+    let (models, phases) = placements(&scene.crowd);
+    let plan = plan_frame(
+        &models,
+        crowd.model.bound_centre,
+        crowd.model.bound_radius,
+        &scene.camera,
+        scene.lod.as_ref(),
+        scene.cull,
+    );
+    let instances = Instances {
+        models: &models,
+        phases: &phases,
+    };
+    clear(target)?;
+    let stats = crowd.render(target, &scene.camera, &instances, &plan, timing)?;
+    Ok((stats, plan))
+}
+
+/// As [`super::scene::run`] for the compute formulation: one warm-up frame, `frames`
+/// wall-clock-timed frames (median) and one frame with per-stage timing.
+pub fn run(
+    ctx: &Context,
+    crowd: &mut ComputeCrowd,
+    target: &Framebuffer,
+    scene: &mut Scene,
+    frames: usize,
+    dt: f32,
+) -> Result<RunStats, GlError> {
+    let stride = crowd.model.clip.stride;
+    render_frame(crowd, target, scene, false)?;
     ctx.finish_all();
-    let started = Instant::now();
-    let ((), gl_ms) = query::time_gpu(ctx, || {
-        work()?;
+    let mut times = Vec::with_capacity(frames);
+    for _ in 0..frames {
+        scene.crowd.step(dt, stride);
+        let started = Instant::now();
+        render_frame(crowd, target, scene, false)?;
         ctx.finish_all();
-        Ok(())
-    })?;
-    Ok((gl_ms, started.elapsed().as_secs_f64() * 1e3))
+        times.push(started.elapsed().as_secs_f64() * 1e3);
+    }
+    scene.crowd.step(dt, stride);
+    let (passes, plan) = render_frame(crowd, target, scene, true)?;
+    ctx.finish_all();
+    times.sort_by(f64::total_cmp);
+    let n = times.len();
+    let frame_ms = if n % 2 == 1 {
+        times[n / 2]
+    } else {
+        0.5 * (times[n / 2 - 1] + times[n / 2])
+    };
+    Ok(RunStats {
+        model: crowd.model.kind.name().to_string(),
+        method: "compute".to_string(),
+        vertex_shader_batch: 0,
+        characters: scene.crowd.agents.len(),
+        lod_and_culling: scene.lod.is_some(),
+        sprites_enabled: false,
+        frames,
+        frame_ms,
+        fps: 1e3 / frame_ms,
+        passes,
+        culled: plan.culled,
+        per_lod: [0, 1, 2].map(|l| plan.lods[l].len()),
+    })
 }

@@ -39,7 +39,9 @@ mod texture;
 mod uniforms;
 
 pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
-pub use compute::{memory_barrier, Barrier, ComputeProgram, Dispatch, COMPUTE_VERSION};
+pub use compute::{
+    memory_barrier, time_finished, Barrier, ComputeProgram, Dispatch, COMPUTE_VERSION,
+};
 pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
 pub use finite::ensure_finite;
 pub use framebuffer::{Framebuffer, Rect};

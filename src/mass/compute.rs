@@ -14,8 +14,8 @@ use super::integrals::VolumeIntegrals;
 use crate::gl::reduce::ReduceOp;
 use crate::gl::reduce_shared::SharedReducer;
 use crate::gl::{
-    ensure_finite, memory_barrier, query, Barrier, Buffer, BufferUsage, ComputeProgram, Context,
-    GlError,
+    ensure_finite, memory_barrier, time_finished, Barrier, Buffer, BufferUsage, ComputeProgram,
+    Context, GlError,
 };
 use crate::mesh::Mesh;
 use crate::shader;
@@ -33,7 +33,8 @@ pub struct ComputeMass {
 pub struct ComputeResult {
     /// One per body, about its bounding-box centre.
     pub integrals: Vec<VolumeIntegrals>,
-    /// GPU time of the integrand pass and the reduction (timer query), milliseconds.
+    /// Time of the integrand pass and the reduction (wall clock between `glFinish` calls,
+    /// [`time_finished`]), milliseconds.
     pub gpu_ms: f64,
 }
 
@@ -98,7 +99,7 @@ impl ComputeMass {
         }
         let input = Buffer::from_slice(&self.ctx, &corners, BufferUsage::Static)?;
         let terms = Buffer::new(&self.ctx, 3 * slots * 16, BufferUsage::GpuCopy)?;
-        let (sums, gpu_ms) = query::time_gpu(&self.ctx, || {
+        let (sums, gpu_ms) = time_finished(&self.ctx, || {
             self.program
                 .dispatch("triangle integrals (compute)")
                 .storage(0, &input)

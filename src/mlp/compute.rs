@@ -7,8 +7,8 @@
 use super::chain::StepTimes;
 use super::network::{Activation, Network};
 use crate::gl::{
-    ensure_finite, memory_barrier, Barrier, Buffer, BufferUsage, ComputeProgram, Context, GlError,
-    TimerQuery,
+    ensure_finite, memory_barrier, time_finished, Barrier, Buffer, BufferUsage, ComputeProgram,
+    Context, GlError,
 };
 use crate::shader;
 use ndarray::{Array2, ArrayView2};
@@ -112,9 +112,7 @@ impl ComputeNetwork<'_> {
         let mut x = Buffer::from_slice(ctx, x.as_slice().expect("standard"), BufferUsage::Static)?;
         ctx.finish_all();
         times.texture_creation = start.elapsed().as_secs_f64() * 1e3;
-        let query = TimerQuery::new(ctx)?;
-        query.begin();
-        let mut run = || -> Result<Buffer, GlError> {
+        let run = || -> Result<Buffer, GlError> {
             for layer in &self.layers {
                 let r = Buffer::new(ctx, l as usize * layer.m as usize * 4, BufferUsage::GpuCopy)?;
                 self.mlp
@@ -134,13 +132,11 @@ impl ComputeNetwork<'_> {
             }
             Ok(x.clone())
         };
-        let result = run();
-        query.end();
-        let result = result?;
+        let (result, matmul_ms) = time_finished(ctx, run)?;
         let start = Instant::now();
         let data: Vec<f32> = result.read()?;
         times.readback = start.elapsed().as_secs_f64() * 1e3;
-        times.matmul = query.milliseconds()?;
+        times.matmul = matmul_ms;
         ensure_finite(
             data.iter().copied(),
             "mlp: the outputs of the compute network",

@@ -18,6 +18,7 @@ pub mod plot;
 pub mod published;
 pub mod reproduce;
 pub mod selftest;
+pub mod then_and_now;
 
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};

@@ -33,6 +33,8 @@ pub struct Paper1Results {
     pub tiles: TileStudy,
     /// Empty when the sweep was skipped.
     pub leaf_sweep: Vec<SweepPoint>,
+    /// Classic vs compute vs CPU (issue 15).
+    pub then_and_now: crate::report::then_and_now::ThenAndNow,
 }
 
 /// How the run was set up.
@@ -292,6 +294,7 @@ pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
         } else {
             leaf_sweep(opts)?
         },
+        then_and_now: super::then_and_now::measure(opts)?,
     })
 }
 

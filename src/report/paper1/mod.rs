@@ -15,6 +15,7 @@ mod leaf_sweep;
 mod readback_schemes;
 mod table3;
 mod table4;
+mod then_and_now;
 mod tiles;
 
 pub use bench::{
@@ -96,6 +97,7 @@ impl Paper for Paper1 {
         tables.extend(fig7::tables(results));
         tables.push(readback_schemes::table(results));
         tables.push(tiles::table(results));
+        tables.push(results.then_and_now.table(&results.renderer));
         if !results.leaf_sweep.is_empty() {
             tables.push(leaf_sweep::table(results));
         }

@@ -40,6 +40,8 @@ pub struct Paper2Results {
     pub sprite_runs: Vec<RunStats>,
     /// PNGs written during the run, in the order they were taken.
     pub snapshots: Vec<Snapshot>,
+    /// Classic vs compute vs CPU (issue 15).
+    pub then_and_now: crate::report::then_and_now::ThenAndNow,
 }
 
 /// What the runs were set up with.
@@ -308,6 +310,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         lod_runs: Vec::new(),
         sprite_runs: Vec::new(),
         snapshots: Vec::new(),
+        then_and_now: Default::default(),
     };
     let mut snapshots = Vec::new();
     let mut snapshot = |texture: &Texture, file: String, shows: Shows| -> anyhow::Result<()> {
@@ -405,6 +408,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
     }
     bar.finish_and_clear();
     results.snapshots = snapshots;
+    results.then_and_now = super::then_and_now::measure(opts)?;
     Ok(results)
 }
 

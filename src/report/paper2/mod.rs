@@ -18,6 +18,7 @@ mod ratios;
 mod snapshots;
 mod stages;
 mod table1;
+mod then_and_now;
 
 pub use bench::{LodInfo, ModelInfo, Paper2Results, Setup, Shows, Snapshot, Variant};
 
@@ -49,6 +50,7 @@ impl Paper for Paper2 {
                 ratios::table(results, &paper.table1),
                 stages::table(results),
                 fig3_5::table(results, paper),
+                results.then_and_now.table(&results.renderer),
             ],
             claims: claims::claims(results),
             figures,

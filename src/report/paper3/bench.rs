@@ -36,6 +36,8 @@ pub struct Paper3Results {
     /// Every case and method; the first case's rows are Table 1's.
     pub measurements: Vec<Measurement>,
     pub detection: Detection,
+    /// Classic vs compute vs CPU (issue 15).
+    pub then_and_now: crate::report::then_and_now::ThenAndNow,
 }
 
 impl Paper3Results {
@@ -201,6 +203,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         load_average_1min: load_average(),
         measurements,
         detection,
+        then_and_now: super::then_and_now::measure(opts)?,
     })
 }
 

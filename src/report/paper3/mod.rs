@@ -11,6 +11,7 @@ mod fig2;
 mod gflops;
 mod table1;
 mod targets;
+mod then_and_now;
 
 pub use bench::{Detection, DetectionRun, Measurement, Method, Paper3Results};
 
@@ -42,6 +43,7 @@ impl Paper for Paper3 {
                 gflops::table(results),
                 fig2::table(results),
                 targets::table(results),
+                results.then_and_now.table(&results.renderer),
             ],
             claims: claims::claims(results, paper),
             figures,

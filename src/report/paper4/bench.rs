@@ -21,6 +21,8 @@ pub struct Paper4Results {
     pub buoyancy: BuoyancyRun,
     /// Peels of the buoyant bunny dumped for Fig. 10 (`fig10_bunny/peel<k>_target0.png`).
     pub fig10_peels: usize,
+    /// Classic vs compute vs CPU (issue 15).
+    pub then_and_now: crate::report::then_and_now::ThenAndNow,
 }
 
 /// One paper object at every resolution.
@@ -139,6 +141,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         objects,
         buoyancy: measure_buoyancy(opts, steps)?,
         fig10_peels: buoyant_bunny_peels(opts)?,
+        then_and_now: super::then_and_now::measure(opts)?,
     })
 }
 

@@ -12,6 +12,7 @@ mod fig10;
 mod fig4;
 mod fig5;
 mod table1;
+mod then_and_now;
 
 pub use bench::{BuoyancyRun, ObjectRun, Paper4Results, ResolutionRow};
 
@@ -45,6 +46,7 @@ impl Paper for Paper4 {
                 fig5::table(results),
                 break_even::table(results),
                 buoyancy::table(results, paper),
+                results.then_and_now.table(&results.renderer),
             ],
             claims: claims::claims(results, paper),
             figures,
