@@ -60,6 +60,10 @@ struct Engine {
     /// product].
     #[arg(long, conflicts_with = "cpu", value_parser = at_least_one)]
     inputs_per_pass: Option<usize>,
+    /// After the run, print a per-pass table to stderr: GPU time of each pass (timestamp
+    /// queries, read after the run), its wall time, and the time spent waiting for the GPU.
+    #[arg(long, conflicts_with = "cpu")]
+    profile: bool,
 }
 
 /// The library's [`Formulation`], as the command line names it.
@@ -361,6 +365,7 @@ fn evaluate_batch(
         });
     }
     let ctx = context()?;
+    super::profile::start(&ctx, engine.profile);
     if engine.compute() {
         anyhow::ensure!(
             engine.max_vectors.is_none() && engine.inputs_per_pass.is_none(),
@@ -382,6 +387,7 @@ fn evaluate_batch(
     let gpu = GpuMlp::new(&ctx)?;
     let loaded = engine.load(&gpu, net)?;
     let result = loaded.forward(batch, engine.max_vectors)?;
+    super::profile::print(&ctx);
     Ok(Evaluated {
         outputs: result.outputs,
         renderer: ctx.info().renderer_line(),
@@ -501,9 +507,11 @@ fn detect(
         }
         None => {
             let ctx = context()?;
+            super::profile::start(&ctx, args.engine.profile);
             let gpu = GpuMlp::new(&ctx)?;
             let loaded = args.engine.load(&gpu, &net)?;
             let classified = classify_gpu(&loaded, &image, 1 << 18, args.engine.max_vectors)?;
+            super::profile::print(&ctx);
             (
                 classified,
                 ctx.info().renderer_line(),

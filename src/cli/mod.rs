@@ -32,3 +32,4 @@ impl Formulation {
         }
     }
 }
+pub mod profile;

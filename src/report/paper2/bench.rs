@@ -42,6 +42,8 @@ pub struct Paper2Results {
     pub snapshots: Vec<Snapshot>,
     /// Classic vs compute vs CPU (issue 15).
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
+    /// Where the time of this run went, pass by pass.
+    pub profile: Option<crate::gl::profile::ProfileTable>,
 }
 
 /// What the runs were set up with.
@@ -311,6 +313,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         sprite_runs: Vec::new(),
         snapshots: Vec::new(),
         then_and_now: Default::default(),
+        profile: None,
     };
     let mut snapshots = Vec::new();
     let mut snapshot = |texture: &Texture, file: String, shows: Shows| -> anyhow::Result<()> {

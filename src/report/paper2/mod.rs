@@ -14,6 +14,7 @@ mod bench;
 mod claims;
 mod fidelity;
 mod fig3_5;
+mod profile;
 mod ratios;
 mod snapshots;
 mod stages;
@@ -36,7 +37,9 @@ impl Paper for Paper2 {
     type Results = Paper2Results;
 
     fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Paper2Results> {
-        bench::measure(opts)
+        let (mut results, table) = super::profile::profiled(opts.gl, || bench::measure(opts))?;
+        results.profile = Some(table);
+        Ok(results)
     }
 
     fn section(opts: &BenchOptions, results: &Paper2Results) -> anyhow::Result<Section> {
@@ -51,7 +54,10 @@ impl Paper for Paper2 {
                 stages::table(results),
                 fig3_5::table(results, paper),
                 results.then_and_now.table(&results.renderer),
-            ],
+            ]
+            .into_iter()
+            .chain(profile::table(results))
+            .collect(),
             claims: claims::claims(results),
             figures,
             fidelity: fidelity::rows(results),

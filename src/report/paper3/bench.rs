@@ -38,6 +38,8 @@ pub struct Paper3Results {
     pub detection: Detection,
     /// Classic vs compute vs CPU (issue 15).
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
+    /// Where the time of this run went, pass by pass.
+    pub profile: Option<crate::gl::profile::ProfileTable>,
 }
 
 impl Paper3Results {
@@ -190,12 +192,17 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         let reference = forward(CpuProduct::Plain, &case.network, case.batch.view()).outputs;
         for method in Method::ALL {
             bar.set_message(format!("{} / {}", case.name, method.label()));
+            let label = method.label();
+            let _scope = crate::gl::profile::scope(ctx, &label);
             measurements.push(measure_case(&gpu, case, method, repeats, &reference)?);
             bar.inc(1);
         }
     }
     bar.finish_and_clear();
-    let detection = detect_photo(opts, &gpu, &photo)?;
+    let detection = {
+        let _scope = crate::gl::profile::scope(ctx, "Fig. 2: text.png classified");
+        detect_photo(opts, &gpu, &photo)?
+    };
     Ok(Paper3Results {
         renderer: ctx.info().renderer_line(),
         quick: opts.quick,
@@ -204,6 +211,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         measurements,
         detection,
         then_and_now: super::then_and_now::measure(opts)?,
+        profile: None,
     })
 }
 
