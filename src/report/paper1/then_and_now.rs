@@ -137,7 +137,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
 fn rows(c: Columns, k: Option<Columns>, cpu: Option<Columns>) -> Vec<StageRow> {
     let pick = |cols: &Option<Columns>, f: fn(&Columns) -> &Vec<f64>| {
         cols.as_ref()
-            .map(|c| f(c))
+            .map(f)
             .filter(|v| !v.is_empty())
             .map(|v| median(v.clone()))
     };
