@@ -201,7 +201,7 @@ fn atomic_counter_compacts_a_stream() {
         let mut got: Vec<u32> = kept.read_prefix(count).unwrap();
         got.sort();
         let want: Vec<u32> = (0..values.len() as u32)
-            .filter(|&i| values[i as usize] % divisor == 0)
+            .filter(|&i| values[i as usize].is_multiple_of(divisor))
             .collect();
         assert_eq!(got, want, "divisor {divisor}");
     }
