@@ -1,0 +1,148 @@
+//! `--formulation classic|compute` on each paper's command: the JSON says which ran, and the
+//! compute run gives the classic run's answer. Below OpenGL 4.3 (softpipe) asking for compute
+//! is a clear error with a non-zero exit, and the classic default still runs.
+
+use common::{classic_gpgpu, compute_context, json_of};
+
+mod common;
+
+/// The compute run, or on a context below 4.3 its clear error (then `None`).
+fn compute_json(args: &[&str], has_compute: bool) -> Option<serde_json::Value> {
+    if has_compute {
+        return Some(json_of(args));
+    }
+    let out = classic_gpgpu(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} must fail below OpenGL 4.3");
+    assert!(stderr.contains("needs OpenGL 4.3"), "{args:?}: {stderr}");
+    None
+}
+
+#[test]
+fn collide_scene_same_pairs_in_both_formulations() {
+    let (_, compute) = compute_context();
+    let args = [
+        "--json",
+        "collide-scene",
+        "interlocking-tori",
+        "--frames",
+        "3",
+        "--triangles",
+        "800",
+    ];
+    let classic = json_of(&args);
+    assert_eq!(classic["formulation"], "classic");
+    let with = [&args[..], &["--formulation", "compute"]].concat();
+    let Some(now) = compute_json(&with, compute) else {
+        return;
+    };
+    assert_eq!(now["formulation"], "compute");
+    for f in 0..3 {
+        for key in ["caps", "ctps", "pctps"] {
+            assert_eq!(
+                now["frames"][f][key], classic["frames"][f][key],
+                "frame {f} {key}"
+            );
+        }
+    }
+}
+
+#[test]
+fn mass_compute_matches_the_analytic_volume_and_refuses_below() {
+    let (_, compute) = compute_context();
+    let classic = json_of(&["--json", "mass", "torus"]);
+    assert_eq!(classic["formulation"], "classic");
+    let Some(now) = compute_json(
+        &["--json", "mass", "torus", "--formulation", "compute"],
+        compute,
+    ) else {
+        return;
+    };
+    assert_eq!(now["formulation"], "compute");
+    assert_eq!(now["peels"], 0);
+    let (v, exact) = (
+        now["volume"].as_f64().unwrap(),
+        now["analytic"]["volume"].as_f64().unwrap(),
+    );
+    assert!((v - exact).abs() <= 1e-5 * exact, "{v} vs {exact}");
+    let out = classic_gpgpu(&["mass", "torus", "--formulation", "compute", "--below", "0"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--below") && err.contains("classic formulation"),
+        "{err}"
+    );
+}
+
+#[test]
+fn mlp_run_compute_gives_the_faithful_outputs() {
+    let (_, compute) = compute_context();
+    let dir = std::env::temp_dir().join(format!("compute_cli_mlp_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let network = dir.join("net.json");
+    let input = dir.join("in.json");
+    std::fs::write(
+        &network,
+        r#"{"layers":[{"weights":[[0.5,-1.0,0.25],[1.5,0.5,-0.75]],"bias":[0.1,-0.2],
+            "activation":"sigmoid"},{"weights":[[1.0,-2.0]],"bias":[0.3],"activation":"identity"}]}"#,
+    )
+    .unwrap();
+    std::fs::write(&input, "[[1,2,3],[0.5,-1,0],[0,0,0]]").unwrap();
+    let (n, i) = (network.to_str().unwrap(), input.to_str().unwrap());
+    let classic = json_of(&["--json", "mlp", "run", "--network", n, "--input", i]);
+    assert_eq!(classic["formulation"], "classic");
+    let args = [
+        "--json",
+        "mlp",
+        "run",
+        "--network",
+        n,
+        "--input",
+        i,
+        "--formulation",
+        "compute",
+    ];
+    if let Some(now) = compute_json(&args, compute) {
+        assert_eq!(now["formulation"], "compute");
+        assert_eq!(now["evaluated_by"], "gpu-compute");
+        for (a, b) in now["outputs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(classic["outputs"].as_array().unwrap())
+        {
+            let (a, b) = (a[0].as_f64().unwrap(), b[0].as_f64().unwrap());
+            // Three-term sums of values near 1: a few fp32 ulps.
+            assert!((a - b).abs() < 1e-5, "{a} vs {b}");
+        }
+        let out = classic_gpgpu(&[&args[1..], &["--max-vectors", "2"]].concat());
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--max-vectors"), "{err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn crowd_compute_reports_its_formulation() {
+    let (_, compute) = compute_context();
+    let args = [
+        "--json",
+        "crowd",
+        "--characters",
+        "4",
+        "--frames",
+        "1",
+        "--size",
+        "64x48",
+    ];
+    assert_eq!(json_of(&args)["formulation"], "classic");
+    let with = [&args[..], &["--formulation", "compute"]].concat();
+    if let Some(now) = compute_json(&with, compute) {
+        assert_eq!(now["formulation"], "compute");
+        assert_eq!(now["run"]["characters"], 4);
+        assert_eq!(now["run"]["passes"]["skinned"], 4);
+    }
+    let out = classic_gpgpu(&["crowd", "--formulation", "compute", "--skin-batch", "2"]);
+    assert!(!out.status.success());
+}
