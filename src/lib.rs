@@ -23,3 +23,4 @@ pub mod mass;
 pub mod mesh;
 pub mod mlp;
 pub mod report;
+pub mod view;

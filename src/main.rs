@@ -59,6 +59,9 @@ enum Command {
     Lecture3(cli::lecture3::Lecture3Command),
     /// Lecture 3's section: every technique against its CPU reference, tables and figures.
     Lecture3Bench(BenchArgs<report::lecture3::Lecture3Options>),
+    /// Watch a technique live in a window, its intermediate buffers one key away (or draw the
+    /// same frame headless with --headless).
+    View(cli::view::ViewArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -148,6 +151,7 @@ fn main() -> ExitCode {
         Command::Lecture3Bench(a) => {
             global.bench::<report::lecture3::Lecture3>(&a, "lecture3-bench")
         }
+        Command::View(a) => cli::view::run(&a, || global.context()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

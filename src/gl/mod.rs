@@ -31,6 +31,7 @@ pub mod query;
 pub mod reduce;
 mod texture;
 mod uniforms;
+pub mod window;
 
 pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
 pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
@@ -43,6 +44,7 @@ pub use pass::{
 pub use program::{Program, ShaderError, ShaderSource};
 pub use query::{OcclusionQuery, TimerQuery};
 pub use texture::{Filter, Texture, TextureFormat, Wrap};
+pub use window::GlWindow;
 
 /// Everything that can go wrong in the GL layer, each naming what was being done.
 #[derive(Debug, thiserror::Error)]
