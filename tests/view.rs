@@ -255,3 +255,26 @@ fn unknown_scene_is_an_error_naming_the_scenes() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("touching-tori"), "{stderr}");
 }
+
+#[test]
+fn mass_window_matches_headless() {
+    window_matches_headless("mass", &["mass", "torus", "--resolution", "32"], 3);
+}
+
+#[test]
+fn mass_peel_layers_window_matches_headless() {
+    window_matches_headless(
+        "mass-peels",
+        &["mass", "cube", "--resolution", "32", "--buffer", "1"],
+        2,
+    );
+}
+
+#[test]
+fn buoyancy_window_matches_headless() {
+    window_matches_headless(
+        "buoyancy",
+        &["buoyancy", "--bodies", "6", "--resolution", "16"],
+        3,
+    );
+}

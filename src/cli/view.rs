@@ -49,6 +49,25 @@ pub enum DemoCommand {
         #[arg(long)]
         triangles: Option<usize>,
     },
+    /// Paper 4: a model turning, its volume and centre of mass by depth peeling beside the
+    /// analytic ones, each peel's integrand targets (keys l and t cycle them).
+    Mass {
+        /// One of the paper's objects (cube, sphere, teapot, torus, knot, bunny, pipe) or an
+        /// OBJ file.
+        model: String,
+        /// Peel resolution N (N x N).
+        #[arg(long, default_value_t = 64)]
+        resolution: u32,
+    },
+    /// Paper 4, section 5: bodies floating on still water, the peel layers of the batch.
+    Buoyancy {
+        /// Number of bodies (the paper's scene has 50).
+        #[arg(long, default_value_t = 50)]
+        bodies: usize,
+        /// Per-body peel resolution (the paper's 32).
+        #[arg(long, default_value_t = 32)]
+        resolution: u32,
+    },
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -71,6 +90,14 @@ impl DemoCommand {
             DemoCommand::CollideScene { scene, triangles } => DemoSpec::CollideScene {
                 scene: scene.clone(),
                 triangles: *triangles,
+            },
+            DemoCommand::Mass { model, resolution } => DemoSpec::Mass {
+                model: model.clone(),
+                resolution: *resolution,
+            },
+            DemoCommand::Buoyancy { bodies, resolution } => DemoSpec::Buoyancy {
+                bodies: *bodies,
+                resolution: *resolution,
             },
         }
     }

@@ -1,7 +1,10 @@
 //! The demos, one file per paper, and [`DemoSpec`]: which demo, with its arguments, as the
 //! command line names it.
 
+mod buoyancy;
 mod collide;
+mod mass;
+mod peels;
 
 use super::Demo;
 use crate::gl::Context;
@@ -14,6 +17,10 @@ pub enum DemoSpec {
         scene: String,
         triangles: Option<usize>,
     },
+    /// Paper 4: a model (paper object or OBJ) turning, peeled at `resolution`.
+    Mass { model: String, resolution: u32 },
+    /// Paper 4, section 5: `bodies` floating, each peeled at `resolution`.
+    Buoyancy { bodies: usize, resolution: u32 },
 }
 
 impl DemoSpec {
@@ -21,6 +28,8 @@ impl DemoSpec {
     pub fn name(&self) -> String {
         match self {
             DemoSpec::CollideScene { scene, .. } => format!("collide-scene {scene}"),
+            DemoSpec::Mass { model, .. } => format!("mass {model}"),
+            DemoSpec::Buoyancy { .. } => "buoyancy".to_string(),
         }
     }
 
@@ -34,6 +43,12 @@ impl DemoSpec {
                 }
                 s
             }
+            DemoSpec::Mass { model, resolution } => {
+                format!("mass {model} --resolution {resolution}")
+            }
+            DemoSpec::Buoyancy { bodies, resolution } => {
+                format!("buoyancy --bodies {bodies} --resolution {resolution}")
+            }
         }
     }
 
@@ -43,6 +58,13 @@ impl DemoSpec {
             DemoSpec::CollideScene { scene, triangles } => format!(
                 "classic-gpgpu collide-scene {scene}{}",
                 triangles.map_or(String::new(), |t| format!(" --triangles {t}"))
+            ),
+            DemoSpec::Mass { model, resolution } => {
+                format!("classic-gpgpu mass {model} --resolution {resolution} --dump DIR")
+            }
+            DemoSpec::Buoyancy { bodies, resolution } => format!(
+                "classic-gpgpu buoyancy --bodies {bodies} --resolution {resolution} \
+                 --png-every 10 DIR"
             ),
         };
         format!(
@@ -57,6 +79,12 @@ impl DemoSpec {
         Ok(match self {
             DemoSpec::CollideScene { scene, triangles } => {
                 Box::new(collide::CollideDemo::new(ctx, scene, *triangles)?)
+            }
+            DemoSpec::Mass { model, resolution } => {
+                Box::new(mass::MassDemo::new(ctx, model, *resolution)?)
+            }
+            DemoSpec::Buoyancy { bodies, resolution } => {
+                Box::new(buoyancy::BuoyancyDemo::new(ctx, *bodies, *resolution)?)
             }
         })
     }
