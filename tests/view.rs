@@ -278,3 +278,42 @@ fn buoyancy_window_matches_headless() {
         3,
     );
 }
+
+#[test]
+fn crowd_two_pass_window_matches_headless() {
+    window_matches_headless("crowd", &["crowd", "--characters", "24"], 3);
+}
+
+#[test]
+fn crowd_vertex_shader_lod_colours_window_matches_headless() {
+    window_matches_headless(
+        "crowd-vs",
+        &["crowd", "--characters", "24", "--keys", "mc"],
+        2,
+    );
+}
+
+#[test]
+fn a_key_the_demo_lacks_is_an_error_listing_its_keys() {
+    let out = viewer(
+        &[
+            "crowd",
+            "--characters",
+            "4",
+            "--keys",
+            "q",
+            "--frames",
+            "1",
+            "--headless",
+            "--screenshot",
+            scratch("keys.png").to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("'q'") && stderr.contains("m, c"),
+        "{stderr}"
+    );
+}

@@ -32,6 +32,10 @@ pub struct ViewArgs {
     /// Draw the help text over the frame.
     #[arg(long, global = true)]
     pub help_overlay: bool,
+    /// The demo's own keys to press before the first frame, e.g. `mc` (crowd: vertex-shader
+    /// skinning, LOD colours); `h` in the window lists them.
+    #[arg(long, global = true, default_value = "")]
+    pub keys: String,
     /// Start paused (space runs, right arrow steps).
     #[arg(long, global = true)]
     pub paused: bool,
@@ -68,6 +72,13 @@ pub enum DemoCommand {
         #[arg(long, default_value_t = 32)]
         resolution: u32,
     },
+    /// Paper 2: a crowd of soldiers walking, two-pass or vertex-shader skinning (key m), the
+    /// pass-1 render target as an inset, LOD meshes coloured on demand (key c).
+    Crowd {
+        /// Number of characters.
+        #[arg(long, default_value_t = 256)]
+        characters: usize,
+    },
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -99,6 +110,9 @@ impl DemoCommand {
                 bodies: *bodies,
                 resolution: *resolution,
             },
+            DemoCommand::Crowd { characters } => DemoSpec::Crowd {
+                characters: *characters,
+            },
         }
     }
 }
@@ -120,7 +134,7 @@ pub fn run(
     if args.headless {
         let ctx = context()?;
         let frames = args.frames.unwrap_or(0);
-        let pixels = viewer::headless(&spec, &ctx, args.size, frames, &view)
+        let pixels = viewer::headless(&spec, &ctx, args.size, frames, &view, &args.keys)
             .with_context(|| format!("view {}", spec.name()))?;
         let path = args
             .screenshot
@@ -142,6 +156,7 @@ pub fn run(
             screenshot: args.screenshot.clone(),
             paused: args.paused,
             view,
+            keys: args.keys.clone(),
         },
     )
     .with_context(|| format!("view {}", spec.name()))

@@ -110,16 +110,38 @@ pub fn draw_frame(
     Ok(())
 }
 
-/// The headless path: build `spec` on `ctx`, take `frames` steps and draw the last frame into a
-/// `width x height` canvas; the RGBA pixels, rows from the bottom (as the window reads them).
+/// Press the demo's own keys `keys` (one character each) in order: a demo's settings as a
+/// command line gives them (`--keys mc`), the same in the window and headless.
+pub fn press_keys(demo: &mut dyn Demo, keys: &str) -> anyhow::Result<()> {
+    for c in keys.chars() {
+        if !demo.key(&c.to_string())? {
+            let known: Vec<&str> = demo.keys().iter().map(|(k, _)| *k).collect();
+            anyhow::bail!(
+                "--keys: '{c}' is not a key of this demo (its keys: {})",
+                if known.is_empty() {
+                    "none".to_string()
+                } else {
+                    known.join(", ")
+                }
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The headless path: build `spec` on `ctx`, press `keys`, take `frames` steps and draw the
+/// last frame into a `width x height` canvas; the RGBA pixels, rows from the bottom (as the
+/// window reads them).
 pub fn headless(
     spec: &DemoSpec,
     ctx: &Context,
     (width, height): (u32, u32),
     frames: usize,
     view: &ViewState,
+    keys: &str,
 ) -> anyhow::Result<Vec<u8>> {
     let mut demo = spec.build(ctx, (width, height))?;
+    press_keys(demo.as_mut(), keys)?;
     for _ in 0..frames {
         demo.step()?;
     }

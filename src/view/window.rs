@@ -27,6 +27,8 @@ pub struct WindowOptions {
     pub paused: bool,
     /// The first view (buffer shown, help).
     pub view: ViewState,
+    /// The demo's own keys pressed before the first frame.
+    pub keys: String,
 }
 
 /// Open the window and run `spec` until Esc, or for `options.frames` frames. Without a
@@ -105,7 +107,8 @@ impl App<'_> {
         let ctx = window.context().clone();
         let info = ctx.info();
         eprintln!("window: {} ({})", info.renderer_line(), info.why);
-        let demo = self.spec.build(&ctx, size)?;
+        let mut demo = self.spec.build(&ctx, size)?;
+        super::press_keys(demo.as_mut(), &self.options.keys)?;
         let canvas = Canvas::new(&ctx, size.0, size.1)?;
         Ok(Running {
             demo,

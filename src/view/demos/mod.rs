@@ -3,6 +3,7 @@
 
 mod buoyancy;
 mod collide;
+mod crowd;
 mod mass;
 mod peels;
 
@@ -21,6 +22,8 @@ pub enum DemoSpec {
     Mass { model: String, resolution: u32 },
     /// Paper 4, section 5: `bodies` floating, each peeled at `resolution`.
     Buoyancy { bodies: usize, resolution: u32 },
+    /// Paper 2: `characters` soldiers walking, LODs by distance.
+    Crowd { characters: usize },
 }
 
 impl DemoSpec {
@@ -30,6 +33,7 @@ impl DemoSpec {
             DemoSpec::CollideScene { scene, .. } => format!("collide-scene {scene}"),
             DemoSpec::Mass { model, .. } => format!("mass {model}"),
             DemoSpec::Buoyancy { .. } => "buoyancy".to_string(),
+            DemoSpec::Crowd { .. } => "crowd".to_string(),
         }
     }
 
@@ -49,6 +53,7 @@ impl DemoSpec {
             DemoSpec::Buoyancy { bodies, resolution } => {
                 format!("buoyancy --bodies {bodies} --resolution {resolution}")
             }
+            DemoSpec::Crowd { characters } => format!("crowd --characters {characters}"),
         }
     }
 
@@ -66,6 +71,9 @@ impl DemoSpec {
                 "classic-gpgpu buoyancy --bodies {bodies} --resolution {resolution} \
                  --png-every 10 DIR"
             ),
+            DemoSpec::Crowd { characters } => {
+                format!("classic-gpgpu crowd --characters {characters} --lod --png crowd.png")
+            }
         };
         format!(
             "`classic-gpgpu view {} --headless --screenshot frame.png` (or `{paper}`)",
@@ -75,7 +83,6 @@ impl DemoSpec {
 
     /// Build the demo on `ctx` for a canvas of `size` pixels.
     pub fn build(&self, ctx: &Context, size: (u32, u32)) -> anyhow::Result<Box<dyn Demo>> {
-        let _ = size;
         Ok(match self {
             DemoSpec::CollideScene { scene, triangles } => {
                 Box::new(collide::CollideDemo::new(ctx, scene, *triangles)?)
@@ -85,6 +92,9 @@ impl DemoSpec {
             }
             DemoSpec::Buoyancy { bodies, resolution } => {
                 Box::new(buoyancy::BuoyancyDemo::new(ctx, *bodies, *resolution)?)
+            }
+            DemoSpec::Crowd { characters } => {
+                Box::new(crowd::CrowdDemo::new(ctx, *characters, size)?)
             }
         })
     }
