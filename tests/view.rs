@@ -317,3 +317,22 @@ fn a_key_the_demo_lacks_is_an_error_listing_its_keys() {
         "{stderr}"
     );
 }
+
+#[test]
+fn mlp_detect_window_matches_headless() {
+    // A corner of the shipped test image, small enough for a software renderer.
+    let full = image::open(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/mlp/text.png"))
+        .unwrap()
+        .to_luma8();
+    let crop = image::imageops::crop_imm(&full, 96, 60, 96, 64).to_image();
+    let path = scratch("text-crop.png");
+    crop.save(&path).unwrap();
+    let image = path.to_str().unwrap();
+    window_matches_headless("mlp", &["mlp", "detect", image], 1);
+    // The threshold lowered twice and the network's raw output shown.
+    window_matches_headless(
+        "mlp-output",
+        &["mlp", "detect", image, "--keys=--", "--buffer", "1"],
+        1,
+    );
+}

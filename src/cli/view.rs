@@ -34,7 +34,7 @@ pub struct ViewArgs {
     pub help_overlay: bool,
     /// The demo's own keys to press before the first frame, e.g. `mc` (crowd: vertex-shader
     /// skinning, LOD colours); `h` in the window lists them.
-    #[arg(long, global = true, default_value = "")]
+    #[arg(long, global = true, default_value = "", allow_hyphen_values = true)]
     pub keys: String,
     /// Start paused (space runs, right arrow steps).
     #[arg(long, global = true)]
@@ -79,6 +79,20 @@ pub enum DemoCommand {
         #[arg(long, default_value_t = 256)]
         characters: usize,
     },
+    /// Paper 3: `mlp detect IMAGE`, the detected text pixels over the image, the threshold
+    /// adjustable (keys + and -).
+    #[command(subcommand)]
+    Mlp(MlpDemo),
+}
+
+#[derive(clap::Subcommand, Debug)]
+pub enum MlpDemo {
+    /// Text detection on an image (any format the `image` crate reads; e.g.
+    /// assets/mlp/text.png).
+    Detect {
+        /// The image.
+        image: PathBuf,
+    },
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -112,6 +126,9 @@ impl DemoCommand {
             },
             DemoCommand::Crowd { characters } => DemoSpec::Crowd {
                 characters: *characters,
+            },
+            DemoCommand::Mlp(MlpDemo::Detect { image }) => DemoSpec::MlpDetect {
+                image: image.clone(),
             },
         }
     }

@@ -5,6 +5,7 @@ mod buoyancy;
 mod collide;
 mod crowd;
 mod mass;
+mod mlp;
 mod peels;
 
 use super::Demo;
@@ -24,6 +25,8 @@ pub enum DemoSpec {
     Buoyancy { bodies: usize, resolution: u32 },
     /// Paper 2: `characters` soldiers walking, LODs by distance.
     Crowd { characters: usize },
+    /// Paper 3: text detection on an image.
+    MlpDetect { image: std::path::PathBuf },
 }
 
 impl DemoSpec {
@@ -34,6 +37,7 @@ impl DemoSpec {
             DemoSpec::Mass { model, .. } => format!("mass {model}"),
             DemoSpec::Buoyancy { .. } => "buoyancy".to_string(),
             DemoSpec::Crowd { .. } => "crowd".to_string(),
+            DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
         }
     }
 
@@ -54,6 +58,7 @@ impl DemoSpec {
                 format!("buoyancy --bodies {bodies} --resolution {resolution}")
             }
             DemoSpec::Crowd { characters } => format!("crowd --characters {characters}"),
+            DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
         }
     }
 
@@ -73,6 +78,12 @@ impl DemoSpec {
             ),
             DemoSpec::Crowd { characters } => {
                 format!("classic-gpgpu crowd --characters {characters} --lod --png crowd.png")
+            }
+            DemoSpec::MlpDetect { image } => {
+                format!(
+                    "classic-gpgpu mlp detect {} --out mask.png",
+                    image.display()
+                )
             }
         };
         format!(
@@ -96,6 +107,7 @@ impl DemoSpec {
             DemoSpec::Crowd { characters } => {
                 Box::new(crowd::CrowdDemo::new(ctx, *characters, size)?)
             }
+            DemoSpec::MlpDetect { image } => Box::new(mlp::MlpDemo::new(ctx, image)?),
         })
     }
 }
