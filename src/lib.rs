@@ -5,7 +5,7 @@
 //! OpenGL (through `glow`), shaders in GLSL, on a headless EGL context.
 //!
 //! Layers, and which way the arrows point: the binary (`main.rs` and its `cli/`, which parse
-//! arguments and print) -> [`report`] -> the four paper modules ([`collide`], [`crowd`],
+//! arguments and print) -> [`report`] and [`view`] (the live viewer) -> the four paper modules ([`collide`], [`crowd`],
 //! [`mlp`], [`mass`]) and the tutorial's [`lecture3`] -> [`mesh`], [`gl`]. A paper module is
 //! the algorithm alone: no command line, no report, no other paper. Only [`gl`] calls OpenGL
 //! or EGL, and it alone holds the code the compiler cannot check (raw GL calls): `unsafe` is
@@ -23,3 +23,4 @@ pub mod mass;
 pub mod mesh;
 pub mod mlp;
 pub mod report;
+pub mod view;

@@ -65,6 +65,9 @@ enum Command {
     /// feature they use, each against its CPU reference: one pass/fail line per check, a
     /// non-zero exit if any fails.
     Selftest(cli::selftest::SelftestArgs),
+    /// Watch a technique live in a window, its intermediate buffers one key away (or draw the
+    /// same frame headless with --headless).
+    View(cli::view::ViewArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -157,6 +160,7 @@ fn main() -> ExitCode {
         Command::Selftest(a) => global
             .context()
             .and_then(|ctx| cli::selftest::run(&a, &ctx, json)),
+        Command::View(a) => cli::view::run(&a, || global.context()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

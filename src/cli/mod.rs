@@ -33,3 +33,4 @@ impl Formulation {
     }
 }
 pub mod profile;
+pub mod view;

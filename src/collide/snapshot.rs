@@ -35,6 +35,43 @@ pub fn write_png(
     size: u32,
     path: &Path,
 ) -> Result<(), GlError> {
+    let colour = Texture::new_2d(ctx, size, size, TextureFormat::Rgba8)?;
+    let depth = Texture::new_2d(ctx, size, size, TextureFormat::Depth32F)?;
+    let target = Framebuffer::new(ctx, "snapshot", &[&colour], Some(&depth))?;
+    target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
+    target.clear_depth_stencil(1.0, 0)?;
+    draw(x, y, &target, Orbit::default())?;
+    dump::texture_png(&colour, path, dump::DumpRange::Auto)
+}
+
+/// A turn of the oblique view (the viewer's mouse): extra yaw and pitch in radians, and a zoom
+/// factor (2 shows the models twice as large).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orbit {
+    pub yaw: f32,
+    pub pitch: f32,
+    pub zoom: f32,
+}
+
+impl Default for Orbit {
+    fn default() -> Self {
+        Orbit {
+            yaw: 0.0,
+            pitch: 0.0,
+            zoom: 1.0,
+        }
+    }
+}
+
+/// Draw `x` and `y`, their colliding triangles and CAP boxes into `target` (which has colour
+/// and depth; the caller clears them), fitted to its aspect ratio.
+pub fn draw(
+    x: &SnapshotModel,
+    y: &SnapshotModel,
+    target: &Framebuffer,
+    orbit: Orbit,
+) -> Result<(), GlError> {
+    let ctx = target.context();
     let mut tri_vertices: Vec<[f32; 6]> = Vec::new();
     for (model, base) in [(x, BLUE), (y, CYAN)] {
         let mut colliding = vec![false; model.triangles.len()];
@@ -53,12 +90,13 @@ pub fn write_png(
         }
     }
     let bounds = Aabb::from_points(x.triangles.iter().chain(&y.triangles).flatten().copied());
-    let mvp = oblique_view(&bounds);
-    let colour = Texture::new_2d(ctx, size, size, TextureFormat::Rgba8)?;
-    let depth = Texture::new_2d(ctx, size, size, TextureFormat::Depth32F)?;
-    let target = Framebuffer::new(ctx, "snapshot", &[&colour], Some(&depth))?;
-    target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
-    target.clear_depth_stencil(1.0, 0)?;
+    let aspect = target.width() as f32 / target.height().max(1) as f32;
+    let fit = Mat4::from_scale(Vec3::new(
+        orbit.zoom / aspect.max(1.0),
+        orbit.zoom * aspect.min(1.0),
+        1.0,
+    ));
+    let mvp = fit * oblique_view(&bounds, orbit);
     let program = Program::new(
         ctx,
         &[shader!("glsl/collide/snapshot.vert")],
@@ -89,7 +127,7 @@ pub fn write_png(
             .uniform("u_light", Vec3::new(0.4, 0.6, 0.7).normalize());
         pass.draw_arrays(&vao, primitive, 0, vertices.len())?;
     }
-    dump::texture_png(&colour, path, dump::DumpRange::Auto)
+    Ok(())
 }
 
 fn vertex(p: Vec3, c: Vec3) -> [f32; 6] {
@@ -117,11 +155,12 @@ fn box_edges(b: &Aabb) -> Vec<Vec3> {
     out
 }
 
-/// Orthographic view of `b` turned 35 degrees about y and 25 about x, fitted to the image.
-fn oblique_view(b: &Aabb) -> Mat4 {
+/// Orthographic view of `b` turned 35 degrees about y and 25 about x (plus the orbit), fitted
+/// to the image.
+fn oblique_view(b: &Aabb, orbit: Orbit) -> Mat4 {
     let centre = (b.min + b.max) * 0.5;
     let radius = (b.max - b.min).length().max(1e-6) * 0.5;
-    let turn = Quat::from_rotation_x(0.45) * Quat::from_rotation_y(-0.6);
+    let turn = Quat::from_rotation_x(0.45 + orbit.pitch) * Quat::from_rotation_y(-0.6 + orbit.yaw);
     let scale = Mat4::from_scale(Vec3::new(1.0, 1.0, -1.0) / radius);
     scale * Mat4::from_quat(turn) * Mat4::from_translation(-centre)
 }
@@ -133,14 +172,35 @@ pub fn frame_png(
     (x, y): (&Mesh, &Mesh),
     path: &Path,
 ) -> anyhow::Result<()> {
-    let model = |m: &Mesh, stream: &super::AabbStream, side: usize| {
-        let mut colliding: Vec<u32> = frame
+    let (cx, cy) = frame_colliding(frame);
+    let (mx, my) = frame_models(collider, frame, (x, y), (&cx, &cy));
+    write_png(collider.context(), &mx, &my, 800, path)?;
+    Ok(())
+}
+
+/// The triangles of X and of Y that are in some colliding pair of `frame`, sorted.
+pub fn frame_colliding(frame: &FrameResult) -> (Vec<u32>, Vec<u32>) {
+    let side = |s: usize| {
+        let mut t: Vec<u32> = frame
             .pairs
             .iter()
-            .map(|p| if side == 0 { p.0 } else { p.1 })
+            .map(|p| if s == 0 { p.0 } else { p.1 })
             .collect();
-        colliding.sort_unstable();
-        colliding.dedup();
+        t.sort_unstable();
+        t.dedup();
+        t
+    };
+    (side(0), side(1))
+}
+
+/// The two models of `frame` as the picture draws them; `colliding` from [`frame_colliding`].
+pub fn frame_models<'a>(
+    collider: &StreamingCollider,
+    frame: &FrameResult,
+    (x, y): (&Mesh, &Mesh),
+    (cx, cy): (&'a [u32], &'a [u32]),
+) -> (SnapshotModel<'a>, SnapshotModel<'a>) {
+    let model = |m: &Mesh, stream: &super::AabbStream, side: usize, colliding: &'a [u32]| {
         let boxes = stream.leaf_boxes(&m.positions);
         let mut leaves: Vec<u32> = frame
             .cap_leaves
@@ -149,30 +209,16 @@ pub fn frame_png(
             .collect();
         leaves.sort_unstable();
         leaves.dedup();
-        (
-            (0..m.triangles.len()).map(|t| m.triangle(t)).collect(),
+        SnapshotModel {
+            triangles: (0..m.triangles.len()).map(|t| m.triangle(t)).collect(),
             colliding,
-            leaves.iter().map(|&l| boxes[l as usize]).collect(),
-        )
+            cap_boxes: leaves.iter().map(|&l| boxes[l as usize]).collect(),
+        }
     };
-    let (tx, cx, bx) = model(x, &collider.x.stream, 0);
-    let (ty, cy, by) = model(y, &collider.y.stream, 1);
-    write_png(
-        collider.context(),
-        &SnapshotModel {
-            triangles: tx,
-            colliding: &cx,
-            cap_boxes: bx,
-        },
-        &SnapshotModel {
-            triangles: ty,
-            colliding: &cy,
-            cap_boxes: by,
-        },
-        800,
-        path,
-    )?;
-    Ok(())
+    (
+        model(x, &collider.x.stream, 0, cx),
+        model(y, &collider.y.stream, 1, cy),
+    )
 }
 
 /// Paper Fig. 6: P0, the hierarchy P1..P3, the reduced P1', and the AABB textures.

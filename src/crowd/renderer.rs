@@ -181,12 +181,21 @@ pub struct CrowdRenderer {
     pass2: Pass2,
     sprites: Sprites,
     colour: Vec3,
+    /// Colour each LOD mesh in its own colour ([`LOD_COLOURS`]) instead of the model's.
+    lod_colours: bool,
     light: Vec3,
     /// At most this many characters per pass-1 batch, below what the render target holds.
     batch_limit: Option<usize>,
 }
 
 /// Colour of each model.
+/// The colours of LOD 0, 1 and 2 when [`CrowdRenderer::set_lod_colours`] is on.
+pub const LOD_COLOURS: [Vec3; 3] = [
+    Vec3::new(0.9, 0.25, 0.2),
+    Vec3::new(0.95, 0.85, 0.25),
+    Vec3::new(0.3, 0.8, 0.35),
+];
+
 pub(super) fn colour_of(kind: ModelKind) -> Vec3 {
     match kind {
         ModelKind::Soldier => Vec3::new(0.55, 0.6, 0.45),
@@ -229,6 +238,7 @@ impl CrowdRenderer {
             model,
             lods,
             colour,
+            lod_colours: false,
             light,
             batch_limit: None,
         })
@@ -245,6 +255,12 @@ impl CrowdRenderer {
         for lod in &mut self.lods {
             lod.vertex_shader.set_batch(batch);
         }
+    }
+
+    /// Draw each LOD mesh in its own colour ([`LOD_COLOURS`]: finest red, then yellow,
+    /// coarsest green), to see where the LOD distances fall.
+    pub fn set_lod_colours(&mut self, on: bool) {
+        self.lod_colours = on;
     }
 
     /// The impostor atlas (for figures).
@@ -336,16 +352,20 @@ impl CrowdRenderer {
         timing: bool,
     ) -> Result<FrameStats, GlError> {
         let mut stats = FrameStats::default();
-        let shading = Shading {
-            view_projection: camera.view_projection(),
-            colour: self.colour,
-            light: self.light,
-        };
         for lod in 0..self.lods.len() {
             let ids = &plan.lods[lod];
             if ids.is_empty() {
                 continue;
             }
+            let shading = Shading {
+                view_projection: camera.view_projection(),
+                colour: if self.lod_colours {
+                    LOD_COLOURS[lod % LOD_COLOURS.len()]
+                } else {
+                    self.colour
+                },
+                light: self.light,
+            };
             let started = Instant::now();
             let matrices = self.bone_matrices(instances, ids);
             stats.bones_ms += started.elapsed().as_secs_f64() * 1e3;

@@ -35,6 +35,8 @@ pub enum Renderer {
     EglSurfaceless,
     /// Mesa's off-screen library, for systems without EGL.
     Osmesa,
+    /// A window's context, made by glutin for the viewer (`view`); not a `--renderer` choice.
+    Window,
 }
 
 impl Renderer {
@@ -53,6 +55,7 @@ impl Renderer {
             Renderer::EglDevice => "egl-device",
             Renderer::EglSurfaceless => "egl-surfaceless",
             Renderer::Osmesa => "osmesa",
+            Renderer::Window => "window",
         }
     }
 
@@ -63,6 +66,7 @@ impl Renderer {
             Renderer::EglDevice => "`EGL_EXT_platform_device`: a GPU without a display (NVIDIA)",
             Renderer::EglSurfaceless => "`EGL_MESA_platform_surfaceless`: Mesa, usually llvmpipe",
             Renderer::Osmesa => "Mesa's off-screen library, for systems without EGL",
+            Renderer::Window => "a window's context (glutin), made by `view`",
         }
     }
 }
@@ -199,6 +203,12 @@ enum Platform {
         context: *mut c_void,
         _buffer: Vec<u8>,
     },
+    /// A context made elsewhere (a window's, by glutin): its loader, and a guard that keeps
+    /// the context and its surface alive until the last GL object is gone.
+    External {
+        loader: Box<dyn Fn(&str) -> *const c_void>,
+        _guard: Box<dyn std::any::Any>,
+    },
 }
 
 impl Platform {
@@ -211,6 +221,7 @@ impl Platform {
                 let name = CString::new(name).expect("GL names have no NUL");
                 unsafe { (lib.get_proc_address)(name.as_ptr()) }
             }
+            Platform::External { loader, .. } => loader(name),
         }
     }
 }
@@ -231,6 +242,8 @@ impl Drop for Inner {
                 let _ = egl.destroy_context(*display, *context);
             }
             Platform::OsMesa { lib, context, .. } => unsafe { (lib.destroy)(*context) },
+            // The guard drops the context after this.
+            Platform::External { .. } => {}
         }
     }
 }
@@ -263,6 +276,13 @@ impl Context {
             Renderer::EglDevice => &[Renderer::EglDevice],
             Renderer::EglSurfaceless => &[Renderer::EglSurfaceless],
             Renderer::Osmesa => &[Renderer::Osmesa],
+            Renderer::Window => {
+                return Err(GlError::Context(
+                    "a window's context is made by the viewer (`classic-gpgpu view`), not by \
+                     --renderer"
+                        .into(),
+                ))
+            }
         };
         let mut failures = Vec::new();
         for &platform in attempts {
@@ -288,6 +308,23 @@ impl Context {
              packages {MESA_PACKAGES} (apt-get install {MESA_PACKAGES}); OSMesa needs libosmesa6",
             failures.join("; ")
         )))
+    }
+
+    /// Wrap a context made elsewhere and current on this thread (a window's, made by glutin in
+    /// [`super::window`]): `gl` loaded from it, `loader` its entry points by name, `guard` what
+    /// keeps it alive (dropped after every GL object), `why` how it was made.
+    pub(super) fn from_current(
+        gl: glow::Context,
+        loader: impl Fn(&str) -> *const c_void + 'static,
+        guard: Box<dyn std::any::Any>,
+        platform: Renderer,
+        why: String,
+    ) -> Result<Context, GlError> {
+        let state = Platform::External {
+            loader: Box::new(loader),
+            _guard: guard,
+        };
+        Context::finish(gl, state, platform, why)
     }
 
     fn finish(

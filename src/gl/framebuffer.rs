@@ -174,6 +174,9 @@ impl Framebuffer {
     pub fn context(&self) -> &Context {
         &self.ctx
     }
+    pub(super) fn id(&self) -> glow::Framebuffer {
+        self.id
+    }
 
     /// Bind for drawing into every colour attachment, with the whole framebuffer as viewport.
     pub(super) fn bind(&self) {
@@ -223,6 +226,44 @@ impl Framebuffer {
     /// Start a pass drawing with `program` into this framebuffer (see [`Pass`]).
     pub fn pass<'a>(&'a self, program: &'a Program, name: &'a str) -> Result<Pass<'a>, GlError> {
         Pass::begin(self, program, name)
+    }
+
+    /// Copy `from` (a rectangle of `source`'s colour attachment 0) into `to` of this
+    /// framebuffer's colour attachment 0, scaled with nearest-texel sampling (a picture in a
+    /// picture: the viewer's insets).
+    pub fn blit_from(&self, source: &Framebuffer, from: Rect, to: Rect) -> Result<(), GlError> {
+        let gl = self.ctx.gl();
+        let corners = |r: Rect| {
+            (
+                r.x as i32,
+                r.y as i32,
+                (r.x + r.w) as i32,
+                (r.y + r.h) as i32,
+            )
+        };
+        let (a, b) = (corners(from), corners(to));
+        self.bind();
+        unsafe {
+            gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(source.id));
+            gl.read_buffer(glow::COLOR_ATTACHMENT0);
+            gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, Some(self.id));
+            gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
+            gl.blit_framebuffer(
+                a.0,
+                a.1,
+                a.2,
+                a.3,
+                b.0,
+                b.1,
+                b.2,
+                b.3,
+                glow::COLOR_BUFFER_BIT,
+                glow::NEAREST,
+            );
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.id));
+        }
+        self.ctx
+            .check(&format!("copying {} into {}", source.name, self.name))
     }
 
     /// Clear colour attachment `index` to `value` (float formats; bytes are normalised).

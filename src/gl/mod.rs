@@ -38,6 +38,7 @@ pub mod reduce_shared;
 mod storage;
 mod texture;
 mod uniforms;
+pub mod window;
 
 pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
 pub use compute::{
@@ -54,6 +55,7 @@ pub use program::{Program, ShaderError, ShaderSource};
 pub use query::{OcclusionQuery, TimerQuery};
 pub use storage::AtomicCounters;
 pub use texture::{Filter, Texture, TextureFormat, Wrap};
+pub use window::GlWindow;
 
 /// Everything that can go wrong in the GL layer, each naming what was being done.
 #[derive(Debug, thiserror::Error)]

@@ -44,6 +44,11 @@ impl GpuMass {
         })
     }
 
+    /// The depth peeler (to capture its peels).
+    pub fn peeler(&self) -> &Peeler {
+        &self.peeler
+    }
+
     /// The ten integrals of `mesh` (below the plane `z = below` when given). Errors on a
     /// mesh that cannot be framed (empty, non-finite), and on a body the frame cannot see
     /// (one that covers no pixel centre: thinner than a pixel across).

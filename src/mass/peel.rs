@@ -72,6 +72,17 @@ pub struct Peeler {
     /// the whole target (one body).
     block: Option<u32>,
     max_layers: usize,
+    /// When on, each peel's integrand targets are kept as RGBA bytes (the viewer's insets).
+    capture: RefCell<Option<Vec<CapturedPeel>>>,
+}
+
+/// One peel's integrand targets as [`crate::gl::dump`] maps them (each channel from its own
+/// minimum to maximum), rows from the bottom, `width x height` of the whole target.
+#[derive(Clone, Debug)]
+pub struct CapturedPeel {
+    pub width: u32,
+    pub height: u32,
+    pub targets: Vec<Vec<u8>>,
 }
 
 impl Peeler {
@@ -114,6 +125,7 @@ impl Peeler {
             accumulator: Accumulator::new(ctx, width, height)?,
             block,
             max_layers: 64,
+            capture: RefCell::new(None),
         })
     }
 
@@ -203,7 +215,8 @@ impl Peeler {
             // Only the depth: the accumulation ignores pixels this peel did not reach
             // (the colours too when they are to be looked at).
             target.clear_depth_stencil(1.0, 0)?;
-            if dump.is_some() {
+            let capturing = self.capture.borrow().is_some();
+            if dump.is_some() || capturing {
                 target.clear_colors([0.0; 4])?;
             }
             {
@@ -243,6 +256,17 @@ impl Peeler {
             }
             if let Some(dir) = dump {
                 self.dump_peel(dir, layer)?;
+            }
+            if let Some(peels) = self.capture.borrow_mut().as_mut() {
+                let targets = self.peel_targets[..TARGETS]
+                    .iter()
+                    .map(|t| dump::to_rgba8(t, DumpRange::Auto))
+                    .collect::<Result<_, _>>()?;
+                peels.push(CapturedPeel {
+                    width: self.width,
+                    height: self.height,
+                    targets,
+                });
             }
             let tiles = row_runs(
                 jobs.iter()
@@ -334,6 +358,21 @@ impl Peeler {
 
     pub fn context(&self) -> &Context {
         &self.ctx
+    }
+
+    /// Keep each peel's integrand targets from the next [`Peeler::run`] on (see
+    /// [`Peeler::take_captured`]); off by default, since reading them back costs time.
+    pub fn set_capture(&self, on: bool) {
+        *self.capture.borrow_mut() = on.then(Vec::new);
+    }
+
+    /// The peels captured since the last call, first peel first.
+    pub fn take_captured(&self) -> Vec<CapturedPeel> {
+        self.capture
+            .borrow_mut()
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
     }
 }
 

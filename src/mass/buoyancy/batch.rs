@@ -48,6 +48,11 @@ impl GpuSolver {
         })
     }
 
+    /// The depth peeler (to capture its peels).
+    pub fn peeler(&self) -> &super::super::peel::Peeler {
+        &self.peeler
+    }
+
     /// Size of the whole target (pixels).
     pub fn target_size(&self) -> (u32, u32) {
         let rows = (self.capacity.max(1) as u32).div_ceil(self.columns);

@@ -21,6 +21,25 @@ const COLORS: [Vec3; 5] = [
     Vec3::new(0.85, 0.75, 0.6),
 ];
 
+/// A turn of the camera (the viewer's mouse): yaw about the vertical and pitch in radians, and
+/// a zoom factor (2 brings the camera twice as close).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Turn {
+    pub yaw: f32,
+    pub pitch: f32,
+    pub zoom: f32,
+}
+
+impl Default for Turn {
+    fn default() -> Self {
+        Turn {
+            yaw: 0.0,
+            pitch: 0.0,
+            zoom: 1.0,
+        }
+    }
+}
+
 /// An off-screen renderer of the scene.
 pub struct FrameRenderer {
     ctx: Context,
@@ -67,65 +86,28 @@ impl FrameRenderer {
         })
     }
 
-    /// A camera looking down at the whole scene from the south.
-    fn view_projection(&self, sim: &Simulation) -> Mat4 {
+    /// A camera looking down at the whole scene from the south, turned by `turn`, for a
+    /// target of `aspect` (width over height).
+    fn view_projection(&self, sim: &Simulation, turn: Turn, aspect: f32) -> Mat4 {
         let extent = sim
             .bodies
             .iter()
             .map(|b| b.rigid.position.truncate().length() as f32)
             .fold(1.0, f32::max)
             + 2.0;
-        let eye = Vec3::new(0.0, -1.1 * extent, 0.7 * extent);
-        let view = look_at_mat4(eye, Vec3::new(0.0, 0.0, -0.5), Vec3::Z);
-        let aspect = self.width as f32 / self.height as f32;
+        let target = Vec3::new(0.0, 0.0, -0.5);
+        let eye = Vec3::new(0.0, -1.1 * extent, 0.7 * extent) - target;
+        let eye = Mat4::from_rotation_z(turn.yaw)
+            * Mat4::from_axis_angle(Vec3::X, -turn.pitch)
+            * eye.extend(0.0);
+        let eye = target + eye.truncate() / turn.zoom.max(1e-3);
+        let view = look_at_mat4(eye, target, Vec3::Z);
         opengl::perspective(0.8, aspect, 0.1, 10.0 * extent) * view
     }
 
     /// Draws the current state and writes it to `path`.
     pub fn write_png(&self, sim: &Simulation, path: &Path) -> Result<(), GlError> {
-        let vp = self.view_projection(sim);
-        self.target.clear_colors([0.62, 0.75, 0.88, 1.0])?;
-        self.target.clear_depth_stencil(1.0, 0)?;
-        let opaque = DrawState {
-            depth: Some(DepthTest {
-                func: Compare::Less,
-                write: true,
-            }),
-            ..DrawState::default()
-        };
-        {
-            let mut pass = self.target.pass(&self.bodies, "buoyancy frame: bodies")?;
-            pass.state(opaque)
-                .uniform("u_view_projection", vp)
-                .uniform("u_water_level", sim.water.level as f32);
-            for body in &sim.bodies {
-                let (first, count) = self.meshes.ranges[body.shape];
-                let model = Mat4::from_rotation_translation(
-                    body.rigid.orientation.as_quat(),
-                    body.rigid.position.as_vec3(),
-                );
-                pass.uniform("u_model", model)
-                    .uniform("u_colour", COLORS[body.shape % COLORS.len()]);
-                pass.draw_arrays(&self.meshes.vertices, Primitive::Triangles, first, count)?;
-            }
-        }
-        self.draw_arrows(sim, vp)?;
-        {
-            let mut pass = self.target.pass(&self.water, "buoyancy frame: water")?;
-            pass.state(DrawState {
-                depth: Some(DepthTest {
-                    func: Compare::Less,
-                    write: false,
-                }),
-                blend: Some(Blend::Alpha),
-                ..DrawState::default()
-            })
-            .uniform("u_view_projection", vp)
-            .uniform("u_water_level", sim.water.level as f32)
-            .uniform("u_extent", 1000.0f32)
-            .uniform("u_colour", Vec4::new(0.05, 0.22, 0.42, 0.55));
-            pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)?;
-        }
+        self.draw(sim, &self.target, Turn::default())?;
         let pixels = self
             .target
             .read_u8(0, Rect::sized(self.width, self.height))?;
@@ -144,8 +126,58 @@ impl FrameRenderer {
         })
     }
 
+    /// Draw the current state into `target` (colour and depth; cleared here), the camera
+    /// turned by `turn`.
+    pub fn draw(&self, sim: &Simulation, target: &Framebuffer, turn: Turn) -> Result<(), GlError> {
+        let aspect = target.width() as f32 / target.height().max(1) as f32;
+        let vp = self.view_projection(sim, turn, aspect);
+        target.clear_colors([0.62, 0.75, 0.88, 1.0])?;
+        target.clear_depth_stencil(1.0, 0)?;
+        let opaque = DrawState {
+            depth: Some(DepthTest {
+                func: Compare::Less,
+                write: true,
+            }),
+            ..DrawState::default()
+        };
+        {
+            let mut pass = target.pass(&self.bodies, "buoyancy frame: bodies")?;
+            pass.state(opaque)
+                .uniform("u_view_projection", vp)
+                .uniform("u_water_level", sim.water.level as f32);
+            for body in &sim.bodies {
+                let (first, count) = self.meshes.ranges[body.shape];
+                let model = Mat4::from_rotation_translation(
+                    body.rigid.orientation.as_quat(),
+                    body.rigid.position.as_vec3(),
+                );
+                pass.uniform("u_model", model)
+                    .uniform("u_colour", COLORS[body.shape % COLORS.len()]);
+                pass.draw_arrays(&self.meshes.vertices, Primitive::Triangles, first, count)?;
+            }
+        }
+        self.draw_arrows(sim, vp, target)?;
+        {
+            let mut pass = target.pass(&self.water, "buoyancy frame: water")?;
+            pass.state(DrawState {
+                depth: Some(DepthTest {
+                    func: Compare::Less,
+                    write: false,
+                }),
+                blend: Some(Blend::Alpha),
+                ..DrawState::default()
+            })
+            .uniform("u_view_projection", vp)
+            .uniform("u_water_level", sim.water.level as f32)
+            .uniform("u_extent", 1000.0f32)
+            .uniform("u_colour", Vec4::new(0.05, 0.22, 0.42, 0.55));
+            pass.draw_attributeless(Primitive::TriangleStrip, 4, 1)?;
+        }
+        Ok(())
+    }
+
     /// Gravity and buoyancy arrows, drawn over everything (depth test off).
-    fn draw_arrows(&self, sim: &Simulation, vp: Mat4) -> Result<(), GlError> {
+    fn draw_arrows(&self, sim: &Simulation, vp: Mat4, target: &Framebuffer) -> Result<(), GlError> {
         let g = sim.water.gravity;
         let scale = |force: f64, mass: f64| (0.8 * force / (mass * g)) as f32;
         let mut gravity = Vec::new();
@@ -172,9 +204,7 @@ impl FrameRenderer {
             let buffer = Buffer::from_slice(&self.ctx, &segments, BufferUsage::Dynamic)?;
             let mut vertices = VertexArray::new(&self.ctx)?;
             vertices.float_attribute(0, &buffer, 3, 12, 0, 0)?;
-            let mut pass = self
-                .target
-                .pass(&self.lines, "buoyancy frame: force arrows")?;
+            let mut pass = target.pass(&self.lines, "buoyancy frame: force arrows")?;
             pass.uniform("u_view_projection", vp)
                 .uniform("u_colour", color);
             pass.draw_arrays(&vertices, Primitive::Lines, 0, segments.len())?;

@@ -1,0 +1,180 @@
+//! `view <demo>`: a paper's technique live in a window (`classic_gpgpu::view`), or with
+//! `--headless` the same frames drawn off-screen into a PNG.
+
+use anyhow::Context as _;
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::view::window::{self, WindowOptions};
+use classic_gpgpu::view::{self as viewer, DemoSpec, ViewState};
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct ViewArgs {
+    #[command(subcommand)]
+    pub demo: DemoCommand,
+    /// Window (or headless canvas) size in pixels, WIDTHxHEIGHT.
+    #[arg(long, global = true, default_value = "960x600", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Run this many frames, then quit (with --screenshot: save the last one first).
+    #[arg(long, global = true)]
+    pub frames: Option<usize>,
+    /// Write the window's contents after --frames frames to this PNG.
+    #[arg(long, global = true, requires = "frames")]
+    pub screenshot: Option<PathBuf>,
+    /// Overwrite the --screenshot file if it exists.
+    #[arg(long, global = true)]
+    pub force: bool,
+    /// No window: draw the same frame on the headless renderer (needs --screenshot).
+    #[arg(long, global = true, requires = "screenshot")]
+    pub headless: bool,
+    /// The buffer shown first (0 = the scene; Tab cycles in the window).
+    #[arg(long, global = true, default_value_t = 0)]
+    pub buffer: usize,
+    /// Draw the help text over the frame.
+    #[arg(long, global = true)]
+    pub help_overlay: bool,
+    /// The demo's own keys to press before the first frame, e.g. `mc` (crowd: vertex-shader
+    /// skinning, LOD colours); `h` in the window lists them.
+    #[arg(long, global = true, default_value = "", allow_hyphen_values = true)]
+    pub keys: String,
+    /// Start paused (space runs, right arrow steps).
+    #[arg(long, global = true)]
+    pub paused: bool,
+}
+
+#[derive(clap::Subcommand, Debug)]
+pub enum DemoCommand {
+    /// Paper 1: a deforming scene of Table III with its colliding triangles, CAP boxes and the
+    /// buffers P0, P1..P3 and P1'.
+    CollideScene {
+        /// One of: interlocking-tori, touching-tori, merging-tori, bump-bunnies,
+        /// happy-buddhas, intimate-animals.
+        scene: String,
+        /// Triangles per model instead of the paper's count.
+        #[arg(long)]
+        triangles: Option<usize>,
+    },
+    /// Paper 4: a model turning, its volume and centre of mass by depth peeling beside the
+    /// analytic ones, each peel's integrand targets (keys l and t cycle them).
+    Mass {
+        /// One of the paper's objects (cube, sphere, teapot, torus, knot, bunny, pipe) or an
+        /// OBJ file.
+        model: String,
+        /// Peel resolution N (N x N).
+        #[arg(long, default_value_t = 64)]
+        resolution: u32,
+    },
+    /// Paper 4, section 5: bodies floating on still water, the peel layers of the batch.
+    Buoyancy {
+        /// Number of bodies (the paper's scene has 50).
+        #[arg(long, default_value_t = 50)]
+        bodies: usize,
+        /// Per-body peel resolution (the paper's 32).
+        #[arg(long, default_value_t = 32)]
+        resolution: u32,
+    },
+    /// Paper 2: a crowd of soldiers walking, two-pass or vertex-shader skinning (key m), the
+    /// pass-1 render target as an inset, LOD meshes coloured on demand (key c).
+    Crowd {
+        /// Number of characters.
+        #[arg(long, default_value_t = 256)]
+        characters: usize,
+    },
+    /// Paper 3: `mlp detect IMAGE`, the detected text pixels over the image, the threshold
+    /// adjustable (keys + and -).
+    #[command(subcommand)]
+    Mlp(MlpDemo),
+}
+
+#[derive(clap::Subcommand, Debug)]
+pub enum MlpDemo {
+    /// Text detection on an image (any format the `image` crate reads; e.g.
+    /// assets/mlp/text.png).
+    Detect {
+        /// The image.
+        image: PathBuf,
+    },
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once('x')
+        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT (e.g. 960x600)"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| (16..=8192).contains(&n))
+            .ok_or_else(|| format!("'{s}': each side must be a whole number from 16 to 8192"))
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
+impl DemoCommand {
+    fn spec(&self) -> DemoSpec {
+        match self {
+            DemoCommand::CollideScene { scene, triangles } => DemoSpec::CollideScene {
+                scene: scene.clone(),
+                triangles: *triangles,
+            },
+            DemoCommand::Mass { model, resolution } => DemoSpec::Mass {
+                model: model.clone(),
+                resolution: *resolution,
+            },
+            DemoCommand::Buoyancy { bodies, resolution } => DemoSpec::Buoyancy {
+                bodies: *bodies,
+                resolution: *resolution,
+            },
+            DemoCommand::Crowd { characters } => DemoSpec::Crowd {
+                characters: *characters,
+            },
+            DemoCommand::Mlp(MlpDemo::Detect { image }) => DemoSpec::MlpDetect {
+                image: image.clone(),
+            },
+        }
+    }
+}
+
+/// Run `view`; `context` makes the headless context when `--headless` asks for one.
+pub fn run(
+    args: &ViewArgs,
+    context: impl FnOnce() -> anyhow::Result<Context>,
+) -> anyhow::Result<()> {
+    let spec = args.demo.spec();
+    if let Some(path) = &args.screenshot {
+        window::check_output(path, args.force)?;
+    }
+    let view = ViewState {
+        shown: args.buffer,
+        help: args.help_overlay,
+        ..ViewState::default()
+    };
+    if args.headless {
+        let ctx = context()?;
+        let frames = args.frames.unwrap_or(0);
+        let pixels = viewer::headless(&spec, &ctx, args.size, frames, &view, &args.keys)
+            .with_context(|| format!("view {}", spec.name()))?;
+        let path = args
+            .screenshot
+            .as_ref()
+            .context("--headless needs --screenshot")?;
+        viewer::write_png(&pixels, args.size, path)?;
+        eprintln!(
+            "wrote {} (frame {frames}, {})",
+            path.display(),
+            ctx.info().renderer_line()
+        );
+        return Ok(());
+    }
+    window::run(
+        &spec,
+        WindowOptions {
+            size: args.size,
+            frames: args.frames,
+            screenshot: args.screenshot.clone(),
+            paused: args.paused,
+            view,
+            keys: args.keys.clone(),
+        },
+    )
+    .with_context(|| format!("view {}", spec.name()))
+}

@@ -1,0 +1,167 @@
+//! The live viewer: each paper's technique running in a window, its intermediate buffers one
+//! key away (the tutorial's first debugging tip: draw the intermediate data to the screen).
+//!
+//! A demo ([`Demo`]) steps the same paper code the headless commands run and draws a frame into
+//! a [`Canvas`], a framebuffer of the window's size. The window ([`window::run`]) copies the
+//! canvas to its default framebuffer; [`headless`] draws the very same frame on a headless
+//! context and writes it as PNG. So `view <demo> --frames N --screenshot FILE` (the window's
+//! back buffer after frame N) can be compared with `view <demo> --headless --frames N
+//! --screenshot FILE`, which is how the tests check the window.
+//!
+//! Only the window knows it is a window: the paper modules get a [`crate::gl::Context`] and
+//! cannot tell a glutin one from a headless one.
+
+pub mod canvas;
+pub mod demos;
+pub mod inset;
+pub mod overlay;
+pub mod window;
+
+pub use canvas::Canvas;
+pub use demos::DemoSpec;
+
+use crate::gl::Context;
+
+/// What the user controls that changes a frame: the buffer shown, the camera, the help text.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewState {
+    /// Which of [`Demo::buffers`] is shown (Tab cycles).
+    pub shown: usize,
+    /// Orbit angles in radians (mouse drag) and zoom factor (wheel), for 3D demos.
+    pub yaw: f32,
+    pub pitch: f32,
+    pub zoom: f32,
+    /// The help text is drawn over the frame (`h`).
+    pub help: bool,
+}
+
+impl Default for ViewState {
+    fn default() -> Self {
+        ViewState {
+            shown: 0,
+            yaw: 0.0,
+            pitch: 0.0,
+            zoom: 1.0,
+            help: false,
+        }
+    }
+}
+
+/// One technique as a live demo. A demo's frame depends only on how many steps it has taken and
+/// on the [`ViewState`], never on the wall clock, so that a window and a headless run of the
+/// same frame give the same picture.
+pub trait Demo {
+    /// Advance by one frame (one step of the paper's technique).
+    fn step(&mut self) -> anyhow::Result<()>;
+    /// Draw the current frame into `canvas`; `view.shown` picks the buffer.
+    fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()>;
+    /// The names of the buffers Tab cycles through; the first is the scene.
+    fn buffers(&self) -> Vec<String>;
+    /// Lines of text drawn in the frame's top-left corner (no timings: they differ per run).
+    fn overlay(&self) -> Vec<String>;
+    /// The last step's per-pass timings, for the window title.
+    fn timings(&self) -> String;
+    /// The demo's own keys and what they do, for the help text.
+    fn keys(&self) -> Vec<(&'static str, &'static str)> {
+        Vec::new()
+    }
+    /// A key press (`winit`'s logical key text, e.g. "l", "+"); whether the demo used it.
+    fn key(&mut self, _key: &str) -> anyhow::Result<bool> {
+        Ok(false)
+    }
+}
+
+/// The keys every demo has, for the help text.
+pub const COMMON_KEYS: [(&str, &str); 8] = [
+    ("space", "pause / run"),
+    ("right", "one step"),
+    ("tab", "next buffer"),
+    ("drag", "orbit (3D)"),
+    ("wheel", "zoom (3D)"),
+    ("s", "save a PNG"),
+    ("h", "this help"),
+    ("esc", "quit"),
+];
+
+/// Draw frame `frames` of `demo` (after that many steps) on `canvas`, with the overlay text
+/// and, if `view.help`, the help, as the window shows it.
+pub fn draw_frame(
+    demo: &mut dyn Demo,
+    canvas: &Canvas,
+    view: &ViewState,
+    frame: usize,
+) -> anyhow::Result<()> {
+    demo.render(canvas, view)?;
+    let buffers = demo.buffers();
+    let shown = buffers
+        .get(view.shown % buffers.len().max(1))
+        .cloned()
+        .unwrap_or_default();
+    let mut lines = vec![format!("frame {frame}  [tab] {shown}  [h] help")];
+    lines.extend(demo.overlay());
+    overlay::draw_text(canvas, &lines, overlay::Corner::TopLeft)?;
+    if view.help {
+        let mut help = vec!["keys".to_string()];
+        for (key, what) in COMMON_KEYS.iter().chain(demo.keys().iter()) {
+            help.push(format!("{key:>6}  {what}"));
+        }
+        overlay::draw_text(canvas, &help, overlay::Corner::Centre)?;
+    }
+    Ok(())
+}
+
+/// Press the demo's own keys `keys` (one character each) in order: a demo's settings as a
+/// command line gives them (`--keys mc`), the same in the window and headless.
+pub fn press_keys(demo: &mut dyn Demo, keys: &str) -> anyhow::Result<()> {
+    for c in keys.chars() {
+        if !demo.key(&c.to_string())? {
+            let known: Vec<&str> = demo.keys().iter().map(|(k, _)| *k).collect();
+            anyhow::bail!(
+                "--keys: '{c}' is not a key of this demo (its keys: {})",
+                if known.is_empty() {
+                    "none".to_string()
+                } else {
+                    known.join(", ")
+                }
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The headless path: build `spec` on `ctx`, press `keys`, take `frames` steps and draw the
+/// last frame into a `width x height` canvas; the RGBA pixels, rows from the bottom (as the
+/// window reads them).
+pub fn headless(
+    spec: &DemoSpec,
+    ctx: &Context,
+    (width, height): (u32, u32),
+    frames: usize,
+    view: &ViewState,
+    keys: &str,
+) -> anyhow::Result<Vec<u8>> {
+    let mut demo = spec.build(ctx, (width, height))?;
+    press_keys(demo.as_mut(), keys)?;
+    for _ in 0..frames {
+        demo.step()?;
+    }
+    let canvas = Canvas::new(ctx, width, height)?;
+    draw_frame(demo.as_mut(), &canvas, view, frames)?;
+    Ok(canvas.pixels()?)
+}
+
+/// Write RGBA pixels (rows from the bottom) as a PNG.
+pub fn write_png(
+    pixels: &[u8],
+    (width, height): (u32, u32),
+    path: &std::path::Path,
+) -> anyhow::Result<()> {
+    use anyhow::Context as _;
+    let row = width as usize * 4;
+    let flipped: Vec<u8> = pixels.chunks_exact(row).rev().flatten().copied().collect();
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
+    image::save_buffer(path, &flipped, width, height, image::ColorType::Rgba8)
+        .with_context(|| format!("writing {}", path.display()))
+}

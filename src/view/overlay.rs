@@ -1,0 +1,110 @@
+//! Text over the frame: the demo's numbers, the help, drawn with the 8x8 bitmap font the crate
+//! already has (font8x8), as an RGBA image blended over the canvas.
+
+use super::Canvas;
+use crate::gl::{Blend, DrawState, GlError, Program, Rect, Texture, TextureFormat};
+use crate::shader;
+use font8x8::legacy::BASIC_LEGACY;
+
+/// Where a block of text goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Corner {
+    TopLeft,
+    BottomLeft,
+    Centre,
+    /// The bottom-left pixel of the box.
+    At(u32, u32),
+}
+
+const TEXT: [u8; 4] = [240, 240, 240, 255];
+const BACKDROP: [u8; 4] = [0, 0, 0, 170];
+const MARGIN: u32 = 4;
+
+/// Draw `lines` in a dark box at `corner` of `canvas`: 8x8 glyphs, doubled on canvases at least
+/// 640 pixels wide. Characters outside ASCII show as '?'.
+pub fn draw_text(canvas: &Canvas, lines: &[String], corner: Corner) -> Result<(), GlError> {
+    if lines.is_empty() {
+        return Ok(());
+    }
+    let scale = if canvas.width() >= 640 { 2 } else { 1 };
+    let glyph = 8 * scale;
+    let columns = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0) as u32;
+    let width = (columns * glyph + 2 * MARGIN).min(canvas.width());
+    let height = (lines.len() as u32 * (glyph + 2 * scale) + 2 * MARGIN).min(canvas.height());
+    let image = text_image(lines, scale, width, height);
+    let (x, y) = match corner {
+        Corner::TopLeft => (0, canvas.height() - height),
+        Corner::BottomLeft => (0, 0),
+        Corner::Centre => ((canvas.width() - width) / 2, (canvas.height() - height) / 2),
+        Corner::At(x, y) => (
+            x.min(canvas.width() - width),
+            y.min(canvas.height() - height),
+        ),
+    };
+    draw_image(canvas, &image, width, height, (x, y))
+}
+
+/// Blend an RGBA image (rows from the bottom) over `canvas` with its bottom-left pixel at `at`.
+pub fn draw_image(
+    canvas: &Canvas,
+    rgba: &[u8],
+    width: u32,
+    height: u32,
+    at: (u32, u32),
+) -> Result<(), GlError> {
+    let ctx = canvas.context();
+    let texture = Texture::new_2d(ctx, width, height, TextureFormat::Rgba8)?;
+    texture.upload_u8(rgba)?;
+    let program = Program::rect(ctx, &[shader!("glsl/view/overlay.frag")])?;
+    let mut pass = canvas.target().pass(&program, "viewer overlay")?;
+    pass.state(DrawState {
+        blend: Some(Blend::Alpha),
+        ..DrawState::default()
+    })
+    .texture("u_image", &texture)
+    .uniform("u_origin", glam::IVec2::new(at.0 as i32, at.1 as i32));
+    pass.draw_rect(Rect::new(at.0, at.1, width, height))
+}
+
+/// The text as an RGBA image of `width x height`, rows from the bottom.
+fn text_image(lines: &[String], scale: u32, width: u32, height: u32) -> Vec<u8> {
+    let mut top_down = vec![0u8; (width * height * 4) as usize];
+    for px in top_down.chunks_exact_mut(4) {
+        px.copy_from_slice(&BACKDROP);
+    }
+    let line_height = 8 * scale + 2 * scale;
+    for (row, line) in lines.iter().enumerate() {
+        for (col, c) in line.chars().enumerate() {
+            let code = if c.is_ascii() {
+                c as usize
+            } else {
+                '?' as usize
+            };
+            let bitmap = BASIC_LEGACY[code];
+            for (gy, bits) in bitmap.iter().enumerate() {
+                for gx in 0..8 {
+                    if bits & (1 << gx) == 0 {
+                        continue;
+                    }
+                    for sy in 0..scale {
+                        for sx in 0..scale {
+                            let x = MARGIN + col as u32 * 8 * scale + gx * scale + sx;
+                            let y = MARGIN + row as u32 * line_height + gy as u32 * scale + sy;
+                            if x < width && y < height {
+                                let i = ((y * width + x) * 4) as usize;
+                                top_down[i..i + 4].copy_from_slice(&TEXT);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let row = width as usize * 4;
+    top_down
+        .chunks_exact(row)
+        .rev()
+        .flatten()
+        .copied()
+        .collect()
+}

@@ -1,0 +1,316 @@
+//! The window: a winit event loop around a demo. Each tick steps the demo, draws the frame
+//! into the canvas and copies the canvas to the window; keys and the mouse change the
+//! [`ViewState`]; the title shows the frame time and the demo's per-pass timings.
+
+use super::{draw_frame, write_png, Canvas, Demo, DemoSpec, ViewState};
+use crate::gl::GlWindow;
+use anyhow::{anyhow, Context as _};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::window::{WindowAttributes, WindowId};
+
+/// How the window runs.
+#[derive(Clone, Debug)]
+pub struct WindowOptions {
+    /// The window's inner size in pixels.
+    pub size: (u32, u32),
+    /// Run this many frames, then (with `screenshot`) save the window and quit.
+    pub frames: Option<usize>,
+    /// Where `--frames` writes the window's contents.
+    pub screenshot: Option<PathBuf>,
+    /// Start paused.
+    pub paused: bool,
+    /// The first view (buffer shown, help).
+    pub view: ViewState,
+    /// The demo's own keys pressed before the first frame.
+    pub keys: String,
+}
+
+/// Open the window and run `spec` until Esc, or for `options.frames` frames. Without a
+/// display, or without an OpenGL 3.3 context, a one-line error naming what is missing and the
+/// headless command that does the same work.
+pub fn run(spec: &DemoSpec, options: WindowOptions) -> anyhow::Result<()> {
+    let hint = spec.headless_hint();
+    let display_unset = |name: &str| std::env::var_os(name).is_none_or(|v| v.is_empty());
+    if display_unset("DISPLAY") {
+        let wayland = if display_unset("WAYLAND_DISPLAY") {
+            "nor WAYLAND_DISPLAY is set"
+        } else {
+            "is set (the viewer opens X11 windows; under Wayland it needs XWayland)"
+        };
+        return Err(anyhow!(
+            "no display: neither DISPLAY {wayland}; the headless command {hint} does the same \
+             work without one"
+        ));
+    }
+    let event_loop = EventLoop::new()
+        .map_err(|e| anyhow!("no display ({e}); the headless command {hint} does the same work"))?;
+    let mut app = App {
+        spec,
+        options,
+        running: None,
+        error: None,
+    };
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| anyhow!("the window's event loop failed: {e}"))?;
+    match app.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+struct App<'a> {
+    spec: &'a DemoSpec,
+    options: WindowOptions,
+    running: Option<Running>,
+    error: Option<anyhow::Error>,
+}
+
+/// A window with its demo.
+struct Running {
+    // Dropped in this order: the demo's and the canvas' GL objects before the window.
+    demo: Box<dyn Demo>,
+    canvas: Canvas,
+    window: GlWindow,
+    view: ViewState,
+    frame: usize,
+    paused: bool,
+    step_once: bool,
+    redraw: bool,
+    drag: Option<(f64, f64)>,
+    cursor: (f64, f64),
+    frame_ms: f64,
+}
+
+impl App<'_> {
+    fn start(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<Running> {
+        let (w, h) = self.options.size;
+        let attributes = WindowAttributes::default()
+            .with_title(format!("classic-gpgpu view {}", self.spec.name()))
+            .with_inner_size(PhysicalSize::new(w, h))
+            .with_resizable(self.options.frames.is_none());
+        let window =
+            GlWindow::new(event_loop, attributes, self.options.frames.is_none()).map_err(|e| {
+                anyhow!(
+                    "{e}; the headless command {} does the same work",
+                    self.spec.headless_hint()
+                )
+            })?;
+        let size = window.window().inner_size();
+        let size = (size.width.max(1), size.height.max(1));
+        let ctx = window.context().clone();
+        let info = ctx.info();
+        eprintln!("window: {} ({})", info.renderer_line(), info.why);
+        let mut demo = self.spec.build(&ctx, size)?;
+        super::press_keys(demo.as_mut(), &self.options.keys)?;
+        let canvas = Canvas::new(&ctx, size.0, size.1)?;
+        Ok(Running {
+            demo,
+            canvas,
+            window,
+            view: self.options.view,
+            frame: 0,
+            paused: self.options.paused,
+            step_once: false,
+            redraw: true,
+            drag: None,
+            cursor: (0.0, 0.0),
+            frame_ms: 0.0,
+        })
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: anyhow::Error) {
+        self.error.get_or_insert(e);
+        event_loop.exit();
+    }
+
+    /// Step (unless paused), draw, show; after `--frames` frames save and quit.
+    fn tick(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<()> {
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
+        let advance = !r.paused || r.step_once;
+        if !advance && !r.redraw {
+            return Ok(());
+        }
+        let started = Instant::now();
+        if advance {
+            r.demo.step()?;
+            r.frame += 1;
+            r.step_once = false;
+        }
+        draw_frame(r.demo.as_mut(), &r.canvas, &r.view, r.frame)?;
+        r.window.present(r.canvas.target())?;
+        r.redraw = false;
+        if self.options.frames == Some(r.frame) {
+            if let Some(path) = &self.options.screenshot {
+                let size = (r.canvas.width(), r.canvas.height());
+                let pixels = r.window.read_pixels(size.0, size.1)?;
+                write_png(&pixels, size, path)?;
+            }
+            event_loop.exit();
+            return Ok(());
+        }
+        r.window.swap()?;
+        if advance {
+            r.frame_ms = started.elapsed().as_secs_f64() * 1e3;
+        }
+        let state = if r.paused { "paused" } else { "running" };
+        r.window.window().set_title(&format!(
+            "classic-gpgpu view {} | frame {} {state} | {:.1} ms/frame | {}",
+            self.spec.name(),
+            r.frame,
+            r.frame_ms,
+            r.demo.timings()
+        ));
+        Ok(())
+    }
+
+    fn key(&mut self, event_loop: &ActiveEventLoop, key: &Key) -> anyhow::Result<()> {
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
+        match key {
+            Key::Named(NamedKey::Escape) => event_loop.exit(),
+            Key::Named(NamedKey::Space) => r.paused = !r.paused,
+            Key::Named(NamedKey::ArrowRight) => r.step_once = true,
+            Key::Named(NamedKey::Tab) => {
+                r.view.shown = (r.view.shown + 1) % r.demo.buffers().len().max(1);
+            }
+            Key::Character(c) if c.as_str() == "h" => r.view.help = !r.view.help,
+            Key::Character(c) if c.as_str() == "s" => {
+                let path = free_path(&format!(
+                    "classic-gpgpu-{}-frame{}",
+                    self.spec.name().replace(' ', "-"),
+                    r.frame
+                ));
+                let pixels = r.canvas.pixels()?;
+                write_png(&pixels, (r.canvas.width(), r.canvas.height()), &path)?;
+                eprintln!("saved {}", path.display());
+            }
+            Key::Character(c) => {
+                r.demo.key(c.as_str())?;
+            }
+            _ => return Ok(()),
+        }
+        r.redraw = true;
+        Ok(())
+    }
+
+    fn event(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) -> anyhow::Result<()> {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                self.key(event_loop, &event.logical_key)?;
+            }
+            WindowEvent::Resized(size) => {
+                if let Some(r) = self.running.as_mut() {
+                    let (w, h) = (size.width.max(1), size.height.max(1));
+                    if (w, h) != (r.canvas.width(), r.canvas.height()) {
+                        r.window.resize(w, h);
+                        r.canvas = Canvas::new(r.window.context(), w, h)?;
+                        r.redraw = true;
+                    }
+                }
+            }
+            WindowEvent::RedrawRequested => {
+                if let Some(r) = self.running.as_mut() {
+                    r.redraw = true;
+                }
+            }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
+                if let Some(r) = self.running.as_mut() {
+                    r.drag = (state == ElementState::Pressed).then_some(r.cursor);
+                }
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                if let Some(r) = self.running.as_mut() {
+                    r.cursor = (position.x, position.y);
+                    if let Some((x, y)) = r.drag {
+                        r.view.yaw += ((position.x - x) * 0.01) as f32;
+                        r.view.pitch =
+                            (r.view.pitch + ((position.y - y) * 0.01) as f32).clamp(-1.5, 1.5);
+                        r.drag = Some(r.cursor);
+                        r.redraw = true;
+                    }
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                if let Some(r) = self.running.as_mut() {
+                    let lines = match delta {
+                        MouseScrollDelta::LineDelta(_, y) => y,
+                        MouseScrollDelta::PixelDelta(p) => (p.y / 40.0) as f32,
+                    };
+                    r.view.zoom = (r.view.zoom * 0.9f32.powf(lines)).clamp(0.1, 10.0);
+                    r.redraw = true;
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+impl ApplicationHandler for App<'_> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_some() || self.error.is_some() {
+            return;
+        }
+        match self.start(event_loop) {
+            Ok(running) => self.running = Some(running),
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        if let Err(e) = self.event(event_loop, event) {
+            self.fail(event_loop, e);
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if let Err(e) = self.tick(event_loop) {
+            self.fail(event_loop, e);
+            return;
+        }
+        let idle = self.running.as_ref().is_none_or(|r| r.paused && !r.redraw);
+        event_loop.set_control_flow(if idle {
+            ControlFlow::Wait
+        } else {
+            ControlFlow::Poll
+        });
+    }
+}
+
+/// `stem.png`, or `stem-1.png`, `stem-2.png`, ... : the first that does not exist.
+fn free_path(stem: &str) -> PathBuf {
+    let mut path = PathBuf::from(format!("{stem}.png"));
+    let mut n = 1;
+    while Path::new(&path).exists() {
+        path = PathBuf::from(format!("{stem}-{n}.png"));
+        n += 1;
+    }
+    path
+}
+
+/// For the CLI: refuse to overwrite `path` unless `force`.
+pub fn check_output(path: &Path, force: bool) -> anyhow::Result<()> {
+    if path.exists() && !force {
+        return Err(anyhow!(
+            "{} exists; pass --force to overwrite it",
+            path.display()
+        ))
+        .context("--screenshot");
+    }
+    Ok(())
+}

@@ -1,0 +1,338 @@
+//! The viewer: each demo's window, read back after N frames, against the headless rendering of
+//! frame N; and the one-line errors without a display.
+//!
+//! Each test starts its own X server (`Xvfb`, on a free display number, killed when the test
+//! ends), so `cargo test` needs no outer `xvfb-run`. Without the `Xvfb` binary the tests fail
+//! and say to install the `xvfb` package. The window's context is glutin's (GLX on Xvfb, Mesa
+//! llvmpipe; `GALLIUM_DRIVER=softpipe` runs both sides on softpipe), the headless one is the
+//! crate's EGL context, so the comparison checks that the window shows the frame the headless
+//! code draws.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+/// The tolerance, per colour channel of every pixel: both sides run the same Mesa rasterizer on
+/// the same commands into an RGBA8 target, so they should agree exactly; 2/255 leaves room for
+/// a window configuration that dithers or rounds differently, and at most 0.1% of the pixels
+/// may differ at all.
+const MAX_CHANNEL_DIFF: u8 = 2;
+const MAX_DIFFERING_FRACTION: f64 = 0.001;
+
+/// An X server of our own, killed on drop.
+struct Xvfb {
+    child: Child,
+    display: String,
+}
+
+impl Xvfb {
+    fn start() -> Xvfb {
+        // Free display numbers: no lock file, no socket. Tests run in parallel threads, so
+        // each thread starts at its own offset and the lock file decides.
+        let offset = (std::process::id() % 200) as u32;
+        for n in (0..200).map(|i| 100 + (offset + i * 7) % 400) {
+            if Path::new(&format!("/tmp/.X{n}-lock")).exists()
+                || Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
+            {
+                continue;
+            }
+            let child = match Command::new("Xvfb")
+                .args([
+                    &format!(":{n}"),
+                    "-screen",
+                    "0",
+                    "1024x768x24",
+                    "-nolisten",
+                    "tcp",
+                ])
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+            {
+                Ok(child) => child,
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!(
+                    "the viewer tests need an X server: the Xvfb binary is missing; install the \
+                     xvfb package (apt-get install xvfb)"
+                ),
+                Err(e) => panic!("starting Xvfb: {e}"),
+            };
+            let mut server = Xvfb {
+                child,
+                display: format!(":{n}"),
+            };
+            let socket = format!("/tmp/.X11-unix/X{n}");
+            let start = Instant::now();
+            while start.elapsed() < Duration::from_secs(20) {
+                if let Ok(Some(_)) = server.child.try_wait() {
+                    break; // lost the race for this number: try the next
+                }
+                if Path::new(&socket).exists() {
+                    return server;
+                }
+                std::thread::sleep(Duration::from_millis(50));
+            }
+            let _ = server.child.kill();
+        }
+        panic!("no free X display number for Xvfb between :100 and :499");
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn viewer(args: &[&str], display: Option<&str>) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"));
+    command.arg("view").args(args).env_remove("WAYLAND_DISPLAY");
+    match display {
+        Some(d) => command.env("DISPLAY", d),
+        None => command.env_remove("DISPLAY"),
+    };
+    command.output().expect("the binary runs")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("classic-gpgpu-view-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    let _ = std::fs::remove_file(&path);
+    path
+}
+
+/// Run `demo` for `frames` frames in a window on a fresh Xvfb and headless; compare the images.
+fn window_matches_headless(name: &str, demo: &[&str], frames: usize) {
+    let server = Xvfb::start();
+    let frames = frames.to_string();
+    let window_png = scratch(&format!("{name}-window.png"));
+    let headless_png = scratch(&format!("{name}-headless.png"));
+    let common = ["--size", "256x192", "--frames", &frames];
+    let run = |png: &Path, headless: bool| {
+        let mut args: Vec<&str> = demo.to_vec();
+        args.extend(common);
+        args.extend(["--screenshot", png.to_str().unwrap()]);
+        if headless {
+            args.push("--headless");
+        }
+        let out = viewer(&args, Some(&server.display));
+        assert!(
+            out.status.success(),
+            "view {args:?} failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let window_log = run(&window_png, false);
+    assert!(
+        window_log.contains("via window"),
+        "the window run should name its window context: {window_log}"
+    );
+    run(&headless_png, true);
+    let window = image::open(&window_png).unwrap().to_rgba8();
+    let headless = image::open(&headless_png).unwrap().to_rgba8();
+    assert_eq!(window.dimensions(), (256, 192), "{name}: window image size");
+    assert_eq!(window.dimensions(), headless.dimensions());
+    // A frame that is not blank: the demo drew something, with text over it.
+    let mut colours: Vec<[u8; 4]> = window.pixels().map(|p| p.0).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(
+        colours.len() >= 4,
+        "{name}: the window shows only {} colours",
+        colours.len()
+    );
+    let mut worst = 0u8;
+    let mut differing = 0usize;
+    for (a, b) in window.pixels().zip(headless.pixels()) {
+        let d = (0..3).map(|c| a.0[c].abs_diff(b.0[c])).max().unwrap();
+        worst = worst.max(d);
+        differing += (d > 0) as usize;
+    }
+    let fraction = differing as f64 / (256.0 * 192.0);
+    assert!(
+        worst <= MAX_CHANNEL_DIFF && fraction <= MAX_DIFFERING_FRACTION,
+        "{name}: window and headless frame {frames} differ: largest channel difference {worst} \
+         (at most {MAX_CHANNEL_DIFF}), {differing} pixels differ ({:.3}%, at most {:.1}%); \
+         images in {} and {}",
+        fraction * 100.0,
+        MAX_DIFFERING_FRACTION * 100.0,
+        window_png.display(),
+        headless_png.display()
+    );
+}
+
+#[test]
+fn collide_scene_window_matches_headless() {
+    window_matches_headless(
+        "collide-scene",
+        &["collide-scene", "touching-tori", "--triangles", "300"],
+        3,
+    );
+}
+
+#[test]
+fn collide_scene_buffer_inset_window_matches_headless() {
+    // The second buffer (P0) full size, with the help text over it.
+    window_matches_headless(
+        "collide-p0",
+        &[
+            "collide-scene",
+            "interlocking-tori",
+            "--triangles",
+            "300",
+            "--buffer",
+            "1",
+            "--help-overlay",
+        ],
+        2,
+    );
+}
+
+#[test]
+fn without_a_display_the_viewer_names_what_is_missing_and_the_headless_command() {
+    let out = viewer(&["collide-scene", "touching-tori", "--frames", "1"], None);
+    assert!(!out.status.success(), "no display must be an error");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.trim().lines().count(), 1, "one line: {stderr}");
+    assert!(
+        stderr.contains("DISPLAY") && stderr.contains("--headless"),
+        "names the missing display and the headless command: {stderr}"
+    );
+    assert!(
+        !stderr.contains("panicked"),
+        "an error, not a panic: {stderr}"
+    );
+}
+
+#[test]
+fn screenshot_is_not_overwritten_without_force() {
+    let path = scratch("exists.png");
+    std::fs::write(&path, b"keep").unwrap();
+    let p = path.to_str().unwrap();
+    let args = [
+        "collide-scene",
+        "touching-tori",
+        "--triangles",
+        "300",
+        "--frames",
+        "1",
+        "--headless",
+        "--screenshot",
+        p,
+    ];
+    let out = viewer(&args, None);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--force"));
+    assert_eq!(std::fs::read(&path).unwrap(), b"keep");
+    let mut forced = args.to_vec();
+    forced.push("--force");
+    let out = viewer(&forced, None);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(image::open(&path).is_ok());
+}
+
+#[test]
+fn unknown_scene_is_an_error_naming_the_scenes() {
+    let out = viewer(
+        &[
+            "collide-scene",
+            "no-such-scene",
+            "--frames",
+            "1",
+            "--headless",
+            "--screenshot",
+            scratch("none.png").to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("touching-tori"), "{stderr}");
+}
+
+#[test]
+fn mass_window_matches_headless() {
+    window_matches_headless("mass", &["mass", "torus", "--resolution", "32"], 3);
+}
+
+#[test]
+fn mass_peel_layers_window_matches_headless() {
+    window_matches_headless(
+        "mass-peels",
+        &["mass", "cube", "--resolution", "32", "--buffer", "1"],
+        2,
+    );
+}
+
+#[test]
+fn buoyancy_window_matches_headless() {
+    window_matches_headless(
+        "buoyancy",
+        &["buoyancy", "--bodies", "6", "--resolution", "16"],
+        3,
+    );
+}
+
+#[test]
+fn crowd_two_pass_window_matches_headless() {
+    window_matches_headless("crowd", &["crowd", "--characters", "24"], 3);
+}
+
+#[test]
+fn crowd_vertex_shader_lod_colours_window_matches_headless() {
+    window_matches_headless(
+        "crowd-vs",
+        &["crowd", "--characters", "24", "--keys", "mc"],
+        2,
+    );
+}
+
+#[test]
+fn a_key_the_demo_lacks_is_an_error_listing_its_keys() {
+    let out = viewer(
+        &[
+            "crowd",
+            "--characters",
+            "4",
+            "--keys",
+            "q",
+            "--frames",
+            "1",
+            "--headless",
+            "--screenshot",
+            scratch("keys.png").to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("'q'") && stderr.contains("m, c"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn mlp_detect_window_matches_headless() {
+    // A corner of the shipped test image, small enough for a software renderer.
+    let full = image::open(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/mlp/text.png"))
+        .unwrap()
+        .to_luma8();
+    let crop = image::imageops::crop_imm(&full, 96, 60, 96, 64).to_image();
+    let path = scratch("text-crop.png");
+    crop.save(&path).unwrap();
+    let image = path.to_str().unwrap();
+    window_matches_headless("mlp", &["mlp", "detect", image], 1);
+    // The threshold lowered twice and the network's raw output shown.
+    window_matches_headless(
+        "mlp-output",
+        &["mlp", "detect", image, "--keys=--", "--buffer", "1"],
+        1,
+    );
+}
