@@ -8,6 +8,12 @@
 //!   they never clash with the [`TimerQuery`](super::TimerQuery)s the benchmarks use). The
 //!   results are read later, when the renderer says they are available, never in the same
 //!   frame: reading them must not add the waits the profiler is there to show.
+//!   On a tile-based software renderer (llvmpipe) a timestamp is taken as each rasterizer
+//!   thread reaches the query in its last tile, so passes that share one scene (no wait
+//!   between them) get spans that overlap or collapse: read the GPU column there together
+//!   with the waits, which is where the rasterization of the passes before them happens.
+//!   A draw that samples a texture rendered since the last wait also waits, inside the draw
+//!   call: its wall time then holds the rasterization of the pass that wrote the texture.
 //! - wall time of the scope (on a software renderer, issuing a draw is cheap and the work
 //!   happens in the next wait);
 //! - time spent waiting inside it: `glFinish`, `glReadPixels` and buffer reads, query results.

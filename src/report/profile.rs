@@ -62,8 +62,10 @@ pub fn table(profile: &ProfileTable, caption: &str, min_share: f64) -> Table {
     Table {
         caption: format!(
             "{caption}: per-pass profile of this run on {} (GPU ms by timestamp queries read \
-             after the run; wall ms; wait ms: glFinish, readbacks and query results inside the \
-             row; nested rows are part of the row above; rows under {:.1}% of the run summed)",
+             after the run, approximate on a tile-based software renderer, where passes that \
+             share a scene overlap; wall ms; wait ms: glFinish, readbacks and query results \
+             inside the row, where a software renderer does the drawing issued before; nested \
+             rows are part of the row above; rows under {:.1}% of the run summed)",
             profile.renderer,
             min_share * 100.0
         ),
