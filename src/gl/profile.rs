@@ -119,11 +119,21 @@ pub struct Scope<'a> {
 
 /// Open a scope named `name` (a no-op unless a profile is running).
 pub fn scope<'a>(ctx: &'a Context, name: &str) -> Scope<'a> {
+    open_scope(ctx, name, true)
+}
+
+/// Open a scope for CPU work (a CPU baseline, a decode): wall time and waits only. The GPU
+/// clock keeps running while the CPU works, so a GPU time of CPU work would mean nothing.
+pub fn cpu_scope<'a>(ctx: &'a Context, name: &str) -> Scope<'a> {
+    open_scope(ctx, name, false)
+}
+
+fn open_scope<'a>(ctx: &'a Context, name: &str, gpu: bool) -> Scope<'a> {
     let mut guard = ctx.inner.profile.borrow_mut();
     let open = guard.as_mut().map(|state| {
         state.poll(ctx);
         let row = state.row(name);
-        let begin = state.timestamp(ctx);
+        let begin = if gpu { state.timestamp(ctx) } else { None };
         state.open.push(row);
         (row, Instant::now(), begin)
     });
@@ -139,7 +149,10 @@ impl Drop for Scope<'_> {
         let Some(state) = guard.as_mut() else {
             return;
         };
-        let end = state.timestamp(self.ctx);
+        let end = match begin {
+            Some(_) => state.timestamp(self.ctx),
+            None => None,
+        };
         let r = &mut state.rows[row];
         r.calls += 1;
         r.wall += start.elapsed();
