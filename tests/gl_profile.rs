@@ -77,3 +77,20 @@ fn profile_names_passes_counts_calls_and_adds_waits() {
     let text = table.to_string();
     assert!(text.contains("first") && text.contains("wait ms"), "{text}");
 }
+
+#[test]
+fn wall_only_profile_issues_no_timestamps() {
+    let ctx = context();
+    let t = Texture::new_2d(&ctx, 8, 8, TextureFormat::Rgba32F).unwrap();
+    let fb = Framebuffer::new(&ctx, "wall only", &[&t], None).unwrap();
+    let program = Program::rect(&ctx, &[CONSTANT]).unwrap();
+    profile::start_wall_only(&ctx);
+    let mut pass = fb.pass(&program, "drawn").unwrap();
+    pass.uniform("u_colour", glam::Vec4::ONE);
+    pass.draw_full().unwrap();
+    drop(pass);
+    ctx.finish_all();
+    let table = profile::finish(&ctx).unwrap();
+    assert_eq!(table.row("drawn").map(|r| r.calls), Some(1), "{table}");
+    assert!(table.rows.iter().all(|r| r.gpu_ms.is_none()), "{table}");
+}

@@ -59,7 +59,18 @@ struct Pending {
 
 /// Start profiling on `ctx` (a profile already running starts again, empty).
 pub fn start(ctx: &Context) {
-    let timestamps = ctx.timestamp_bits() > 0;
+    start_with(ctx, true);
+}
+
+/// Start profiling wall time and waits only, without GPU timestamps: for runs whose own
+/// timings must not carry the profiler's queries (a software renderer bins each timestamp
+/// into every tile of the target).
+pub fn start_wall_only(ctx: &Context) {
+    start_with(ctx, false);
+}
+
+fn start_with(ctx: &Context, gpu: bool) {
+    let timestamps = gpu && ctx.timestamp_bits() > 0;
     let old = ctx.inner.profile.replace(Some(Box::new(State {
         rows: Vec::new(),
         open: Vec::new(),
