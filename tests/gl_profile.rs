@@ -34,7 +34,10 @@ fn profile_names_passes_counts_calls_and_adds_waits() {
             draw("first");
         }
         draw("second");
-        let values = fb.read_f32(0, Rect::sized(32, 32)).unwrap();
+        let values = {
+            let _decode = profile::cpu_scope(&ctx, "decode (CPU)");
+            fb.read_f32(0, Rect::sized(32, 32)).unwrap()
+        };
         assert!(values.iter().all(|&v| v == 1.0));
         ctx.finish_all();
     }
@@ -52,6 +55,12 @@ fn profile_names_passes_counts_calls_and_adds_waits() {
     assert_eq!(row("first").depth, 1);
     assert_eq!(row("second").calls, 1);
     assert_eq!(row("wait: glReadPixels").calls, 1);
+    // A CPU scope has no GPU time, and holds the wait inside it.
+    assert_eq!(row("decode (CPU)").gpu_ms, None);
+    assert_eq!(
+        row("decode (CPU)").wait_ms,
+        row("wait: glReadPixels").wall_ms
+    );
     assert_eq!(row("wait: glFinish").calls, 1);
     // The frame contains its passes and its waits.
     let inner = row("first").wall_ms + row("second").wall_ms;
@@ -67,4 +76,21 @@ fn profile_names_passes_counts_calls_and_adds_waits() {
     }
     let text = table.to_string();
     assert!(text.contains("first") && text.contains("wait ms"), "{text}");
+}
+
+#[test]
+fn wall_only_profile_issues_no_timestamps() {
+    let ctx = context();
+    let t = Texture::new_2d(&ctx, 8, 8, TextureFormat::Rgba32F).unwrap();
+    let fb = Framebuffer::new(&ctx, "wall only", &[&t], None).unwrap();
+    let program = Program::rect(&ctx, &[CONSTANT]).unwrap();
+    profile::start_wall_only(&ctx);
+    let mut pass = fb.pass(&program, "drawn").unwrap();
+    pass.uniform("u_colour", glam::Vec4::ONE);
+    pass.draw_full().unwrap();
+    drop(pass);
+    ctx.finish_all();
+    let table = profile::finish(&ctx).unwrap();
+    assert_eq!(table.row("drawn").map(|r| r.calls), Some(1), "{table}");
+    assert!(table.rows.iter().all(|r| r.gpu_ms.is_none()), "{table}");
 }

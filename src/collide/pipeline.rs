@@ -267,7 +267,7 @@ impl StreamingCollider {
         out.eta = out.caps as f64 / total_pairs;
         // Primitive-level intersection test.
         let t = Instant::now();
-        let tri_scope = profile::scope(&self.ctx, "triangle test (CPU)");
+        let tri_scope = profile::cpu_scope(&self.ctx, "triangle test (CPU)");
         let view = |triangles, positions, stream| ModelView {
             triangles,
             positions,

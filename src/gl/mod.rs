@@ -10,7 +10,7 @@
 //! formulation ([`compute`]): [`ComputeProgram`]s over storage buffers with
 //! [`AtomicCounters`], and the same reduction in work-group shared memory
 //! ([`reduce_shared`]). [`dump`] writes any texture to PNG, the tutorial's
-//! first debugging tip.
+//! first debugging tip; [`profile`] shows where the time of a run goes, pass by pass.
 //!
 //! GL errors and framebuffer completeness are checked after every pass when
 //! [`Context::checks`] is on: always in debug builds, and in tests (which call

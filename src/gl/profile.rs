@@ -8,6 +8,12 @@
 //!   they never clash with the [`TimerQuery`](super::TimerQuery)s the benchmarks use). The
 //!   results are read later, when the renderer says they are available, never in the same
 //!   frame: reading them must not add the waits the profiler is there to show.
+//!   On a tile-based software renderer (llvmpipe) a timestamp is taken as each rasterizer
+//!   thread reaches the query in its last tile, so passes that share one scene (no wait
+//!   between them) get spans that overlap or collapse: read the GPU column there together
+//!   with the waits, which is where the rasterization of the passes before them happens.
+//!   A draw that samples a texture rendered since the last wait also waits, inside the draw
+//!   call: its wall time then holds the rasterization of the pass that wrote the texture.
 //! - wall time of the scope (on a software renderer, issuing a draw is cheap and the work
 //!   happens in the next wait);
 //! - time spent waiting inside it: `glFinish`, `glReadPixels` and buffer reads, query results.
@@ -53,7 +59,18 @@ struct Pending {
 
 /// Start profiling on `ctx` (a profile already running starts again, empty).
 pub fn start(ctx: &Context) {
-    let timestamps = ctx.timestamp_bits() > 0;
+    start_with(ctx, true);
+}
+
+/// Start profiling wall time and waits only, without GPU timestamps: for runs whose own
+/// timings must not carry the profiler's queries (a software renderer bins each timestamp
+/// into every tile of the target).
+pub fn start_wall_only(ctx: &Context) {
+    start_with(ctx, false);
+}
+
+fn start_with(ctx: &Context, gpu: bool) {
+    let timestamps = gpu && ctx.timestamp_bits() > 0;
     let old = ctx.inner.profile.replace(Some(Box::new(State {
         rows: Vec::new(),
         open: Vec::new(),
@@ -113,11 +130,21 @@ pub struct Scope<'a> {
 
 /// Open a scope named `name` (a no-op unless a profile is running).
 pub fn scope<'a>(ctx: &'a Context, name: &str) -> Scope<'a> {
+    open_scope(ctx, name, true)
+}
+
+/// Open a scope for CPU work (a CPU baseline, a decode): wall time and waits only. The GPU
+/// clock keeps running while the CPU works, so a GPU time of CPU work would mean nothing.
+pub fn cpu_scope<'a>(ctx: &'a Context, name: &str) -> Scope<'a> {
+    open_scope(ctx, name, false)
+}
+
+fn open_scope<'a>(ctx: &'a Context, name: &str, gpu: bool) -> Scope<'a> {
     let mut guard = ctx.inner.profile.borrow_mut();
     let open = guard.as_mut().map(|state| {
         state.poll(ctx);
         let row = state.row(name);
-        let begin = state.timestamp(ctx);
+        let begin = if gpu { state.timestamp(ctx) } else { None };
         state.open.push(row);
         (row, Instant::now(), begin)
     });
@@ -133,7 +160,10 @@ impl Drop for Scope<'_> {
         let Some(state) = guard.as_mut() else {
             return;
         };
-        let end = state.timestamp(self.ctx);
+        let end = match begin {
+            Some(_) => state.timestamp(self.ctx),
+            None => None,
+        };
         let r = &mut state.rows[row];
         r.calls += 1;
         r.wall += start.elapsed();

@@ -471,7 +471,7 @@ fn run_scene(
         let (px, py) = scene.frame(f);
         let s = study(opts, "streaming frame", || stream.frame(&px, &py))?;
         // SOLID: refit, traverse, the same triangle test.
-        let solid_scope = profile::scope(ctx, "SOLID frame (CPU)");
+        let solid_scope = profile::cpu_scope(ctx, "SOLID frame (CPU)");
         let t = Instant::now();
         let bx = solid::refit(&stream.x.stream, &px);
         let by = solid::refit(&stream.y.stream, &py);

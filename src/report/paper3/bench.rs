@@ -193,7 +193,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         for method in Method::ALL {
             bar.set_message(format!("{} / {}", case.name, method.label()));
             let label = method.label();
-            let _scope = crate::gl::profile::scope(ctx, &label);
+            let _scope = match method.gpu() {
+                Some(_) => crate::gl::profile::scope(ctx, &label),
+                None => crate::gl::profile::cpu_scope(ctx, &label),
+            };
             measurements.push(measure_case(&gpu, case, method, repeats, &reference)?);
             bar.inc(1);
         }
