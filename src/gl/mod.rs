@@ -26,6 +26,7 @@ mod framebuffer;
 mod mesh_buffers;
 mod pass;
 pub mod peel;
+pub mod profile;
 mod program;
 pub mod query;
 pub mod reduce;
@@ -40,6 +41,7 @@ pub use mesh_buffers::MeshBuffers;
 pub use pass::{
     Blend, Compare, DepthTest, DrawState, Face, Pass, Primitive, StencilOp, StencilTest,
 };
+pub use profile::Profiler;
 pub use program::{Program, ShaderError, ShaderSource};
 pub use query::{OcclusionQuery, TimerQuery};
 pub use texture::{Filter, Texture, TextureFormat, Wrap};
