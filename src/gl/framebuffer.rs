@@ -367,20 +367,6 @@ impl Framebuffer {
         Ok(out)
     }
 
-    /// Clear only the depth attachment to `depth`, keeping its stencil (a stencil bit that
-    /// later passes still read).
-    pub fn clear_depth(&self, depth: f32) -> Result<(), GlError> {
-        self.require_depth()?;
-        self.bind();
-        unsafe {
-            self.ctx.gl().depth_mask(true);
-            self.ctx
-                .gl()
-                .clear_buffer_f32_slice(glow::DEPTH, 0, &[depth]);
-        }
-        self.ctx.check(&format!("clearing depth of {}", self.name))
-    }
-
     /// Read a rectangle of the stencil buffer (a DEPTH24_STENCIL8 or DEPTH32F_STENCIL8
     /// attachment).
     pub fn read_stencil(&self, rect: Rect) -> Result<Vec<u8>, GlError> {

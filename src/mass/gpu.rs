@@ -67,6 +67,12 @@ impl GpuMass {
         self.peeler.set_profiler(profiler);
     }
 
+    /// Pass 1's stencil bit of the last call with `below` (1 where the first surface below
+    /// the water faces down), row by row from the bottom.
+    pub fn first_peel_faces_down(&self) -> Result<Vec<u8>, GlError> {
+        self.peeler.first_peel_faces_down()
+    }
+
     /// The ten integrals of `mesh` (below the plane `z = below` when given). Errors on a
     /// mesh that cannot be framed (empty, non-finite), and on a body the frame cannot see
     /// (one that covers no pixel centre: thinner than a pixel across).

@@ -121,9 +121,9 @@ pub struct Peeler {
     water_patch_program: Program,
     /// `T_dw`.
     water: Framebuffer,
-    /// The peel targets with depth-stencil `T_d(k)` for even and odd k (ping-pong); the
-    /// even one's stencil keeps pass 1's bit (later peels clear only its depth).
-    layers: [Framebuffer; 2],
+    /// The peel targets with the depth `T_d(k)`: pass 1's (with its stencil bit), then
+    /// two for even and odd k (ping-pong).
+    layers: [Framebuffer; 3],
     /// The running sums with pass 1's stencil, for the water patch.
     water_patch_target: Framebuffer,
     /// `KeepLayers`: made on first use, grown to the deepest batch.
@@ -159,8 +159,9 @@ impl Peeler {
     ) -> Result<Peeler, GlError> {
         let accumulator = Accumulator::new(ctx, width, height)?;
         let layers = [
-            peel_layer(ctx, width, height, "mass: peels (even)")?,
-            peel_layer(ctx, width, height, "mass: peels (odd)")?,
+            peel_layer(ctx, width, height, "mass: peel 1", true)?,
+            peel_layer(ctx, width, height, "mass: peels (even)", false)?,
+            peel_layer(ctx, width, height, "mass: peels (odd)", false)?,
         ];
         let water_depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
         let sums: Vec<&Texture> = accumulator.sums().iter().collect();
@@ -341,12 +342,13 @@ impl Peeler {
     /// the kept `T_layer`, made when first needed.
     fn layer_target(&self, layer: usize) -> Result<LayerTarget<'_>, GlError> {
         if self.settings.order == PeelOrder::RunningSums {
-            return Ok(LayerTarget::PingPong(&self.layers[layer % 2]));
+            let k = if layer == 0 { 0 } else { 1 + layer % 2 };
+            return Ok(LayerTarget::PingPong(&self.layers[k]));
         }
         {
             let mut slot = self.kept.borrow_mut();
             if slot.is_none() {
-                let first = peel_layer(&self.ctx, self.width, self.height, "mass: T_1")?;
+                let first = peel_layer(&self.ctx, self.width, self.height, "mass: T_1", true)?;
                 let colors: Vec<Texture> = (0..TARGETS)
                     .map(|_| {
                         Texture::new_2d(&self.ctx, self.width, self.height, TextureFormat::Rgba32F)
@@ -366,8 +368,13 @@ impl Peeler {
             let kept = slot.as_mut().expect("made above");
             while kept.layers.len() <= layer {
                 let name = format!("mass: T_{}", kept.layers.len() + 1);
-                kept.layers
-                    .push(peel_layer(&self.ctx, self.width, self.height, &name)?);
+                kept.layers.push(peel_layer(
+                    &self.ctx,
+                    self.width,
+                    self.height,
+                    &name,
+                    false,
+                )?);
             }
         }
         Ok(LayerTarget::Kept(Ref::map(self.kept.borrow(), |k| {
@@ -405,13 +412,9 @@ impl Peeler {
             let target = self.layer_target(layer)?;
             self.pass(CLEAR_PASS, || {
                 // Only the depth for the running sums: the accumulation ignores pixels
-                // this peel did not reach; pass 1's stencil stays for the water patch.
-                // Kept layers are reduced whole, so their colours start at zero.
-                if layer == 0 || keep {
-                    target.clear_depth_stencil(1.0, 0)?;
-                } else {
-                    target.clear_depth(1.0)?;
-                }
+                // this peel did not reach. Kept layers are reduced whole, so their
+                // colours start at zero.
+                target.clear_depth_stencil(1.0, 0)?;
                 if keep || dump.is_some() {
                     target.clear_colors([0.0; 4])?;
                 }
@@ -576,13 +579,26 @@ impl std::ops::Deref for LayerTarget<'_> {
     }
 }
 
-/// Three RGBA32F integrand targets and a depth-stencil `T_d(k)` (32-bit float depth, as the
-/// peel test compares fragment depths with it exactly).
-fn peel_layer(ctx: &Context, width: u32, height: u32, name: &str) -> Result<Framebuffer, GlError> {
+/// Three RGBA32F integrand targets and the depth `T_d(k)` (32-bit float, as the peel test
+/// compares fragment depths with it exactly), with the stencil for pass 1 (`stencil`).
+/// Only pass 1's target carries a stencil: a software rasterizer samples the packed
+/// depth-stencil format more slowly than plain depth.
+fn peel_layer(
+    ctx: &Context,
+    width: u32,
+    height: u32,
+    name: &str,
+    stencil: bool,
+) -> Result<Framebuffer, GlError> {
     let colors: Vec<Texture> = (0..TARGETS)
         .map(|_| Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F))
         .collect::<Result<_, _>>()?;
-    let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32FStencil8)?;
+    let format = if stencil {
+        TextureFormat::Depth32FStencil8
+    } else {
+        TextureFormat::Depth32F
+    };
+    let depth = Texture::new_2d(ctx, width, height, format)?;
     Framebuffer::new(ctx, name, &colors.iter().collect::<Vec<_>>(), Some(&depth))
 }
 
