@@ -209,6 +209,12 @@ fn reproduce(global: &Global, args: &report::reproduce::ReproduceArgs) -> anyhow
     for section in &report.sections {
         println!("{}", section.to_text());
     }
+    for section in &report.sections {
+        println!(
+            "section {:<9} {:6.1} s wall, {:6.1} s CPU (all threads)",
+            section.id, section.elapsed_s, section.cpu_s
+        );
+    }
     println!(
         "report written to {} ({:.0} s, renderer: {})",
         args.out.join("index.html").display(),

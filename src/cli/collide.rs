@@ -73,6 +73,8 @@ pub struct CollideArgs {
     /// Write P0..P3, P1' and the AABB textures as PNG into this directory (paper Fig. 6).
     #[arg(long)]
     pub dump: Option<PathBuf>,
+    #[command(flatten)]
+    pub profile: super::profile::ProfileArg,
 }
 
 /// `collide`: one frame of the pipeline on two static meshes; `json` prints one object.
@@ -91,7 +93,9 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     // The first frame pays for shader compilation (llvmpipe compiles on first draw); the
     // timings reported are those of a second, identical frame.
     collider.frame(&x.positions, &y.positions)?;
+    args.profile.start(ctx);
     let frame = collider.frame(&x.positions, &y.positions)?;
+    super::profile::print(ctx);
     if let Some(dir) = &args.dump {
         dump_buffers(&collider, dir)?;
         frame_png(&collider, &frame, (&x, &y), &dir.join("snapshot.png"))?;
@@ -151,6 +155,8 @@ pub struct SceneArgs {
     pub triangles: Option<usize>,
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    #[command(flatten)]
+    pub profile: super::profile::ProfileArg,
 }
 
 /// `collide-scene`: a deforming scene frame by frame; `json` prints one object.
@@ -164,6 +170,7 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
         args.pipeline.options(ctx, &scene.x.rest, &scene.y.rest)?,
     )?;
     let mut frames = Vec::new();
+    args.profile.start(ctx);
     for f in 0..args.frames {
         let (px, py) = scene.frame(f);
         let r = collider.frame(&px, &py)?;
@@ -176,6 +183,7 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
             "scheme": r.scheme, "readback_bytes": r.readback_bytes, "timings_ms": timings_json(&r),
         }));
     }
+    super::profile::print(ctx);
     if json {
         let out = json!({
             "renderer": ctx.info().renderer_line(),

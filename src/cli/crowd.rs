@@ -56,6 +56,8 @@ pub struct CrowdArgs {
     /// Seed of the crowd's placement and wandering.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    #[command(flatten)]
+    pub profile: super::profile::ProfileArg,
 }
 
 /// The library's [`ModelKind`], as the command line names it.
@@ -146,6 +148,7 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     } else {
         scene::table1_scene(kind, args.characters, aspect, args.seed)
     };
+    args.profile.start(ctx);
     let stats = scene::run(
         ctx,
         &mut renderer,
@@ -155,6 +158,7 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         args.frames,
         1.0 / 30.0,
     )?;
+    super::profile::print(ctx);
     if let Some(path) = &args.png {
         dump::texture_png(target.color(0), path, dump::DumpRange::Auto)
             .with_context(|| format!("writing the snapshot {}", path.display()))?;

@@ -1,7 +1,7 @@
 //! The `mass` and `buoyancy` commands.
 
 use anyhow::{bail, Context as _};
-use classic_gpgpu::gl::{profile, Context, Profiler};
+use classic_gpgpu::gl::{profile, Context};
 use classic_gpgpu::mass::assemble::MassProperties;
 use classic_gpgpu::mass::buoyancy::simulation::{self, SubmergedSolver};
 use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene};
@@ -109,7 +109,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         .map_err(|e| anyhow::anyhow!("model '{}': {e}", args.model))?;
 
     let settings = args.peeling.settings()?;
-    let mut gpu = GpuMass::with_settings(ctx, args.resolution, settings)
+    let gpu = GpuMass::with_settings(ctx, args.resolution, settings)
         .context("setting up the GPU passes")?;
     // The first run compiles and allocates on the driver side; time the second.
     gpu.integrate(&mesh, args.below, None)?;
@@ -124,13 +124,9 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
     };
     let analytic_ms = start.elapsed().as_secs_f64() * 1e3;
     let profile = if args.profile {
-        let profiler = Profiler::new(ctx);
-        gpu.set_profiler(Some(profiler.clone()));
-        let start = Instant::now();
+        profile::start(ctx);
         gpu.integrate(&mesh, args.below, None)?;
-        let wall = start.elapsed().as_secs_f64() * 1e3;
-        gpu.set_profiler(None);
-        Some((profiler.rows()?, wall))
+        profile::finish(ctx)
     } else {
         None
     };
@@ -182,12 +178,9 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
     Ok(())
 }
 
-/// The profile table under a heading: the run's wall clock beside the rows' sums.
-fn profile_text(rows: &[profile::ProfileRow], what: &str, wall_ms: f64) -> String {
-    format!(
-        "profile of {what} ({wall_ms:.3} ms wall in all)\n{}",
-        profile::table(rows)
-    )
+/// The profile table under a heading.
+fn profile_text(table: &profile::ProfileTable, what: &str) -> String {
+    format!("profile of {what}\n{table}\n")
 }
 
 struct MassOutput<'a> {
@@ -204,8 +197,8 @@ struct MassOutput<'a> {
     gpu_wall_ms: f64,
     analytic_ms: f64,
     warnings: Vec<String>,
-    /// `--profile`: the rows and the wall clock of the profiled run.
-    profile: Option<(Vec<profile::ProfileRow>, f64)>,
+    /// `--profile`: the table of the profiled run.
+    profile: Option<profile::ProfileTable>,
 }
 
 impl MassOutput<'_> {
@@ -251,10 +244,7 @@ impl MassOutput<'_> {
                 "analytic": self.analytic_ms,
             },
             "warnings": self.warnings,
-            "profile": self.profile.as_ref().map(|(rows, wall)| json!({
-                "rows": rows,
-                "wall_ms": wall,
-            })),
+            "profile": self.profile,
         })
     }
 
@@ -328,8 +318,8 @@ impl MassOutput<'_> {
             self.result.settings.order.name(),
             self.result.settings.max_peels
         );
-        if let Some((rows, wall)) = &self.profile {
-            s += &profile_text(rows, "one more run", *wall);
+        if let Some(table) = &self.profile {
+            s += &profile_text(table, "one more run");
         }
         for w in &self.warnings {
             s += &format!("warning         {w}\n");
@@ -391,7 +381,6 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     let settings = args.peeling.settings()?;
     let mut sim = scene::paper_scene(args.bodies, args.dt).map_err(anyhow::Error::msg)?;
     let mut warnings = scene::open_shape_warnings(&sim.shapes);
-    let profiler = args.profile.then(|| Profiler::new(ctx));
     let mut gpu = if args.cpu {
         None
     } else {
@@ -403,7 +392,6 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
                 )
             })?;
         solver.set_settings(settings)?;
-        solver.set_profiler(profiler.clone());
         Some(solver)
     };
     for w in &warnings {
@@ -416,11 +404,13 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     let progress = classic_gpgpu::mass::progress_bar(args.steps as u64, json_out, "buoyancy steps");
     let mut step_ms = Vec::with_capacity(args.steps);
     let mut peels = Vec::with_capacity(args.steps);
-    let cpu_span = |name: &str, work: &mut dyn FnMut() -> Result<_, String>| match &profiler {
-        Some(p) => p.cpu(name, work),
-        None => work(),
+    let cpu_span = |name: &str, work: &mut dyn FnMut() -> Result<_, String>| {
+        let _scope = profile::cpu_scope(ctx, name);
+        work()
     };
-    let run_start = Instant::now();
+    if args.profile {
+        profile::start(ctx);
+    }
     for step in 0..args.steps {
         let start = Instant::now();
         let subs = match gpu.as_mut() {
@@ -450,7 +440,6 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         progress.inc(1);
     }
     progress.finish_and_clear();
-    let run_wall_ms = run_start.elapsed().as_secs_f64() * 1e3;
     let truncated_steps = gpu.as_ref().map_or(0, |g| g.truncated_steps);
     if truncated_steps > 0 {
         let w = format!(
@@ -460,9 +449,10 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         eprintln!("warning: {w}");
         warnings.push(w);
     }
-    let profile_rows = match &profiler {
-        Some(p) => Some(p.rows()?),
-        None => None,
+    let profile_table = if args.profile {
+        profile::finish(ctx)
+    } else {
+        None
     };
     let total: f64 = step_ms.iter().sum();
     let mean = total / step_ms.len().max(1) as f64;
@@ -498,19 +488,15 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
             "truncated_steps": truncated_steps,
         },
         "warnings": warnings,
-        "profile": profile_rows.as_ref().map(|rows| json!({
-            "rows": rows,
-            "wall_ms": run_wall_ms,
-        })),
+        "profile": profile_table,
         "state": bodies,
     });
     if json_out {
         println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());
     }
-    if let Some(rows) = &profile_rows {
-        let what = format!("{} steps", args.steps);
-        print!("{}", profile_text(rows, &what, run_wall_ms));
+    if let Some(table) = &profile_table {
+        print!("{}", profile_text(table, &format!("{} steps", args.steps)));
     }
     println!("renderer        {}", ctx.info().renderer_line());
     println!(

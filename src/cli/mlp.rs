@@ -58,6 +58,10 @@ struct Engine {
     /// product].
     #[arg(long, conflicts_with = "cpu", value_parser = at_least_one)]
     inputs_per_pass: Option<usize>,
+    /// After the run, print a per-pass table to stderr: GPU time of each pass (timestamp
+    /// queries, read after the run), its wall time, and the time spent waiting for the GPU.
+    #[arg(long, conflicts_with = "cpu")]
+    profile: bool,
 }
 
 /// The library's [`Formulation`], as the command line names it.
@@ -294,9 +298,11 @@ fn evaluate_batch(
         });
     }
     let ctx = context()?;
+    super::profile::start(&ctx, engine.profile);
     let gpu = GpuMlp::new(&ctx)?;
     let loaded = engine.load(&gpu, net)?;
     let result = loaded.forward(batch, engine.max_vectors)?;
+    super::profile::print(&ctx);
     Ok(Evaluated {
         outputs: result.outputs,
         renderer: ctx.info().renderer_line(),
@@ -410,9 +416,11 @@ fn detect(
         }
         None => {
             let ctx = context()?;
+            super::profile::start(&ctx, args.engine.profile);
             let gpu = GpuMlp::new(&ctx)?;
             let loaded = args.engine.load(&gpu, &net)?;
             let classified = classify_gpu(&loaded, &image, 1 << 18, args.engine.max_vectors)?;
+            super::profile::print(&ctx);
             (
                 classified,
                 ctx.info().renderer_line(),

@@ -8,3 +8,4 @@ pub mod lecture3;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;
+pub mod profile;

@@ -12,7 +12,7 @@ use super::streaming_test::{PairTarget, StreamingTest};
 use super::tiles::TileLayout;
 use super::tri_test::{test_caps, ModelView, Predicate};
 use super::vertex_textures::VertexTexture;
-use crate::gl::{query::time_gpu, Context};
+use crate::gl::{profile, query::time_gpu, Context};
 use crate::mesh::Mesh;
 use glam::Vec3;
 use serde::Serialize;
@@ -183,6 +183,7 @@ impl StreamingCollider {
         etas: &[f64],
         repeats: usize,
     ) -> anyhow::Result<&[CalibrationPoint]> {
+        let _scope = profile::scope(&self.ctx, "readback calibration (auto)");
         self.calibration = reduction_gpu::calibrate(
             &self.ctx,
             &self.target,
@@ -235,12 +236,14 @@ impl StreamingCollider {
         }
         // Texture download, then stream update.
         let t = Instant::now();
+        let download = profile::scope(&self.ctx, "texture download");
         for (stream, positions) in [(&mut self.x, positions_x), (&mut self.y, positions_y)] {
             for (_, vertices) in &mut stream.segments {
                 vertices.upload(positions)?;
             }
         }
         self.ctx.finish_all();
+        drop(download);
         out.timings.download = t.elapsed().as_secs_f64() * 1e3;
         let ((), update_ms) = time_gpu(&self.ctx, || {
             for stream in [&self.x, &self.y] {
@@ -264,6 +267,7 @@ impl StreamingCollider {
         out.eta = out.caps as f64 / total_pairs;
         // Primitive-level intersection test.
         let t = Instant::now();
+        let tri_scope = profile::cpu_scope(&self.ctx, "triangle test (CPU)");
         let view = |triangles, positions, stream| ModelView {
             triangles,
             positions,
@@ -275,6 +279,7 @@ impl StreamingCollider {
             &caps,
             self.options.predicate,
         );
+        drop(tri_scope);
         out.timings.tri_test = t.elapsed().as_secs_f64() * 1e3;
         out.pctps = result.pctps;
         out.ctps = result.pairs.len();

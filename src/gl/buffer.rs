@@ -127,11 +127,11 @@ impl Buffer {
         let n = self.len_bytes() / std::mem::size_of::<T>();
         let mut out = vec![T::default(); n];
         let gl = self.obj.ctx.gl();
-        unsafe {
+        super::profile::wait(&self.obj.ctx, "buffer read", || unsafe {
             gl.finish();
             gl.bind_buffer(SCRATCH_TARGET, Some(self.obj.id));
             gl.get_buffer_sub_data(SCRATCH_TARGET, 0, bytemuck::cast_slice_mut(&mut out));
-        }
+        });
         self.obj.ctx.check("buffer read")?;
         Ok(out)
     }

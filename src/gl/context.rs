@@ -158,6 +158,8 @@ pub(super) struct Inner {
     /// The empty vertex array that attribute-less draws (rectangles) bind.
     pub(super) empty_vao: glow::VertexArray,
     pub(super) extra: ExtraEntryPoints,
+    /// The running per-pass profile, if any ([`super::profile`]).
+    pub(super) profile: std::cell::RefCell<Option<Box<super::profile::State>>>,
     platform: Platform,
 }
 
@@ -309,6 +311,7 @@ impl Context {
                 checks: Cell::new(checks),
                 empty_vao,
                 extra,
+                profile: std::cell::RefCell::new(None),
                 platform: platform_state,
             }),
         };
@@ -388,7 +391,19 @@ impl Context {
 
     /// Wait for every queued command (wall-clock timing of whole frames).
     pub fn finish_all(&self) {
-        unsafe { self.gl().finish() };
+        super::profile::wait(self, "glFinish", || unsafe { self.gl().finish() });
+    }
+
+    /// The bits of the `GL_TIMESTAMP` counter (0: no timestamps).
+    pub(super) fn timestamp_bits(&self) -> u32 {
+        let Some(get_query_iv) = self.inner.extra.get_query_iv else {
+            return 0;
+        };
+        let mut bits = 0;
+        // SAFETY: the entry point was looked up by its name; one i32 is written.
+        unsafe { get_query_iv(glow::TIMESTAMP, glow::QUERY_COUNTER_BITS, &mut bits) };
+        self.check_now("reading the timestamp counter bits").ok();
+        bits.max(0) as u32
     }
 
     /// Push queued commands to the GPU without waiting.

@@ -227,6 +227,8 @@ impl Framebuffer {
 
     /// Clear colour attachment `index` to `value` (float formats; bytes are normalised).
     pub fn clear_color(&self, index: usize, value: [f32; 4]) -> Result<(), GlError> {
+        let name = super::profile::is_on(&self.ctx).then(|| format!("clear {}", self.name));
+        let _scope = name.as_deref().map(|n| super::profile::scope(&self.ctx, n));
         self.bind();
         unsafe {
             self.ctx.gl().color_mask(true, true, true, true);
@@ -245,6 +247,8 @@ impl Framebuffer {
 
     /// Clear the depth attachment (and the stencil, if there is one) to `depth` and `stencil`.
     pub fn clear_depth_stencil(&self, depth: f32, stencil: i32) -> Result<(), GlError> {
+        let name = super::profile::is_on(&self.ctx).then(|| format!("clear {}", self.name));
+        let _scope = name.as_deref().map(|n| super::profile::scope(&self.ctx, n));
         self.bind();
         let gl = self.ctx.gl();
         unsafe {
@@ -435,7 +439,7 @@ impl Framebuffer {
             )));
         }
         let gl = self.ctx.gl();
-        unsafe {
+        super::profile::wait(&self.ctx, "glReadPixels", || unsafe {
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.id));
             gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
             gl.read_pixels(
@@ -447,7 +451,7 @@ impl Framebuffer {
                 ty,
                 data,
             );
-        }
+        });
         self.ctx.check(&format!("reading back {}", self.name))
     }
 }

@@ -7,7 +7,7 @@
 //!
 //! On top of them sit the two GPGPU building blocks the papers share: ping-pong
 //! [`reduce`]tion and depth [`peel`]ing. [`dump`] writes any texture to PNG, the tutorial's
-//! first debugging tip.
+//! first debugging tip; [`profile`] shows where the time of a run goes, pass by pass.
 //!
 //! GL errors and framebuffer completeness are checked after every pass when
 //! [`Context::checks`] is on: always in debug builds, and in tests (which call
@@ -41,7 +41,6 @@ pub use mesh_buffers::MeshBuffers;
 pub use pass::{
     Blend, Compare, DepthTest, DrawState, Face, Pass, Primitive, StencilOp, StencilTest,
 };
-pub use profile::Profiler;
 pub use program::{Program, ShaderError, ShaderSource};
 pub use query::{OcclusionQuery, TimerQuery};
 pub use texture::{Filter, Texture, TextureFormat, Wrap};

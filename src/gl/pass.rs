@@ -373,6 +373,7 @@ impl<'a> Pass<'a> {
         if let Some(e) = self.error.take() {
             return Err(e);
         }
+        let _scope = super::profile::scope(self.ctx, self.name);
         let gl = self.ctx.gl();
         self.target.bind();
         self.program.bind();

@@ -35,13 +35,13 @@ impl Query {
     fn result(&self, what: &str) -> Result<u64, GlError> {
         let mut value: u64 = 0;
         // SAFETY: no query buffer is ever bound, so glow's "offset" is the address written to.
-        unsafe {
+        super::profile::wait(&self.ctx, "query result", || unsafe {
             self.ctx.gl().get_query_parameter_u64_with_offset(
                 self.id,
                 glow::QUERY_RESULT,
                 &mut value as *mut u64 as usize,
             )
-        };
+        });
         self.ctx.check(what)?;
         Ok(value)
     }

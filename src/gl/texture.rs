@@ -602,7 +602,7 @@ impl Texture {
     fn download_level_bytes(&self, level: u32, out: &mut [u8]) -> Result<(), GlError> {
         let gl = self.obj.ctx.gl();
         let (_, pixel_format, pixel_type) = self.format().gl();
-        unsafe {
+        super::profile::wait(&self.obj.ctx, "glGetTexImage", || unsafe {
             gl.bind_buffer(glow::PIXEL_PACK_BUFFER, None);
             gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
             gl.bind_texture(self.obj.target, Some(self.obj.id));
@@ -613,7 +613,7 @@ impl Texture {
                 pixel_type,
                 glow::PixelPackData::Slice(Some(out)),
             );
-        }
+        });
         self.obj.ctx.check("texture download")
     }
 

@@ -12,7 +12,7 @@ use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::Soup;
 use super::peel::{Job, PeelSettings, Peeler};
-use crate::gl::{query, Context, GlError, Profiler, Rect};
+use crate::gl::{profile, query, Context, GlError, Rect};
 use crate::mesh::Mesh;
 use glam::{DVec3, Mat4};
 use serde::Serialize;
@@ -62,11 +62,6 @@ impl GpuMass {
         Ok(gpu)
     }
 
-    /// Record every pass of the next calls in `profiler` (`None`: stop).
-    pub fn set_profiler(&mut self, profiler: Option<Profiler>) {
-        self.peeler.set_profiler(profiler);
-    }
-
     /// Pass 1's stencil bit of the last call with `below` (1 where the first surface below
     /// the water faces down), row by row from the bottom.
     pub fn first_peel_faces_down(&self) -> Result<Vec<u8>, GlError> {
@@ -83,12 +78,9 @@ impl GpuMass {
         dump: Option<&Path>,
     ) -> Result<GpuResult, GlError> {
         let framing = Framing::fit(mesh, self.resolution).map_err(GlError::Invalid)?;
-        let profiler = self.peeler.profiler().cloned();
-        let (unit, soup, indices) = match &profiler {
-            Some(p) => p.cpu("mass: unit frame, upload the soup", || {
-                self.prepare(mesh, &framing)
-            })?,
-            None => self.prepare(mesh, &framing)?,
+        let (unit, soup, indices) = {
+            let _scope = profile::cpu_scope(self.peeler.context(), "mass: unit frame, upload");
+            self.prepare(mesh, &framing)?
         };
         let job = Job {
             body: "the body",

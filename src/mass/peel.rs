@@ -26,10 +26,10 @@ use super::integrals::VolumeIntegrals;
 use super::integrands::{self, Soup, TARGETS};
 use super::reduce::{Accumulator, REDUCTION_PASS};
 use crate::gl::dump::{self, DumpRange};
+use crate::gl::profile;
 use crate::gl::{
     ensure_finite, Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
-    OcclusionQuery, Pass, Primitive, Profiler, Program, Rect, StencilOp, StencilTest, Texture,
-    TextureFormat,
+    OcclusionQuery, Pass, Primitive, Program, Rect, StencilOp, StencilTest, Texture, TextureFormat,
 };
 use glam::Mat4;
 use serde::Serialize;
@@ -139,14 +139,12 @@ pub struct Peeler {
     /// the whole target (one body).
     block: Option<u32>,
     settings: PeelSettings,
-    profiler: Option<Profiler>,
 }
 
 /// The names of the passes (errors and the profile).
 const PEEL_PASS: &str = "mass: passes 1..n, depth peel";
 const WATER_DEPTH_PASS: &str = "mass: pass 0, fluid surface depth";
 const WATER_PATCH_PASS: &str = "mass: pass n+1, fluid surface patch";
-const ACCUMULATE_PASS: &str = "mass: accumulate a peel";
 const CLEAR_PASS: &str = "mass: clear a peel's targets";
 
 impl Peeler {
@@ -192,7 +190,6 @@ impl Peeler {
             accumulator,
             block,
             settings: PeelSettings::default(),
-            profiler: None,
         })
     }
 
@@ -209,27 +206,11 @@ impl Peeler {
         self.settings
     }
 
-    /// Record every pass, wait and read-back in `profiler` (or stop, with `None`).
-    pub fn set_profiler(&mut self, profiler: Option<Profiler>) {
-        self.profiler = profiler;
-    }
-
-    pub fn profiler(&self) -> Option<&Profiler> {
-        self.profiler.as_ref()
-    }
-
+    /// A profile scope named `name` around `work` (`gl::profile`; draws are recorded under
+    /// their pass names on their own, this groups clears and several draws).
     fn pass<T>(&self, name: &str, work: impl FnOnce() -> Result<T, GlError>) -> Result<T, GlError> {
-        match &self.profiler {
-            Some(p) => p.pass(name, work),
-            None => work(),
-        }
-    }
-
-    fn wait<T>(&self, name: &str, work: impl FnOnce() -> T) -> T {
-        match &self.profiler {
-            Some(p) => p.wait(name, work),
-            None => work(),
-        }
+        let _scope = profile::scope(&self.ctx, name);
+        work()
     }
 
     /// The ten integrals of every job's body (below `water`, the level of a flat fluid
@@ -256,7 +237,6 @@ impl Peeler {
                 .map(|job| integrands::decode(sums[self.tile_index(job)], &job.framing))
                 .collect()
         };
-        let profiler = self.profiler.as_ref();
         let (integrals, layers) = if keep {
             let kept = self.kept.borrow();
             let kept = kept.as_ref().expect("made by the peel passes");
@@ -266,11 +246,7 @@ impl Peeler {
             }
             let layers = reduced
                 .iter()
-                .map(|t| {
-                    Ok(decode(
-                        &self.accumulator.reduce_from(t, self.block, profiler)?,
-                    ))
-                })
+                .map(|t| Ok(decode(&self.accumulator.reduce_from(t, self.block)?)))
                 .collect::<Result<Vec<_>, GlError>>()?;
             let total = jobs
                 .iter()
@@ -285,10 +261,7 @@ impl Peeler {
                 .collect();
             (total, layers)
         } else {
-            (
-                decode(&self.accumulator.reduce(self.block, profiler)?),
-                Vec::new(),
-            )
+            (decode(&self.accumulator.reduce(self.block)?), Vec::new())
         };
         for (job, i) in jobs.iter().zip(&integrals) {
             ensure_finite(
@@ -319,7 +292,7 @@ impl Peeler {
     /// Pass 0: `T_dw`, cleared to 0 (nothing is above the water) and, with water, the
     /// fluid surface drawn over every tile.
     fn water_depth_pass(&self, jobs: &[Job], water: Option<f64>) -> Result<(), GlError> {
-        self.pass(WATER_DEPTH_PASS, || {
+        self.pass("mass: pass 0 (all bodies)", || {
             self.water.clear_depth_stencil(0.0, 0)?;
             let Some(level) = water else { return Ok(()) };
             self.upload_tile_data(jobs)?;
@@ -420,7 +393,7 @@ impl Peeler {
                 }
                 Ok(())
             })?;
-            self.pass(PEEL_PASS, || {
+            self.pass("mass: one peel (all bodies)", || {
                 let mut pass = target.pass(&self.peel_program, PEEL_PASS)?;
                 pass.state(peel_state(layer == 0))
                     .texture("u_peel_depth", &previous)
@@ -445,7 +418,7 @@ impl Peeler {
                 }
                 Ok(())
             })?;
-            self.wait("mass: occlusion queries", || -> Result<(), GlError> {
+            self.pass("mass: occlusion queries", || -> Result<(), GlError> {
                 for (k, a) in active.iter_mut().enumerate() {
                     if *a {
                         *a = queries[k].samples()? > 0;
@@ -470,9 +443,7 @@ impl Peeler {
                         .map(|(j, _)| j.tile),
                 );
                 let depth = target.depth().expect("peel targets have depth");
-                self.pass(ACCUMULATE_PASS, || {
-                    self.accumulator.add_peel(target.colors(), depth, &tiles)
-                })?;
+                self.accumulator.add_peel(target.colors(), depth, &tiles)?;
             }
         }
         unreachable!("the loop returns at layer == max")
@@ -481,7 +452,7 @@ impl Peeler {
     /// The last pass: the fluid surface inside each body (where pass 1's stencil bit is
     /// 1), added into the sums or drawn into `T_w`.
     fn water_patch_pass(&self, jobs: &[Job], level: f64) -> Result<(), GlError> {
-        self.pass(WATER_PATCH_PASS, || {
+        self.pass("mass: pass n+1 (all bodies)", || {
             let kept = self.kept.borrow();
             let (target, blend) = match self.settings.order {
                 PeelOrder::RunningSums => (&self.water_patch_target, Some(Blend::Add)),

@@ -8,8 +8,7 @@
 use super::integrands::TARGETS;
 use crate::gl::reduce::passes_for;
 use crate::gl::{
-    Blend, Context, DrawState, Framebuffer, GlError, Profiler, Program, Rect, Texture,
-    TextureFormat,
+    Blend, Context, DrawState, Framebuffer, GlError, Program, Rect, Texture, TextureFormat,
 };
 use crate::shader;
 use glam::IVec2;
@@ -82,12 +81,8 @@ impl Accumulator {
     }
 
     /// The running sums, reduced ([`Accumulator::reduce_from`]).
-    pub fn reduce(
-        &self,
-        block: Option<u32>,
-        profiler: Option<&Profiler>,
-    ) -> Result<Vec<[[f64; 4]; TARGETS]>, GlError> {
-        self.reduce_from(&self.target, block, profiler)
+    pub fn reduce(&self, block: Option<u32>) -> Result<Vec<[[f64; 4]; TARGETS]>, GlError> {
+        self.reduce_from(&self.target, block)
     }
 
     /// The three sums of every `block x block` tile (row by row from the bottom), or of the
@@ -98,7 +93,6 @@ impl Accumulator {
         &self,
         source_target: &Framebuffer,
         block: Option<u32>,
-        profiler: Option<&Profiler>,
     ) -> Result<Vec<[[f64; 4]; TARGETS]>, GlError> {
         let (mut w, mut h) = (source_target.width(), source_target.height());
         let levels = match block {
@@ -113,19 +107,13 @@ impl Accumulator {
             } else {
                 &self.ping_pong[1 - index]
             };
-            let pass = || -> Result<(), GlError> {
-                let mut pass = self.ping_pong[index].pass(&self.reduce_program, REDUCTION_PASS)?;
-                pass.viewport(Rect::sized(out_w, out_h))
-                    .texture("u_source0", source.color(0))
-                    .texture("u_source1", source.color(1))
-                    .texture("u_source2", source.color(2))
-                    .uniform("u_source_size", IVec2::new(w as i32, h as i32));
-                pass.draw_full()
-            };
-            match profiler {
-                Some(p) => p.pass(REDUCTION_PASS, pass)?,
-                None => pass()?,
-            }
+            let mut pass = self.ping_pong[index].pass(&self.reduce_program, REDUCTION_PASS)?;
+            pass.viewport(Rect::sized(out_w, out_h))
+                .texture("u_source0", source.color(0))
+                .texture("u_source1", source.color(1))
+                .texture("u_source2", source.color(2))
+                .uniform("u_source_size", IVec2::new(w as i32, h as i32));
+            pass.draw_full()?;
             (w, h) = (out_w, out_h);
             index = 1 - index;
         }
@@ -134,15 +122,9 @@ impl Accumulator {
         } else {
             &self.ping_pong[1 - index]
         };
-        let read = || -> Result<Vec<Vec<f32>>, GlError> {
-            (0..TARGETS)
-                .map(|i| result.read_f32(i, Rect::sized(w, h)))
-                .collect()
-        };
-        let per_target = match profiler {
-            Some(p) => p.wait("mass: read the sums back", read)?,
-            None => read()?,
-        };
+        let per_target: Vec<Vec<f32>> = (0..TARGETS)
+            .map(|i| result.read_f32(i, Rect::sized(w, h)))
+            .collect::<Result<_, _>>()?;
         let texel = |t: usize, k: usize| -> [f64; 4] {
             std::array::from_fn(|c| per_target[t][4 * k + c] as f64)
         };

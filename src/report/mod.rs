@@ -15,6 +15,7 @@ pub mod paper2;
 pub mod paper3;
 pub mod paper4;
 pub mod plot;
+pub mod profile;
 pub mod published;
 pub mod reproduce;
 
@@ -64,11 +65,14 @@ pub struct BenchArgs<O: clap::Args> {
 
 /// Measure one section and build it, with its id, title and results filled in.
 pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyhow::Result<Section> {
+    let (start, cpu_start) = (std::time::Instant::now(), process_cpu_s());
     let results = P::measure(opts, options)?;
     let mut section = P::section(opts, &results)?;
     section.id = P::ID.into();
     section.title = P::TITLE.into();
     section.results = serde_json::to_value(&results).context("serialising the results")?;
+    section.elapsed_s = start.elapsed().as_secs_f64();
+    section.cpu_s = process_cpu_s() - cpu_start;
     for row in &section.fidelity {
         anyhow::ensure!(
             !row.deviation.trim().is_empty(),
@@ -118,6 +122,13 @@ pub struct Section {
     pub fidelity: Vec<Fidelity>,
     /// Every measured number, machine readable.
     pub results: serde_json::Value,
+    /// Wall time of the section's run, s (on a shared machine, see `cpu_s`).
+    #[serde(default)]
+    pub elapsed_s: f64,
+    /// CPU time of the whole process (every thread: the software renderer's too) during the
+    /// section's run, s: less sensitive than wall time to other work on the machine.
+    #[serde(default)]
+    pub cpu_s: f64,
 }
 
 /// A table of measured numbers, usually with the paper's numbers in adjacent columns.
@@ -268,4 +279,25 @@ impl Table {
         }
         out
     }
+}
+
+/// CPU time of this process so far (user + system, all threads), s, from `/proc/self/stat`
+/// (in USER_HZ ticks, 100 per second on Linux); 0 where there is no such file.
+pub fn process_cpu_s() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // Fields after the command name (which may hold spaces) end with ')'.
+    let Some(rest) = stat.rsplit_once(')').map(|(_, r)| r) else {
+        return 0.0;
+    };
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // utime and stime are fields 14 and 15 of the line: indices 11 and 12 after the name.
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    (ticks(11) + ticks(12)) / 100.0
 }

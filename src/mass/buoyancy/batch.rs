@@ -6,7 +6,7 @@
 
 use super::forces::{Submerged, Water};
 use super::simulation::{Body, Shape, SubmergedSolver};
-use crate::gl::{Context, GlError, Profiler, Rect};
+use crate::gl::{profile, Context, GlError, Rect};
 use crate::mass::framing::Framing;
 use crate::mass::integrands::Soup;
 use crate::mass::peel::{Job, PeelSettings, Peeler};
@@ -54,11 +54,6 @@ impl GpuSolver {
     /// Peel with `settings` from now on (limit, order).
     pub fn set_settings(&mut self, settings: PeelSettings) -> Result<(), GlError> {
         self.peeler.set_settings(settings)
-    }
-
-    /// Record the passes of every following step in `profiler` (`None`: stop).
-    pub fn set_profiler(&mut self, profiler: Option<Profiler>) {
-        self.peeler.set_profiler(profiler);
     }
 
     /// Size of the whole target (pixels).
@@ -153,9 +148,12 @@ impl SubmergedSolver for GpuSolver {
                 self.soup.set_indices(&indices)?;
                 Ok(jobs)
             };
-            let jobs = match self.peeler.profiler() {
-                Some(p) => p.cpu("buoyancy: pose, frame and index the bodies", setup)?,
-                None => setup()?,
+            let jobs = {
+                let _scope = profile::cpu_scope(
+                    self.peeler.context(),
+                    "buoyancy: pose, frame and index the bodies",
+                );
+                setup()?
             };
             self.peeler.run(&self.soup, &jobs, Some(water.level), None)
         };

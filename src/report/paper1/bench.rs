@@ -14,6 +14,7 @@ use crate::collide::stream_setup::{auto_leaf_size_for_pair, max_slots, DEFAULT_L
 use crate::collide::streaming_test::PairTarget;
 use crate::collide::tri_test::{test_caps, ModelView, Predicate, PrimitiveResult};
 use crate::collide::{solid, AabbStream};
+use crate::gl::profile::{self, ProfileTable};
 use crate::mesh::Mesh;
 use crate::report::BenchOptions;
 use glam::Vec3;
@@ -33,6 +34,8 @@ pub struct Paper1Results {
     pub tiles: TileStudy,
     /// Empty when the sweep was skipped.
     pub leaf_sweep: Vec<SweepPoint>,
+    /// Where the time of this run went, pass by pass.
+    pub profile: Option<ProfileTable>,
 }
 
 /// How the run was set up.
@@ -248,6 +251,13 @@ fn study_triangles(quick: bool) -> Option<usize> {
 }
 
 pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1Results> {
+    let (mut results, table) =
+        crate::report::profile::profiled(opts.gl, || measure_all(opts, args))?;
+    results.profile = Some(table);
+    Ok(results)
+}
+
+fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1Results> {
     let quick = opts.quick;
     let frames = args.frames.unwrap_or(if quick { 3 } else { 20 });
     let triangles = args.triangles.or(study_triangles(quick));
@@ -264,10 +274,12 @@ pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let mut runs = Vec::new();
+    let scope = profile::scope(opts.gl, "Table III scenes (streaming, SOLID, CULLIDE)");
     for name in &scenes {
         bar.set_message(format!("paper 1: {name}"));
         runs.push(run_scene(opts, name, frames, triangles, args, &bar)?);
     }
+    drop(scope);
     bar.finish_and_clear();
     let tori_leaf_size = args.leaf_size.unwrap_or(DEFAULT_LEAF_SIZE);
     let software = opts.gl.info().is_software();
@@ -283,16 +295,31 @@ pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
             cullide_resolution: args.cullide_resolution,
         },
         scenes: runs,
-        cullide_resolutions: cullide_resolutions(opts, tori_leaf_size)?,
-        fig7: fig7(opts)?,
-        readback_schemes: readback_schemes(opts, tori_leaf_size, frames)?,
-        tiles: tile_study(opts)?,
+        cullide_resolutions: study(opts, "CULLIDE resolutions", || {
+            cullide_resolutions(opts, tori_leaf_size)
+        })?,
+        fig7: study(opts, "Fig. 7 readback curves", || fig7(opts))?,
+        readback_schemes: study(opts, "readback schemes on real frames", || {
+            readback_schemes(opts, tori_leaf_size, frames)
+        })?,
+        tiles: study(opts, "tiles (Sec. 5.5)", || tile_study(opts))?,
         leaf_sweep: if args.no_leaf_sweep {
             Vec::new()
         } else {
-            leaf_sweep(opts)?
+            study(opts, "leaf-size sweep", || leaf_sweep(opts))?
         },
+        profile: None,
     })
+}
+
+/// One study of the section, a named scope of the profile.
+fn study<T>(
+    opts: &BenchOptions,
+    name: &str,
+    run: impl FnOnce() -> anyhow::Result<T>,
+) -> anyhow::Result<T> {
+    let _scope = profile::scope(opts.gl, name);
+    run()
 }
 
 /// One model as the tests see it: mesh, current positions, stream.
@@ -439,8 +466,9 @@ fn run_scene(
     // Frame 0 warms up shader compilation and is not counted.
     for f in 0..=frames {
         let (px, py) = scene.frame(f);
-        let s = stream.frame(&px, &py)?;
+        let s = study(opts, "streaming frame", || stream.frame(&px, &py))?;
         // SOLID: refit, traverse, the same triangle test.
+        let solid_scope = profile::cpu_scope(ctx, "SOLID frame (CPU)");
         let t = Instant::now();
         let bx = solid::refit(&stream.x.stream, &px);
         let by = solid::refit(&stream.y.stream, &py);
@@ -456,7 +484,10 @@ fn run_scene(
             Predicate::Moller,
         );
         let solid_tri = t.elapsed().as_secs_f64() * 1e3;
-        let c = cullide.frame(&px, &py, Predicate::Moller)?;
+        drop(solid_scope);
+        let c = study(opts, "CULLIDE frame", || {
+            Ok(cullide.frame(&px, &py, Predicate::Moller)?)
+        })?;
         bar.inc(1);
         if f == 0 {
             continue;

@@ -12,6 +12,7 @@ mod fig10_12;
 mod fig7;
 mod fig8_9;
 mod leaf_sweep;
+mod profile;
 mod readback_schemes;
 mod table3;
 mod table4;
@@ -90,6 +91,7 @@ impl Paper for Paper1 {
         if !results.leaf_sweep.is_empty() {
             tables.push(leaf_sweep::table(results));
         }
+        tables.extend(profile::table(results));
         let mut figures = fig7::figures(opts, results)?;
         for run in &results.scenes {
             figures.extend(fig8_9::figure(run));

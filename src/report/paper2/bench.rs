@@ -40,6 +40,8 @@ pub struct Paper2Results {
     pub sprite_runs: Vec<RunStats>,
     /// PNGs written during the run, in the order they were taken.
     pub snapshots: Vec<Snapshot>,
+    /// Where the time of this run went, pass by pass.
+    pub profile: Option<crate::gl::profile::ProfileTable>,
 }
 
 /// What the runs were set up with.
@@ -308,6 +310,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         lod_runs: Vec::new(),
         sprite_runs: Vec::new(),
         snapshots: Vec::new(),
+        profile: None,
     };
     let mut snapshots = Vec::new();
     let mut snapshot = |texture: &Texture, file: String, shows: Shows| -> anyhow::Result<()> {

@@ -14,6 +14,7 @@ mod bench;
 mod claims;
 mod fidelity;
 mod fig3_5;
+mod profile;
 mod ratios;
 mod snapshots;
 mod stages;
@@ -35,7 +36,9 @@ impl Paper for Paper2 {
     type Results = Paper2Results;
 
     fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Paper2Results> {
-        bench::measure(opts)
+        let (mut results, table) = super::profile::profiled(opts.gl, || bench::measure(opts))?;
+        results.profile = Some(table);
+        Ok(results)
     }
 
     fn section(opts: &BenchOptions, results: &Paper2Results) -> anyhow::Result<Section> {
@@ -49,7 +52,10 @@ impl Paper for Paper2 {
                 ratios::table(results, &paper.table1),
                 stages::table(results),
                 fig3_5::table(results, paper),
-            ],
+            ]
+            .into_iter()
+            .chain(profile::table(results))
+            .collect(),
             claims: claims::claims(results),
             figures,
             fidelity: fidelity::rows(results),

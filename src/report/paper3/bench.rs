@@ -36,6 +36,8 @@ pub struct Paper3Results {
     /// Every case and method; the first case's rows are Table 1's.
     pub measurements: Vec<Measurement>,
     pub detection: Detection,
+    /// Where the time of this run went, pass by pass.
+    pub profile: Option<crate::gl::profile::ProfileTable>,
 }
 
 impl Paper3Results {
@@ -188,12 +190,20 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         let reference = forward(CpuProduct::Plain, &case.network, case.batch.view()).outputs;
         for method in Method::ALL {
             bar.set_message(format!("{} / {}", case.name, method.label()));
+            let label = method.label();
+            let _scope = match method.gpu() {
+                Some(_) => crate::gl::profile::scope(ctx, &label),
+                None => crate::gl::profile::cpu_scope(ctx, &label),
+            };
             measurements.push(measure_case(&gpu, case, method, repeats, &reference)?);
             bar.inc(1);
         }
     }
     bar.finish_and_clear();
-    let detection = detect_photo(opts, &gpu, &photo)?;
+    let detection = {
+        let _scope = crate::gl::profile::scope(ctx, "Fig. 2: text.png classified");
+        detect_photo(opts, &gpu, &photo)?
+    };
     Ok(Paper3Results {
         renderer: ctx.info().renderer_line(),
         quick: opts.quick,
@@ -201,6 +211,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         load_average_1min: load_average(),
         measurements,
         detection,
+        profile: None,
     })
 }
 

@@ -9,6 +9,7 @@ mod claims;
 mod fidelity;
 mod fig2;
 mod gflops;
+mod profile;
 mod table1;
 mod targets;
 
@@ -28,7 +29,9 @@ impl Paper for Paper3 {
     type Results = Paper3Results;
 
     fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Paper3Results> {
-        bench::measure(opts)
+        let (mut results, table) = super::profile::profiled(opts.gl, || bench::measure(opts))?;
+        results.profile = Some(table);
+        Ok(results)
     }
 
     fn section(opts: &BenchOptions, results: &Paper3Results) -> anyhow::Result<Section> {
@@ -42,7 +45,10 @@ impl Paper for Paper3 {
                 gflops::table(results),
                 fig2::table(results),
                 targets::table(results),
-            ],
+            ]
+            .into_iter()
+            .chain(profile::table(results))
+            .collect(),
             claims: claims::claims(results, paper),
             figures,
             fidelity: fidelity::rows(),

@@ -3,7 +3,7 @@
 //! of a buoyant bunny (Fig. 10).
 
 use crate::gl::profile::ProfileRow;
-use crate::gl::{Context, Profiler};
+use crate::gl::{profile, Context};
 use crate::mass::buoyancy::simulation::{AnalyticSolver, Simulation, SubmergedSolver};
 use crate::mass::buoyancy::{batch::GpuSolver, render::FrameRenderer, scene};
 use crate::mass::gpu::GpuMass;
@@ -236,23 +236,22 @@ fn peel_orders(ctx: &Context, mesh: &Mesh, runs: usize) -> anyhow::Result<Vec<Pe
 /// Per-pass profiles: one bunny at 64x64, and ten buoyancy steps of the 50-body scene
 /// once the bodies are in the water.
 fn profiles(ctx: &Context, bunny: &Mesh) -> anyhow::Result<(Vec<ProfileRow>, Vec<ProfileRow>)> {
-    let mut gpu = GpuMass::new(ctx, 64)?;
+    let gpu = GpuMass::new(ctx, 64)?;
     gpu.integrate(bunny, None, None)?;
-    let profiler = Profiler::new(ctx);
-    gpu.set_profiler(Some(profiler.clone()));
+    profile::start(ctx);
     gpu.integrate(bunny, None, None)?;
-    let bunny_rows = profiler.rows()?;
+    let bunny_rows = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
     let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
     let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
     for _ in 0..30 {
         sim.step(&mut solver).map_err(anyhow::Error::msg)?;
     }
-    let profiler = Profiler::new(ctx);
-    solver.set_profiler(Some(profiler.clone()));
+    profile::start(ctx);
     for _ in 0..10 {
         sim.step(&mut solver).map_err(anyhow::Error::msg)?;
     }
-    Ok((bunny_rows, profiler.rows()?))
+    let buoyancy_rows = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
+    Ok((bunny_rows, buoyancy_rows))
 }
 
 /// Issue 16's ratios: the bunny at 64x64 against Mirtich (from the Fig. 5 rows), and the

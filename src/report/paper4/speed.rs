@@ -2,7 +2,7 @@
 //! the two orders of peels and sums, and per-pass profiles.
 
 use super::bench::Paper4Results;
-use crate::gl::profile::{Kind, ProfileRow};
+use crate::gl::profile::ProfileRow;
 use crate::report::Table;
 
 /// Issue 16's targets, each a ratio measured in this run.
@@ -72,31 +72,28 @@ pub fn peel_orders(results: &Paper4Results) -> Table {
     }
 }
 
-/// A per-pass profile as a table.
+/// A per-pass profile as a table (nested scopes indented).
 pub fn profile(caption: &str, rows: &[ProfileRow]) -> Table {
-    let kind = |k: Kind| match k {
-        Kind::Pass => "pass",
-        Kind::Wait => "wait",
-        Kind::Cpu => "cpu",
-    };
     Table {
         caption: caption.into(),
-        header: ["pass", "kind", "count", "GPU (ms, timestamps)", "wall (ms)"]
-            .map(String::from)
-            .to_vec(),
+        header: [
+            "pass",
+            "calls",
+            "GPU (ms, timestamps)",
+            "wall (ms)",
+            "waiting (ms)",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: rows
             .iter()
             .map(|r| {
                 vec![
-                    r.name.clone(),
-                    kind(r.kind).into(),
-                    r.count.to_string(),
-                    if r.kind == Kind::Pass {
-                        format!("{:.3}", r.gpu_ms)
-                    } else {
-                        "-".into()
-                    },
+                    format!("{}{}", "  ".repeat(r.depth), r.name),
+                    r.calls.to_string(),
+                    r.gpu_ms.map_or("-".into(), |g| format!("{g:.3}")),
                     format!("{:.3}", r.wall_ms),
+                    format!("{:.3}", r.wait_ms),
                 ]
             })
             .collect(),
