@@ -206,3 +206,114 @@ fn mass_bench_quick_regenerates_the_tables_and_figures() {
             > 0.0
     );
 }
+
+/// A box turned off the axes: the JSON's principal moments are the eigenvalues of the
+/// inertia tensor (the closed form m (b² + c²) / 12 ...), not its diagonal.
+#[test]
+fn mass_json_reports_principal_moments_of_a_rotated_box() {
+    let dir = scratch("principal");
+    let (a, b, c) = (2.0f64, 1.0, 0.5);
+    let q = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.7, -0.4, 1.1);
+    let mut obj = String::new();
+    for i in 0..8 {
+        let p = glam::DVec3::new(
+            if i & 1 == 0 { -a } else { a },
+            if i & 2 == 0 { -b } else { b },
+            if i & 4 == 0 { -c } else { c },
+        ) / 2.0;
+        let w = q * p;
+        obj += &format!("v {} {} {}\n", w.x, w.y, w.z);
+    }
+    let path = dir.join("box.obj");
+    std::fs::write(&path, format!("{obj}{CUBE_FACES}")).unwrap();
+    let v = json_of(&["mass", path.to_str().unwrap(), "--density", "2", "--json"]);
+    let m = 2.0 * a * b * c;
+    let mut want = [
+        m * (b * b + c * c) / 12.0,
+        m * (a * a + c * c) / 12.0,
+        m * (a * a + b * b) / 12.0,
+    ];
+    want.sort_by(f64::total_cmp);
+    for k in 0..3 {
+        let exact = v["analytic"]["principal_moments"][k].as_f64().unwrap();
+        let gpu = v["principal_moments"][k].as_f64().unwrap();
+        assert!(
+            (exact - want[k]).abs() < 1e-6 * want[2],
+            "{exact} vs {}",
+            want[k]
+        );
+        assert!(
+            ((gpu - want[k]) / want[k]).abs() < 0.05,
+            "{gpu} vs {}",
+            want[k]
+        );
+    }
+    let diagonal = v["analytic"]["inertia"][0][0].as_f64().unwrap();
+    assert!(want.iter().all(|w| (w - diagonal).abs() > 0.01 * want[2]));
+}
+
+/// `--max-peels` below the knot's layers warns (stderr and JSON) and says it stopped;
+/// zero is refused; `--order keep-layers` agrees with the default.
+#[test]
+fn max_peels_warns_and_order_is_selectable() {
+    let out = classic_gpgpu(&["mass", "knot", "--max-peels", "2", "--json"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["peeling"]["truncated"], true);
+    assert_eq!(v["peels"], 2);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--max-peels"));
+    assert!(v["warnings"][0].as_str().unwrap().contains("limit of 2"));
+    let all = json_of(&["mass", "knot", "--json"]);
+    assert_eq!(all["peeling"]["truncated"], false);
+    assert!(all["warnings"].as_array().unwrap().is_empty());
+    let kept = json_of(&["mass", "knot", "--order", "keep-layers", "--json"]);
+    assert_eq!(kept["peeling"]["order"], "keep-layers");
+    let (x, y) = (
+        all["volume"].as_f64().unwrap(),
+        kept["volume"].as_f64().unwrap(),
+    );
+    assert!((x - y).abs() < 1e-5 * x, "{x} vs {y}");
+    let out = classic_gpgpu(&["mass", "knot", "--max-peels", "0"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--max-peels 0"));
+}
+
+/// `--profile` lists the passes with GPU and wall times, and the buoyancy table adds the
+/// CPU steps.
+#[test]
+fn profile_lists_every_pass() {
+    let v = json_of(&["mass", "torus", "--below", "0.1", "--profile", "--json"]);
+    let rows = v["profile"]["rows"].as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    for pass in [
+        "depth peel",
+        "fluid surface depth",
+        "fluid surface patch",
+        "reduction",
+    ] {
+        assert!(names.iter().any(|n| n.contains(pass)), "{pass}: {names:?}");
+    }
+    assert!(rows.iter().all(|r| r["wall_ms"].as_f64().unwrap() >= 0.0));
+    let v = json_of(&[
+        "buoyancy",
+        "--bodies",
+        "3",
+        "--steps",
+        "2",
+        "--resolution",
+        "16",
+        "--profile",
+        "--json",
+    ]);
+    let rows = v["profile"]["rows"].as_array().unwrap();
+    assert!(rows
+        .iter()
+        .any(|r| r["name"] == "buoyancy: rigid-body step"));
+    assert!(rows
+        .iter()
+        .any(|r| r["name"].as_str().unwrap().starts_with("wait: ")));
+    assert!(
+        v["warnings"].as_array().unwrap().is_empty(),
+        "the scene's shapes are closed"
+    );
+}

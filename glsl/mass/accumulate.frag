@@ -1,7 +1,6 @@
 #version 330 core
 // Accumulation over peels [paper 4, section 3.3]: adds the integrand targets of one peel
-// into the running sums (the pass blends with ADD). On the first peel it also keeps the
-// faces-down mark that the water patch of section 5.2 needs. Pixels the peel did not
+// into the running sums (the pass blends with ADD). Pixels the peel did not
 // reach (depth still at the cleared 1.0) are discarded, so the peel's colour targets never
 // need clearing: what an earlier peel or body left there is never read (a multiply by
 // zero would still read it, and 0 * inf is NaN).
@@ -9,12 +8,9 @@ uniform sampler2D u_peel_depth;
 uniform sampler2D u_peel0;
 uniform sampler2D u_peel1;
 uniform sampler2D u_peel2;
-uniform sampler2D u_peel_faces_down;
-uniform bool u_first_peel;
 layout(location = 0) out vec4 o_sum0;
 layout(location = 1) out vec4 o_sum1;
 layout(location = 2) out vec4 o_sum2;
-layout(location = 3) out float o_first_peel_faces_down;
 
 void main()
 {
@@ -23,5 +19,4 @@ void main()
     o_sum0 = texelFetch(u_peel0, pixel, 0);
     o_sum1 = texelFetch(u_peel1, pixel, 0);
     o_sum2 = texelFetch(u_peel2, pixel, 0);
-    o_first_peel_faces_down = u_first_peel ? texelFetch(u_peel_faces_down, pixel, 0).r : 0.0;
 }

@@ -6,8 +6,9 @@
 // T_dw: depth of the fluid surface (cleared to 0, "no water", for whole bodies).
 uniform sampler2D u_water_depth;
 
-// The paper's stencil bit of pass 1, as a colour: 1 where the surface faces down.
-layout(location = 3) out float o_faces_down;
+// Pass 1's faces-down mark is the paper's stencil bit: two-sided stencil writes 1 where
+// the kept fragment is a back face (n_z < 0, seen from above) and 0 where it is a front
+// face (src/mass/peel.rs), so this shader writes no mark of its own.
 
 void main()
 {
@@ -16,5 +17,4 @@ void main()
     // Passes 1..n of 5.2: fragments above the fluid surface are discarded.
     if (gl_FragCoord.z < texelFetch(u_water_depth, ivec2(gl_FragCoord.xy), 0).r) discard;
     integrands();
-    o_faces_down = n_z < 0.0 ? 1.0 : 0.0;
 }

@@ -1,12 +1,14 @@
 //! The `mass` and `buoyancy` commands.
 
 use anyhow::{bail, Context as _};
-use classic_gpgpu::gl::Context;
+use classic_gpgpu::gl::{profile, Context};
 use classic_gpgpu::mass::assemble::MassProperties;
-use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene, simulation};
+use classic_gpgpu::mass::buoyancy::simulation::{self, SubmergedSolver};
+use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene};
 use classic_gpgpu::mass::compute::ComputeMass;
 use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::{GpuMass, GpuResult};
+use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings, DEFAULT_MAX_PEELS};
 use classic_gpgpu::mass::{analytic, clip, models, surface};
 use serde_json::json;
 use std::path::PathBuf;
@@ -34,6 +36,55 @@ pub struct MassArgs {
     /// shared-memory reduction (compute, OpenGL 4.3; whole bodies, so no --below or --dump).
     #[arg(long, value_enum, default_value_t)]
     pub formulation: super::Formulation,
+    #[command(flatten)]
+    pub peeling: PeelArgs,
+    /// Print a per-pass table (GPU time by timestamp queries, wall time, waits) of one more
+    /// run (in the JSON with --json).
+    #[arg(long)]
+    pub profile: bool,
+}
+
+/// How the depth peeling of section 3.2 runs.
+#[derive(clap::Args, Debug)]
+pub struct PeelArgs {
+    /// Stop peeling after this many layers; a warning says when fragments were left.
+    #[arg(long, default_value_t = DEFAULT_MAX_PEELS)]
+    pub max_peels: usize,
+    /// running-sums (default): add each peel into running sums as it is drawn, one
+    /// reduction at the end (memory and passes do not grow with the peels). keep-layers:
+    /// the paper's order, keep the n peel textures and reduce each.
+    #[arg(long, value_enum, default_value_t = Order::RunningSums)]
+    pub order: Order,
+}
+
+/// [`PeelOrder`] for clap.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum Order {
+    RunningSums,
+    KeepLayers,
+}
+
+impl PeelArgs {
+    fn settings(&self) -> anyhow::Result<PeelSettings> {
+        if self.max_peels == 0 || self.max_peels > 4096 {
+            bail!("--max-peels {}: must be between 1 and 4096", self.max_peels);
+        }
+        Ok(PeelSettings {
+            max_peels: self.max_peels,
+            order: match self.order {
+                Order::RunningSums => PeelOrder::RunningSums,
+                Order::KeepLayers => PeelOrder::KeepLayers,
+            },
+        })
+    }
+}
+
+/// The warning for a peel that stopped at the limit.
+fn truncation_warning(max_peels: usize) -> String {
+    format!(
+        "peeling stopped at the limit of {max_peels} layers with fragments left: the result \
+         misses the deeper layers; raise --max-peels"
+    )
 }
 
 /// The largest framebuffer side the commands accept: ten RGBA32F targets of 2048² are
@@ -63,18 +114,31 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         .map_err(|e| anyhow::anyhow!("model '{}': {e}", args.model))?;
 
     let model = || format!("model '{}'", args.model);
-    let (result, gpu_wall_ms) = match args.formulation {
+    let (result, gpu_wall_ms, profile) = match args.formulation {
         super::Formulation::Classic => {
-            let gpu = GpuMass::new(ctx, args.resolution).context("setting up the GPU passes")?;
+            let settings = args.peeling.settings()?;
+            let gpu = GpuMass::with_settings(ctx, args.resolution, settings)
+                .context("setting up the GPU passes")?;
             // The first run compiles and allocates on the driver side; time the second.
             gpu.integrate(&mesh, args.below, None).with_context(model)?;
             let start = Instant::now();
             let result = gpu
                 .integrate(&mesh, args.below, args.dump.as_deref())
                 .with_context(model)?;
-            (result, start.elapsed().as_secs_f64() * 1e3)
+            let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+            let profile = if args.profile {
+                profile::start(ctx);
+                gpu.integrate(&mesh, args.below, None)?;
+                profile::finish(ctx)
+            } else {
+                None
+            };
+            (result, wall_ms, profile)
         }
-        super::Formulation::Compute => compute_mass(args, ctx, &mesh).with_context(model)?,
+        super::Formulation::Compute => {
+            let (result, wall_ms) = compute_mass(args, ctx, &mesh).with_context(model)?;
+            (result, wall_ms, None)
+        }
     };
 
     let start = Instant::now();
@@ -87,6 +151,9 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
     let got = MassProperties::from_integrals(&result.integrals, args.density);
     let want = MassProperties::from_integrals(&exact, args.density);
     let mut warnings = Vec::new();
+    if result.truncated {
+        warnings.push(truncation_warning(result.settings.max_peels));
+    }
     if !report.is_closed() {
         warnings.push(format!(
             "the mesh is open ({} open edges, {} inconsistent): the GPU result assumes the holes are small; the analytic result is unreliable",
@@ -119,6 +186,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         gpu_wall_ms,
         analytic_ms,
         warnings,
+        profile,
     };
     if json_out {
         println!("{}", serde_json::to_string_pretty(&output.json())?);
@@ -144,10 +212,10 @@ fn compute_mass(
     ctx: &Context,
     mesh: &classic_gpgpu::mesh::Mesh,
 ) -> anyhow::Result<(GpuResult, f64)> {
-    if args.below.is_some() || args.dump.is_some() {
+    if args.below.is_some() || args.dump.is_some() || args.profile {
         bail!(
-            "--below and --dump need the classic formulation (the compute formulation integrates \
-             whole bodies and has no integrand images)"
+            "--below, --dump and --profile need the classic formulation (the compute formulation \
+             integrates whole bodies in one dispatch: no integrand images, no passes to profile)"
         );
     }
     let compute = ComputeMass::new(ctx).context("setting up the compute pass")?;
@@ -160,11 +228,19 @@ fn compute_mass(
         GpuResult {
             integrals: result.integrals[0],
             peels: 0,
+            truncated: false,
+            settings: PeelSettings::default(),
+            layers: Vec::new(),
             framing,
             gpu_ms: result.gpu_ms,
         },
         wall_ms,
     ))
+}
+
+/// The profile table under a heading.
+fn profile_text(table: &profile::ProfileTable, what: &str) -> String {
+    format!("profile of {what}\n{table}\n")
 }
 
 struct MassOutput<'a> {
@@ -182,6 +258,8 @@ struct MassOutput<'a> {
     gpu_wall_ms: f64,
     analytic_ms: f64,
     warnings: Vec<String>,
+    /// `--profile`: the table of the profiled run.
+    profile: Option<profile::ProfileTable>,
 }
 
 impl MassOutput<'_> {
@@ -198,15 +276,22 @@ impl MassOutput<'_> {
             "density": self.density,
             "below": self.below,
             "peels": self.result.peels,
+            "peeling": {
+                "max_peels": self.result.settings.max_peels,
+                "order": self.result.settings.order,
+                "truncated": self.result.truncated,
+            },
             "volume": self.got.volume,
             "mass": self.got.mass,
             "center_of_mass": self.got.center_of_mass.to_array(),
             "inertia": self.got.inertia_rows(),
+            "principal_moments": self.got.principal_moments().to_array(),
             "analytic": {
                 "volume": self.want.volume,
                 "mass": self.want.mass,
                 "center_of_mass": self.want.center_of_mass.to_array(),
                 "inertia": self.want.inertia_rows(),
+                "principal_moments": self.want.principal_moments().to_array(),
                 "reliable": self.closed,
             },
             "framing": {
@@ -221,6 +306,7 @@ impl MassOutput<'_> {
                 "analytic": self.analytic_ms,
             },
             "warnings": self.warnings,
+            "profile": self.profile,
         })
     }
 
@@ -280,10 +366,23 @@ impl MassOutput<'_> {
                 s += &row(&format!("I[{a}{b}]"), gi[r][col], wi[r][col], scale);
             }
         }
+        let (gp, wp) = (self.got.principal_moments(), self.want.principal_moments());
+        let names = ["I_1 (principal)", "I_2 (principal)", "I_3 (principal)"];
+        for (k, name) in names.iter().enumerate() {
+            s += &row(name, gp[k], wp[k], 0.0);
+        }
         s += &format!(
             "time (ms)       GPU {:.3} (timer query), {:.3} wall; analytic {:.3}\n",
             self.result.gpu_ms, self.gpu_wall_ms, self.analytic_ms
         );
+        s += &format!(
+            "peeling         {}, at most {} layers\n",
+            self.result.settings.order.name(),
+            self.result.settings.max_peels
+        );
+        if let Some(table) = &self.profile {
+            s += &profile_text(table, "one more run");
+        }
         for w in &self.warnings {
             s += &format!("warning         {w}\n");
         }
@@ -312,6 +411,12 @@ pub struct BuoyancyArgs {
     /// Compute the submerged parts on the CPU (clip + Mirtich) instead of the GPU.
     #[arg(long)]
     pub cpu: bool,
+    #[command(flatten)]
+    pub peeling: PeelArgs,
+    /// Print a per-pass table over all steps (GPU time by timestamp queries, wall time,
+    /// waits, CPU steps; in the JSON with --json).
+    #[arg(long)]
+    pub profile: bool,
 }
 
 /// `classic-gpgpu buoyancy`.
@@ -337,19 +442,25 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
             Some((k, dir))
         }
     };
+    let settings = args.peeling.settings()?;
     let mut sim = scene::paper_scene(args.bodies, args.dt).map_err(anyhow::Error::msg)?;
+    let mut warnings = scene::open_shape_warnings(&sim.shapes);
     let mut gpu = if args.cpu {
         None
     } else {
-        let solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)
+        let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)
             .with_context(|| {
                 format!(
                     "--bodies {} at --resolution {}: every body's tile must fit one render target",
                     args.bodies, args.resolution
                 )
             })?;
+        solver.set_settings(settings)?;
         Some(solver)
     };
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
     let renderer = match frames {
         Some(_) => Some(render::FrameRenderer::new(ctx, &sim.shapes, 640, 400)?),
         None => None,
@@ -357,17 +468,33 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     let progress = classic_gpgpu::mass::progress_bar(args.steps as u64, json_out, "buoyancy steps");
     let mut step_ms = Vec::with_capacity(args.steps);
     let mut peels = Vec::with_capacity(args.steps);
+    let cpu_span = |name: &str, work: &mut dyn FnMut() -> Result<_, String>| {
+        let _scope = profile::cpu_scope(ctx, name);
+        work()
+    };
+    if args.profile {
+        profile::start(ctx);
+    }
     for step in 0..args.steps {
         let start = Instant::now();
-        match gpu.as_mut() {
+        let subs = match gpu.as_mut() {
             Some(solver) => {
-                sim.step(solver).map_err(anyhow::Error::msg)?;
+                let subs = solver
+                    .submerged(&sim.shapes, &sim.bodies, &sim.water)
+                    .map_err(anyhow::Error::msg)?;
                 peels.push(solver.last_peels);
+                subs
             }
-            None => sim
-                .step(&mut simulation::AnalyticSolver)
-                .map_err(anyhow::Error::msg)?,
-        }
+            None => cpu_span("buoyancy: CPU solver (clip + Mirtich)", &mut || {
+                simulation::AnalyticSolver.submerged(&sim.shapes, &sim.bodies, &sim.water)
+            })
+            .map_err(anyhow::Error::msg)?,
+        };
+        cpu_span("buoyancy: rigid-body step", &mut || {
+            sim.apply(&subs);
+            Ok(Vec::new())
+        })
+        .map_err(anyhow::Error::msg)?;
         step_ms.push(start.elapsed().as_secs_f64() * 1e3);
         if let (Some((k, dir)), Some(r)) = (&frames, &renderer) {
             if step % k == 0 {
@@ -377,6 +504,20 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         progress.inc(1);
     }
     progress.finish_and_clear();
+    let truncated_steps = gpu.as_ref().map_or(0, |g| g.truncated_steps);
+    if truncated_steps > 0 {
+        let w = format!(
+            "{truncated_steps} steps: {}",
+            truncation_warning(settings.max_peels)
+        );
+        eprintln!("warning: {w}");
+        warnings.push(w);
+    }
+    let profile_table = if args.profile {
+        profile::finish(ctx)
+    } else {
+        None
+    };
     let total: f64 = step_ms.iter().sum();
     let mean = total / step_ms.len().max(1) as f64;
     let steps_per_s = 1e3 / mean;
@@ -405,11 +546,21 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         "step_ms": step_ms,
         "steps_per_second": steps_per_s,
         "max_peels": peels.iter().max(),
+        "peeling": {
+            "max_peels": settings.max_peels,
+            "order": settings.order,
+            "truncated_steps": truncated_steps,
+        },
+        "warnings": warnings,
+        "profile": profile_table,
         "state": bodies,
     });
     if json_out {
         println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());
+    }
+    if let Some(table) = &profile_table {
+        print!("{}", profile_text(table, &format!("{} steps", args.steps)));
     }
     println!("renderer        {}", ctx.info().renderer_line());
     println!(

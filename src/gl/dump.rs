@@ -63,6 +63,11 @@ pub fn to_rgba8(texture: &Texture, range: DumpRange) -> Result<Vec<u8>, GlError>
                 .collect();
             map_floats(&depth, 1, range)
         }
+        TextureFormat::Depth32FStencil8 => {
+            return Err(GlError::Invalid(
+                "dumping a DEPTH32F_STENCIL8 texture is not supported; dump a colour target".into(),
+            ))
+        }
         TextureFormat::Rgba32Ui => {
             let values: Vec<f32> = texture
                 .download_u32()?

@@ -135,7 +135,7 @@ impl Framebuffer {
                 );
             }
             if let Some(d) = depth {
-                let attachment = if d.format() == TextureFormat::Depth24Stencil8 {
+                let attachment = if d.format().has_stencil() {
                     glow::DEPTH_STENCIL_ATTACHMENT
                 } else {
                     glow::DEPTH_ATTACHMENT
@@ -296,7 +296,7 @@ impl Framebuffer {
             gl.depth_mask(true);
             gl.stencil_mask(0xff);
             match self.depth.as_ref().map(|d| d.format()) {
-                Some(TextureFormat::Depth24Stencil8) => {
+                Some(f) if f.has_stencil() => {
                     gl.clear_buffer_depth_stencil(glow::DEPTH_STENCIL, 0, depth, stencil)
                 }
                 Some(_) => gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[depth]),
@@ -412,9 +412,10 @@ impl Framebuffer {
         Ok(out)
     }
 
-    /// Read a rectangle of the stencil buffer (a DEPTH24_STENCIL8 attachment).
+    /// Read a rectangle of the stencil buffer (a DEPTH24_STENCIL8 or DEPTH32F_STENCIL8
+    /// attachment).
     pub fn read_stencil(&self, rect: Rect) -> Result<Vec<u8>, GlError> {
-        if self.require_depth()? != TextureFormat::Depth24Stencil8 {
+        if !self.require_depth()?.has_stencil() {
             return Err(GlError::Invalid(format!(
                 "framebuffer {} has no stencil",
                 self.name

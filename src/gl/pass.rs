@@ -138,7 +138,12 @@ pub enum Face {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DrawState {
     pub depth: Option<DepthTest>,
+    /// The stencil test; for front faces only when `stencil_back` is set.
     pub stencil: Option<StencilTest>,
+    /// Two-sided stencil: the test of back-facing polygons (`glStencilFuncSeparate`,
+    /// `glStencilOpSeparate`, `glStencilMaskSeparate`), while `stencil` then serves front
+    /// faces. Ignored without `stencil`.
+    pub stencil_back: Option<StencilTest>,
     pub blend: Option<Blend>,
     pub color_write: bool,
     pub cull: Option<Face>,
@@ -153,6 +158,7 @@ impl Default for DrawState {
         DrawState {
             depth: None,
             stencil: None,
+            stencil_back: None,
             blend: None,
             color_write: true,
             cull: None,
@@ -405,9 +411,12 @@ unsafe fn apply_state(gl: &glow::Context, s: &DrawState) {
     }
     toggle(glow::STENCIL_TEST, s.stencil.is_some());
     if let Some(st) = s.stencil {
-        gl.stencil_func(st.func.gl(), st.reference, st.read_mask);
-        gl.stencil_op(st.fail.gl(), st.depth_fail.gl(), st.pass.gl());
-        gl.stencil_mask(st.write_mask);
+        let back = s.stencil_back.unwrap_or(st);
+        for (face, t) in [(glow::FRONT, st), (glow::BACK, back)] {
+            gl.stencil_func_separate(face, t.func.gl(), t.reference, t.read_mask);
+            gl.stencil_op_separate(face, t.fail.gl(), t.depth_fail.gl(), t.pass.gl());
+            gl.stencil_mask_separate(face, t.write_mask);
+        }
     }
     toggle(glow::BLEND, s.blend.is_some());
     if let Some(b) = s.blend {

@@ -19,6 +19,9 @@ pub enum TextureFormat {
     Depth32F,
     /// 24-bit depth and an 8-bit stencil (paper 1's stencil mask, paper 4's stencil bit).
     Depth24Stencil8,
+    /// 32-bit float depth and an 8-bit stencil: depth peeling that keeps a stencil bit
+    /// (paper 4, section 5.2) without rounding the peel depths to 24 bits.
+    Depth32FStencil8,
     /// Four unsigned 32-bit integers (`usampler2D`, `uvec4` outputs): generator states.
     Rgba32Ui,
 }
@@ -39,6 +42,11 @@ impl TextureFormat {
                 glow::DEPTH_STENCIL,
                 glow::UNSIGNED_INT_24_8,
             ),
+            TextureFormat::Depth32FStencil8 => (
+                glow::DEPTH32F_STENCIL8,
+                glow::DEPTH_STENCIL,
+                glow::FLOAT_32_UNSIGNED_INT_24_8_REV,
+            ),
             TextureFormat::Rgba32Ui => (glow::RGBA32UI, glow::RGBA_INTEGER, glow::UNSIGNED_INT),
         }
     }
@@ -56,6 +64,7 @@ impl TextureFormat {
         match self {
             TextureFormat::Rgba32F | TextureFormat::Rgba32Ui => 16,
             TextureFormat::R8 => 1,
+            TextureFormat::Depth32FStencil8 => 8,
             _ => 4,
         }
     }
@@ -71,7 +80,17 @@ impl TextureFormat {
     pub fn is_depth(self) -> bool {
         matches!(
             self,
-            TextureFormat::Depth32F | TextureFormat::Depth24Stencil8
+            TextureFormat::Depth32F
+                | TextureFormat::Depth24Stencil8
+                | TextureFormat::Depth32FStencil8
+        )
+    }
+
+    /// A packed depth-stencil format (attached as `DEPTH_STENCIL_ATTACHMENT`).
+    pub fn has_stencil(self) -> bool {
+        matches!(
+            self,
+            TextureFormat::Depth24Stencil8 | TextureFormat::Depth32FStencil8
         )
     }
 
@@ -83,6 +102,7 @@ impl TextureFormat {
             TextureFormat::Rgba8 => "RGBA8",
             TextureFormat::Depth32F => "DEPTH_COMPONENT32F",
             TextureFormat::Depth24Stencil8 => "DEPTH24_STENCIL8",
+            TextureFormat::Depth32FStencil8 => "DEPTH32F_STENCIL8",
             TextureFormat::Rgba32Ui => "RGBA32UI",
         }
     }
@@ -264,8 +284,10 @@ impl Texture {
             // before it is drawn.
             for level in 0..self.obj.levels as i32 {
                 match self.format() {
-                    TextureFormat::Depth24Stencil8 | TextureFormat::Depth32F => {
-                        let stencil = self.format() == TextureFormat::Depth24Stencil8;
+                    TextureFormat::Depth24Stencil8
+                    | TextureFormat::Depth32FStencil8
+                    | TextureFormat::Depth32F => {
+                        let stencil = self.format().has_stencil();
                         let attachment = if stencil {
                             glow::DEPTH_STENCIL_ATTACHMENT
                         } else {

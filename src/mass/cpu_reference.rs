@@ -64,6 +64,66 @@ pub fn layers(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> usize {
         .unwrap_or(0)
 }
 
+/// Eq. 4 and 6 summed per peel, like the paper's order (`PeelOrder::KeepLayers`): entry k
+/// is the k-th crossing from the top (below `water` when given) at every pixel, and with
+/// water a last entry holds the fluid-surface patch `T_w`. About the framing centre.
+pub fn integrate_layers(
+    mesh: &Mesh,
+    framing: &Framing,
+    water: Option<f64>,
+) -> Vec<VolumeIntegrals> {
+    let crossings = crossings_per_pixel(mesh, framing);
+    let n = framing.resolution;
+    let level = water.map(|l| l - framing.center.z);
+    let mut layers: Vec<VolumeIntegrals> = Vec::new();
+    let mut patch = VolumeIntegrals::default();
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = framing.pixel_center(i, j);
+            let mut hits = crossings[(j * n + i) as usize].clone();
+            hits.retain(|h| level.is_none_or(|l| h.z <= l));
+            hits.sort_by(|a, b| b.z.total_cmp(&a.z));
+            for (k, h) in hits.iter().enumerate() {
+                if layers.len() <= k {
+                    layers.push(VolumeIntegrals::default());
+                }
+                layers[k] += integrand(x, y, h.z, h.sign);
+            }
+            if let (Some(l), Some(first)) = (level, hits.first()) {
+                if first.sign < 0.0 {
+                    patch += integrand(x, y, l, 1.0);
+                }
+            }
+        }
+    }
+    if water.is_some() {
+        layers.push(patch);
+    }
+    let area = framing.pixel_size().powi(2);
+    layers
+        .into_iter()
+        .map(|l| VolumeIntegrals {
+            origin: framing.center,
+            ..l * area
+        })
+        .collect()
+}
+
+/// Whether the first surface below `level` faces down (`n_z < 0`) at each pixel centre,
+/// row by row from the bottom: the stencil bit pass 1 of section 5.2 writes.
+pub fn first_below_faces_down(mesh: &Mesh, framing: &Framing, level: f64) -> Vec<bool> {
+    let level = level - framing.center.z;
+    crossings_per_pixel(mesh, framing)
+        .iter()
+        .map(|hits| {
+            hits.iter()
+                .filter(|h| h.z <= level)
+                .max_by(|a, b| a.z.total_cmp(&b.z))
+                .is_some_and(|h| h.sign < 0.0)
+        })
+        .collect()
+}
+
 /// The integrands of eq. 4 and 6 at one crossing, with their 1/2 and 1/3 factors.
 fn integrand(x: f64, y: f64, z: f64, sign: f64) -> VolumeIntegrals {
     let c = sign * z;

@@ -11,8 +11,8 @@
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::Soup;
-use super::peel::{Job, Peeler};
-use crate::gl::{query, Context, GlError, Rect};
+use super::peel::{Job, PeelSettings, Peeler};
+use crate::gl::{profile, query, Context, GlError, Rect};
 use crate::mesh::Mesh;
 use glam::{DVec3, Mat4};
 use serde::Serialize;
@@ -24,6 +24,13 @@ pub struct GpuResult {
     /// About the framing centre.
     pub integrals: VolumeIntegrals,
     pub peels: usize,
+    /// Peeling stopped at the limit with fragments left: the integrals miss deeper layers.
+    pub truncated: bool,
+    /// The limit and order it peeled with.
+    pub settings: PeelSettings,
+    /// The paper's order only: the integrals of each kept texture `T_1 .. T_n` (then
+    /// `T_w` with `below`), about the framing centre.
+    pub layers: Vec<VolumeIntegrals>,
     /// The world framing (the unit frame the GPU draws in is this one scaled).
     pub framing: Framing,
     /// GPU time of all passes (timer query), milliseconds.
@@ -49,6 +56,23 @@ impl GpuMass {
         &self.peeler
     }
 
+    /// The same with a peel limit and order ([`PeelSettings`]).
+    pub fn with_settings(
+        ctx: &Context,
+        resolution: u32,
+        settings: PeelSettings,
+    ) -> Result<GpuMass, GlError> {
+        let mut gpu = GpuMass::new(ctx, resolution)?;
+        gpu.peeler.set_settings(settings)?;
+        Ok(gpu)
+    }
+
+    /// Pass 1's stencil bit of the last call with `below` (1 where the first surface below
+    /// the water faces down), row by row from the bottom.
+    pub fn first_peel_faces_down(&self) -> Result<Vec<u8>, GlError> {
+        self.peeler.first_peel_faces_down()
+    }
+
     /// The ten integrals of `mesh` (below the plane `z = below` when given). Errors on a
     /// mesh that cannot be framed (empty, non-finite), and on a body the frame cannot see
     /// (one that covers no pixel centre: thinner than a pixel across).
@@ -59,27 +83,13 @@ impl GpuMass {
         dump: Option<&Path>,
     ) -> Result<GpuResult, GlError> {
         let framing = Framing::fit(mesh, self.resolution).map_err(GlError::Invalid)?;
-        let unit = UnitFrame::of(&framing);
-        let local: Vec<DVec3> = mesh
-            .positions
-            .iter()
-            .map(|p| unit.to_unit(p.as_dvec3()))
-            .collect();
-        let unit_mesh = Mesh::new(
-            local.iter().map(|p| p.as_vec3()).collect(),
-            mesh.triangles.clone(),
-        );
-        let soup = Soup::new(self.peeler.context(), &[&unit_mesh])?;
-        let mut indices = Vec::new();
-        let keep = |tri: &[u32; 3]| {
-            unit.framing
-                .may_cover_pixel_centre(tri.map(|i| local[i as usize]))
+        let (unit, soup, indices) = {
+            let _scope = profile::cpu_scope(self.peeler.context(), "mass: unit frame, upload");
+            self.prepare(mesh, &framing)?
         };
-        soup.push_triangles(0, &local, keep, &mut indices);
-        soup.set_indices(&indices)?;
         let job = Job {
             body: "the body",
-            indices: (0, indices.len()),
+            indices: (0, indices),
             model: Mat4::IDENTITY,
             framing: unit.framing,
             tile: Rect::sized(self.resolution, self.resolution),
@@ -102,9 +112,37 @@ impl GpuMass {
         Ok(GpuResult {
             integrals: unit.to_world(&batch.integrals[0]),
             peels: batch.peels,
+            truncated: batch.truncated,
+            settings: self.peeler.settings(),
+            layers: batch.layers.iter().map(|l| unit.to_world(&l[0])).collect(),
             framing,
             gpu_ms,
         })
+    }
+
+    /// The body in the unit frame, in a vertex buffer, with the index list of the
+    /// triangles that may cover a pixel centre (its length returned).
+    fn prepare(&self, mesh: &Mesh, framing: &Framing) -> Result<(UnitFrame, Soup, usize), GlError> {
+        let unit = UnitFrame::of(framing);
+        let local: Vec<DVec3> = mesh
+            .positions
+            .iter()
+            .map(|p| unit.to_unit(p.as_dvec3()))
+            .collect();
+        let unit_mesh = Mesh::new(
+            local.iter().map(|p| p.as_vec3()).collect(),
+            mesh.triangles.clone(),
+        );
+        let soup = Soup::new(self.peeler.context(), &[&unit_mesh])?;
+        let mut indices = Vec::new();
+        let keep = |tri: &[u32; 3]| {
+            unit.framing
+                .may_cover_pixel_centre(tri.map(|i| local[i as usize]))
+        };
+        soup.push_triangles(0, &local, keep, &mut indices);
+        soup.set_indices(&indices)?;
+        let count = indices.len();
+        Ok((unit, soup, count))
     }
 }
 

@@ -7,23 +7,75 @@
 //! - Passes 1..n: every body is drawn with the listing wrapped by the peel test (the GL
 //!   layer's `peel_discard`, against the previous layer's depth) and the water test. Each
 //!   body has its own occlusion query: a body whose layer drew nothing is done and is not
-//!   drawn again, and peeling ends when every body is done. Each peel is added into the
-//!   running sums.
-//! - Pass n + 1 (with water): the fluid surface where the first peel faced down (`T_w`),
-//!   added straight into the sums (one quad: at most one fragment per pixel).
+//!   drawn again, and peeling ends when every body is done. Pass 1 also writes the paper's
+//!   stencil bit by two-sided stencil: 1 where the kept fragment faces down (a back face
+//!   seen from above), 0 where it faces up.
+//! - Pass n + 1 (with water): the fluid surface where that stencil bit is 1 (`T_w`).
+//!
+//! Two orders of the sums ([`PeelOrder`]): by default each peel is added into running sums
+//! as soon as it is drawn (one blended pass, and two sets of peel targets whatever n);
+//! `KeepLayers` is the paper's: the n textures `T_1 .. T_n` and `T_w` are kept and each
+//! is reduced. Both give the same sums up to fp32 rounding; the first keeps memory and
+//! passes independent of n.
+//!
+//! Peeling stops at [`PeelSettings::max_peels`] layers; the result says whether a layer
+//! beyond the limit still drew something (`truncated`), so the caller can warn.
 
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::{self, Soup, TARGETS};
 use super::reduce::{Accumulator, REDUCTION_PASS};
 use crate::gl::dump::{self, DumpRange};
+use crate::gl::profile;
 use crate::gl::{
     ensure_finite, Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
-    OcclusionQuery, Pass, Primitive, Program, Rect, Texture, TextureFormat,
+    OcclusionQuery, Pass, Primitive, Program, Rect, StencilOp, StencilTest, Texture, TextureFormat,
 };
 use glam::Mat4;
-use std::cell::RefCell;
+use serde::Serialize;
+use std::cell::{Ref, RefCell};
 use std::path::{Path, PathBuf};
+
+/// The default limit on peels (the deepest of the paper's objects has 8).
+pub const DEFAULT_MAX_PEELS: usize = 64;
+
+/// In which order peels and sums meet.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PeelOrder {
+    /// Each peel is added into running sums at once; one reduction at the end (default:
+    /// memory and passes do not grow with n).
+    #[default]
+    RunningSums,
+    /// The paper's order [3.2-3.3]: keep the n peel textures and `T_w`, then reduce each.
+    KeepLayers,
+}
+
+impl PeelOrder {
+    pub fn name(self) -> &'static str {
+        match self {
+            PeelOrder::RunningSums => "running-sums",
+            PeelOrder::KeepLayers => "keep-layers",
+        }
+    }
+}
+
+/// How a [`Peeler`] peels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct PeelSettings {
+    /// Stop after this many layers (at least 1).
+    pub max_peels: usize,
+    pub order: PeelOrder,
+}
+
+impl Default for PeelSettings {
+    fn default() -> Self {
+        PeelSettings {
+            max_peels: DEFAULT_MAX_PEELS,
+            order: PeelOrder::default(),
+        }
+    }
+}
 
 /// One body of a batch: which triangles of the soup (a range of its index buffer), where
 /// it is, how it is framed, and where its tile lies in the render targets.
@@ -47,6 +99,18 @@ pub struct BatchResult {
     pub integrals: Vec<VolumeIntegrals>,
     /// The number of peels (n): the deepest body's.
     pub peels: usize,
+    /// A layer past `max_peels` still drew something: the integrals miss it.
+    pub truncated: bool,
+    /// `KeepLayers` only: the integrals of each kept texture, `T_1 .. T_n` then `T_w`
+    /// (with water), each a list over the jobs.
+    pub layers: Vec<Vec<VolumeIntegrals>>,
+}
+
+/// The peel textures of the paper's order: `T_k` (three RGBA32F targets and the depth
+/// `T_d(k)`, the first also holding the stencil bit), and `T_w` (sharing `T_1`'s stencil).
+struct Kept {
+    layers: Vec<Framebuffer>,
+    water: Framebuffer,
 }
 
 /// Render targets and programs for batches of up to `width x height` pixels.
@@ -55,12 +119,15 @@ pub struct Peeler {
     peel_program: Program,
     water_depth_program: Program,
     water_patch_program: Program,
-    /// The current peel's integrands (`T_k`) and faces-down mark.
-    peel_targets: Vec<Texture>,
     /// `T_dw`.
     water: Framebuffer,
-    /// The peel targets with depth `T_d(k)` for even and odd k (ping-pong).
-    layers: [Framebuffer; 2],
+    /// The peel targets with the depth `T_d(k)`: pass 1's (with its stencil bit), then
+    /// two for even and odd k (ping-pong).
+    layers: [Framebuffer; 3],
+    /// The running sums with pass 1's stencil, for the water patch.
+    water_patch_target: Framebuffer,
+    /// `KeepLayers`: made on first use, grown to the deepest batch.
+    kept: RefCell<Option<Kept>>,
     /// Per body, the tile and framing the water passes read (`glsl/mass/water_surface.vert`).
     tile_data: RefCell<Option<Texture>>,
     /// One occlusion query per body (grown on demand).
@@ -71,7 +138,7 @@ pub struct Peeler {
     /// Tiles are reduced in aligned blocks of this side (a power of two); `None` reduces
     /// the whole target (one body).
     block: Option<u32>,
-    max_layers: usize,
+    settings: PeelSettings,
     /// When on, each peel's integrand targets are kept as RGBA bytes (the viewer's insets).
     capture: RefCell<Option<Vec<CapturedPeel>>>,
 }
@@ -85,6 +152,12 @@ pub struct CapturedPeel {
     pub targets: Vec<Vec<u8>>,
 }
 
+/// The names of the passes (errors and the profile).
+const PEEL_PASS: &str = "mass: passes 1..n, depth peel";
+const WATER_DEPTH_PASS: &str = "mass: pass 0, fluid surface depth";
+const WATER_PATCH_PASS: &str = "mass: pass n+1, fluid surface patch";
+const CLEAR_PASS: &str = "mass: clear a peel's targets";
+
 impl Peeler {
     /// Targets of `width x height`, reduced per `block x block` tile (`None`: as a whole).
     pub fn new(
@@ -93,24 +166,25 @@ impl Peeler {
         height: u32,
         block: Option<u32>,
     ) -> Result<Peeler, GlError> {
-        let mut peel_targets = Vec::new();
-        for _ in 0..TARGETS {
-            peel_targets.push(Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F)?);
-        }
-        peel_targets.push(Texture::new_2d(ctx, width, height, TextureFormat::R32F)?);
+        let accumulator = Accumulator::new(ctx, width, height)?;
+        let layers = [
+            peel_layer(ctx, width, height, "mass: peel 1", true)?,
+            peel_layer(ctx, width, height, "mass: peels (even)", false)?,
+            peel_layer(ctx, width, height, "mass: peels (odd)", false)?,
+        ];
         let water_depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
-        let colors: Vec<&Texture> = peel_targets.iter().collect();
-        let layer = |name| -> Result<Framebuffer, GlError> {
-            let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
-            Framebuffer::new(ctx, name, &colors, Some(&depth))
-        };
-        let layers = [layer("mass: peels (even)")?, layer("mass: peels (odd)")?];
+        let sums: Vec<&Texture> = accumulator.sums().iter().collect();
+        let water_patch_target = Framebuffer::new(
+            ctx,
+            "mass: sums with pass 1's stencil",
+            &sums,
+            layers[0].depth(),
+        )?;
         Ok(Peeler {
             ctx: ctx.clone(),
             peel_program: integrands::peel_program(ctx)?,
             water_depth_program: integrands::water_depth_program(ctx)?,
             water_patch_program: integrands::water_patch_program(ctx)?,
-            peel_targets,
             water: Framebuffer::new(
                 ctx,
                 "mass: fluid surface depth T_dw",
@@ -118,15 +192,37 @@ impl Peeler {
                 Some(&water_depth),
             )?,
             layers,
+            water_patch_target,
+            kept: RefCell::new(None),
             tile_data: RefCell::new(None),
             queries: RefCell::new(Vec::new()),
             width,
             height,
-            accumulator: Accumulator::new(ctx, width, height)?,
+            accumulator,
             block,
-            max_layers: 64,
+            settings: PeelSettings::default(),
             capture: RefCell::new(None),
         })
+    }
+
+    /// Peel with `settings` from now on. Errors on a limit of zero peels.
+    pub fn set_settings(&mut self, settings: PeelSettings) -> Result<(), GlError> {
+        if settings.max_peels == 0 {
+            return Err(GlError::Invalid("the peel limit must be at least 1".into()));
+        }
+        self.settings = settings;
+        Ok(())
+    }
+
+    pub fn settings(&self) -> PeelSettings {
+        self.settings
+    }
+
+    /// A profile scope named `name` around `work` (`gl::profile`; draws are recorded under
+    /// their pass names on their own, this groups clears and several draws).
+    fn pass<T>(&self, name: &str, work: impl FnOnce() -> Result<T, GlError>) -> Result<T, GlError> {
+        let _scope = profile::scope(&self.ctx, name);
+        work()
     }
 
     /// The ten integrals of every job's body (below `water`, the level of a flat fluid
@@ -139,26 +235,46 @@ impl Peeler {
         water: Option<f64>,
         dump: Option<&Path>,
     ) -> Result<BatchResult, GlError> {
-        self.accumulator.clear()?;
+        let keep = self.settings.order == PeelOrder::KeepLayers;
+        if !keep {
+            self.pass(CLEAR_PASS, || self.accumulator.clear())?;
+        }
         self.water_depth_pass(jobs, water)?;
-        let peels = self.peel_passes(soup, jobs, dump)?;
+        let (peels, truncated) = self.peel_passes(soup, jobs, dump)?;
         if let Some(level) = water {
             self.water_patch_pass(jobs, level)?;
         }
-        let sums = self.accumulator.reduce(self.block)?;
-        let integrals = jobs
-            .iter()
-            .map(|job| {
-                let index = match self.block {
-                    Some(b) => {
-                        let columns = self.width.div_ceil(b);
-                        ((job.tile.y / b) * columns + job.tile.x / b) as usize
-                    }
-                    None => 0,
-                };
-                integrands::decode(sums[index], &job.framing)
-            })
-            .collect::<Vec<VolumeIntegrals>>();
+        let decode = |sums: &[[[f64; 4]; TARGETS]]| -> Vec<VolumeIntegrals> {
+            jobs.iter()
+                .map(|job| integrands::decode(sums[self.tile_index(job)], &job.framing))
+                .collect()
+        };
+        let (integrals, layers) = if keep {
+            let kept = self.kept.borrow();
+            let kept = kept.as_ref().expect("made by the peel passes");
+            let mut reduced: Vec<&Framebuffer> = kept.layers.iter().take(peels).collect();
+            if water.is_some() {
+                reduced.push(&kept.water);
+            }
+            let layers = reduced
+                .iter()
+                .map(|t| Ok(decode(&self.accumulator.reduce_from(t, self.block)?)))
+                .collect::<Result<Vec<_>, GlError>>()?;
+            let total = jobs
+                .iter()
+                .enumerate()
+                .map(|(k, job)| {
+                    let zero = VolumeIntegrals {
+                        origin: job.framing.center,
+                        ..VolumeIntegrals::default()
+                    };
+                    layers.iter().map(|l| l[k]).fold(zero, |a, b| a + b)
+                })
+                .collect();
+            (total, layers)
+        } else {
+            (decode(&self.accumulator.reduce(self.block)?), Vec::new())
+        };
         for (job, i) in jobs.iter().zip(&integrals) {
             ensure_finite(
                 i.to_array(),
@@ -166,66 +282,133 @@ impl Peeler {
                 REDUCTION_PASS,
             )?;
         }
-        Ok(BatchResult { integrals, peels })
+        Ok(BatchResult {
+            integrals,
+            peels,
+            truncated,
+            layers,
+        })
+    }
+
+    /// Which reduced texel holds `job`'s sums.
+    fn tile_index(&self, job: &Job) -> usize {
+        match self.block {
+            Some(b) => {
+                let columns = self.width.div_ceil(b);
+                ((job.tile.y / b) * columns + job.tile.x / b) as usize
+            }
+            None => 0,
+        }
     }
 
     /// Pass 0: `T_dw`, cleared to 0 (nothing is above the water) and, with water, the
     /// fluid surface drawn over every tile.
     fn water_depth_pass(&self, jobs: &[Job], water: Option<f64>) -> Result<(), GlError> {
-        self.water.clear_depth_stencil(0.0, 0)?;
-        let Some(level) = water else { return Ok(()) };
-        self.upload_tile_data(jobs)?;
-        let mut pass = self.water.pass(
-            &self.water_depth_program,
-            "mass: pass 0, fluid surface depth",
-        )?;
-        pass.state(DrawState {
-            depth: Some(DepthTest {
-                func: Compare::Always,
-                write: true,
-            }),
-            color_write: false,
-            ..DrawState::default()
-        });
-        self.water_quads(&mut pass, jobs.len(), level)
+        self.pass("mass: pass 0 (all bodies)", || {
+            self.water.clear_depth_stencil(0.0, 0)?;
+            let Some(level) = water else { return Ok(()) };
+            self.upload_tile_data(jobs)?;
+            let mut pass = self
+                .water
+                .pass(&self.water_depth_program, WATER_DEPTH_PASS)?;
+            pass.state(DrawState {
+                depth: Some(DepthTest {
+                    func: Compare::Always,
+                    write: true,
+                }),
+                color_write: false,
+                ..DrawState::default()
+            });
+            self.water_quads(&mut pass, jobs.len(), level)
+        })
     }
 
-    /// Passes 1..n: peel until no body draws anything; each peel goes into the sums.
+    /// The framebuffer of peel `layer`: one of the two ping-pong sets, or (paper's order)
+    /// the kept `T_layer`, made when first needed.
+    fn layer_target(&self, layer: usize) -> Result<LayerTarget<'_>, GlError> {
+        if self.settings.order == PeelOrder::RunningSums {
+            let k = if layer == 0 { 0 } else { 1 + layer % 2 };
+            return Ok(LayerTarget::PingPong(&self.layers[k]));
+        }
+        {
+            let mut slot = self.kept.borrow_mut();
+            if slot.is_none() {
+                let first = peel_layer(&self.ctx, self.width, self.height, "mass: T_1", true)?;
+                let colors: Vec<Texture> = (0..TARGETS)
+                    .map(|_| {
+                        Texture::new_2d(&self.ctx, self.width, self.height, TextureFormat::Rgba32F)
+                    })
+                    .collect::<Result<_, _>>()?;
+                let water = Framebuffer::new(
+                    &self.ctx,
+                    "mass: T_w",
+                    &colors.iter().collect::<Vec<_>>(),
+                    first.depth(),
+                )?;
+                *slot = Some(Kept {
+                    layers: vec![first],
+                    water,
+                });
+            }
+            let kept = slot.as_mut().expect("made above");
+            while kept.layers.len() <= layer {
+                let name = format!("mass: T_{}", kept.layers.len() + 1);
+                kept.layers.push(peel_layer(
+                    &self.ctx,
+                    self.width,
+                    self.height,
+                    &name,
+                    false,
+                )?);
+            }
+        }
+        Ok(LayerTarget::Kept(Ref::map(self.kept.borrow(), |k| {
+            &k.as_ref().expect("made above").layers[layer]
+        })))
+    }
+
+    /// The depth `T_d(layer)` the next layer peels against.
+    fn layer_depth(&self, layer: usize) -> Result<Texture, GlError> {
+        Ok(self
+            .layer_target(layer)?
+            .depth()
+            .expect("peel targets have depth")
+            .clone())
+    }
+
+    /// Passes 1..n: peel until no body draws anything or a layer past the limit still
+    /// does; each peel goes into the sums (or is kept). Returns (n, truncated).
     fn peel_passes(
         &self,
         soup: &Soup,
         jobs: &[Job],
         dump: Option<&Path>,
-    ) -> Result<usize, GlError> {
+    ) -> Result<(usize, bool), GlError> {
+        let keep = self.settings.order == PeelOrder::KeepLayers;
         let mut queries = self.queries.borrow_mut();
         while queries.len() < jobs.len() {
             queries.push(OcclusionQuery::new(&self.ctx)?);
         }
         let water_depth = self.water.depth().expect("T_dw has a depth attachment");
-        let state = DrawState {
-            depth: Some(DepthTest {
-                func: Compare::Less,
-                write: true,
-            }),
-            ..DrawState::default()
-        };
         let mut active: Vec<bool> = vec![true; jobs.len()];
-        for layer in 0..self.max_layers {
-            let target = &self.layers[layer % 2];
-            // Only the depth: the accumulation ignores pixels this peel did not reach
-            // (the colours too when they are to be looked at).
-            target.clear_depth_stencil(1.0, 0)?;
-            let capturing = self.capture.borrow().is_some();
-            if dump.is_some() || capturing {
-                target.clear_colors([0.0; 4])?;
-            }
-            {
-                let mut pass = target.pass(&self.peel_program, "mass: depth peel")?;
-                pass.state(state)
-                    .texture(
-                        "u_peel_depth",
-                        self.layers[(layer + 1) % 2].depth().expect("depth"),
-                    )
+        let max = self.settings.max_peels;
+        for layer in 0..=max {
+            let previous = self.layer_depth(if layer == 0 { 1 } else { layer - 1 })?;
+            let target = self.layer_target(layer)?;
+            self.pass(CLEAR_PASS, || {
+                // Only the depth for the running sums: the accumulation ignores pixels
+                // this peel did not reach. Kept layers are reduced whole, so their
+                // colours start at zero.
+                target.clear_depth_stencil(1.0, 0)?;
+                if keep || dump.is_some() || self.capture.borrow().is_some() {
+                    target.clear_colors([0.0; 4])?;
+                }
+                Ok(())
+            })?;
+            self.pass("mass: one peel (all bodies)", || {
+                let mut pass = target.pass(&self.peel_program, PEEL_PASS)?;
+                pass.state(peel_state(layer == 0))
+                    .texture("u_peel_depth", &previous)
                     .texture("u_water_depth", water_depth)
                     .uniform("u_peel_layer", layer as i32);
                 for (k, job) in jobs.iter().enumerate().filter(|(k, _)| active[*k]) {
@@ -245,20 +428,37 @@ impl Peeler {
                     queries[k].end();
                     drawn?;
                 }
-            }
-            for (k, a) in active.iter_mut().enumerate() {
-                if *a {
-                    *a = queries[k].samples()? > 0;
+                Ok(())
+            })?;
+            self.pass("mass: occlusion queries", || -> Result<(), GlError> {
+                for (k, a) in active.iter_mut().enumerate() {
+                    if *a {
+                        *a = queries[k].samples()? > 0;
+                    }
                 }
-            }
+                Ok(())
+            })?;
             if !active.iter().any(|&a| a) {
-                return Ok(layer);
+                return Ok((layer, false));
+            }
+            if layer == max {
+                return Ok((max, true));
             }
             if let Some(dir) = dump {
-                self.dump_peel(dir, layer)?;
+                dump_peel(&target, dir, layer)?;
+            }
+            if !keep {
+                let tiles = row_runs(
+                    jobs.iter()
+                        .zip(&active)
+                        .filter(|(_, &a)| a)
+                        .map(|(j, _)| j.tile),
+                );
+                let depth = target.depth().expect("peel targets have depth");
+                self.accumulator.add_peel(target.colors(), depth, &tiles)?;
             }
             if let Some(peels) = self.capture.borrow_mut().as_mut() {
-                let targets = self.peel_targets[..TARGETS]
+                let targets = target.colors()[..TARGETS]
                     .iter()
                     .map(|t| dump::to_rgba8(t, DumpRange::Auto))
                     .collect::<Result<_, _>>()?;
@@ -268,37 +468,32 @@ impl Peeler {
                     targets,
                 });
             }
-            let tiles = row_runs(
-                jobs.iter()
-                    .zip(&active)
-                    .filter(|(_, &a)| a)
-                    .map(|(j, _)| j.tile),
-            );
-            let depth = target.depth().expect("peel targets have depth");
-            self.accumulator
-                .add_peel(&self.peel_targets, depth, layer == 0, &tiles)?;
         }
-        Ok(self.max_layers)
+        unreachable!("the loop returns at layer == max")
     }
 
-    /// The last pass: the fluid surface inside each body, added into the sums.
+    /// The last pass: the fluid surface inside each body (where pass 1's stencil bit is
+    /// 1), added into the sums or drawn into `T_w`.
     fn water_patch_pass(&self, jobs: &[Job], level: f64) -> Result<(), GlError> {
-        let target = self.accumulator.sums_target();
-        let mut pass = target.pass(
-            &self.water_patch_program,
-            "mass: pass n+1, fluid surface patch",
-        )?;
-        pass.state(DrawState {
-            blend: Some(Blend::Add),
-            ..DrawState::default()
+        self.pass("mass: pass n+1 (all bodies)", || {
+            let kept = self.kept.borrow();
+            let (target, blend) = match self.settings.order {
+                PeelOrder::RunningSums => (&self.water_patch_target, Some(Blend::Add)),
+                PeelOrder::KeepLayers => {
+                    let t = &kept.as_ref().expect("made by the peel passes").water;
+                    t.clear_colors([0.0; 4])?;
+                    (t, None)
+                }
+            };
+            let mut pass = target.pass(&self.water_patch_program, WATER_PATCH_PASS)?;
+            pass.state(DrawState {
+                stencil: Some(StencilTest::equal(1)),
+                blend,
+                ..DrawState::default()
+            });
+            self.water_quads(&mut pass, jobs.len(), level)
         })
-        .texture(
-            "u_first_peel_faces_down",
-            self.accumulator.first_peel_faces_down(),
-        );
-        self.water_quads(&mut pass, jobs.len(), level)
     }
-
     /// Every body's tile and framing as rows of a small float texture, so that the water
     /// quads of all bodies are one instanced draw.
     fn upload_tile_data(&self, jobs: &[Job]) -> Result<(), GlError> {
@@ -347,15 +542,6 @@ impl Peeler {
         pass.draw_attributeless(Primitive::TriangleStrip, 4, bodies)
     }
 
-    /// Fig. 10: each target of peel `layer` as a PNG, each channel mapped to [0, 255].
-    fn dump_peel(&self, dir: &Path, layer: usize) -> Result<(), GlError> {
-        for (i, texture) in self.peel_targets.iter().take(TARGETS).enumerate() {
-            let path: PathBuf = dir.join(format!("peel{}_target{i}.png", layer + 1));
-            dump::texture_png(texture, &path, DumpRange::Auto)?;
-        }
-        Ok(())
-    }
-
     pub fn context(&self) -> &Context {
         &self.ctx
     }
@@ -374,6 +560,83 @@ impl Peeler {
             .map(std::mem::take)
             .unwrap_or_default()
     }
+
+    /// Pass 1's stencil bit (1: the first surface below the water faces down), row by row
+    /// from the bottom over the whole target: what the water patch is drawn through.
+    pub fn first_peel_faces_down(&self) -> Result<Vec<u8>, GlError> {
+        let rect = Rect::sized(self.width, self.height);
+        match self.settings.order {
+            PeelOrder::RunningSums => self.layers[0].read_stencil(rect),
+            PeelOrder::KeepLayers => self.layer_target(0)?.read_stencil(rect),
+        }
+    }
+}
+
+/// The framebuffer a peel draws into.
+enum LayerTarget<'a> {
+    PingPong(&'a Framebuffer),
+    Kept(Ref<'a, Framebuffer>),
+}
+
+impl std::ops::Deref for LayerTarget<'_> {
+    type Target = Framebuffer;
+    fn deref(&self) -> &Framebuffer {
+        match self {
+            LayerTarget::PingPong(f) => f,
+            LayerTarget::Kept(f) => f,
+        }
+    }
+}
+
+/// Three RGBA32F integrand targets and the depth `T_d(k)` (32-bit float, as the peel test
+/// compares fragment depths with it exactly), with the stencil for pass 1 (`stencil`).
+/// Only pass 1's target carries a stencil: a software rasterizer samples the packed
+/// depth-stencil format more slowly than plain depth.
+fn peel_layer(
+    ctx: &Context,
+    width: u32,
+    height: u32,
+    name: &str,
+    stencil: bool,
+) -> Result<Framebuffer, GlError> {
+    let colors: Vec<Texture> = (0..TARGETS)
+        .map(|_| Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F))
+        .collect::<Result<_, _>>()?;
+    let format = if stencil {
+        TextureFormat::Depth32FStencil8
+    } else {
+        TextureFormat::Depth32F
+    };
+    let depth = Texture::new_2d(ctx, width, height, format)?;
+    Framebuffer::new(ctx, name, &colors.iter().collect::<Vec<_>>(), Some(&depth))
+}
+
+/// The state of a peel pass: the nearest remaining fragment wins (LESS); pass 1 also
+/// writes the stencil bit by facing (two-sided stencil: the last fragment to pass the
+/// depth test, the nearest, decides).
+fn peel_state(first: bool) -> DrawState {
+    let write = |reference| StencilTest {
+        pass: StencilOp::Replace,
+        ..StencilTest::write(reference)
+    };
+    DrawState {
+        depth: Some(DepthTest {
+            func: Compare::Less,
+            write: true,
+        }),
+        stencil: first.then(|| write(0)),
+        stencil_back: first.then(|| write(1)),
+        ..DrawState::default()
+    }
+}
+
+/// Fig. 10: each target of peel `layer` as a PNG, each channel mapped to [0, 255].
+fn dump_peel(target: &Framebuffer, dir: &Path, layer: usize) -> Result<(), GlError> {
+    for (i, texture) in target.colors().iter().take(TARGETS).enumerate() {
+        let path: PathBuf = dir.join(format!("peel{}_target{i}.png", layer + 1));
+        dump::texture_png(texture, &path, DumpRange::Auto)?;
+    }
+    Ok(())
 }
 
 /// The rectangles covering `tiles` row by row: one per row of tiles, from its leftmost to

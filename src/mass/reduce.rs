@@ -1,7 +1,8 @@
-//! Two-dimensional integrals by buffer reduction [section 3.3, Fig. 2]: each peel's three
-//! integrand targets are added into running sums (one blended pass), and the sums are then
-//! reduced by ping-pong 2x2 sums, the three targets at once (MRT), to one texel per body
-//! (per tile). (The GL layer's `Reducer` does the same for one texture at a time; doing
+//! Two-dimensional integrals by buffer reduction [section 3.3, Fig. 2]. By default each
+//! peel's three integrand targets are added into running sums (one blended pass) and the
+//! sums are reduced once; in the paper's order (`PeelOrder::KeepLayers`) every kept layer
+//! `T_k` and `T_w` is reduced on its own. Either way the reduction is ping-pong 2x2 sums,
+//! the three targets at once (MRT), to one texel per body (per tile). (The GL layer's `Reducer` does the same for one texture at a time; doing
 //! the three together saves two thirds of the passes of every buoyancy step.)
 
 use super::integrands::TARGETS;
@@ -15,13 +16,11 @@ use glam::IVec2;
 /// The name of the reduction pass, whose sums are what the GPU path reads back.
 pub const REDUCTION_PASS: &str = "mass: sum reduction";
 
-/// The running sums over peels, and the faces-down mark of the first peel.
+/// The running sums over peels, and the reduction.
 pub struct Accumulator {
     program: Program,
-    /// sum0..2 and the first peel's faces-down mark.
+    /// sum0..2.
     target: Framebuffer,
-    /// sum0..2 alone, for the water patch (which reads the mark).
-    sums_only: Framebuffer,
     reduce_program: Program,
     /// Half-size targets for the reduction's ping-pong (three RGBA32F each).
     ping_pong: [Framebuffer; 2],
@@ -32,8 +31,7 @@ impl Accumulator {
         let sums: Vec<Texture> = (0..TARGETS)
             .map(|_| Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F))
             .collect::<Result<_, _>>()?;
-        let mark = Texture::new_2d(ctx, width, height, TextureFormat::R32F)?;
-        let all: Vec<&Texture> = sums.iter().chain([&mark]).collect();
+        let all: Vec<&Texture> = sums.iter().collect();
         let half = |name| -> Result<Framebuffer, GlError> {
             let (w, h) = (width.div_ceil(2).max(1), height.div_ceil(2).max(1));
             let t: Vec<Texture> = (0..TARGETS)
@@ -44,12 +42,6 @@ impl Accumulator {
         Ok(Accumulator {
             program: Program::rect(ctx, &[shader!("glsl/mass/accumulate.frag")])?,
             target: Framebuffer::new(ctx, "mass: sums over peels", &all, None)?,
-            sums_only: Framebuffer::new(
-                ctx,
-                "mass: sums (water patch)",
-                &sums.iter().collect::<Vec<_>>(),
-                None,
-            )?,
             reduce_program: Program::rect(ctx, &[shader!("glsl/mass/reduce_sum.frag")])?,
             ping_pong: [half("mass: reduction ping")?, half("mass: reduction pong")?],
         })
@@ -59,14 +51,13 @@ impl Accumulator {
         self.target.clear_colors([0.0; 4])
     }
 
-    /// Adds one peel (`peel[0..3]` integrands, `peel[3]` faces-down mark) over the given
-    /// tiles (the bodies that drew something in this peel; the rest of the target is
-    /// left alone, which is most of it in the deep peels).
+    /// Adds one peel (`peel[0..3]` integrands) over the given tiles (the bodies that drew
+    /// something in this peel; the rest of the target is left alone, which is most of it
+    /// in the deep peels).
     pub fn add_peel(
         &self,
         peel: &[Texture],
         depth: &Texture,
-        first: bool,
         tiles: &[Rect],
     ) -> Result<(), GlError> {
         let mut pass = self.target.pass(&self.program, "mass: accumulate a peel")?;
@@ -77,30 +68,33 @@ impl Accumulator {
         .texture("u_peel_depth", depth)
         .texture("u_peel0", &peel[0])
         .texture("u_peel1", &peel[1])
-        .texture("u_peel2", &peel[2])
-        .texture("u_peel_faces_down", &peel[3])
-        .uniform("u_first_peel", first);
+        .texture("u_peel2", &peel[2]);
         for &tile in tiles {
             pass.draw_rect(tile)?;
         }
         Ok(())
     }
 
-    /// Where the water patch adds its integrands.
-    pub fn sums_target(&self) -> &Framebuffer {
-        &self.sums_only
+    /// The running sums' three textures (the water patch adds into them).
+    pub fn sums(&self) -> &[Texture] {
+        self.target.colors()
     }
 
-    /// The first peel's faces-down mark (the paper's stencil bit).
-    pub fn first_peel_faces_down(&self) -> &Texture {
-        self.target.color(TARGETS)
+    /// The running sums, reduced ([`Accumulator::reduce_from`]).
+    pub fn reduce(&self, block: Option<u32>) -> Result<Vec<[[f64; 4]; TARGETS]>, GlError> {
+        self.reduce_from(&self.target, block)
     }
 
     /// The three sums of every `block x block` tile (row by row from the bottom), or of the
-    /// whole target when `block` is `None`: 2x2 ping-pong passes that reduce the three
-    /// targets at once (MRT), then one small read per target.
-    pub fn reduce(&self, block: Option<u32>) -> Result<Vec<[[f64; 4]; TARGETS]>, GlError> {
-        let (mut w, mut h) = (self.target.width(), self.target.height());
+    /// whole target when `block` is `None`, of `source` (three RGBA32F targets of the
+    /// accumulator's size): 2x2 ping-pong passes that reduce the three targets at once
+    /// (MRT), then one small read per target.
+    pub fn reduce_from(
+        &self,
+        source_target: &Framebuffer,
+        block: Option<u32>,
+    ) -> Result<Vec<[[f64; 4]; TARGETS]>, GlError> {
+        let (mut w, mut h) = (source_target.width(), source_target.height());
         let levels = match block {
             Some(b) => b.trailing_zeros(),
             None => passes_for(w, h),
@@ -109,7 +103,7 @@ impl Accumulator {
         for level in 0..levels {
             let (out_w, out_h) = (w.div_ceil(2), h.div_ceil(2));
             let source = if level == 0 {
-                &self.target
+                source_target
             } else {
                 &self.ping_pong[1 - index]
             };
@@ -124,7 +118,7 @@ impl Accumulator {
             index = 1 - index;
         }
         let result = if levels == 0 {
-            &self.target
+            source_target
         } else {
             &self.ping_pong[1 - index]
         };

@@ -6,10 +6,10 @@
 
 use super::forces::{Submerged, Water};
 use super::simulation::{Body, Shape, SubmergedSolver};
-use crate::gl::{Context, GlError, Rect};
+use crate::gl::{profile, Context, GlError, Rect};
 use crate::mass::framing::Framing;
 use crate::mass::integrands::Soup;
-use crate::mass::peel::{Job, Peeler};
+use crate::mass::peel::{Job, PeelSettings, Peeler};
 use glam::{DVec3, Mat4};
 
 /// The GPU solver: the n + 2 passes for all bodies at once.
@@ -23,6 +23,8 @@ pub struct GpuSolver {
     capacity: usize,
     /// Peels of the last step (the deepest body's n).
     pub last_peels: usize,
+    /// Steps whose peeling stopped at the limit with fragments left.
+    pub truncated_steps: usize,
 }
 
 impl GpuSolver {
@@ -45,12 +47,18 @@ impl GpuSolver {
             columns,
             capacity,
             last_peels: 0,
+            truncated_steps: 0,
         })
     }
 
     /// The depth peeler (to capture its peels).
     pub fn peeler(&self) -> &super::super::peel::Peeler {
         &self.peeler
+    }
+
+    /// Peel with `settings` from now on (limit, order).
+    pub fn set_settings(&mut self, settings: PeelSettings) -> Result<(), GlError> {
+        self.peeler.set_settings(settings)
     }
 
     /// Size of the whole target (pixels).
@@ -132,20 +140,31 @@ impl SubmergedSolver for GpuSolver {
             .map(|(k, b)| format!("body {k} ({})", shapes[b.shape].name))
             .collect();
         let run = || -> Result<_, GlError> {
-            let mut indices = Vec::new();
-            let jobs = bodies
-                .iter()
-                .enumerate()
-                .map(|(k, b)| {
-                    let shape = &shapes[b.shape];
-                    self.job(k, &names[k], shape, b, water.level, &mut indices)
-                })
-                .collect::<Result<Vec<_>, _>>()?;
-            self.soup.set_indices(&indices)?;
+            let setup = || -> Result<_, GlError> {
+                let mut indices = Vec::new();
+                let jobs = bodies
+                    .iter()
+                    .enumerate()
+                    .map(|(k, b)| {
+                        let shape = &shapes[b.shape];
+                        self.job(k, &names[k], shape, b, water.level, &mut indices)
+                    })
+                    .collect::<Result<Vec<_>, _>>()?;
+                self.soup.set_indices(&indices)?;
+                Ok(jobs)
+            };
+            let jobs = {
+                let _scope = profile::cpu_scope(
+                    self.peeler.context(),
+                    "buoyancy: pose, frame and index the bodies",
+                );
+                setup()?
+            };
             self.peeler.run(&self.soup, &jobs, Some(water.level), None)
         };
         let batch = run().map_err(|e| e.to_string())?;
         self.last_peels = batch.peels;
+        self.truncated_steps += batch.truncated as usize;
         Ok(batch
             .integrals
             .iter()

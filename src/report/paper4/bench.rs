@@ -2,10 +2,12 @@
 //! method (Fig. 4-5, Table 1), the 50-body buoyancy scene (section 5.3, Fig. 9), and the peels
 //! of a buoyant bunny (Fig. 10).
 
-use crate::gl::Context;
+use crate::gl::profile::ProfileRow;
+use crate::gl::{profile, Context};
 use crate::mass::buoyancy::simulation::{AnalyticSolver, Simulation, SubmergedSolver};
 use crate::mass::buoyancy::{batch::GpuSolver, render::FrameRenderer, scene};
 use crate::mass::gpu::GpuMass;
+use crate::mass::peel::{PeelOrder, PeelSettings};
 use crate::mass::{analytic, models, surface, MassProperties};
 use crate::mesh::Mesh;
 use crate::report::BenchOptions;
@@ -23,6 +25,44 @@ pub struct Paper4Results {
     pub fig10_peels: usize,
     /// Classic vs compute vs CPU (issue 15).
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
+    /// The two orders of peels and sums, side by side on the bunny at 64x64.
+    pub peel_orders: Vec<PeelOrderRun>,
+    /// Issue 16's speed targets, as ratios measured in this run.
+    pub targets: SpeedTargets,
+    /// Where the time goes, per pass: one bunny at 64x64, and buoyancy steps.
+    pub profile_bunny_64: Vec<ProfileRow>,
+    pub profile_buoyancy: Vec<ProfileRow>,
+}
+
+/// One order of peels and sums ([`PeelOrder`]) on the bunny at 64x64.
+#[derive(Clone, Debug, Serialize)]
+pub struct PeelOrderRun {
+    pub order: PeelOrder,
+    pub default: bool,
+    /// Median wall clock of one call (ms).
+    pub wall_ms: f64,
+    /// Largest difference of any of the ten integrals from the running sums', relative to
+    /// the largest integral.
+    pub max_difference: f64,
+    /// Peel textures held at once (three RGBA32F targets each).
+    pub peel_target_sets: usize,
+}
+
+/// Issue 16's targets: ratios of one run, renderer named in the results.
+#[derive(Clone, Debug, Serialize)]
+pub struct SpeedTargets {
+    /// `mass bunny --resolution 64`: GPU wall clock over Mirtich's analytic time.
+    pub mass_bunny_64_gpu_over_analytic: f64,
+    /// Target: at most this.
+    pub mass_target: f64,
+    /// Buoyancy, 50 bodies at 32x32 over the first `buoyancy_steps` steps (drop and
+    /// plunge included): GPU solver steps/s over the CPU reference solver's.
+    pub buoyancy_gpu_over_cpu: f64,
+    pub buoyancy_steps: usize,
+    pub buoyancy_gpu_steps_per_second: f64,
+    pub buoyancy_cpu_steps_per_second: f64,
+    /// Target: at least this.
+    pub buoyancy_target: f64,
 }
 
 /// One paper object at every resolution.
@@ -48,6 +88,8 @@ pub struct ObjectRun {
 pub struct AnalyticReference {
     pub volume: f64,
     pub inertia: [[f64; 3]; 3],
+    /// Eigenvalues of `inertia` (about the centre of mass), ascending.
+    pub principal_moments: [f64; 3],
 }
 
 /// One resolution of one object.
@@ -60,6 +102,9 @@ pub struct ResolutionRow {
     pub gpu_ms: f64,
     /// Median wall clock of one call.
     pub gpu_wall_ms: f64,
+    /// Relative errors of the three principal moments (eigenvalues of the inertia tensor
+    /// about the centre of mass), ascending.
+    pub principal_relative_error: [f64; 3],
 }
 
 /// Fig. 4's four quantities.
@@ -135,6 +180,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     }
     bar.finish_and_clear();
     let steps = if opts.quick { 20 } else { 200 };
+    let bunny = models::paper_object("bunny").expect("bunny");
+    let peel_orders = peel_orders(opts.gl, &bunny, runs(opts.quick))?;
+    let (profile_bunny_64, profile_buoyancy) = profiles(opts.gl, &bunny)?;
+    let targets = speed_targets(opts, &objects)?;
     Ok(Paper4Results {
         renderer: opts.gl.info().renderer_line(),
         quick: opts.quick,
@@ -142,6 +191,106 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         buoyancy: measure_buoyancy(opts, steps)?,
         fig10_peels: buoyant_bunny_peels(opts)?,
         then_and_now: super::then_and_now::measure(opts)?,
+        peel_orders,
+        targets,
+        profile_bunny_64,
+        profile_buoyancy,
+    })
+}
+
+/// Both orders of peels and sums on `mesh` at 64x64: time and agreement.
+fn peel_orders(ctx: &Context, mesh: &Mesh, runs: usize) -> anyhow::Result<Vec<PeelOrderRun>> {
+    let mut out = Vec::new();
+    let mut reference = None;
+    for order in [PeelOrder::RunningSums, PeelOrder::KeepLayers] {
+        let settings = PeelSettings {
+            order,
+            ..PeelSettings::default()
+        };
+        let gpu = GpuMass::with_settings(ctx, 64, settings)?;
+        let first = gpu.integrate(mesh, None, None)?;
+        let wall_ms = median_ms(runs, || {
+            let start = Instant::now();
+            gpu.integrate(mesh, None, None)?;
+            Ok(start.elapsed().as_secs_f64() * 1e3)
+        })?;
+        let values = first.integrals.to_array();
+        let reference = reference.get_or_insert(values);
+        let scale = reference.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let max_difference = values
+            .iter()
+            .zip(reference.iter())
+            .map(|(a, b)| (a - b).abs() / scale)
+            .fold(0.0, f64::max);
+        out.push(PeelOrderRun {
+            order,
+            default: order == PeelOrder::default(),
+            wall_ms,
+            max_difference,
+            peel_target_sets: match order {
+                PeelOrder::RunningSums => 3,
+                PeelOrder::KeepLayers => first.peels + 2,
+            },
+        });
+    }
+    Ok(out)
+}
+
+/// Per-pass profiles: one bunny at 64x64, and ten buoyancy steps of the 50-body scene
+/// once the bodies are in the water.
+fn profiles(ctx: &Context, bunny: &Mesh) -> anyhow::Result<(Vec<ProfileRow>, Vec<ProfileRow>)> {
+    let gpu = GpuMass::new(ctx, 64)?;
+    gpu.integrate(bunny, None, None)?;
+    profile::start(ctx);
+    gpu.integrate(bunny, None, None)?;
+    let bunny_rows = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
+    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+    let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
+    for _ in 0..30 {
+        sim.step(&mut solver).map_err(anyhow::Error::msg)?;
+    }
+    profile::start(ctx);
+    for _ in 0..10 {
+        sim.step(&mut solver).map_err(anyhow::Error::msg)?;
+    }
+    let buoyancy_rows = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
+    Ok((bunny_rows, buoyancy_rows))
+}
+
+/// Issue 16's ratios: the bunny at 64x64 against Mirtich (from the Fig. 5 rows), and the
+/// first steps of the 50-body scene with each solver, run back to back.
+fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<SpeedTargets> {
+    let bunny = objects
+        .iter()
+        .find(|o| o.object == "bunny")
+        .expect("the bunny is a paper object");
+    let at64 = bunny
+        .resolutions
+        .iter()
+        .find(|r| r.resolution == 64)
+        .map(|r| r.gpu_wall_ms / bunny.analytic_ms)
+        .ok_or_else(|| anyhow::anyhow!("paper 4: no 64x64 run of the bunny"))?;
+    let steps = if opts.quick { 30 } else { 120 };
+    let rate = |solver: &mut dyn SubmergedSolver| -> anyhow::Result<f64> {
+        let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+        let start = Instant::now();
+        for _ in 0..steps {
+            sim.step(solver).map_err(anyhow::Error::msg)?;
+        }
+        Ok(steps as f64 / start.elapsed().as_secs_f64())
+    };
+    let shapes = scene::paper_shapes().map_err(anyhow::Error::msg)?;
+    let mut gpu = GpuSolver::new(opts.gl, &shapes, 50, 32)?;
+    let gpu_rate = rate(&mut gpu)?;
+    let cpu_rate = rate(&mut AnalyticSolver)?;
+    Ok(SpeedTargets {
+        mass_bunny_64_gpu_over_analytic: at64,
+        mass_target: 5.0,
+        buoyancy_gpu_over_cpu: gpu_rate / cpu_rate,
+        buoyancy_steps: steps,
+        buoyancy_gpu_steps_per_second: gpu_rate,
+        buoyancy_cpu_steps_per_second: cpu_rate,
+        buoyancy_target: 1.0,
     })
 }
 
@@ -174,6 +323,8 @@ fn measure_object(
         let first = gpu.integrate(&mesh, None, None)?;
         let got = MassProperties::from_integrals(&first.integrals, 1.0);
         let [mass, ixx, iyy, izz] = got.relative_errors(&exact);
+        let (gp, wp) = (got.principal_moments(), exact.principal_moments());
+        let principal_relative_error = std::array::from_fn(|k| ((gp[k] - wp[k]) / wp[k]).abs());
         let mut timer = Vec::new();
         let wall = median_ms(runs, || {
             let start = Instant::now();
@@ -193,6 +344,7 @@ fn measure_object(
             },
             gpu_ms: timer[timer.len() / 2],
             gpu_wall_ms: wall,
+            principal_relative_error,
         });
     }
     let turn = glam::Quat::from_rotation_x(std::f32::consts::FRAC_PI_2);
@@ -210,6 +362,7 @@ fn measure_object(
         analytic: AnalyticReference {
             volume: exact.volume,
             inertia: exact.inertia_rows(),
+            principal_moments: exact.principal_moments().to_array(),
         },
         analytic_ms,
         break_even: break_even(analytic_ms, &rows),

@@ -15,9 +15,11 @@ pub fn rows() -> Vec<Fidelity> {
             "depth peeling until an occlusion query counts nothing",
             "section 3.2",
             "src/mass/peel.rs, src/gl/peel.rs",
-            "each peel is added into running sums by blending instead of keeping the n layers \
-             and reducing each; the bodies of a batch are tiles of one target, each with its \
-             own occlusion query",
+            "by default each peel is added into running sums by blending (peel memory and \
+             passes do not grow with n); the paper's order, keeping the n layers and reducing \
+             each, is the mode `--order keep-layers` and agrees to fp32 rounding (table \
+             'Order of peels and sums'); peeling stops at `--max-peels` (64) with a warning; \
+             the bodies of a batch are tiles of one target, each with its own occlusion query",
         ),
         Fidelity::new(
             "summation by ping-pong buffer reduction",
@@ -29,8 +31,8 @@ pub fn rows() -> Vec<Fidelity> {
             "n + 2 passes: fluid depth, peels below it, fluid patch where pass 1 faced down",
             "section 5.2, Fig. 7-8",
             "src/mass/peel.rs, glsl/mass/peel_main.frag, glsl/mass/water_patch.frag",
-            "the paper's stencil bit (first peel faced down) is an extra colour output here; \
-             the water is a plane, not a height field",
+            "the stencil bit is written by two-sided stencil (back faces, n_z < 0, write 1) \
+             rather than by the fragment shader; the water is a plane, not a height field",
         ),
         Fidelity::new(
             "Mirtich's analytic algorithm as the baseline",
