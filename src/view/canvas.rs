@@ -1,10 +1,13 @@
 //! The canvas a demo draws a frame into: an RGBA8 colour target of the window's size with a
 //! depth buffer. The window copies it to the screen; the headless path reads it back.
 
-use crate::gl::{Context, Framebuffer, GlError, Rect, Texture, TextureFormat};
+use crate::gl::{Context, Framebuffer, GlError, Program, Rect, Texture, TextureFormat};
+use crate::shader;
 
 pub struct Canvas {
     target: Framebuffer,
+    /// Draws text and insets over the frame (`glsl/view/overlay.frag`), compiled once.
+    overlay: Program,
 }
 
 impl Canvas {
@@ -13,7 +16,13 @@ impl Canvas {
         let depth = Texture::new_2d(ctx, width.max(1), height.max(1), TextureFormat::Depth32F)?;
         Ok(Canvas {
             target: Framebuffer::new(ctx, "viewer canvas", &[&colour], Some(&depth))?,
+            overlay: Program::rect(ctx, &[shader!("glsl/view/overlay.frag")])?,
         })
+    }
+
+    /// The program that blends an RGBA image over the canvas.
+    pub fn overlay_program(&self) -> &Program {
+        &self.overlay
     }
 
     /// The framebuffer to draw into.

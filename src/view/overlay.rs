@@ -2,8 +2,7 @@
 //! already has (font8x8), as an RGBA image blended over the canvas.
 
 use super::Canvas;
-use crate::gl::{Blend, DrawState, GlError, Program, Rect, Texture, TextureFormat};
-use crate::shader;
+use crate::gl::{Blend, DrawState, GlError, Rect, Texture, TextureFormat};
 use font8x8::legacy::BASIC_LEGACY;
 
 /// Where a block of text goes.
@@ -55,8 +54,9 @@ pub fn draw_image(
     let ctx = canvas.context();
     let texture = Texture::new_2d(ctx, width, height, TextureFormat::Rgba8)?;
     texture.upload_u8(rgba)?;
-    let program = Program::rect(ctx, &[shader!("glsl/view/overlay.frag")])?;
-    let mut pass = canvas.target().pass(&program, "viewer overlay")?;
+    let mut pass = canvas
+        .target()
+        .pass(canvas.overlay_program(), "viewer overlay")?;
     pass.state(DrawState {
         blend: Some(Blend::Alpha),
         ..DrawState::default()

@@ -178,7 +178,9 @@ impl App<'_> {
         };
         match key {
             Key::Named(NamedKey::Escape) => event_loop.exit(),
+            // Some keyboard layouts report the space bar as the text " ".
             Key::Named(NamedKey::Space) => r.paused = !r.paused,
+            Key::Character(c) if c.as_str() == " " => r.paused = !r.paused,
             Key::Named(NamedKey::ArrowRight) => r.step_once = true,
             Key::Named(NamedKey::Tab) => {
                 r.view.shown = (r.view.shown + 1) % r.demo.buffers().len().max(1);
