@@ -52,6 +52,7 @@ fn mass_compute_matches_the_analytic_volume_and_refuses_below() {
     let (_, compute) = compute_context();
     let classic = json_of(&["--json", "mass", "torus"]);
     assert_eq!(classic["formulation"], "classic");
+    assert_eq!(classic["peeling"]["max_peels"], 64);
     let Some(now) = compute_json(
         &["--json", "mass", "torus", "--formulation", "compute"],
         compute,
@@ -60,6 +61,8 @@ fn mass_compute_matches_the_analytic_volume_and_refuses_below() {
     };
     assert_eq!(now["formulation"], "compute");
     assert_eq!(now["peels"], 0);
+    // No peeling ran, so no peel settings are reported for it.
+    assert!(now["peeling"].is_null(), "{}", now["peeling"]);
     let (v, exact) = (
         now["volume"].as_f64().unwrap(),
         now["analytic"]["volume"].as_f64().unwrap(),

@@ -263,6 +263,11 @@ struct MassOutput<'a> {
 }
 
 impl MassOutput<'_> {
+    /// The paper's peeling ran (not the compute formulation), so its settings mean something.
+    fn classic(&self) -> bool {
+        self.formulation == super::Formulation::Classic.name()
+    }
+
     fn json(&self) -> serde_json::Value {
         let f = &self.result.framing;
         json!({
@@ -276,11 +281,11 @@ impl MassOutput<'_> {
             "density": self.density,
             "below": self.below,
             "peels": self.result.peels,
-            "peeling": {
+            "peeling": self.classic().then(|| json!({
                 "max_peels": self.result.settings.max_peels,
                 "order": self.result.settings.order,
                 "truncated": self.result.truncated,
-            },
+            })),
             "volume": self.got.volume,
             "mass": self.got.mass,
             "center_of_mass": self.got.center_of_mass.to_array(),
@@ -371,15 +376,22 @@ impl MassOutput<'_> {
         for (k, name) in names.iter().enumerate() {
             s += &row(name, gp[k], wp[k], 0.0);
         }
+        let gpu_clock = if self.classic() {
+            "timer query"
+        } else {
+            "the dispatch to glFinish"
+        };
         s += &format!(
-            "time (ms)       GPU {:.3} (timer query), {:.3} wall; analytic {:.3}\n",
+            "time (ms)       GPU {:.3} ({gpu_clock}), {:.3} wall; analytic {:.3}\n",
             self.result.gpu_ms, self.gpu_wall_ms, self.analytic_ms
         );
-        s += &format!(
-            "peeling         {}, at most {} layers\n",
-            self.result.settings.order.name(),
-            self.result.settings.max_peels
-        );
+        if self.classic() {
+            s += &format!(
+                "peeling         {}, at most {} layers\n",
+                self.result.settings.order.name(),
+                self.result.settings.max_peels
+            );
+        }
         if let Some(table) = &self.profile {
             s += &profile_text(table, "one more run");
         }
