@@ -119,17 +119,6 @@ impl ComputeCrowd {
         })
     }
 
-    /// Skinning matrices of the characters `ids`, bones per character, in order.
-    pub fn bone_matrices(&self, instances: &Instances, ids: &[usize]) -> Vec<DAffine3> {
-        let skeleton = &self.model.skeleton;
-        let mut out = Vec::with_capacity(ids.len() * skeleton.len());
-        for &i in ids {
-            let pose = self.model.clip.sample(skeleton, instances.phases[i]);
-            out.extend(skeleton.skinning_matrices(&pose, instances.models[i]));
-        }
-        out
-    }
-
     /// Upload the bone rows of `n` characters (CPU to GPU), growing the buffers if needed.
     fn upload(&mut self, lod: usize, matrices: &[DAffine3], n: usize) -> Result<(), GlError> {
         let ctx = self.ctx.clone();
@@ -222,7 +211,7 @@ impl ComputeCrowd {
                 continue;
             }
             let started = Instant::now();
-            let matrices = self.bone_matrices(instances, ids);
+            let matrices = instances.bone_matrices(&self.model, ids);
             stats.bones_ms += started.elapsed().as_secs_f64() * 1e3;
             let started = Instant::now();
             self.upload(lod, &matrices, ids.len())?;
@@ -251,7 +240,7 @@ impl ComputeCrowd {
         instances: &Instances,
         ids: &[usize],
     ) -> Result<Vec<SkinnedColumn>, GlError> {
-        let matrices = self.bone_matrices(instances, ids);
+        let matrices = instances.bone_matrices(&self.model, ids);
         self.upload(lod, &matrices, ids.len())?;
         self.skin_pass(lod, ids.len())?;
         let m = self.lods[lod].vertices as usize;

@@ -75,6 +75,20 @@ pub struct Instances<'a> {
     pub phases: &'a [f64],
 }
 
+impl Instances<'_> {
+    /// Skinning matrices of the characters `ids` of `model`, its bones per character, in
+    /// order: what pass 1 (and the compute formulation) skins with.
+    pub fn bone_matrices(&self, model: &CharacterModel, ids: &[usize]) -> Vec<DAffine3> {
+        let skeleton = &model.skeleton;
+        let mut out = Vec::with_capacity(ids.len() * skeleton.len());
+        for &i in ids {
+            let pose = model.clip.sample(skeleton, self.phases[i]);
+            out.extend(skeleton.skinning_matrices(&pose, self.models[i]));
+        }
+        out
+    }
+}
+
 /// Times of the GPU stages of a frame, in milliseconds.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct PassTimes {
@@ -298,17 +312,6 @@ impl CrowdRenderer {
         }
     }
 
-    /// Skinning matrices of the characters `ids`, `bones` per character, in order.
-    pub fn bone_matrices(&self, instances: &Instances, ids: &[usize]) -> Vec<DAffine3> {
-        let skeleton = &self.model.skeleton;
-        let mut out = Vec::with_capacity(ids.len() * skeleton.len());
-        for &i in ids {
-            let pose = self.model.clip.sample(skeleton, instances.phases[i]);
-            out.extend(skeleton.skinning_matrices(&pose, instances.models[i]));
-        }
-        out
-    }
-
     /// Makes sure LOD `lod` has pass-1 batches for `n` characters (capacity grows in powers
     /// of two so a varying count does not rebuild every frame).
     fn reserve(&mut self, lod: usize, n: usize) -> Result<(), GlError> {
@@ -367,7 +370,7 @@ impl CrowdRenderer {
                 light: self.light,
             };
             let started = Instant::now();
-            let matrices = self.bone_matrices(instances, ids);
+            let matrices = instances.bone_matrices(&self.model, ids);
             stats.bones_ms += started.elapsed().as_secs_f64() * 1e3;
             stats.skinned += ids.len();
             stats.triangles += ids.len() * self.lods[lod].triangles;
@@ -469,7 +472,7 @@ impl CrowdRenderer {
         ids: &[usize],
     ) -> Result<Vec<SkinnedColumn>, GlError> {
         let n = ids.len();
-        let matrices = self.bone_matrices(instances, ids);
+        let matrices = instances.bone_matrices(&self.model, ids);
         self.reserve(lod, n)?;
         let limit = self.batch_limit(lod);
         let bones = self.model.bone_count();
