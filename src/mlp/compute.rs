@@ -6,6 +6,7 @@
 
 use super::chain::StepTimes;
 use super::network::{Activation, Network};
+use super::tiling::check_batch;
 use crate::gl::{
     ensure_finite, memory_barrier, time_finished, Barrier, Buffer, BufferUsage, ComputeProgram,
     Context, GlError,
@@ -94,16 +95,7 @@ impl ComputeMlp {
 impl ComputeNetwork<'_> {
     /// Run a batch (L x N, row j = input vector j) through every layer.
     pub fn forward(&self, batch: ArrayView2<f32>) -> Result<ComputeForward, GlError> {
-        if batch.ncols() != self.inputs {
-            return Err(GlError::Invalid(format!(
-                "the batch has {} values per input vector but the network takes {}",
-                batch.ncols(),
-                self.inputs
-            )));
-        }
-        if batch.nrows() == 0 {
-            return Err(GlError::Invalid("the batch has no input vectors".into()));
-        }
+        check_batch(batch, self.inputs)?;
         let ctx = &self.mlp.ctx;
         let l = batch.nrows() as u32;
         let mut times = StepTimes::default();

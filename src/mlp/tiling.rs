@@ -77,16 +77,7 @@ impl GpuNetwork<'_> {
         batch: ArrayView2<f32>,
         max_vectors: Option<usize>,
     ) -> Result<GpuForward, GlError> {
-        if batch.ncols() != self.inputs {
-            return Err(GlError::Invalid(format!(
-                "the batch has {} values per input vector but the network takes {}",
-                batch.ncols(),
-                self.inputs
-            )));
-        }
-        if batch.nrows() == 0 {
-            return Err(GlError::Invalid("the batch has no input vectors".into()));
-        }
+        check_batch(batch, self.inputs)?;
         let limit = max_vectors_per_texture(self.gpu.context(), self.formulation());
         let tile = max_vectors.unwrap_or(limit).clamp(1, limit);
         let mut outputs = Array2::zeros((batch.nrows(), self.outputs));
@@ -112,4 +103,18 @@ impl GpuNetwork<'_> {
             product_passes: self.product_passes(),
         })
     }
+}
+
+/// A batch the network can take: `inputs` values per input vector, at least one vector.
+pub(super) fn check_batch(batch: ArrayView2<f32>, inputs: usize) -> Result<(), GlError> {
+    if batch.ncols() != inputs {
+        return Err(GlError::Invalid(format!(
+            "the batch has {} values per input vector but the network takes {inputs}",
+            batch.ncols()
+        )));
+    }
+    if batch.nrows() == 0 {
+        return Err(GlError::Invalid("the batch has no input vectors".into()));
+    }
+    Ok(())
 }
