@@ -305,38 +305,55 @@ fn gpu_refuses_a_body_thinner_than_a_pixel() {
     assert!(gpu.integrate(&slab, None, None).is_ok());
 }
 
-/// A body whose integrands overflow fp32 (here: a model matrix scaling it by 10^30 behind
-/// the unit frame's back) is an error naming the body and the pass, not a NaN.
+/// A body whose integrands overflow fp32 (here: a cube scaled by 10^30, posed behind the
+/// unit frame's back) is an error naming the body and the pass, not a NaN.
 #[test]
 fn peeler_names_a_body_with_non_finite_integrals() {
     use classic_gpgpu::gl::{GlError, Rect};
-    use classic_gpgpu::mass::integrands::Soup;
+    use classic_gpgpu::mass::integrands::{Placement, Soup};
     use classic_gpgpu::mass::peel::{Job, Peeler};
     let ctx = context();
     let cube = cuboid(Vec3::ONE, Vec3::ZERO);
-    let soup = Soup::new(&ctx, &[&cube]).unwrap();
-    let world: Vec<DVec3> = cube.positions.iter().map(|p| p.as_dvec3()).collect();
-    let mut indices = Vec::new();
-    soup.push_triangles(0, &world, |_| true, &mut indices);
-    soup.set_indices(&indices).unwrap();
+    let soup = Soup::new(&ctx).unwrap();
     let peeler = Peeler::new(&ctx, 64, 32, Some(32)).unwrap();
-    let job = |body, x, scale: f32| Job {
+    let job = |body, group, x, scale: f64| Job {
         body,
-        indices: (0, indices.len()),
-        model: glam::Mat4::from_scale(Vec3::splat(scale)),
+        group,
         framing: Framing {
             center: DVec3::ZERO,
-            half_width: 0.6 * scale as f64,
-            half_depth: 0.6 * scale as f64,
+            half_width: 0.6 * scale,
+            half_depth: 0.6 * scale,
             resolution: 32,
         },
         tile: Rect::new(x, 0, 32, 32),
     };
-    let fine = peeler
-        .run(&soup, &[job("body 0 (box)", 0, 1.0)], None, None)
-        .unwrap();
+    let pose = |jobs: &[Job]| {
+        soup.clear();
+        for (job, scale) in jobs.iter().zip([1.0, 1e30]) {
+            let world: Vec<DVec3> = cube
+                .positions
+                .iter()
+                .map(|p| p.as_dvec3() * scale)
+                .collect();
+            let at = Placement {
+                framing: job.framing,
+                tile: job.tile,
+                target: (64, 32),
+            };
+            soup.begin_group();
+            soup.push_body(&cube.triangles, &world, &at, |_| true);
+        }
+        soup.upload().unwrap();
+    };
+    let one = [job("body 0 (box)", 0, 0, 1.0)];
+    pose(&one);
+    let fine = peeler.run(&soup, &one, None, None).unwrap();
     assert!((fine.integrals[0].v - 1.0).abs() < 0.05);
-    let jobs = [job("body 0 (box)", 0, 1.0), job("body 1 (box)", 32, 1e30)];
+    let jobs = [
+        job("body 0 (box)", 0, 0, 1.0),
+        job("body 1 (box)", 1, 32, 1e30),
+    ];
+    pose(&jobs);
     let err = peeler.run(&soup, &jobs, None, None).unwrap_err();
     assert!(matches!(err, GlError::NonFinite { .. }), "{err}");
     let message = err.to_string();

@@ -10,11 +10,11 @@
 
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
-use super::integrands::Soup;
+use super::integrands::{Placement, Soup};
 use super::peel::{Job, PeelSettings, Peeler};
 use crate::gl::{profile, query, Context, GlError, Rect};
 use crate::mesh::Mesh;
-use glam::{DVec3, Mat4};
+use glam::DVec3;
 use serde::Serialize;
 use std::path::Path;
 
@@ -37,9 +37,10 @@ pub struct GpuResult {
     pub gpu_ms: f64,
 }
 
-/// A reusable set of targets for one body at one resolution.
+/// A reusable set of targets and buffers for one body at one resolution.
 pub struct GpuMass {
     peeler: Peeler,
+    soup: Soup,
     resolution: u32,
 }
 
@@ -47,6 +48,7 @@ impl GpuMass {
     pub fn new(ctx: &Context, resolution: u32) -> Result<GpuMass, GlError> {
         Ok(GpuMass {
             peeler: Peeler::new(ctx, resolution, resolution, None)?,
+            soup: Soup::new(ctx)?,
             resolution,
         })
     }
@@ -83,20 +85,19 @@ impl GpuMass {
         dump: Option<&Path>,
     ) -> Result<GpuResult, GlError> {
         let framing = Framing::fit(mesh, self.resolution).map_err(GlError::Invalid)?;
-        let (unit, soup, indices) = {
-            let _scope = profile::cpu_scope(self.peeler.context(), "mass: unit frame, upload");
-            self.prepare(mesh, &framing)?
-        };
         let job = Job {
             body: "the body",
-            indices: (0, indices),
-            model: Mat4::IDENTITY,
-            framing: unit.framing,
+            group: 0,
+            framing: UnitFrame::of(&framing).framing,
             tile: Rect::sized(self.resolution, self.resolution),
+        };
+        let unit = {
+            let _scope = profile::cpu_scope(self.peeler.context(), "mass: unit frame, upload");
+            self.prepare(mesh, &framing, &job)?
         };
         let water = below.map(|level| unit.to_unit(DVec3::new(0.0, 0.0, level)).z);
         let (batch, gpu_ms) = query::time_gpu(self.peeler.context(), || {
-            self.peeler.run(&soup, &[job], water, dump)
+            self.peeler.run(&self.soup, &[job], water, dump)
         })?;
         if batch.peels == 0 && below.is_none() && !mesh.triangles.is_empty() {
             return Err(GlError::Invalid(format!(
@@ -120,29 +121,28 @@ impl GpuMass {
         })
     }
 
-    /// The body in the unit frame, in a vertex buffer, with the index list of the
-    /// triangles that may cover a pixel centre (its length returned).
-    fn prepare(&self, mesh: &Mesh, framing: &Framing) -> Result<(UnitFrame, Soup, usize), GlError> {
+    /// The body in the unit frame, placed as `job` says, in the soup's buffers, with the
+    /// triangles that may cover a pixel centre.
+    fn prepare(&self, mesh: &Mesh, framing: &Framing, job: &Job) -> Result<UnitFrame, GlError> {
         let unit = UnitFrame::of(framing);
         let local: Vec<DVec3> = mesh
             .positions
             .iter()
             .map(|p| unit.to_unit(p.as_dvec3()))
             .collect();
-        let unit_mesh = Mesh::new(
-            local.iter().map(|p| p.as_vec3()).collect(),
-            mesh.triangles.clone(),
-        );
-        let soup = Soup::new(self.peeler.context(), &[&unit_mesh])?;
-        let mut indices = Vec::new();
+        let place = Placement {
+            framing: job.framing,
+            tile: job.tile,
+            target: (self.resolution, self.resolution),
+        };
         let keep = |tri: &[u32; 3]| {
             unit.framing
                 .may_cover_pixel_centre(tri.map(|i| local[i as usize]))
         };
-        soup.push_triangles(0, &local, keep, &mut indices);
-        soup.set_indices(&indices)?;
-        let count = indices.len();
-        Ok((unit, soup, count))
+        self.soup.clear();
+        self.soup.push_body(&mesh.triangles, &local, &place, keep);
+        self.soup.upload()?;
+        Ok(unit)
     }
 }
 

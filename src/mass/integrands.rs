@@ -4,9 +4,12 @@
 
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
-use crate::gl::{peel, Buffer, BufferUsage, Context, GlError, Program, ShaderSource, VertexArray};
-use crate::mesh::Mesh;
+use crate::gl::{
+    peel, Buffer, BufferUsage, Context, GlError, Program, Rect, ShaderSource, VertexArray,
+};
 use crate::shader;
+use glam::DVec3;
+use std::cell::RefCell;
 
 /// Body geometry under the orthographic view: `p` and `n_z` for the listing.
 pub const VERTEX: ShaderSource<'static> = shader!("glsl/mass/integrands.vert");
@@ -46,79 +49,184 @@ pub fn water_patch_program(ctx: &Context) -> Result<Program, GlError> {
     Program::new(ctx, &[WATER_VERTEX], &[PRELUDE, LISTING, WATER_PATCH])
 }
 
-/// Several meshes in one vertex buffer, drawn through an index buffer rewritten per batch.
+/// A batch's bodies, posed and framed by the CPU, in one vertex and one index buffer, so
+/// that each peel is a single draw for every body.
 ///
 /// The listing needs `n_z` to have its triangle's sign at every fragment; with shared
-/// vertices that is impossible where up- and down-facing triangles meet. So each mesh is
-/// stored twice, once with `n_z = +1` and once with `n_z = -1` at every vertex, and each
-/// triangle's indices point into the copy of its facing under the current pose (the sign
-/// of the z component of its world normal, computed on the CPU from the posed vertices).
-/// Shared vertices are then shaded once per copy instead of once per triangle corner,
-/// which is most of the vertex work on a software rasterizer.
+/// vertices that is impossible where up- and down-facing triangles meet. So each posed body
+/// is stored twice, once with `n_z = +1` and once with `n_z = -1` at every vertex, and each
+/// triangle's indices point into the copy of its facing (the sign of the z component of its
+/// world normal). Shared vertices are then shaded once per copy instead of once per
+/// triangle corner, which is most of the vertex work on a software rasterizer.
+///
+/// Bodies come in groups (the buoyancy scene: one per shape), each a range of the index
+/// buffer drawn with its own occlusion query, so that a group whose bodies are all peeled
+/// through is not drawn again while deeper bodies go on.
+///
+/// Each vertex carries its clip position in the whole target (the body's orthographic
+/// [`Framing`] followed by its tile, [`posed_clip`]) and `p`, its position relative to the
+/// framing centre: one draw then needs no per-body uniforms or viewports, and the CPU,
+/// which poses every vertex anyway to frame the body and cull its triangles, does it in f64.
 pub struct Soup {
     pub vertices: VertexArray,
-    /// (first vertex, vertex count V) of each mesh: its `n_z = +1` copy is vertices
-    /// `first .. first + V`, its `n_z = -1` copy `first + V .. first + 2V`.
-    pub ranges: Vec<(usize, usize)>,
-    triangles: Vec<Vec<[u32; 3]>>,
+    buffer: Buffer,
     indices: Buffer,
+    /// The batch being built (kept to reuse its allocations).
+    staging: RefCell<Staging>,
+    /// Index ranges (first, count) of the groups of the last uploaded batch.
+    groups: RefCell<Vec<(usize, usize)>>,
+}
+
+/// A posed vertex: clip position in the whole target, `n_z`, `p`.
+type PosedVertex = [f32; 7];
+
+#[derive(Default)]
+struct Staging {
+    vertices: Vec<PosedVertex>,
+    indices: Vec<u32>,
+    /// Where each group's indices start.
+    group_starts: Vec<usize>,
+}
+
+/// Where a body lies: its framing and its tile of a `target` of pixels.
+#[derive(Clone, Copy, Debug)]
+pub struct Placement {
+    pub framing: Framing,
+    pub tile: Rect,
+    pub target: (u32, u32),
 }
 
 impl Soup {
-    pub fn new(ctx: &Context, meshes: &[&Mesh]) -> Result<Soup, GlError> {
-        let mut data: Vec<[f32; 4]> = Vec::new();
-        let mut ranges = Vec::new();
-        for mesh in meshes {
-            let first = data.len();
-            for sign in [1.0, -1.0] {
-                data.extend(mesh.positions.iter().map(|p| [p.x, p.y, p.z, sign]));
-            }
-            ranges.push((first, mesh.positions.len()));
-        }
-        let buffer = Buffer::from_slice(ctx, &data, BufferUsage::Static)?;
+    pub fn new(ctx: &Context) -> Result<Soup, GlError> {
+        let stride = std::mem::size_of::<PosedVertex>();
+        let buffer = Buffer::new(ctx, stride * 3, BufferUsage::Dynamic)?;
         let indices = Buffer::from_slice(ctx, &[0u32; 3], BufferUsage::Dynamic)?;
         let mut vertices = VertexArray::new(ctx)?;
-        vertices.float_attribute(0, &buffer, 3, 16, 0, 0)?;
-        vertices.float_attribute(1, &buffer, 1, 16, 12, 0)?;
+        vertices.float_attribute(0, &buffer, 3, stride, 0, 0)?;
+        vertices.float_attribute(1, &buffer, 1, stride, 12, 0)?;
+        vertices.float_attribute(2, &buffer, 3, stride, 16, 0)?;
         vertices.set_index_buffer(&indices)?;
         Ok(Soup {
             vertices,
-            ranges,
-            triangles: meshes.iter().map(|m| m.triangles.clone()).collect(),
+            buffer,
             indices,
+            staging: RefCell::default(),
+            groups: RefCell::default(),
         })
     }
 
-    /// Appends the indices of mesh `m`'s triangles posed at `world` (its vertices in
-    /// world coordinates) for which `keep` holds, each into the copy of its facing.
-    /// Returns the number of indices appended.
-    pub fn push_triangles(
-        &self,
-        m: usize,
-        world: &[glam::DVec3],
-        mut keep: impl FnMut(&[u32; 3]) -> bool,
-        out: &mut Vec<u32>,
-    ) -> usize {
-        let (first, count) = self.ranges[m];
-        let before = out.len();
-        for tri in self.triangles[m].iter().filter(|t| keep(t)) {
-            let [a, b, c] = tri.map(|i| world[i as usize]);
-            let n_z = (b - a).truncate().perp_dot((c - a).truncate());
-            let copy = if n_z >= 0.0 { first } else { first + count } as u32;
-            out.extend(tri.map(|i| copy + i));
+    /// Room for `bodies` bodies of up to `vertices` vertices and `triangles` triangles each,
+    /// so that the buffers never grow during a run.
+    pub fn reserve(&self, bodies: usize, vertices: usize, triangles: usize) -> Result<(), GlError> {
+        let vertex_bytes = bodies * 2 * vertices * std::mem::size_of::<PosedVertex>();
+        let index_bytes = bodies * 3 * triangles * std::mem::size_of::<u32>();
+        for (buffer, bytes) in [(&self.buffer, vertex_bytes), (&self.indices, index_bytes)] {
+            if bytes > buffer.len_bytes() {
+                buffer.replace(&vec![0u8; bytes])?;
+            }
         }
-        out.len() - before
+        Ok(())
     }
 
-    /// The index list the next batch draws from.
-    /// Rewritten in place when it fits (no reallocation per step), else grown.
-    pub fn set_indices(&self, indices: &[u32]) -> Result<(), GlError> {
-        if std::mem::size_of_val(indices) <= self.indices.len_bytes() {
-            self.indices.write(0, indices)
-        } else {
-            self.indices.replace(indices)
-        }
+    /// Starts a new batch.
+    pub fn clear(&self) {
+        let mut s = self.staging.borrow_mut();
+        s.vertices.clear();
+        s.indices.clear();
+        s.group_starts.clear();
     }
+
+    /// Starts a new group: the bodies pushed from now on are drawn together.
+    pub fn begin_group(&self) {
+        let mut s = self.staging.borrow_mut();
+        let start = s.indices.len();
+        s.group_starts.push(start);
+    }
+
+    /// Adds a body to the current group (the first body starts one): its vertices posed at
+    /// `world` (world coordinates), placed at `at`, and those of its `triangles` for which
+    /// `keep` holds. Returns the number of triangles added.
+    pub fn push_body(
+        &self,
+        triangles: &[[u32; 3]],
+        world: &[DVec3],
+        at: &Placement,
+        mut keep: impl FnMut(&[u32; 3]) -> bool,
+    ) -> usize {
+        let mut guard = self.staging.borrow_mut();
+        let staging = &mut *guard;
+        if staging.group_starts.is_empty() {
+            staging.group_starts.push(0);
+        }
+        let first = staging.vertices.len() as u32;
+        let count = world.len() as u32;
+        for sign in [1.0f32, -1.0] {
+            staging.vertices.extend(world.iter().map(|&w| {
+                let p = w - at.framing.center;
+                let clip = posed_clip(p, at);
+                [
+                    clip.x as f32,
+                    clip.y as f32,
+                    clip.z as f32,
+                    sign,
+                    p.x as f32,
+                    p.y as f32,
+                    p.z as f32,
+                ]
+            }));
+        }
+        let before = staging.indices.len();
+        for tri in triangles.iter().filter(|t| keep(t)) {
+            let [a, b, c] = tri.map(|i| world[i as usize]);
+            let n_z = (b - a).truncate().perp_dot((c - a).truncate());
+            let copy = if n_z >= 0.0 { first } else { first + count };
+            staging.indices.extend(tri.map(|i| copy + i));
+        }
+        (staging.indices.len() - before) / 3
+    }
+
+    /// Sends the batch to the GPU: the buffers are rewritten in place when they fit (no
+    /// reallocation per step), else grown.
+    pub fn upload(&self) -> Result<(), GlError> {
+        let staging = self.staging.borrow();
+        let write = |buffer: &Buffer, bytes: &[u8]| {
+            if bytes.len() <= buffer.len_bytes() {
+                buffer.write(0, bytes)
+            } else {
+                buffer.replace(bytes)
+            }
+        };
+        write(&self.buffer, bytemuck::cast_slice(&staging.vertices))?;
+        write(&self.indices, bytemuck::cast_slice(&staging.indices))?;
+        let ends = staging.group_starts.iter().skip(1).copied();
+        *self.groups.borrow_mut() = staging
+            .group_starts
+            .iter()
+            .zip(ends.chain([staging.indices.len()]))
+            .map(|(&first, end)| (first, end - first))
+            .collect();
+        Ok(())
+    }
+
+    /// The index range (first, count) of each group of the uploaded batch.
+    pub fn groups(&self) -> Vec<(usize, usize)> {
+        self.groups.borrow().clone()
+    }
+}
+
+/// The clip position in the whole target of a point at `p` from the framing centre: the
+/// framing's orthographic projection ([`Framing::projection`]: x, y onto [-1, 1], higher z
+/// nearer), then the tile's viewport within the target, in f64.
+pub fn posed_clip(p: DVec3, at: &Placement) -> DVec3 {
+    let f = &at.framing;
+    let ndc = DVec3::new(p.x / f.half_width, p.y / f.half_width, -p.z / f.half_depth);
+    let (w, h) = (at.target.0 as f64, at.target.1 as f64);
+    let t = at.tile;
+    DVec3::new(
+        (2.0 * t.x as f64 + (ndc.x + 1.0) * t.w as f64) / w - 1.0,
+        (2.0 * t.y as f64 + (ndc.y + 1.0) * t.h as f64) / h - 1.0,
+        ndc.z,
+    )
 }
 
 /// The ten integrals from the three target sums of one body, about the framing centre

@@ -5,9 +5,11 @@
 //!
 //! - Pass 0 (with water): the fluid surface's depth into `T_dw`.
 //! - Passes 1..n: every body is drawn with the listing wrapped by the peel test (the GL
-//!   layer's `peel_discard`, against the previous layer's depth) and the water test. Each
-//!   body has its own occlusion query: a body whose layer drew nothing is done and is not
-//!   drawn again, and peeling ends when every body is done. Pass 1 also writes the paper's
+//!   layer's `peel_discard`, against the previous layer's depth) and the water test, all
+//!   one draw per group of bodies (the [`Soup`] holds them posed in their tiles; the
+//!   buoyancy scene groups them by shape), each with its own occlusion query: a group
+//!   whose layer drew nothing is done and is not drawn again, and peeling ends when every
+//!   group is done. Pass 1 also writes the paper's
 //!   stencil bit by two-sided stencil: 1 where the kept fragment faces down (a back face
 //!   seen from above), 0 where it faces up.
 //! - Pass n + 1 (with water): the fluid surface where that stencil bit is 1 (`T_w`).
@@ -31,7 +33,6 @@ use crate::gl::{
     ensure_finite, Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
     OcclusionQuery, Pass, Primitive, Program, Rect, StencilOp, StencilTest, Texture, TextureFormat,
 };
-use glam::Mat4;
 use serde::Serialize;
 use std::cell::{Ref, RefCell};
 use std::path::{Path, PathBuf};
@@ -77,16 +78,14 @@ impl Default for PeelSettings {
     }
 }
 
-/// One body of a batch: which triangles of the soup (a range of its index buffer), where
-/// it is, how it is framed, and where its tile lies in the render targets.
+/// One body of a batch: how it is framed and where its tile lies in the render targets
+/// (its triangles are in the [`Soup`], posed and placed there).
 #[derive(Clone, Copy, Debug)]
 pub struct Job<'a> {
     /// The body, as errors name it ("body 3 (torus)").
     pub body: &'a str,
-    /// (first index, index count) in [`Soup::set_indices`]'s list.
-    pub indices: (usize, usize),
-    /// Body frame -> world.
-    pub model: Mat4,
+    /// Its group in the [`Soup`].
+    pub group: usize,
     pub framing: Framing,
     /// Its viewport: `framing.resolution` square, at a multiple of the tile block.
     pub tile: Rect,
@@ -130,7 +129,7 @@ pub struct Peeler {
     kept: RefCell<Option<Kept>>,
     /// Per body, the tile and framing the water passes read (`glsl/mass/water_surface.vert`).
     tile_data: RefCell<Option<Texture>>,
-    /// One occlusion query per body (grown on demand).
+    /// One occlusion query per group (grown on demand).
     queries: RefCell<Vec<OcclusionQuery>>,
     width: u32,
     height: u32,
@@ -385,12 +384,13 @@ impl Peeler {
         dump: Option<&Path>,
     ) -> Result<(usize, bool), GlError> {
         let keep = self.settings.order == PeelOrder::KeepLayers;
+        let groups = soup.groups();
         let mut queries = self.queries.borrow_mut();
-        while queries.len() < jobs.len() {
+        while queries.len() < groups.len() {
             queries.push(OcclusionQuery::new(&self.ctx)?);
         }
+        let mut active: Vec<bool> = vec![true; groups.len()];
         let water_depth = self.water.depth().expect("T_dw has a depth attachment");
-        let mut active: Vec<bool> = vec![true; jobs.len()];
         let max = self.settings.max_peels;
         for layer in 0..=max {
             let previous = self.layer_depth(if layer == 0 { 1 } else { layer - 1 })?;
@@ -411,12 +411,7 @@ impl Peeler {
                     .texture("u_peel_depth", &previous)
                     .texture("u_water_depth", water_depth)
                     .uniform("u_peel_layer", layer as i32);
-                for (k, job) in jobs.iter().enumerate().filter(|(k, _)| active[*k]) {
-                    let (first, count) = job.indices;
-                    pass.viewport(job.tile)
-                        .uniform("u_model", job.model)
-                        .uniform("u_frame_center", job.framing.center.as_vec3())
-                        .uniform("u_projection", job.framing.projection());
+                for (k, &(first, count)) in groups.iter().enumerate().filter(|(k, _)| active[*k]) {
                     queries[k].begin();
                     let drawn = pass.draw_elements_instanced(
                         &soup.vertices,
@@ -448,12 +443,7 @@ impl Peeler {
                 dump_peel(&target, dir, layer)?;
             }
             if !keep {
-                let tiles = row_runs(
-                    jobs.iter()
-                        .zip(&active)
-                        .filter(|(_, &a)| a)
-                        .map(|(j, _)| j.tile),
-                );
+                let tiles = row_runs(jobs.iter().filter(|j| active[j.group]).map(|j| j.tile));
                 let depth = target.depth().expect("peel targets have depth");
                 self.accumulator.add_peel(target.colors(), depth, &tiles)?;
             }
