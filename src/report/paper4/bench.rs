@@ -182,19 +182,20 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let steps = if opts.quick { 20 } else { 200 };
     let bunny = models::paper_object("bunny").expect("bunny");
     let peel_orders = peel_orders(opts.gl, &bunny, runs(opts.quick))?;
-    let (profile_bunny_64, profile_buoyancy) = profiles(opts.gl, &bunny)?;
-    let targets = speed_targets(opts, &objects)?;
+    let profile_bunny_64 = profile_bunny(opts.gl, &bunny)?;
+    let scene = measure_scene(opts, steps)?;
+    let targets = speed_targets(opts, &objects, &scene)?;
     Ok(Paper4Results {
         renderer: opts.gl.info().renderer_line(),
         quick: opts.quick,
         objects,
-        buoyancy: measure_buoyancy(opts, steps)?,
+        buoyancy: scene.run,
         fig10_peels: buoyant_bunny_peels(opts)?,
         then_and_now: super::then_and_now::measure(opts)?,
         peel_orders,
         targets,
         profile_bunny_64,
-        profile_buoyancy,
+        profile_buoyancy: scene.profile,
     })
 }
 
@@ -236,30 +237,22 @@ fn peel_orders(ctx: &Context, mesh: &Mesh, runs: usize) -> anyhow::Result<Vec<Pe
     Ok(out)
 }
 
-/// Per-pass profiles: one bunny at 64x64, and ten buoyancy steps of the 50-body scene
-/// once the bodies are in the water.
-fn profiles(ctx: &Context, bunny: &Mesh) -> anyhow::Result<(Vec<ProfileRow>, Vec<ProfileRow>)> {
+/// Where one bunny at 64x64 spends its time, per pass.
+fn profile_bunny(ctx: &Context, bunny: &Mesh) -> anyhow::Result<Vec<ProfileRow>> {
     let gpu = GpuMass::new(ctx, 64)?;
     gpu.integrate(bunny, None, None)?;
     profile::start(ctx);
     gpu.integrate(bunny, None, None)?;
-    let bunny_rows = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
-    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-    let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
-    for _ in 0..30 {
-        sim.step(&mut solver).map_err(anyhow::Error::msg)?;
-    }
-    profile::start(ctx);
-    for _ in 0..10 {
-        sim.step(&mut solver).map_err(anyhow::Error::msg)?;
-    }
-    let buoyancy_rows = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
-    Ok((bunny_rows, buoyancy_rows))
+    Ok(profile::finish(ctx).map(|t| t.rows).unwrap_or_default())
 }
 
 /// Issue 16's ratios: the bunny at 64x64 against Mirtich (from the Fig. 5 rows), and the
-/// first steps of the 50-body scene with each solver, run back to back.
-fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<SpeedTargets> {
+/// first steps of the 50-body scene (drop and plunge included) with each solver.
+fn speed_targets(
+    opts: &BenchOptions,
+    objects: &[ObjectRun],
+    scene: &SceneRuns,
+) -> anyhow::Result<SpeedTargets> {
     let bunny = objects
         .iter()
         .find(|o| o.object == "bunny")
@@ -271,18 +264,8 @@ fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<S
         .map(|r| r.gpu_wall_ms / bunny.analytic_ms)
         .ok_or_else(|| anyhow::anyhow!("paper 4: no 64x64 run of the bunny"))?;
     let steps = if opts.quick { 30 } else { 120 };
-    let rate = |solver: &mut dyn SubmergedSolver| -> anyhow::Result<f64> {
-        let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-        let start = Instant::now();
-        for _ in 0..steps {
-            sim.step(solver).map_err(anyhow::Error::msg)?;
-        }
-        Ok(steps as f64 / start.elapsed().as_secs_f64())
-    };
-    let shapes = scene::paper_shapes().map_err(anyhow::Error::msg)?;
-    let mut gpu = GpuSolver::new(opts.gl, &shapes, 50, 32)?;
-    let gpu_rate = rate(&mut gpu)?;
-    let cpu_rate = rate(&mut AnalyticSolver)?;
+    let rate = |run: &StepTimes| steps as f64 * 1e3 / run.step_ms[..steps].iter().sum::<f64>();
+    let (gpu_rate, cpu_rate) = (rate(&scene.gpu), rate(&scene.cpu));
     Ok(SpeedTargets {
         mass_bunny_64_gpu_over_analytic: at64,
         mass_target: 5.0,
@@ -396,70 +379,98 @@ fn break_even(analytic_ms: f64, rows: &[ResolutionRow]) -> String {
     format!("GPU faster at every resolution (up to {last}x{last})")
 }
 
-/// The buoyancy scene: mean step time, the buoyancy share, peels.
-fn measure_buoyancy(opts: &BenchOptions, steps: usize) -> anyhow::Result<BuoyancyRun> {
-    let ctx = opts.gl;
-    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-    let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
-    // The bodies start in the air; time them once they are in the water (after 1 s, past
-    // the first plunge), as the paper's average over its interactive run would.
-    let settle = 60;
-    let bar = opts
-        .progress
-        .add(indicatif::ProgressBar::new((settle + steps) as u64));
-    bar.set_message("buoyancy, 50 bodies");
-    for _ in 0..settle {
-        sim.step(&mut solver).map_err(anyhow::Error::msg)?;
-        bar.inc(1);
-    }
-    let (mut total, mut buoyancy_ms, mut max_peels, mut sum_peels) = (0.0, 0.0, 0, 0);
-    for _ in 0..steps {
+/// The 50-body scene, run once with each solver from the drop: the GPU's timed steps
+/// (after the settling ones), the speed targets' first steps, the per-pass profile and
+/// the batching gain all come from these two runs.
+struct SceneRuns {
+    run: BuoyancyRun,
+    gpu: StepTimes,
+    cpu: StepTimes,
+    profile: Vec<ProfileRow>,
+}
+
+/// Every step of one run: wall clock of the step and of its buoyancy half (ms), peels.
+#[derive(Default)]
+struct StepTimes {
+    step_ms: Vec<f64>,
+    buoyancy_ms: Vec<f64>,
+    peels: Vec<usize>,
+}
+
+/// `total` steps of the paper scene with `solver` (`peels` reads its last step's peels).
+fn run_scene<S: SubmergedSolver>(
+    sim: &mut Simulation,
+    solver: &mut S,
+    total: usize,
+    peels: impl Fn(&S) -> usize,
+    bar: &indicatif::ProgressBar,
+) -> anyhow::Result<StepTimes> {
+    let mut times = StepTimes::default();
+    for _ in 0..total {
         let start = Instant::now();
         let subs = solver
             .submerged(&sim.shapes, &sim.bodies, &sim.water)
             .map_err(anyhow::Error::msg)?;
-        buoyancy_ms += start.elapsed().as_secs_f64() * 1e3;
+        times.buoyancy_ms.push(start.elapsed().as_secs_f64() * 1e3);
         sim.apply(&subs);
-        total += start.elapsed().as_secs_f64() * 1e3;
-        max_peels = max_peels.max(solver.last_peels);
-        sum_peels += solver.last_peels;
+        times.step_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        times.peels.push(peels(solver));
         bar.inc(1);
     }
+    Ok(times)
+}
+
+/// The buoyancy scene: mean step time, the buoyancy share, peels, against the CPU solver.
+fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns> {
+    let ctx = opts.gl;
+    // The bodies start in the air; time them once they are in the water (after 1 s, past
+    // the first plunge), as the paper's average over its interactive run would.
+    let settle = 60;
+    let total = settle + steps;
+    let bar = opts
+        .progress
+        .add(indicatif::ProgressBar::new(2 * total as u64));
+    bar.set_message("buoyancy, 50 bodies");
+    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+    let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
+    let gpu = run_scene(&mut sim, &mut solver, total, |s| s.last_peels, &bar)?;
+    let mut cpu_sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+    let cpu = run_scene(&mut cpu_sim, &mut AnalyticSolver, total, |_| 0, &bar)?;
     bar.finish_and_clear();
-    let cpu_steps_per_s = cpu_solver_rate(settle, steps)?;
+    // Ten more steps, profiled per pass, of the bodies now in the water.
+    profile::start(ctx);
+    for _ in 0..10 {
+        sim.step(&mut solver).map_err(anyhow::Error::msg)?;
+    }
+    let profile = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
+    let timed = |v: &[f64]| v[settle..].iter().sum::<f64>();
+    let total_ms = timed(&gpu.step_ms);
     let (batched_ms, one_by_one_ms) =
         batching_gain(ctx, &sim, &mut solver, if steps > 50 { 20 } else { 5 })?;
     let frame = "buoyancy_frame.png";
     FrameRenderer::new(ctx, &sim.shapes, 800, 500)?.write_png(&sim, &opts.out_dir.join(frame))?;
-    Ok(BuoyancyRun {
+    let peels = &gpu.peels[settle..];
+    let run = BuoyancyRun {
         bodies: sim.bodies.len(),
         resolution: 32,
         steps,
         settle_steps: settle,
-        mean_step_ms: total / steps as f64,
-        steps_per_second: 1e3 * steps as f64 / total,
-        buoyancy_share: buoyancy_ms / total,
-        max_peels,
-        mean_peels: sum_peels as f64 / steps as f64,
-        cpu_solver_steps_per_second: cpu_steps_per_s,
+        mean_step_ms: total_ms / steps as f64,
+        steps_per_second: 1e3 * steps as f64 / total_ms,
+        buoyancy_share: timed(&gpu.buoyancy_ms) / total_ms,
+        max_peels: peels.iter().copied().max().unwrap_or(0),
+        mean_peels: peels.iter().sum::<usize>() as f64 / steps as f64,
+        cpu_solver_steps_per_second: 1e3 * steps as f64 / timed(&cpu.step_ms),
         batched_ms,
         one_body_at_a_time_ms: one_by_one_ms,
         frame: frame.into(),
+    };
+    Ok(SceneRuns {
+        run,
+        gpu,
+        cpu,
+        profile,
     })
-}
-
-/// Steps per second of the same scene with the CPU reference solver (clip + Mirtich).
-fn cpu_solver_rate(settle: usize, steps: usize) -> anyhow::Result<f64> {
-    let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-    let mut cpu = AnalyticSolver;
-    for _ in 0..settle {
-        sim.step(&mut cpu).map_err(anyhow::Error::msg)?;
-    }
-    let start = Instant::now();
-    for _ in 0..steps {
-        sim.step(&mut cpu).map_err(anyhow::Error::msg)?;
-    }
-    Ok(steps as f64 / start.elapsed().as_secs_f64())
 }
 
 /// The submerged parts of the scene's current state, all bodies as tiles of one target
