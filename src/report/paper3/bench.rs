@@ -332,30 +332,24 @@ fn run_once(gpu: &GpuMlp, case: &Case, method: Method) -> anyhow::Result<Run> {
     })
 }
 
-/// Input vectors of the GPU warm-up run (see [`warm_up`]).
+/// Input vectors of the warm-up run (see [`warm_up`]).
 const WARM_UP_VECTORS: usize = 256;
 
-/// One untimed run before the counted ones. On the GPU the first draw of a program compiles
-/// its shader variant (llvmpipe JIT, on the calling thread, outside the timer queries) and
-/// llvmpipe's first timer query of a context reads garbage; both only need the same
-/// programs and passes, so the warm-up takes the first [`WARM_UP_VECTORS`] input vectors of
-/// the batch, not all of it. On the CPU it is a whole run.
+/// One untimed run before the counted ones, on the first [`WARM_UP_VECTORS`] input vectors of
+/// the batch. On the GPU the first draw of a program compiles its shader variant (llvmpipe
+/// JIT, on the calling thread, outside the timer queries) and llvmpipe's first timer query
+/// of a context reads garbage; both need the same programs and passes, not the same amount
+/// of work. On the CPU nothing carries over from one run to the next but the code and the
+/// allocator (every run allocates its outputs afresh), so a short run warms it as well.
 fn warm_up(gpu: &GpuMlp, case: &Case, method: Method) -> anyhow::Result<()> {
-    match method.gpu() {
-        None => {
-            run_once(gpu, case, method)?;
-        }
-        Some(_) => {
-            let l = case.batch.nrows().min(WARM_UP_VECTORS);
-            let head = Case {
-                name: case.name.clone(),
-                network: case.network.clone(),
-                batch: case.batch.slice(s![..l, ..]).to_owned(),
-                max_vectors: case.max_vectors,
-            };
-            run_once(gpu, &head, method)?;
-        }
-    }
+    let l = case.batch.nrows().min(WARM_UP_VECTORS);
+    let head = Case {
+        name: case.name.clone(),
+        network: case.network.clone(),
+        batch: case.batch.slice(s![..l, ..]).to_owned(),
+        max_vectors: case.max_vectors,
+    };
+    run_once(gpu, &head, method)?;
     Ok(())
 }
 
