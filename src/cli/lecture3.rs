@@ -566,6 +566,7 @@ fn depth_mask(a: &DepthMaskArgs, ctx: &Context, json: bool) -> anyhow::Result<()
         a.size,
         a.fraction,
         a.iterations,
+        None,
         RUNS,
     )?;
     if row.masked_fragments != row.active {

@@ -607,12 +607,21 @@ pub const FRACTIONS: [f32; 5] = [0.05, 0.25, 0.5, 0.75, 1.0];
 fn depth_mask(opts: &BenchOptions, quick: bool, runs: usize) -> anyhow::Result<DepthMaskRun> {
     let (side, iterations) = if quick { (128, 64) } else { (256, 256) };
     let mut rows = Vec::new();
+    let expensive = depth_mask::cpu_expensive(side, side, iterations);
     for shape in [MaskShape::Blobs, MaskShape::Scattered] {
         let mask = depth_mask::mask(shape, side, side, 1);
         let passes = DepthMask::new(opts.gl, &mask, side, side)?;
         for fraction in FRACTIONS {
             rows.push(depth_mask_row(
-                opts.gl, &passes, &mask, shape, side, fraction, iterations, runs,
+                opts.gl,
+                &passes,
+                &mask,
+                shape,
+                side,
+                fraction,
+                iterations,
+                Some(&expensive),
+                runs,
             )?);
         }
         if shape == MaskShape::Scattered {
@@ -632,7 +641,8 @@ fn depth_mask(opts: &BenchOptions, quick: bool, runs: usize) -> anyhow::Result<D
 }
 
 /// One mask and fraction: both versions timed, their fragments counted, their pictures
-/// checked against the CPU's.
+/// checked against the CPU's (from `expensive`, [`depth_mask::cpu_expensive`] of this size
+/// and iteration count, where a sweep computed it once).
 #[allow(clippy::too_many_arguments)]
 pub fn depth_mask_row(
     ctx: &Context,
@@ -642,10 +652,14 @@ pub fn depth_mask_row(
     side: u32,
     fraction: f32,
     iterations: u32,
+    expensive: Option<&[f64]>,
     runs: usize,
 ) -> anyhow::Result<DepthMaskRow> {
     depth_mask::check_parameters(fraction, iterations)?;
-    let (cpu, active) = depth_mask::cpu_picture(mask, side, side, fraction, iterations);
+    let (cpu, active) = match expensive {
+        Some(values) => depth_mask::cpu_masked(values, mask, fraction),
+        None => depth_mask::cpu_picture(mask, side, side, fraction, iterations),
+    };
     let error = |gpu: Vec<f32>| {
         gpu.iter()
             .zip(&cpu)
