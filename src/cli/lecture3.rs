@@ -436,7 +436,8 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     a.output.check(&[])?;
     check_size("--size", a.size)?;
     let gather = Gather::tree(a.theta)?;
-    let (run, lighting) = bench::light_run(ctx, a.vpls, a.size, a.size, &[a.theta], RUNS)?;
+    let (run, lighting, ()) =
+        bench::light_run(ctx, a.vpls, a.size, a.size, &[a.theta], RUNS, |_| Ok(()))?;
     if let Some(png) = &a.output.png {
         lighting.gather(gather)?;
         let terms = if a.indirect_only {
@@ -565,6 +566,7 @@ fn depth_mask(a: &DepthMaskArgs, ctx: &Context, json: bool) -> anyhow::Result<()
         a.size,
         a.fraction,
         a.iterations,
+        None,
         RUNS,
     )?;
     if row.masked_fragments != row.active {

@@ -102,6 +102,33 @@ pub fn cpu_picture(
     (picture, active)
 }
 
+/// The expensive function at every pixel, active or not: the CPU picture of any mask and
+/// fraction is this with the inactive pixels set to 0 ([`cpu_masked`]), so that a sweep over
+/// masks and fractions computes it once.
+pub fn cpu_expensive(width: u32, height: u32, iterations: u32) -> Vec<f64> {
+    (0..width * height)
+        .map(|i| expensive(i % width, i / width, width, height, iterations))
+        .collect()
+}
+
+/// [`cpu_picture`] from the values of [`cpu_expensive`] (same size and iterations).
+pub fn cpu_masked(expensive: &[f64], mask: &[f32], fraction: f32) -> (Vec<f64>, u64) {
+    let mut active = 0;
+    let picture = mask
+        .iter()
+        .zip(expensive)
+        .map(|(&m, &e)| {
+            if m < fraction {
+                active += 1;
+                e
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    (picture, active)
+}
+
 /// Both versions, their mask and their target (R32F colour, 32-bit depth).
 pub struct DepthMask {
     branching: Program,
@@ -216,5 +243,27 @@ impl DepthMask {
     pub fn read(&self) -> Result<Vec<f32>, GlError> {
         self.target
             .read_f32(0, Rect::sized(self.target.width(), self.target.height()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn masked_expensive_values_are_the_cpu_picture() {
+        let (w, h, iterations) = (32, 16, 8);
+        let expensive = cpu_expensive(w, h, iterations);
+        for shape in [MaskShape::Blobs, MaskShape::Scattered] {
+            let mask = mask(shape, w, h, 1);
+            for fraction in [0.0, 0.05, 0.5, 1.0] {
+                let (picture, active) = cpu_masked(&expensive, &mask, fraction);
+                assert_eq!(
+                    (picture, active),
+                    cpu_picture(&mask, w, h, fraction, iterations),
+                    "{shape:?} {fraction}"
+                );
+            }
+        }
     }
 }

@@ -59,6 +59,17 @@ pub fn gpu_ms(
     mut work: impl FnMut() -> anyhow::Result<()>,
 ) -> anyhow::Result<f64> {
     work()?;
+    gpu_ms_warm(ctx, runs, work)
+}
+
+/// [`gpu_ms`] without its warm-up run, for work whose programs have just run in the same
+/// state (their shader variants compiled, their targets allocated): a section's untimed run
+/// of the same pass (the one whose result it checks) or the previous point of a sweep.
+pub fn gpu_ms_warm(
+    ctx: &Context,
+    runs: usize,
+    mut work: impl FnMut() -> anyhow::Result<()>,
+) -> anyhow::Result<f64> {
     ctx.finish_all();
     let software = ctx.info().is_software();
     let query = TimerQuery::new(ctx)?;
@@ -341,26 +352,44 @@ pub const THETAS: [f32; 8] = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5];
 
 fn light(opts: &BenchOptions, runs: usize) -> anyhow::Result<LightRun> {
     let (vpl_side, side) = if opts.quick { (32, 128) } else { (64, 256) };
-    let run = light_run(opts.gl, vpl_side, side, side, &THETAS, runs)?;
-    images::light_pngs(opts, &run.1)?;
-    Ok(run.0)
+    let (run, lighting, brute_pictures) = light_run(
+        opts.gl,
+        vpl_side,
+        side,
+        side,
+        &THETAS,
+        runs,
+        images::brute_force_pictures,
+    )?;
+    images::light_png(opts, &lighting, brute_pictures)?;
+    Ok(run)
 }
 
 /// Technique 3: the hierarchy built and every criterion gathered, against the brute force on
-/// the GPU and on the CPU. Returns the pipeline too, for pictures.
-pub fn light_run(
+/// the GPU and on the CPU. `with_brute_force` sees the lighting while the brute-force gather
+/// is in its target (for pictures); what it returns is returned. Returns the pipeline too,
+/// for pictures.
+///
+/// Each gather pass is run the fewest times the timings allow: the untimed brute-force gather
+/// whose result is checked is also the warm-up of the timed ones, and the criteria are timed
+/// from the cheapest (largest theta) to the dearest, so that only the cheapest needs a
+/// warm-up run: the tree program is then warm for the others (the criterion is a uniform).
+pub fn light_run<T>(
     ctx: &Context,
     vpl_side: u32,
     width: u32,
     height: u32,
     thetas: &[f32],
     runs: usize,
-) -> anyhow::Result<(LightRun, IndirectLighting)> {
+    with_brute_force: impl FnOnce(&IndirectLighting) -> anyhow::Result<T>,
+) -> anyhow::Result<(LightRun, IndirectLighting, T)> {
     let lighting = IndirectLighting::new(ctx, Scene::room(), vpl_side, width, height)?;
     let build_ms = gpu_ms(ctx, runs, || Ok(lighting.build_lights()?))?;
     lighting.draw_receivers()?;
-    let brute_gpu_ms = gpu_ms(ctx, runs, || Ok(lighting.gather(Gather::BruteForce)?))?;
+    lighting.gather(Gather::BruteForce)?;
     let brute = lighting.gathers.read()?;
+    let seen = with_brute_force(&lighting)?;
+    let brute_gpu_ms = gpu_ms_warm(ctx, runs, || Ok(lighting.gather(Gather::BruteForce)?))?;
     let receivers = lighting.gbuffer.receivers()?;
     let levels = lighting.clusters.read_atlas_levels()?;
     let mut cpu = Vec::new();
@@ -380,10 +409,19 @@ pub fn light_run(
         })
         .fold(0.0, f64::max);
     let covered = receivers.iter().filter(|r| r.is_some()).count();
-    let mut rows = Vec::new();
-    for &theta in thetas {
+    // Cheapest criterion first; the rows keep the order of `thetas`.
+    let mut order: Vec<usize> = (0..thetas.len()).collect();
+    order.sort_by(|&a, &b| thetas[b].total_cmp(&thetas[a]));
+    let mut rows: Vec<Option<LightRow>> = vec![None; thetas.len()];
+    for (k, &i) in order.iter().enumerate() {
+        let theta = thetas[i];
         let gather = Gather::tree(theta)?;
-        let gpu_ms = gpu_ms(ctx, runs, || Ok(lighting.gather(gather)?))?;
+        let work = || Ok(lighting.gather(gather)?);
+        let gpu_ms = if k == 0 {
+            gpu_ms(ctx, runs, work)?
+        } else {
+            gpu_ms_warm(ctx, runs, work)?
+        };
         let tree = lighting.gathers.read()?;
         let (mut err, mut norm, mut nodes) = (0.0, 0.0, 0.0);
         for ((t, b), r) in tree.iter().zip(&brute).zip(&receivers) {
@@ -396,7 +434,7 @@ pub fn light_run(
             }
             nodes += t[3] as f64;
         }
-        rows.push(LightRow {
+        rows[i] = Some(LightRow {
             theta,
             relative_rms_error: (err / norm).sqrt(),
             mean_nodes: nodes / covered.max(1) as f64,
@@ -414,9 +452,10 @@ pub fn light_run(
             brute_gpu_ms,
             brute_cpu_ms,
             brute_gpu_vs_cpu,
-            rows,
+            rows: rows.into_iter().flatten().collect(),
         },
         lighting,
+        seen,
     ))
 }
 
@@ -568,12 +607,21 @@ pub const FRACTIONS: [f32; 5] = [0.05, 0.25, 0.5, 0.75, 1.0];
 fn depth_mask(opts: &BenchOptions, quick: bool, runs: usize) -> anyhow::Result<DepthMaskRun> {
     let (side, iterations) = if quick { (128, 64) } else { (256, 256) };
     let mut rows = Vec::new();
+    let expensive = depth_mask::cpu_expensive(side, side, iterations);
     for shape in [MaskShape::Blobs, MaskShape::Scattered] {
         let mask = depth_mask::mask(shape, side, side, 1);
         let passes = DepthMask::new(opts.gl, &mask, side, side)?;
         for fraction in FRACTIONS {
             rows.push(depth_mask_row(
-                opts.gl, &passes, &mask, shape, side, fraction, iterations, runs,
+                opts.gl,
+                &passes,
+                &mask,
+                shape,
+                side,
+                fraction,
+                iterations,
+                Some(&expensive),
+                runs,
             )?);
         }
         if shape == MaskShape::Scattered {
@@ -593,7 +641,8 @@ fn depth_mask(opts: &BenchOptions, quick: bool, runs: usize) -> anyhow::Result<D
 }
 
 /// One mask and fraction: both versions timed, their fragments counted, their pictures
-/// checked against the CPU's.
+/// checked against the CPU's (from `expensive`, [`depth_mask::cpu_expensive`] of this size
+/// and iteration count, where a sweep computed it once).
 #[allow(clippy::too_many_arguments)]
 pub fn depth_mask_row(
     ctx: &Context,
@@ -603,10 +652,14 @@ pub fn depth_mask_row(
     side: u32,
     fraction: f32,
     iterations: u32,
+    expensive: Option<&[f64]>,
     runs: usize,
 ) -> anyhow::Result<DepthMaskRow> {
     depth_mask::check_parameters(fraction, iterations)?;
-    let (cpu, active) = depth_mask::cpu_picture(mask, side, side, fraction, iterations);
+    let (cpu, active) = match expensive {
+        Some(values) => depth_mask::cpu_masked(values, mask, fraction),
+        None => depth_mask::cpu_picture(mask, side, side, fraction, iterations),
+    };
     let error = |gpu: Vec<f32>| {
         gpu.iter()
             .zip(&cpu)
@@ -623,11 +676,12 @@ pub fn depth_mask_row(
         active,
         masked_fragments,
         branching_fragments,
-        branching_ms: gpu_ms(ctx, runs, || {
+        // The checked runs above were the warm-up.
+        branching_ms: gpu_ms_warm(ctx, runs, || {
             passes.run_branching(fraction, iterations)?;
             Ok(())
         })?,
-        masked_ms: gpu_ms(ctx, runs, || {
+        masked_ms: gpu_ms_warm(ctx, runs, || {
             passes.run_masked(fraction, iterations)?;
             Ok(())
         })?,

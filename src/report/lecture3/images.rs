@@ -214,14 +214,25 @@ fn shaded(lighting: &IndirectLighting, terms: Terms) -> anyhow::Result<Rgba> {
     })
 }
 
-/// Direct + indirect (brute force), indirect alone (brute force), and indirect alone with
-/// the coarsest criterion of the plot.
-pub fn light_pngs(opts: &BenchOptions, lighting: &IndirectLighting) -> anyhow::Result<()> {
-    lighting.gather(Gather::BruteForce)?;
-    let both = shaded(lighting, Terms::Both)?;
-    let indirect = shaded(lighting, Terms::Indirect)?;
+/// Direct + indirect and indirect alone, of the brute-force gather now in `lighting`'s
+/// target.
+pub fn brute_force_pictures(lighting: &IndirectLighting) -> anyhow::Result<[Rgba; 2]> {
+    Ok([
+        shaded(lighting, Terms::Both)?,
+        shaded(lighting, Terms::Indirect)?,
+    ])
+}
+
+/// The brute-force pictures ([`brute_force_pictures`]) beside indirect light alone with the
+/// coarsest criterion of the plot.
+pub fn light_png(
+    opts: &BenchOptions,
+    lighting: &IndirectLighting,
+    brute_force: [Rgba; 2],
+) -> anyhow::Result<()> {
     let theta = *super::bench::THETAS.last().expect("criteria");
     lighting.gather(Gather::tree(theta)?)?;
     let coarse = shaded(lighting, Terms::Indirect)?;
+    let [both, indirect] = brute_force;
     Rgba::row(&[both, indirect, coarse], 4).save(&opts.out_dir.join(LIGHT_PNG))
 }
