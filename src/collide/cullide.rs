@@ -217,15 +217,15 @@ impl Cullide {
                 color_write: false,
                 ..DrawState::default()
             });
-            for r in merge_ranges(occluders) {
-                pass.draw_elements_instanced(
-                    occluder.buffers.vertex_array(),
-                    Primitive::Triangles,
-                    3 * r.start,
-                    3 * r.len(),
-                    1,
-                )?;
-            }
+            let ranges: Vec<(usize, usize)> = merge_ranges(occluders)
+                .iter()
+                .map(|r| (3 * r.start, 3 * r.len()))
+                .collect();
+            pass.draw_element_ranges(
+                occluder.buffers.vertex_array(),
+                Primitive::Triangles,
+                &ranges,
+            )?;
         }
         let mut pass = self
             .target

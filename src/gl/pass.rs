@@ -356,6 +356,34 @@ impl<'a> Pass<'a> {
         })
     }
 
+    /// Draw each index range `(first, count)` of `ranges` of the vertex array's index buffer,
+    /// with one pass set-up (state, program, vertex array, profile scope) for all of them.
+    pub fn draw_element_ranges(
+        &mut self,
+        vertices: &VertexArray,
+        primitive: Primitive,
+        ranges: &[(usize, usize)],
+    ) -> Result<(), GlError> {
+        if !vertices.has_indices() {
+            return Err(GlError::Invalid(format!(
+                "pass {}: draw_element_ranges on a vertex array without an index buffer",
+                self.name
+            )));
+        }
+        self.draw(vertices.id(), |gl| {
+            for &(first, count) in ranges {
+                unsafe {
+                    gl.draw_elements(
+                        primitive.gl(),
+                        count as i32,
+                        glow::UNSIGNED_INT,
+                        (first * 4) as i32,
+                    )
+                };
+            }
+        })
+    }
+
     /// Draw each index range `(first, count)` of `ranges` inside its own occlusion query
     /// (`queries[k]` counts `ranges[k]`): a visibility test of many objects, issued with one
     /// pass set-up (state, program, vertex array, profile scope) instead of one per object.
