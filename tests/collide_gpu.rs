@@ -336,6 +336,30 @@ fn auto_calibrates_on_clustered_p0_contents() {
     );
 }
 
+/// A calibration made at one `P0` size serves another collider of that size (the bench
+/// shares them): same pairs as brute force; and `auto` with no calibration at all is an
+/// error, not a silent fall back to one scheme.
+#[test]
+fn a_shared_calibration_serves_auto_and_none_is_an_error() {
+    let ctx = context();
+    let x = soup(150, 0.1, 71);
+    let y = soup(150, 0.1, 72);
+    let first = StreamingCollider::new(&ctx, &x, &y, options(ReadbackMode::Auto, 1)).unwrap();
+    let mut shared =
+        StreamingCollider::new_uncalibrated(&ctx, &x, &y, options(ReadbackMode::Auto, 1)).unwrap();
+    let err = shared.frame(&x.positions, &y.positions).unwrap_err();
+    assert!(err.to_string().contains("no calibration"), "{err}");
+    assert_eq!(
+        (shared.target.width(), shared.target.height()),
+        (first.target.width(), first.target.height())
+    );
+    shared.set_calibration(first.calibration.clone());
+    let r = shared.frame(&x.positions, &y.positions).unwrap();
+    let expected = all_pairs(&x, &x.positions, &y, &y.positions, Predicate::Moller);
+    assert!(!expected.is_empty());
+    assert_eq!(r.pairs, expected);
+}
+
 /// The decoders take any non-zero mark for a CAP, so a NaN in a level read back would be
 /// a pair that does not exist: every value read is checked, and a non-finite one is an
 /// error naming the level and the pass that wrote it. (Here `P0` is filled by hand.)

@@ -96,9 +96,9 @@ impl Cullide {
         y: (&Mesh, &AabbStream),
         resolution: u32,
     ) -> Result<Cullide, GlError> {
-        let colour = Texture::new_2d(ctx, resolution, resolution, TextureFormat::R8)?;
+        // Depth only: the passes write no colour, so the target has no colour attachment.
         let depth = Texture::new_2d(ctx, resolution, resolution, TextureFormat::Depth32F)?;
-        let target = Framebuffer::new(ctx, "CULLIDE view", &[&colour], Some(&depth))?;
+        let target = Framebuffer::new(ctx, "CULLIDE view", &[], Some(&depth))?;
         let program = Program::new(
             ctx,
             &[shader!("glsl/collide/cullide.vert")],
@@ -217,15 +217,15 @@ impl Cullide {
                 color_write: false,
                 ..DrawState::default()
             });
-            for r in merge_ranges(occluders) {
-                pass.draw_elements_instanced(
-                    occluder.buffers.vertex_array(),
-                    Primitive::Triangles,
-                    3 * r.start,
-                    3 * r.len(),
-                    1,
-                )?;
-            }
+            let ranges: Vec<(usize, usize)> = merge_ranges(occluders)
+                .iter()
+                .map(|r| (3 * r.start, 3 * r.len()))
+                .collect();
+            pass.draw_element_ranges(
+                occluder.buffers.vertex_array(),
+                Primitive::Triangles,
+                &ranges,
+            )?;
         }
         let mut pass = self
             .target
@@ -238,26 +238,26 @@ impl Cullide {
             color_write: false,
             ..DrawState::default()
         });
-        for (r, q) in candidates.iter().zip(&self.queries) {
-            q.begin();
-            let drawn = pass.draw_elements_instanced(
-                tested.buffers.vertex_array(),
-                Primitive::Triangles,
-                3 * r.start,
-                3 * r.len(),
-                1,
-            );
-            q.end();
-            drawn?;
-        }
+        // One query per candidate, all issued before any is read.
+        let ranges: Vec<(usize, usize)> = candidates
+            .iter()
+            .map(|r| (3 * r.start, 3 * r.len()))
+            .collect();
+        pass.draw_elements_counted(
+            tested.buffers.vertex_array(),
+            Primitive::Triangles,
+            &ranges,
+            &self.queries,
+        )?;
+        drop(pass);
         *queries += candidates.len();
-        let mut keep = Vec::new();
-        for (r, q) in candidates.iter().zip(&self.queries) {
-            if q.samples()? > 0 {
-                keep.push(r.clone());
-            }
-        }
-        Ok(keep)
+        let samples = OcclusionQuery::samples_of(&self.queries[..candidates.len()])?;
+        Ok(candidates
+            .iter()
+            .zip(samples)
+            .filter(|&(_, s)| s > 0)
+            .map(|(r, _)| r.clone())
+            .collect())
     }
 }
 

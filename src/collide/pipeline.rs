@@ -130,8 +130,24 @@ pub struct StreamingCollider {
 }
 
 impl StreamingCollider {
-    /// Stream setup for X and Y (the preprocess of Sec. 4).
+    /// Stream setup for X and Y (the preprocess of Sec. 4), then `auto`'s calibration.
     pub fn new(
+        ctx: &Context,
+        x: &Mesh,
+        y: &Mesh,
+        options: Options,
+    ) -> anyhow::Result<StreamingCollider> {
+        let mut collider = Self::new_uncalibrated(ctx, x, y, options)?;
+        if options.readback == ReadbackMode::Auto {
+            collider.calibrate(&reduction_gpu::CALIBRATION_ETAS, 2)?;
+        }
+        Ok(collider)
+    }
+
+    /// Stream setup only: `auto` then needs [`StreamingCollider::calibrate`] or
+    /// [`StreamingCollider::set_calibration`] (a calibration made at the same `P0` size)
+    /// before a frame.
+    pub fn new_uncalibrated(
         ctx: &Context,
         x: &Mesh,
         y: &Mesh,
@@ -153,7 +169,7 @@ impl StreamingCollider {
         );
         let target = PairTarget::new(ctx, w, h)?;
         let reduction = Reduction::new(ctx, w, h)?;
-        let mut collider = StreamingCollider {
+        Ok(StreamingCollider {
             ctx: ctx.clone(),
             options,
             x: x_gpu,
@@ -167,11 +183,13 @@ impl StreamingCollider {
             update: StreamUpdate::new(ctx)?,
             calibration: Vec::new(),
             stencil_ready: false,
-        };
-        if options.readback == ReadbackMode::Auto {
-            collider.calibrate(&reduction_gpu::CALIBRATION_ETAS, 2)?;
-        }
-        Ok(collider)
+        })
+    }
+
+    /// Use `points`, a calibration made on a `P0` of this collider's size (by another
+    /// collider of the same run), for `auto` instead of calibrating again.
+    pub fn set_calibration(&mut self, points: Vec<CalibrationPoint>) {
+        self.calibration = points;
     }
 
     /// (Re)run the readback calibration that `auto` decides by, on clustered `P0` contents:
@@ -214,6 +232,10 @@ impl StreamingCollider {
         positions_y: &[Vec3],
     ) -> anyhow::Result<FrameResult> {
         let start = Instant::now();
+        anyhow::ensure!(
+            self.options.readback != ReadbackMode::Auto || !self.calibration.is_empty(),
+            "readback auto: no calibration (calibrate, or set one, before the first frame)"
+        );
         check_positions(
             "X",
             positions_x,

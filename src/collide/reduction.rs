@@ -112,9 +112,17 @@ pub fn decode_full<R: LevelReader>(
 ) -> Result<Decoded, R::Error> {
     let mut out = Decoded::default();
     let p0 = out.read_red(reader, 0, 0, 0, w, h)?;
-    for (k, &v) in p0.iter().enumerate() {
-        if v != 0.0 {
-            out.caps.push(((k / w) as u32, (k % w) as u32));
+    // Row by row, skipping runs of 16 clear pixels at once (most of `P0` is clear).
+    for (row, line) in p0.chunks_exact(w.max(1)).enumerate() {
+        for (run, pixels) in line.chunks(16).enumerate() {
+            if pixels.iter().fold(true, |clear, &v| clear & (v == 0.0)) {
+                continue;
+            }
+            for (k, &v) in pixels.iter().enumerate() {
+                if v != 0.0 {
+                    out.caps.push((row as u32, (run * 16 + k) as u32));
+                }
+            }
         }
     }
     Ok(out)
@@ -134,16 +142,21 @@ pub fn decode_reduced<R: LevelReader>(
         reads: 1,
         ..Decoded::default()
     };
-    for (k, t) in texels.iter().enumerate() {
-        let (bx, by) = (k % rw, k / rw);
-        for (c, &v) in t.iter().enumerate() {
-            for bit in set_bits(v) {
-                let (a, b) = (bit % 8, 2 * c + bit / 8);
-                out.caps.push(((by * 8 + b) as u32, (bx * 8 + a) as u32));
+    // Row `b` of an 8x8 block is the byte `b % 2` of channel `b / 2`: walking block rows,
+    // then the rows inside them, then the blocks along the row, gives the CAPs in order.
+    for (by, blocks) in texels.chunks_exact(rw.max(1)).enumerate() {
+        for b in 0..REDUCED_BLOCK {
+            let (c, shift) = (b / 2, 8 * (b % 2));
+            let row = (by * REDUCED_BLOCK + b) as u32;
+            for (bx, t) in blocks.iter().enumerate() {
+                let byte = ((t[c] as u32) >> shift) & 0xff;
+                for a in (0..8).filter(|a| byte & (1 << a) != 0) {
+                    out.caps.push((row, (bx * REDUCED_BLOCK + a) as u32));
+                }
             }
         }
     }
-    out.caps.sort_unstable();
+    debug_assert!(out.caps.windows(2).all(|p| p[0] < p[1]));
     Ok(out)
 }
 

@@ -3,7 +3,9 @@
 //! 1 and 4), the depth test of depth peeling (paper 4), MIN/MAX blending, clip planes.
 
 use super::program::Uniform;
-use super::{Context, Framebuffer, GlError, MeshBuffers, Program, Rect, Texture, VertexArray};
+use super::{
+    Context, Framebuffer, GlError, MeshBuffers, OcclusionQuery, Program, Rect, Texture, VertexArray,
+};
 use glam::{Vec2, Vec4};
 use glow::HasContext;
 
@@ -351,6 +353,74 @@ impl<'a> Pass<'a> {
                 (first * 4) as i32,
                 instances as i32,
             )
+        })
+    }
+
+    /// Draw each index range `(first, count)` of `ranges` of the vertex array's index buffer,
+    /// with one pass set-up (state, program, vertex array, profile scope) for all of them.
+    pub fn draw_element_ranges(
+        &mut self,
+        vertices: &VertexArray,
+        primitive: Primitive,
+        ranges: &[(usize, usize)],
+    ) -> Result<(), GlError> {
+        if !vertices.has_indices() {
+            return Err(GlError::Invalid(format!(
+                "pass {}: draw_element_ranges on a vertex array without an index buffer",
+                self.name
+            )));
+        }
+        self.draw(vertices.id(), |gl| {
+            for &(first, count) in ranges {
+                unsafe {
+                    gl.draw_elements(
+                        primitive.gl(),
+                        count as i32,
+                        glow::UNSIGNED_INT,
+                        (first * 4) as i32,
+                    )
+                };
+            }
+        })
+    }
+
+    /// Draw each index range `(first, count)` of `ranges` inside its own occlusion query
+    /// (`queries[k]` counts `ranges[k]`): a visibility test of many objects, issued with one
+    /// pass set-up (state, program, vertex array, profile scope) instead of one per object.
+    pub fn draw_elements_counted(
+        &mut self,
+        vertices: &VertexArray,
+        primitive: Primitive,
+        ranges: &[(usize, usize)],
+        queries: &[OcclusionQuery],
+    ) -> Result<(), GlError> {
+        if !vertices.has_indices() {
+            return Err(GlError::Invalid(format!(
+                "pass {}: draw_elements_counted on a vertex array without an index buffer",
+                self.name
+            )));
+        }
+        if queries.len() < ranges.len() {
+            return Err(GlError::Invalid(format!(
+                "pass {}: {} ranges to count with {} occlusion queries",
+                self.name,
+                ranges.len(),
+                queries.len()
+            )));
+        }
+        self.draw(vertices.id(), |gl| {
+            for (&(first, count), query) in ranges.iter().zip(queries) {
+                query.begin();
+                unsafe {
+                    gl.draw_elements(
+                        primitive.gl(),
+                        count as i32,
+                        glow::UNSIGNED_INT,
+                        (first * 4) as i32,
+                    )
+                };
+                query.end();
+            }
         })
     }
 

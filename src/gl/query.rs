@@ -72,6 +72,34 @@ impl OcclusionQuery {
     pub fn samples(&self) -> Result<u64, GlError> {
         self.0.result("reading an occlusion query")
     }
+    /// The samples of every query of `queries`, in order: one wait for the GPU (the first
+    /// result) and one error check for all of them, as a pass of many queries reads them.
+    pub fn samples_of(queries: &[OcclusionQuery]) -> Result<Vec<u64>, GlError> {
+        let Some(first) = queries.first() else {
+            return Ok(Vec::new());
+        };
+        let ctx = &first.0.ctx;
+        let values = super::profile::wait(ctx, "query result", || {
+            queries
+                .iter()
+                .map(|q| {
+                    let mut value: u64 = 0;
+                    // SAFETY: no query buffer is ever bound, so glow's "offset" is the
+                    // address written to.
+                    unsafe {
+                        ctx.gl().get_query_parameter_u64_with_offset(
+                            q.0.id,
+                            glow::QUERY_RESULT,
+                            &mut value as *mut u64 as usize,
+                        )
+                    };
+                    value
+                })
+                .collect()
+        });
+        ctx.check("reading occlusion queries")?;
+        Ok(values)
+    }
     /// Whether [`OcclusionQuery::samples`] would return without waiting.
     pub fn available(&self) -> bool {
         self.0.available()

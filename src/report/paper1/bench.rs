@@ -276,10 +276,19 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let mut runs = Vec::new();
+    let mut calibrations = Calibrations::default();
     let scope = profile::scope(opts.gl, "Table III scenes (streaming, SOLID, CULLIDE)");
     for name in &scenes {
         bar.set_message(format!("paper 1: {name}"));
-        runs.push(run_scene(opts, name, frames, triangles, args, &bar)?);
+        runs.push(run_scene(
+            opts,
+            name,
+            frames,
+            triangles,
+            args,
+            &bar,
+            &mut calibrations,
+        )?);
     }
     drop(scope);
     bar.finish_and_clear();
@@ -302,17 +311,48 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
         })?,
         fig7: study(opts, "Fig. 7 readback curves", || fig7(opts))?,
         readback_schemes: study(opts, "readback schemes on real frames", || {
-            readback_schemes(opts, tori_leaf_size, frames)
+            readback_schemes(opts, tori_leaf_size, frames, &mut calibrations)
         })?,
         tiles: study(opts, "tiles (Sec. 5.5)", || tile_study(opts))?,
         leaf_sweep: if args.no_leaf_sweep {
             Vec::new()
         } else {
-            study(opts, "leaf-size sweep", || leaf_sweep(opts))?
+            study(opts, "leaf-size sweep", || {
+                leaf_sweep(opts, &mut calibrations)
+            })?
         },
         then_and_now: super::then_and_now::measure(opts)?,
         profile: None,
     })
+}
+
+/// `auto`'s calibrations made so far in this run, by `P0` size. `auto` is calibrated per
+/// `P0` size: a collider whose `P0` size was calibrated already (the tori scenes, the readback
+/// schemes and the sweep share sizes) reuses that calibration instead of measuring it again.
+#[derive(Default)]
+struct Calibrations(Vec<((usize, usize), Vec<CalibrationPoint>)>);
+
+impl Calibrations {
+    fn collider(
+        &mut self,
+        ctx: &crate::gl::Context,
+        x: &Mesh,
+        y: &Mesh,
+        options: Options,
+    ) -> anyhow::Result<StreamingCollider> {
+        let mut c = StreamingCollider::new_uncalibrated(ctx, x, y, options)?;
+        if options.readback == ReadbackMode::Auto {
+            let size = (c.target.width(), c.target.height());
+            match self.0.iter().find(|(s, _)| *s == size) {
+                Some((_, points)) => c.set_calibration(points.clone()),
+                None => {
+                    let points = c.calibrate(&reduction_gpu::CALIBRATION_ETAS, 2)?.to_vec();
+                    self.0.push((size, points));
+                }
+            }
+        }
+        Ok(c)
+    }
 }
 
 /// One study of the section, a named scope of the profile.
@@ -355,17 +395,22 @@ fn cullide_resolutions(
     let sx = AabbStream::build(x, leaf_size)?;
     let sy = AabbStream::build(y, leaf_size)?;
     let frames = if opts.quick { 1 } else { 3 };
+    // The frames and their exact pairs, the same at every resolution: computed once.
+    let positions: Vec<(Vec<Vec3>, Vec<Vec3>)> = (0..=frames).map(|f| scene.frame(f)).collect();
+    let exact: Vec<PrimitiveResult> = positions
+        .iter()
+        .map(|(px, py)| solid_pairs((x, px, &sx), (y, py, &sy)))
+        .collect();
     let mut rows = Vec::new();
     for resolution in [256u32, 512, 1024, 2048] {
         let mut cullide = Cullide::new(opts.gl, (x, &sx), (y, &sy), resolution)?;
         let (mut ms, mut missed, mut exact_total, mut pctps) = (0.0, 0, 0, 0);
-        for f in 0..=frames {
-            let (px, py) = scene.frame(f);
-            let c = cullide.frame(&px, &py, Predicate::Moller)?;
+        for (f, (px, py)) in positions.iter().enumerate() {
+            let c = cullide.frame(px, py, Predicate::Moller)?;
             if f == 0 {
                 continue;
             }
-            let exact = solid_pairs((x, &px, &sx), (y, &py, &sy));
+            let exact = &exact[f];
             missed += exact.pairs.len() - c.pairs.len();
             exact_total += exact.pairs.len();
             ms += c.pruning_ms + c.tri_test_ms;
@@ -386,6 +431,7 @@ fn readback_schemes(
     opts: &BenchOptions,
     leaf_size: usize,
     frames: usize,
+    calibrations: &mut Calibrations,
 ) -> anyhow::Result<ReadbackSchemes> {
     let scene = Scene::build("interlocking-tori", study_triangles(opts.quick))?;
     let mut rows = Vec::new();
@@ -402,7 +448,7 @@ fn readback_schemes(
             readback: scheme,
             ..Options::default()
         };
-        let mut c = StreamingCollider::new(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
+        let mut c = calibrations.collider(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
         p0 = c.target.width();
         let (mut enc, mut dec, mut bytes, mut eta) = (0.0, 0.0, 0u64, 0.0);
         for f in 0..=frames {
@@ -434,6 +480,7 @@ fn run_scene(
     triangles: Option<usize>,
     args: &Paper1Args,
     bar: &indicatif::ProgressBar,
+    calibrations: &mut Calibrations,
 ) -> anyhow::Result<SceneRun> {
     let ctx = opts.gl;
     let scene = Scene::build(name, triangles)?;
@@ -447,7 +494,7 @@ fn run_scene(
         readback: ReadbackMode::Auto,
         ..Options::default()
     };
-    let mut stream = StreamingCollider::new(ctx, x, y, options)?;
+    let mut stream = calibrations.collider(ctx, x, y, options)?;
     let mut cullide = Cullide::new(
         ctx,
         (x, &stream.x.stream),
@@ -731,7 +778,10 @@ fn median(mut frames: Vec<CullTimes>) -> CullTimes {
     frames.get(frames.len() / 2).copied().unwrap_or_default()
 }
 
-fn leaf_sweep(opts: &BenchOptions) -> anyhow::Result<Vec<SweepPoint>> {
+fn leaf_sweep(
+    opts: &BenchOptions,
+    calibrations: &mut Calibrations,
+) -> anyhow::Result<Vec<SweepPoint>> {
     let scene = Scene::build("interlocking-tori", study_triangles(opts.quick))?;
     let frames = if opts.quick { 2 } else { 5 };
     let mut out = Vec::new();
@@ -740,7 +790,7 @@ fn leaf_sweep(opts: &BenchOptions) -> anyhow::Result<Vec<SweepPoint>> {
             leaf_size: n,
             ..Options::default()
         };
-        let mut c = StreamingCollider::new(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
+        let mut c = calibrations.collider(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
         let mut p = SweepPoint {
             leaf_size: n,
             p0: c.target.width().max(c.target.height()),
