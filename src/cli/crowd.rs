@@ -36,7 +36,7 @@ pub struct CrowdArgs {
     /// not in the paper.
     #[arg(long, requires = "lod")]
     pub sprites: bool,
-    /// Timed frames (after one warm-up frame).
+    /// Timed frames (after a warm-up frame of a few characters per level).
     #[arg(long, default_value_t = 10)]
     pub frames: usize,
     /// Image size, WxH.

@@ -75,6 +75,17 @@ impl FramePlan {
     pub fn skinned(&self) -> usize {
         self.lods.iter().map(Vec::len).sum()
     }
+
+    /// The same plan with at most `per_level` characters in each LOD mesh and in the sprite
+    /// level (the first ones): every level the plan uses, on a few characters.
+    pub fn truncated(&self, per_level: usize) -> FramePlan {
+        let first = |ids: &Vec<usize>| ids[..ids.len().min(per_level)].to_vec();
+        FramePlan {
+            lods: [0, 1, 2].map(|l| first(&self.lods[l])),
+            sprites: first(&self.sprites),
+            culled: self.culled,
+        }
+    }
 }
 
 /// Culls (when `cull`) and assigns levels (when `policy` is given; otherwise everything is
@@ -103,4 +114,24 @@ pub fn plan_frame(
         }
     }
     plan
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn truncated_keeps_the_first_characters_of_every_level() {
+        let plan = FramePlan {
+            lods: [(0..40).collect(), vec![], (50..53).collect()],
+            sprites: (60..100).collect(),
+            culled: 7,
+        };
+        let small = plan.truncated(16);
+        assert_eq!(small.lods[0], (0..16).collect::<Vec<_>>());
+        assert!(small.lods[1].is_empty());
+        assert_eq!(small.lods[2], vec![50, 51, 52]);
+        assert_eq!(small.sprites, (60..76).collect::<Vec<_>>());
+        assert_eq!(small.culled, 7);
+    }
 }

@@ -83,9 +83,8 @@ impl Pass2 {
             .uniform("u_view_projection", shading.view_projection)
             .uniform("u_colour", shading.colour)
             .uniform("u_light", shading.light);
-        for va in &arrays.arrays[..n] {
-            pass.draw_elements_instanced(va, Primitive::Triangles, 0, index_count, 1)?;
-        }
-        Ok(())
+        // One draw per character; the state is the same for all of them, so it is set once.
+        let characters: Vec<&VertexArray> = arrays.arrays[..n].iter().collect();
+        pass.draw_elements_each(&characters, Primitive::Triangles, 0, index_count)
     }
 }

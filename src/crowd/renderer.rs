@@ -167,12 +167,17 @@ impl SkinBatch {
     ) -> Result<Self, GlError> {
         let target = SkinningTarget::new(ctx, capacity, vertices)?;
         let vbo = SkinnedVbo::new(ctx, &target)?;
-        Ok(Self {
+        let batch = Self {
             bones: BoneTextures::new(ctx, bones, capacity)?,
             arrays: CharacterArrays::new(ctx, &vbo, indices)?,
             target,
             vbo,
-        })
+        };
+        // Written once when made (cleared target, copied into the VBO), so that the first
+        // frame using the batch does not pay for touching its memory.
+        batch.target.framebuffer.clear_colors([0.0; 4])?;
+        batch.vbo.copy_from(&batch.target, capacity)?;
+        Ok(batch)
     }
 }
 
@@ -339,6 +344,17 @@ impl CrowdRenderer {
                 } else {
                     resources.batches.push(batch);
                 }
+            }
+        }
+        Ok(())
+    }
+
+    /// Makes the pass-1 resources the LOD meshes of `plan` need (as [`Self::render`] would
+    /// on its first frame), so that a warm-up frame need not draw the whole crowd.
+    pub fn prepare(&mut self, plan: &FramePlan) -> Result<(), GlError> {
+        for (lod, ids) in plan.lods.iter().enumerate().take(self.lods.len()) {
+            if !ids.is_empty() {
+                self.reserve(lod, ids.len())?;
             }
         }
         Ok(())

@@ -135,6 +135,19 @@ pub fn placements(crowd: &Crowd) -> (Vec<DAffine3>, Vec<f64>) {
         .unzip()
 }
 
+/// Culling and LOD choice of the scene's current frame.
+fn plan_of(renderer: &CrowdRenderer, scene: &Scene, models: &[DAffine3]) -> FramePlan {
+    let model = &renderer.model;
+    plan_frame(
+        models,
+        model.bound_centre,
+        model.bound_radius,
+        &scene.camera,
+        scene.lod.as_ref(),
+        scene.cull,
+    )
+}
+
 /// Plans and renders one frame (the scene must be cleared by the caller).
 pub fn render_frame(
     renderer: &mut CrowdRenderer,
@@ -144,21 +157,47 @@ pub fn render_frame(
     timing: bool,
 ) -> Result<(FrameStats, FramePlan), GlError> {
     let (models, phases) = placements(&scene.crowd);
-    let model = &renderer.model;
-    let plan = plan_frame(
-        &models,
-        model.bound_centre,
-        model.bound_radius,
-        &scene.camera,
-        scene.lod.as_ref(),
-        scene.cull,
-    );
+    let plan = plan_of(renderer, scene, &models);
     let instances = Instances {
         models: &models,
         phases: &phases,
     };
     let stats = renderer.render(target, &scene.camera, &instances, &plan, method, timing)?;
     Ok((stats, plan))
+}
+
+/// Characters per level the warm-up frame draws.
+const WARM_UP_PER_LEVEL: usize = 16;
+
+/// The warm-up before a configuration's timed frames: the renderer makes the pass-1
+/// resources of the whole crowd ([`CrowdRenderer::prepare`]), then draws one frame with
+/// every pass of the configuration on at most [`WARM_UP_PER_LEVEL`] characters per level,
+/// which compiles whatever the renderer compiles on first use. A frame of the whole crowd
+/// would do the same at the cost of a timed frame (the largest crowds take seconds each).
+fn warm_up(
+    renderer: &mut CrowdRenderer,
+    target: &Framebuffer,
+    scene: &Scene,
+    config: &Config,
+) -> Result<(), GlError> {
+    renderer.set_vertex_shader_batch(config.vertex_shader_batch);
+    let (models, phases) = placements(&scene.crowd);
+    let plan = plan_of(renderer, scene, &models);
+    renderer.prepare(&plan)?;
+    let instances = Instances {
+        models: &models,
+        phases: &phases,
+    };
+    clear(target)?;
+    renderer.render(
+        target,
+        &scene.camera,
+        &instances,
+        &plan.truncated(WARM_UP_PER_LEVEL),
+        config.method,
+        false,
+    )?;
+    Ok(())
 }
 
 /// Clears `target` to the sky and the far depth, as every frame starts.
@@ -194,8 +233,8 @@ impl Config {
     }
 }
 
-/// Runs one warm-up frame, `frames` wall-clock-timed frames and one frame with per-stage
-/// timing. The crowd walks `dt` seconds per frame.
+/// Runs a warm-up (see [`warm_up`]), `frames` wall-clock-timed frames and one frame with
+/// per-stage timing. The crowd walks `dt` seconds per frame.
 pub fn run(
     ctx: &Context,
     renderer: &mut CrowdRenderer,
@@ -220,8 +259,8 @@ pub fn run(
 
 /// Measures several configurations side by side: frame by frame in turn, each on its own
 /// copy of the scene, so that whatever else the machine is doing slows them alike. Each
-/// gets one warm-up frame, `frames` timed frames (median reported) and one frame with
-/// per-stage timing.
+/// gets a warm-up ([`warm_up`]), `frames` timed frames (median reported) and one frame
+/// with per-stage timing.
 pub fn run_side_by_side(
     ctx: &Context,
     renderer: &mut CrowdRenderer,
@@ -242,7 +281,8 @@ pub fn run_side_by_side(
         result
     };
     for (scene, config) in scenes.iter().zip(configs) {
-        frame(renderer, scene, config, false)?;
+        warm_up(renderer, target, scene, config)?;
+        ctx.finish_all();
     }
     for _ in 0..frames {
         for ((scene, config), times) in scenes.iter_mut().zip(configs).zip(&mut times_ms) {

@@ -424,6 +424,43 @@ impl<'a> Pass<'a> {
         })
     }
 
+    /// Draw `count` indices from index `first` of each of `arrays` in turn, one draw call per
+    /// vertex array, with the framebuffer, program, textures and state bound once for all of
+    /// them (a draw per character, say, without issuing the same state again between draws).
+    pub fn draw_elements_each(
+        &mut self,
+        arrays: &[&VertexArray],
+        primitive: Primitive,
+        first: usize,
+        count: usize,
+    ) -> Result<(), GlError> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        if arrays.iter().any(|va| !va.has_indices()) {
+            return Err(GlError::Invalid(format!(
+                "pass {}: draw_elements on a vertex array without an index buffer",
+                self.name
+            )));
+        }
+        let _scope = super::profile::scope(self.ctx, self.name);
+        let gl = self.ctx.gl();
+        self.bind_all();
+        unsafe {
+            for va in arrays {
+                gl.bind_vertex_array(Some(va.id()));
+                gl.draw_elements(
+                    primitive.gl(),
+                    count as i32,
+                    glow::UNSIGNED_INT,
+                    (first * 4) as i32,
+                );
+            }
+            gl.bind_vertex_array(None);
+        }
+        self.ctx.check(&format!("pass {}", self.name))
+    }
+
     /// Draw every triangle of `mesh`.
     pub fn draw_mesh(&mut self, mesh: &MeshBuffers) -> Result<(), GlError> {
         self.draw_elements_instanced(
@@ -445,6 +482,20 @@ impl<'a> Pass<'a> {
         }
         let _scope = super::profile::scope(self.ctx, self.name);
         let gl = self.ctx.gl();
+        self.bind_all();
+        unsafe {
+            gl.bind_vertex_array(Some(vao));
+            call(gl);
+            gl.bind_vertex_array(None);
+        }
+        self.ctx.check(&format!("pass {}", self.name))
+    }
+}
+
+impl Pass<'_> {
+    /// Bind the framebuffer, program, viewport, textures and fixed-function state.
+    fn bind_all(&self) {
+        let gl = self.ctx.gl();
         self.target.bind();
         self.program.bind();
         unsafe {
@@ -455,11 +506,7 @@ impl<'a> Pass<'a> {
                 gl.bind_texture(texture.target(), Some(texture.id()));
             }
             apply_state(gl, &self.state);
-            gl.bind_vertex_array(Some(vao));
-            call(gl);
-            gl.bind_vertex_array(None);
         }
-        self.ctx.check(&format!("pass {}", self.name))
     }
 }
 

@@ -405,34 +405,24 @@ impl Peeler {
                 }
                 Ok(())
             })?;
+            // The groups still drawing something, each counted by its own query.
+            let drawing: Vec<usize> = (0..groups.len()).filter(|&g| active[g]).collect();
+            let counted = &queries[..drawing.len()];
             self.pass("mass: one peel (all bodies)", || {
                 let mut pass = target.pass(&self.peel_program, PEEL_PASS)?;
                 pass.state(peel_state(layer == 0))
                     .texture("u_peel_depth", &previous)
                     .texture("u_water_depth", water_depth)
                     .uniform("u_peel_layer", layer as i32);
-                for (k, &(first, count)) in groups.iter().enumerate().filter(|(k, _)| active[*k]) {
-                    queries[k].begin();
-                    let drawn = pass.draw_elements_instanced(
-                        &soup.vertices,
-                        Primitive::Triangles,
-                        first,
-                        count,
-                        1,
-                    );
-                    queries[k].end();
-                    drawn?;
-                }
-                Ok(())
+                let ranges: Vec<(usize, usize)> = drawing.iter().map(|&g| groups[g]).collect();
+                pass.draw_elements_counted(&soup.vertices, Primitive::Triangles, &ranges, counted)
             })?;
-            self.pass("mass: occlusion queries", || -> Result<(), GlError> {
-                for (k, a) in active.iter_mut().enumerate() {
-                    if *a {
-                        *a = queries[k].samples()? > 0;
-                    }
-                }
-                Ok(())
+            let samples = self.pass("mass: occlusion queries", || {
+                OcclusionQuery::samples_of(counted)
             })?;
+            for (&g, drew) in drawing.iter().zip(samples) {
+                active[g] = drew > 0;
+            }
             if !active.iter().any(|&a| a) {
                 return Ok((layer, false));
             }
