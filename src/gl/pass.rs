@@ -371,15 +371,8 @@ impl<'a> Pass<'a> {
             )));
         }
         self.draw(vertices.id(), |gl| {
-            for &(first, count) in ranges {
-                unsafe {
-                    gl.draw_elements(
-                        primitive.gl(),
-                        count as i32,
-                        glow::UNSIGNED_INT,
-                        (first * 4) as i32,
-                    )
-                };
+            for &range in ranges {
+                draw_index_range(gl, primitive, range);
             }
         })
     }
@@ -409,16 +402,9 @@ impl<'a> Pass<'a> {
             )));
         }
         self.draw(vertices.id(), |gl| {
-            for (&(first, count), query) in ranges.iter().zip(queries) {
+            for (&range, query) in ranges.iter().zip(queries) {
                 query.begin();
-                unsafe {
-                    gl.draw_elements(
-                        primitive.gl(),
-                        count as i32,
-                        glow::UNSIGNED_INT,
-                        (first * 4) as i32,
-                    )
-                };
+                draw_index_range(gl, primitive, range);
                 query.end();
             }
         })
@@ -446,18 +432,11 @@ impl<'a> Pass<'a> {
         let _scope = super::profile::scope(self.ctx, self.name);
         let gl = self.ctx.gl();
         self.bind_all();
-        unsafe {
-            for va in arrays {
-                gl.bind_vertex_array(Some(va.id()));
-                gl.draw_elements(
-                    primitive.gl(),
-                    count as i32,
-                    glow::UNSIGNED_INT,
-                    (first * 4) as i32,
-                );
-            }
-            gl.bind_vertex_array(None);
+        for va in arrays {
+            unsafe { gl.bind_vertex_array(Some(va.id())) };
+            draw_index_range(gl, primitive, (first, count));
         }
+        unsafe { gl.bind_vertex_array(None) };
         self.ctx.check(&format!("pass {}", self.name))
     }
 
@@ -490,6 +469,19 @@ impl<'a> Pass<'a> {
         }
         self.ctx.check(&format!("pass {}", self.name))
     }
+}
+
+/// One `glDrawElements` of the `count` 32-bit indices from index `first` of the bound
+/// vertex array's index buffer.
+fn draw_index_range(gl: &glow::Context, primitive: Primitive, (first, count): (usize, usize)) {
+    unsafe {
+        gl.draw_elements(
+            primitive.gl(),
+            count as i32,
+            glow::UNSIGNED_INT,
+            (first * 4) as i32,
+        )
+    };
 }
 
 impl Pass<'_> {
