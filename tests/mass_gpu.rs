@@ -349,6 +349,16 @@ fn peeler_names_a_body_with_non_finite_integrals() {
     pose(&one);
     let fine = peeler.run(&soup, &one, None, None).unwrap();
     assert!((fine.integrals[0].v - 1.0).abs() < 0.05);
+    // A job in a group the soup does not have is an error naming it, not a panic.
+    let stray = [job("body 5 (box)", 1, 0, 1.0)];
+    let err = peeler
+        .run(&soup, &stray, None, None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("body 5 (box) is in group 1 of a soup of 1 groups"),
+        "{err}"
+    );
     let jobs = [
         job("body 0 (box)", 0, 0, 1.0),
         job("body 1 (box)", 1, 32, 1e30),

@@ -5,13 +5,13 @@
 //!
 //! - Pass 0 (with water): the fluid surface's depth into `T_dw`.
 //! - Passes 1..n: every body is drawn with the listing wrapped by the peel test (the GL
-//!   layer's `peel_discard`, against the previous layer's depth) and the water test, all
-//!   one draw per group of bodies (the [`Soup`] holds them posed in their tiles; the
-//!   buoyancy scene groups them by shape), each with its own occlusion query: a group
-//!   whose layer drew nothing is done and is not drawn again, and peeling ends when every
-//!   group is done. Pass 1 also writes the paper's
-//!   stencil bit by two-sided stencil: 1 where the kept fragment faces down (a back face
-//!   seen from above), 0 where it faces up.
+//!   layer's `peel_discard`, against the previous layer's depth) and the water test, in
+//!   one pass: a draw per group of the [`Soup`] (which holds the bodies posed in their
+//!   tiles; a group per body in the buoyancy batch), each counted by its own occlusion
+//!   query. A group whose layer drew nothing is done and is not drawn again, and peeling
+//!   ends when every group is done. Pass 1 also writes the paper's stencil bit by
+//!   two-sided stencil: 1 where the kept fragment faces down (a back face seen from
+//!   above), 0 where it faces up.
 //! - Pass n + 1 (with water): the fluid surface where that stencil bit is 1 (`T_w`).
 //!
 //! Two orders of the sums ([`PeelOrder`]): by default each peel is added into running sums
@@ -385,6 +385,14 @@ impl Peeler {
     ) -> Result<(usize, bool), GlError> {
         let keep = self.settings.order == PeelOrder::KeepLayers;
         let groups = soup.groups();
+        if let Some(job) = jobs.iter().find(|j| j.group >= groups.len()) {
+            return Err(GlError::Invalid(format!(
+                "mass: {} is in group {} of a soup of {} groups",
+                job.body,
+                job.group,
+                groups.len()
+            )));
+        }
         let mut queries = self.queries.borrow_mut();
         while queries.len() < groups.len() {
             queries.push(OcclusionQuery::new(&self.ctx)?);
