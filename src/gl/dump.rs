@@ -23,16 +23,24 @@ pub enum DumpRange {
 
 /// Write `texture` to `path` as PNG.
 pub fn texture_png(texture: &Texture, path: &Path, range: DumpRange) -> Result<(), GlError> {
-    let (w, h) = (texture.width(), texture.height());
     let rgba = to_rgba8(texture, range)?;
-    let mut flipped = Vec::with_capacity(rgba.len());
-    for row in rgba.chunks_exact(w as usize * 4).rev() {
-        flipped.extend_from_slice(row);
-    }
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| io_error(path, e))?;
     }
-    image::save_buffer(path, &flipped, w, h, image::ColorType::Rgba8).map_err(|e| io_error(path, e))
+    rgba_png(&rgba, (texture.width(), texture.height()), path)
+}
+
+/// Write `width x height` RGBA bytes, rows from the bottom as GL reads them, to `path` as
+/// PNG (top row first, as images are stored).
+pub fn rgba_png(rgba: &[u8], (width, height): (u32, u32), path: &Path) -> Result<(), GlError> {
+    let flipped: Vec<u8> = rgba
+        .chunks_exact(width as usize * 4)
+        .rev()
+        .flatten()
+        .copied()
+        .collect();
+    image::save_buffer(path, &flipped, width, height, image::ColorType::Rgba8)
+        .map_err(|e| io_error(path, e))
 }
 
 fn io_error(path: &Path, e: impl std::fmt::Display) -> GlError {

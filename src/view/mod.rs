@@ -157,11 +157,8 @@ pub fn write_png(
     path: &std::path::Path,
 ) -> anyhow::Result<()> {
     use anyhow::Context as _;
-    let row = width as usize * 4;
-    let flipped: Vec<u8> = pixels.chunks_exact(row).rev().flatten().copied().collect();
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     }
-    image::save_buffer(path, &flipped, width, height, image::ColorType::Rgba8)
-        .with_context(|| format!("writing {}", path.display()))
+    Ok(crate::gl::dump::rgba_png(pixels, (width, height), path)?)
 }

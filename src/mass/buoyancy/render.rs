@@ -4,7 +4,7 @@
 
 use super::simulation::{Shape, Simulation};
 use crate::gl::{
-    Blend, Buffer, BufferUsage, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
+    dump, Blend, Buffer, BufferUsage, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
     Primitive, Program, Rect, Texture, TextureFormat, VertexArray,
 };
 use crate::shader;
@@ -111,19 +111,7 @@ impl FrameRenderer {
         let pixels = self
             .target
             .read_u8(0, Rect::sized(self.width, self.height))?;
-        let row = self.width as usize * 4;
-        let flipped: Vec<u8> = pixels.chunks_exact(row).rev().flatten().copied().collect();
-        image::save_buffer(
-            path,
-            &flipped,
-            self.width,
-            self.height,
-            image::ColorType::Rgba8,
-        )
-        .map_err(|e| GlError::Io {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        })
+        dump::rgba_png(&pixels, (self.width, self.height), path)
     }
 
     /// Draw the current state into `target` (colour and depth; cleared here), the camera

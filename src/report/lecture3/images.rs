@@ -11,7 +11,6 @@ use crate::lecture3::pyramid::{cpu_pyramid, Extreme};
 use crate::lecture3::pyramid_atlas::atlas_layout;
 use crate::lecture3::HeightMap;
 use crate::report::BenchOptions;
-use anyhow::Context as _;
 use std::path::Path;
 
 pub const PYRAMID_PNG: &str = "lecture3_pyramid.png";
@@ -87,18 +86,11 @@ impl Rgba {
 
     /// Written as PNG, top row first.
     pub fn save(&self, path: &Path) -> anyhow::Result<()> {
-        let mut flipped = Vec::with_capacity(self.data.len());
-        for row in self.data.chunks_exact(self.width as usize * 4).rev() {
-            flipped.extend_from_slice(row);
-        }
-        image::save_buffer(
+        Ok(crate::gl::dump::rgba_png(
+            &self.data,
+            (self.width, self.height),
             path,
-            &flipped,
-            self.width,
-            self.height,
-            image::ColorType::Rgba8,
-        )
-        .with_context(|| format!("writing {}", path.display()))
+        )?)
     }
 }
 
