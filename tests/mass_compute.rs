@@ -9,7 +9,7 @@
 
 use classic_gpgpu::mass::compute::{tetrahedron_sum, ComputeMass};
 use classic_gpgpu::mass::gpu::GpuMass;
-use classic_gpgpu::mass::{analytic, MassProperties, VolumeIntegrals};
+use classic_gpgpu::mass::{analytic, MassProperties};
 use classic_gpgpu::mesh::Mesh;
 use common::compute_context;
 use glam::{DQuat, DVec3, Vec3};
@@ -19,21 +19,8 @@ mod common;
 
 mod mass_shapes;
 
-fn largest(i: &VolumeIntegrals) -> f64 {
-    i.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-/// Every value within `rel` of the largest, both about `want`'s origin.
-fn assert_close(what: &str, got: &VolumeIntegrals, want: &VolumeIntegrals, rel: f64) {
-    let got = got.about(want.origin);
-    let scale = largest(want);
-    for (k, (g, w)) in got.to_array().iter().zip(want.to_array()).enumerate() {
-        assert!(
-            (g - w).abs() <= rel * scale,
-            "{what}: integral {k}: {g} vs {w} (scale {scale})\n{got:?}\n{want:?}"
-        );
-    }
-}
+mod mass_check;
+use mass_check::assert_integrals_close;
 
 fn tilted_torus() -> Mesh {
     transformed(
@@ -71,7 +58,7 @@ fn below_4_3_compute_is_a_clear_error_and_the_classic_path_runs() {
         .integrate(&mesh, None, None)
         .unwrap();
     let want = analytic::volume_integrals(&mesh);
-    assert_close("classic at 64x64", &classic.integrals, &want, 0.05);
+    assert_integrals_close("classic at 64x64", &classic.integrals, &want, 0.05);
 }
 
 #[test]
@@ -86,18 +73,18 @@ fn every_body_in_one_pass_matches_the_cpu_sum_and_mirtich() {
     assert_eq!(got.integrals.len(), meshes.len());
     for (k, (mesh, gpu)) in meshes.iter().zip(&got.integrals).enumerate() {
         let cpu = tetrahedron_sum(mesh, gpu.origin);
-        assert_close(&format!("body {k} vs CPU"), gpu, &cpu, 1e-5);
+        assert_integrals_close(&format!("body {k} vs CPU"), gpu, &cpu, 1e-5);
         let mirtich = analytic::volume_integrals(mesh);
-        assert_close(&format!("body {k} vs Mirtich"), gpu, &mirtich, 1e-5);
+        assert_integrals_close(&format!("body {k} vs Mirtich"), gpu, &mirtich, 1e-5);
         // And the CPU sum is Mirtich's answer to f64 rounding.
-        assert_close(&format!("body {k}: CPU vs Mirtich"), &cpu, &mirtich, 1e-9);
+        assert_integrals_close(&format!("body {k}: CPU vs Mirtich"), &cpu, &mirtich, 1e-9);
     }
     // One body alone gives what it gave among the others.
     let alone = ComputeMass::new(&ctx)
         .unwrap()
         .integrate(&refs[..1])
         .unwrap();
-    assert_close("alone", &alone.integrals[0], &got.integrals[0], 1e-6);
+    assert_integrals_close("alone", &alone.integrals[0], &got.integrals[0], 1e-6);
 }
 
 #[test]
@@ -113,7 +100,7 @@ fn same_mass_properties_as_the_classic_peeling_path() {
         .integrate(&mesh, None, None)
         .unwrap();
     assert!(then.peels >= 2, "a tilted torus has several layers");
-    assert_close(
+    assert_integrals_close(
         "compute vs classic",
         &now.integrals[0],
         &then.integrals,

@@ -9,7 +9,7 @@ use classic_gpgpu::mass::buoyancy::simulation::{AnalyticSolver, Shape, Submerged
 use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::GpuMass;
 use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings};
-use classic_gpgpu::mass::{analytic, cpu_reference, MassProperties, VolumeIntegrals};
+use classic_gpgpu::mass::{analytic, cpu_reference, MassProperties};
 use classic_gpgpu::mesh::{self, Mesh};
 use common::context;
 use glam::{DMat3, DQuat, DVec3, Vec3};
@@ -19,21 +19,8 @@ mod common;
 
 mod mass_shapes;
 
-fn largest(i: &VolumeIntegrals) -> f64 {
-    i.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-/// Every value within `rel` of the largest value of `want`.
-fn assert_close(what: &str, got: &VolumeIntegrals, want: &VolumeIntegrals, rel: f64) {
-    let got = got.about(want.origin);
-    let scale = largest(want);
-    for (k, (g, w)) in got.to_array().iter().zip(want.to_array()).enumerate() {
-        assert!(
-            (g - w).abs() <= rel * scale,
-            "{what}: integral {k}: GPU {g} vs CPU {w} (scale {scale})"
-        );
-    }
-}
+mod mass_check;
+use mass_check::{assert_integrals_close, largest};
 
 /// A tilted torus: four crossings per pixel in places, so deep peels and a water line
 /// through holes.
@@ -73,7 +60,7 @@ fn the_stencil_bit_marks_where_the_first_peel_faces_down() {
             "level {level}: {differ} of {marked} stencil bits differ from the CPU"
         );
         let cpu = cpu_reference::integrate(&mesh, &framing, Some(level));
-        assert_close(&format!("below {level}"), &result.integrals, &cpu, 1e-3);
+        assert_integrals_close(&format!("below {level}"), &result.integrals, &cpu, 1e-3);
     }
 }
 
@@ -109,7 +96,7 @@ fn keeping_the_layers_gives_each_layer_and_the_same_total() {
                 );
             }
         }
-        assert_close("keep vs running", &a.integrals, &b.integrals, 1e-5);
+        assert_integrals_close("keep vs running", &a.integrals, &b.integrals, 1e-5);
     }
 }
 

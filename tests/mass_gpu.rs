@@ -16,20 +16,8 @@ mod common;
 
 mod mass_shapes;
 
-fn largest(i: &VolumeIntegrals) -> f64 {
-    i.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-/// Every value within `rel` of the largest (the integrals differ in scale by orders).
-fn assert_integrals_close(what: &str, got: &VolumeIntegrals, want: &VolumeIntegrals, rel: f64) {
-    let scale = largest(want);
-    for (k, (g, w)) in got.to_array().iter().zip(want.to_array()).enumerate() {
-        assert!(
-            (g - w).abs() <= rel * scale,
-            "{what}: integral {k}: GPU {g} vs CPU {w} (scale {scale})\n{got:?}\n{want:?}"
-        );
-    }
-}
+mod mass_check;
+use mass_check::assert_integrals_close;
 
 #[test]
 fn every_mass_shader_compiles() {
