@@ -85,16 +85,17 @@ impl GpuMass {
         dump: Option<&Path>,
     ) -> Result<GpuResult, GlError> {
         let framing = Framing::fit(mesh, self.resolution).map_err(GlError::Invalid)?;
+        let unit = UnitFrame::of(&framing);
         let job = Job {
             body: "the body",
             group: 0,
-            framing: UnitFrame::of(&framing).framing,
+            framing: unit.framing,
             tile: Rect::sized(self.resolution, self.resolution),
         };
-        let unit = {
+        {
             let _scope = profile::cpu_scope(self.peeler.context(), "mass: unit frame, upload");
-            self.prepare(mesh, &framing, &job)?
-        };
+            self.prepare(mesh, &unit, &job)?;
+        }
         let water = below.map(|level| unit.to_unit(DVec3::new(0.0, 0.0, level)).z);
         let (batch, gpu_ms) = query::time_gpu(self.peeler.context(), || {
             self.peeler.run(&self.soup, &[job], water, dump)
@@ -123,8 +124,7 @@ impl GpuMass {
 
     /// The body in the unit frame, placed as `job` says, in the soup's buffers, with the
     /// triangles that may cover a pixel centre.
-    fn prepare(&self, mesh: &Mesh, framing: &Framing, job: &Job) -> Result<UnitFrame, GlError> {
-        let unit = UnitFrame::of(framing);
+    fn prepare(&self, mesh: &Mesh, unit: &UnitFrame, job: &Job) -> Result<(), GlError> {
         let local: Vec<DVec3> = mesh
             .positions
             .iter()
@@ -141,8 +141,7 @@ impl GpuMass {
         };
         self.soup.clear();
         self.soup.push_body(&mesh.triangles, &local, &place, keep);
-        self.soup.upload()?;
-        Ok(unit)
+        self.soup.upload()
     }
 }
 
