@@ -516,6 +516,7 @@ fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         quick: false,
         out_dir: dir.clone(),
         progress: classic_gpgpu::report::progress_bars(true),
+        runs: None,
     };
     let run = bench::random(&opts, a.size, a.steps, a.seed, RUNS);
     if let (Ok(_), Some(png)) = (&run, &a.output.png) {

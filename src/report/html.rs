@@ -120,6 +120,7 @@ pub fn page(report: &Report) -> String {
         escape(&report.date),
         report.elapsed_s
     ));
+    out.push_str(&format!("<p>Timings: {}.</p>\n", escape(&report.runs)));
     if report.quick {
         out.push_str(
             "<p class=\"note\">Quick mode: small sizes for CI and smoke tests. These numbers \

@@ -20,6 +20,7 @@ pub mod published;
 pub mod reproduce;
 pub mod selftest;
 pub mod then_and_now;
+pub mod timing;
 
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
@@ -61,6 +62,10 @@ pub struct BenchArgs<O: clap::Args> {
     /// Where the figures (PNG) go [default: the command's name, e.g. `collide-bench`].
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Time every repeated measurement exactly this many times [default: 3, and up to 5
+    /// while the runs take under a second in all].
+    #[arg(long, value_parser = timing::parse_runs)]
+    pub runs: Option<usize>,
     #[command(flatten)]
     pub options: O,
 }
@@ -95,6 +100,20 @@ pub struct BenchOptions<'a> {
     pub out_dir: PathBuf,
     /// Progress bars for long stages (hidden under `--json` or when not a terminal).
     pub progress: indicatif::MultiProgress,
+    /// `--runs N`: time every repeated measurement exactly N times instead of
+    /// [`timing::Runs::PAPER`].
+    pub runs: Option<usize>,
+}
+
+impl BenchOptions<'_> {
+    /// How often to repeat one timed measurement: `--runs` when given, else `quick_runs`
+    /// exactly under `--quick`, else [`timing::Runs::PAPER`].
+    pub fn runs(&self, quick_runs: usize) -> timing::Runs {
+        match self.runs {
+            Some(n) => timing::Runs::exactly(n),
+            None => timing::Runs::paper_or(self.quick, quick_runs),
+        }
+    }
 }
 
 /// The whole report, as written to `results.json`.
@@ -104,6 +123,8 @@ pub struct Report {
     pub cpu: String,
     pub date: String,
     pub quick: bool,
+    /// How often each repeated timing ran ([`timing::runs_policy`]).
+    pub runs: String,
     pub elapsed_s: f64,
     pub sections: Vec<Section>,
 }
@@ -236,6 +257,7 @@ pub fn bench_command<P: Paper>(
         quick: args.quick,
         out_dir: out_dir.to_path_buf(),
         progress: progress_bars(json),
+        runs: args.runs,
     };
     let section = run_section::<P>(&opts, &args.options)?;
     if json {

@@ -59,6 +59,10 @@ pub struct ReproduceArgs {
     /// sizes) by one holding just the sections run now.
     #[arg(long)]
     pub force: bool,
+    /// Time every repeated measurement exactly this many times [default: 3, and up to 5
+    /// while the runs take under a second in all].
+    #[arg(long, value_parser = super::timing::parse_runs)]
+    pub runs: Option<usize>,
 }
 
 /// Run the stages and write the report to `args.out`; returns the report.
@@ -186,6 +190,17 @@ fn kept_sections(
             sizes(args.quick)
         ));
     }
+    let runs = super::timing::runs_policy(args.runs);
+    if old["runs"]
+        .as_str()
+        .is_some_and(|old_runs| old_runs != runs)
+    {
+        return refuse(format!(
+            "in the report in {} {}; in this run {runs}",
+            args.out.display(),
+            old["runs"].as_str().unwrap_or_default()
+        ));
+    }
     let sections: Vec<Section> = match serde_json::from_value(old["sections"].clone()) {
         Ok(sections) => sections,
         Err(e) => return refuse(format!("{} has no readable sections ({e})", path.display())),
@@ -275,6 +290,7 @@ fn run_stages(
         quick: args.quick,
         out_dir: staging.to_path_buf(),
         progress: progress.clone(),
+        runs: args.runs,
     };
     let mut sections = Vec::new();
     // Test hook: make one section fail, to check that a failed run keeps the old report.
@@ -306,6 +322,7 @@ fn run_stages(
         cpu: cpu_name(),
         date: utc_now(),
         quick: args.quick,
+        runs: super::timing::runs_policy(args.runs),
         elapsed_s: start.elapsed().as_secs_f64(),
         sections,
     })
