@@ -66,6 +66,17 @@ impl Runs {
     }
 }
 
+impl std::fmt::Display for Runs {
+    /// "3 to 5" (as the budget allows) or "5".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.max > self.min {
+            write!(f, "{} to {}", self.min, self.max)
+        } else {
+            write!(f, "{}", self.min.max(1))
+        }
+    }
+}
+
 /// The runs of one timing: their number, median and range.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Spread {
@@ -169,6 +180,8 @@ mod tests {
             assert!(e.contains("--runs") && e.contains(bad), "{e}");
         }
         assert!(runs_policy(Some(5)).contains("exactly 5"));
+        assert_eq!(Runs::PAPER.to_string(), "3 to 5");
+        assert_eq!(Runs::exactly(7).to_string(), "7");
         assert!(runs_policy(None).contains("up to 5"));
     }
 

@@ -10,6 +10,7 @@ use crate::mass::gpu::GpuMass;
 use crate::mass::peel::{PeelOrder, PeelSettings};
 use crate::mass::{analytic, models, surface, MassProperties};
 use crate::mesh::Mesh;
+use crate::report::timing::{Runs, Spread};
 use crate::report::BenchOptions;
 use serde::Serialize;
 use std::time::Instant;
@@ -139,8 +140,10 @@ pub struct BuoyancyRun {
     pub max_peels: usize,
     pub mean_peels: f64,
     pub cpu_solver_steps_per_second: f64,
+    /// Median of [`BuoyancyRun::batching_runs`] interleaved runs of each.
     pub batched_ms: f64,
     pub one_body_at_a_time_ms: f64,
+    pub batching_runs: usize,
     /// Fig. 9: the scene after the run (file in the output folder).
     pub frame: String,
 }
@@ -154,14 +157,9 @@ pub fn resolutions(quick: bool) -> Vec<u32> {
     }
 }
 
-/// Timed runs per measurement (the median is kept).
-pub fn runs(quick: bool) -> usize {
-    if quick {
-        3
-    } else {
-        5
-    }
-}
+/// Timed runs per measurement under `--quick` (the median is kept); at the papers' sizes
+/// the report's policy ([`BenchOptions::runs`]).
+pub const QUICK_RUNS: usize = 3;
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let bar = opts.progress.add(indicatif::ProgressBar::new(
@@ -174,14 +172,14 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
             opts.gl,
             name,
             &resolutions(opts.quick),
-            runs(opts.quick),
+            opts.runs(QUICK_RUNS),
         )?);
         bar.inc(1);
     }
     bar.finish_and_clear();
     let steps = if opts.quick { 20 } else { 200 };
     let bunny = models::paper_object("bunny").expect("bunny");
-    let peel_orders = peel_orders(opts.gl, &bunny, runs(opts.quick))?;
+    let peel_orders = peel_orders(opts.gl, &bunny, opts.runs(QUICK_RUNS))?;
     let profile_bunny_64 = profile_bunny(opts.gl, &bunny)?;
     let scene = measure_scene(opts, steps)?;
     let targets = speed_targets(opts, &objects, &scene)?;
@@ -200,7 +198,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
 }
 
 /// Both orders of peels and sums on `mesh` at 64x64: time and agreement.
-fn peel_orders(ctx: &Context, mesh: &Mesh, runs: usize) -> anyhow::Result<Vec<PeelOrderRun>> {
+fn peel_orders(ctx: &Context, mesh: &Mesh, runs: Runs) -> anyhow::Result<Vec<PeelOrderRun>> {
     let mut out = Vec::new();
     let mut reference = None;
     for order in [PeelOrder::RunningSums, PeelOrder::KeepLayers] {
@@ -277,13 +275,9 @@ fn speed_targets(
     })
 }
 
-/// Median of `runs` timings (ms) of `work`.
-fn median_ms(runs: usize, mut work: impl FnMut() -> anyhow::Result<f64>) -> anyhow::Result<f64> {
-    let mut t = (0..runs)
-        .map(|_| work())
-        .collect::<anyhow::Result<Vec<f64>>>()?;
-    t.sort_by(f64::total_cmp);
-    Ok(t[t.len() / 2])
+/// Median of the timings (ms) of `work`, run as `runs` says.
+fn median_ms(runs: Runs, mut work: impl FnMut() -> anyhow::Result<f64>) -> anyhow::Result<f64> {
+    Ok(Spread::of(&runs.run(|_| work())?).median)
 }
 
 /// Fig. 4 and 5 for one object at every resolution.
@@ -291,11 +285,17 @@ fn measure_object(
     ctx: &Context,
     name: &str,
     resolutions: &[u32],
-    runs: usize,
+    runs: Runs,
 ) -> anyhow::Result<ObjectRun> {
     let mesh = models::paper_object(name).expect("a paper object");
     let exact = MassProperties::from_integrals(&analytic::volume_integrals(&mesh), 1.0);
-    let analytic_ms = median_ms(runs.max(5), || {
+    // Mirtich's method takes a millisecond or less: five runs at least.
+    let analytic_runs = Runs {
+        min: runs.min.max(5),
+        max: runs.max.max(5),
+        ..runs
+    };
+    let analytic_ms = median_ms(analytic_runs, || {
         let start = Instant::now();
         std::hint::black_box(analytic::volume_integrals(&mesh));
         Ok(start.elapsed().as_secs_f64() * 1e3)
@@ -315,7 +315,6 @@ fn measure_object(
             timer.push(r.gpu_ms);
             Ok(start.elapsed().as_secs_f64() * 1e3)
         })?;
-        timer.sort_by(f64::total_cmp);
         rows.push(ResolutionRow {
             resolution: n,
             peels: first.peels,
@@ -325,7 +324,7 @@ fn measure_object(
                 iyy,
                 izz,
             },
-            gpu_ms: timer[timer.len() / 2],
+            gpu_ms: Spread::of(&timer).median,
             gpu_wall_ms: wall,
             principal_relative_error,
         });
@@ -445,8 +444,7 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     let profile = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
     let timed = |v: &[f64]| v[settle..].iter().sum::<f64>();
     let total_ms = timed(&gpu.step_ms);
-    let (batched_ms, one_by_one_ms) =
-        batching_gain(ctx, &sim, &mut solver, if steps > 50 { 20 } else { 5 })?;
+    let batching = batching_gain(ctx, &sim, &mut solver, opts.runs(5))?;
     let frame = "buoyancy_frame.png";
     FrameRenderer::new(ctx, &sim.shapes, 800, 500)?.write_png(&sim, &opts.out_dir.join(frame))?;
     let peels = &gpu.peels[settle..];
@@ -461,8 +459,9 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
         max_peels: peels.iter().copied().max().unwrap_or(0),
         mean_peels: peels.iter().sum::<usize>() as f64 / steps as f64,
         cpu_solver_steps_per_second: 1e3 * steps as f64 / timed(&cpu.step_ms),
-        batched_ms,
-        one_body_at_a_time_ms: one_by_one_ms,
+        batched_ms: batching.batched.median,
+        one_body_at_a_time_ms: batching.one_at_a_time.median,
+        batching_runs: batching.batched.runs,
         frame: frame.into(),
     };
     Ok(SceneRuns {
@@ -473,32 +472,41 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     })
 }
 
+/// Wall clock of the submerged parts of one state, both ways (ms).
+struct BatchingGain {
+    batched: Spread,
+    one_at_a_time: Spread,
+}
+
 /// The submerged parts of the scene's current state, all bodies as tiles of one target
-/// versus one body per round of passes (what batching saves), mean milliseconds of `reps`.
+/// versus one body per round of passes (what batching saves), as often as `runs` says.
 fn batching_gain(
     ctx: &Context,
     sim: &Simulation,
     batched: &mut GpuSolver,
-    reps: usize,
-) -> anyhow::Result<(f64, f64)> {
+    runs: Runs,
+) -> anyhow::Result<BatchingGain> {
     let mut single = GpuSolver::new(ctx, &sim.shapes, 1, 32)?;
     // Interleaved, so that a change of load on a shared machine hits both alike.
-    let (mut batched_ms, mut single_ms) = (0.0, 0.0);
-    for _ in 0..reps {
+    let pairs = runs.run(|_| -> anyhow::Result<(f64, f64)> {
         let start = Instant::now();
         batched
             .submerged(&sim.shapes, &sim.bodies, &sim.water)
             .map_err(anyhow::Error::msg)?;
-        batched_ms += start.elapsed().as_secs_f64() * 1e3;
+        let batched_ms = start.elapsed().as_secs_f64() * 1e3;
         let start = Instant::now();
         for body in &sim.bodies {
             single
                 .submerged(&sim.shapes, std::slice::from_ref(body), &sim.water)
                 .map_err(anyhow::Error::msg)?;
         }
-        single_ms += start.elapsed().as_secs_f64() * 1e3;
-    }
-    Ok((batched_ms / reps as f64, single_ms / reps as f64))
+        Ok((batched_ms, start.elapsed().as_secs_f64() * 1e3))
+    })?;
+    let (batched, single): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
+    Ok(BatchingGain {
+        batched: Spread::of(&batched),
+        one_at_a_time: Spread::of(&single),
+    })
 }
 
 /// Fig. 10: the integrands of each peel of a buoyant bunny (the part below the water when the

@@ -30,8 +30,11 @@ pub fn table(results: &Paper4Results, paper: &published::Paper4) -> Table {
                 format!("over {:.0}%", 100.0 * paper.buoyancy.buoyancy_share),
             ),
             row(
-                "buoyancy of 50 bodies: tiles of one target vs one body at a time (ms)",
-                format!("{:.1} vs {:.1}", b.batched_ms, b.one_body_at_a_time_ms),
+                "buoyancy of 50 bodies: tiles of one target vs one body at a time (ms, median)",
+                format!(
+                    "{:.1} vs {:.1} ({} runs)",
+                    b.batched_ms, b.one_body_at_a_time_ms, b.batching_runs
+                ),
                 "-".into(),
             ),
             row(

@@ -82,7 +82,7 @@ fn summary(opts: &BenchOptions, results: &Paper4Results) -> String {
          glibc's trim and mmap thresholds, so the driver's per-draw buffers are not faulted in \
          afresh every time (about 30 -> 40 steps/s on llvmpipe, 2 cores).{}",
         bench::resolutions(opts.quick).len(),
-        bench::runs(opts.quick),
+        opts.runs(bench::QUICK_RUNS),
         results.renderer,
         if opts.quick {
             " Quick mode: resolutions up to 128 and a short buoyancy run."
