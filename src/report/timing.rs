@@ -157,17 +157,14 @@ mod tests {
             })
             .unwrap();
         assert_eq!(slow.len(), 3);
-        let fast = rules.run(|i| Ok::<_, ()>(i)).unwrap();
+        let fast = rules.run(Ok::<_, ()>).unwrap();
         assert_eq!(fast, vec![0, 1, 2, 3, 4]);
     }
 
     #[test]
     fn exactly_n_ignores_the_budget_and_an_error_stops_the_runs() {
-        assert_eq!(
-            Runs::exactly(2).run(|i| Ok::<_, ()>(i)).unwrap(),
-            vec![0, 1]
-        );
-        assert_eq!(Runs::exactly(0).run(|i| Ok::<_, ()>(i)).unwrap(), vec![0]);
+        assert_eq!(Runs::exactly(2).run(Ok::<_, ()>).unwrap(), vec![0, 1]);
+        assert_eq!(Runs::exactly(0).run(Ok::<_, ()>).unwrap(), vec![0]);
         let failed = Runs::PAPER.run(|i| if i == 1 { Err("second") } else { Ok(i) });
         assert_eq!(failed, Err("second"));
     }
