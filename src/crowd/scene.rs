@@ -270,6 +270,32 @@ pub fn run_side_by_side(
     frames: usize,
     dt: f32,
 ) -> Result<Vec<RunStats>, GlError> {
+    run_side_by_side_then(
+        ctx,
+        renderer,
+        target,
+        scenes,
+        configs,
+        frames,
+        dt,
+        |_, _| Ok(()),
+    )
+}
+
+/// [`run_side_by_side`], calling `shown(i, target)` right after configuration `i`'s
+/// per-stage frame, while `target` still holds it: a caller that wants a picture of a
+/// configuration's last frame takes it there instead of drawing the frame again.
+#[allow(clippy::too_many_arguments)]
+pub fn run_side_by_side_then<E: From<GlError>>(
+    ctx: &Context,
+    renderer: &mut CrowdRenderer,
+    target: &Framebuffer,
+    scenes: &mut [Scene],
+    configs: &[Config],
+    frames: usize,
+    dt: f32,
+    mut shown: impl FnMut(usize, &Framebuffer) -> Result<(), E>,
+) -> Result<Vec<RunStats>, E> {
     assert_eq!(scenes.len(), configs.len(), "one scene per configuration");
     let stride = renderer.model.clip.stride;
     let mut times_ms = vec![Vec::with_capacity(frames); configs.len()];
@@ -293,9 +319,15 @@ pub fn run_side_by_side(
         }
     }
     let mut out = Vec::with_capacity(configs.len());
-    for ((scene, config), times) in scenes.iter_mut().zip(configs).zip(&mut times_ms) {
+    for (i, ((scene, config), times)) in scenes
+        .iter_mut()
+        .zip(configs)
+        .zip(&mut times_ms)
+        .enumerate()
+    {
         scene.crowd.step(dt, stride);
         let (passes, plan) = frame(renderer, scene, config, true)?;
+        shown(i, target)?;
         let frame_ms = median(times);
         out.push(RunStats {
             model: renderer.model.kind.name().to_string(),

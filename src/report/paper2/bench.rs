@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use crate::crowd::pass1_skinning;
 use crate::crowd::renderer::{CrowdRenderer, Method};
-use crate::crowd::scene::{self, Config, RunStats, Scene};
+use crate::crowd::scene::{self, Config, RunStats};
 use crate::crowd::{sprites, CharacterModel, LodPolicy, ModelKind};
 use crate::gl::dump::{self, DumpRange};
 use crate::gl::Texture;
@@ -377,7 +377,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
                 .map(|policy| scene::lod_scene(kind, n, aspect, 1, policy));
             let configs = [Method::VertexShader, Method::TwoPass].map(Config::new);
             let configs = [configs, configs].concat();
-            let mut runs = scene::run_side_by_side(
+            let number = run.figure.trim_start_matches("Fig. ");
+            // The figures are the two-pass configurations' last frames (the paper's setup,
+            // then with sprites), taken while the target still holds them.
+            let mut runs = scene::run_side_by_side_then(
                 ctx,
                 &mut renderer,
                 &target,
@@ -385,43 +388,35 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
                 &configs,
                 if opts.quick { 2 } else { 5 },
                 1.0 / 30.0,
+                |i, target| {
+                    let sprites = match i {
+                        1 => false,
+                        3 => true,
+                        _ => return Ok(()),
+                    };
+                    snapshot(
+                        target.color(0),
+                        format!(
+                            "fig{number}_{n}_{}s_lod{}.png",
+                            kind.name(),
+                            if sprites { "_sprites" } else { "" }
+                        ),
+                        Shows::LodRun {
+                            figure: run.figure.clone(),
+                            model: kind,
+                            characters: n,
+                            sprites,
+                        },
+                    )
+                },
             )?;
             bar.inc(4);
             results.sprite_runs.extend(runs.split_off(2));
             results.lod_runs.extend(runs);
-            let number = run.figure.trim_start_matches("Fig. ");
-            for (scene, sprites) in [(&scenes[1], false), (&scenes[3], true)] {
-                two_pass_frame(&mut renderer, &target, scene)?;
-                snapshot(
-                    target.color(0),
-                    format!(
-                        "fig{number}_{n}_{}s_lod{}.png",
-                        kind.name(),
-                        if sprites { "_sprites" } else { "" }
-                    ),
-                    Shows::LodRun {
-                        figure: run.figure.clone(),
-                        model: kind,
-                        characters: n,
-                        sprites,
-                    },
-                )?;
-            }
         }
     }
     bar.finish_and_clear();
     results.snapshots = snapshots;
     results.then_and_now = super::then_and_now::measure(opts)?;
     Ok(results)
-}
-
-/// Draws one frame of `scene` with the paper's method into `target`.
-fn two_pass_frame(
-    renderer: &mut CrowdRenderer,
-    target: &crate::gl::Framebuffer,
-    scene: &Scene,
-) -> anyhow::Result<()> {
-    scene::clear(target)?;
-    scene::render_frame(renderer, target, scene, Method::TwoPass, false)?;
-    Ok(())
 }
