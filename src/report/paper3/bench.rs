@@ -9,6 +9,7 @@ use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 use crate::mlp::tiling::max_vectors_per_texture;
 use crate::mlp::window::window_batch;
 use crate::mlp::{Activation, Formulation, GpuMlp, Layer, Network, StepTimes};
+use crate::report::timing::{Runs, Spread};
 use crate::report::BenchOptions;
 use anyhow::Context as _;
 use image::GrayImage;
@@ -29,8 +30,6 @@ pub const FIG2B_FILE: &str = "paper3_fig2b_mask.png";
 pub struct Paper3Results {
     pub renderer: String,
     pub quick: bool,
-    /// Timed runs per measurement (the median is kept), after one warm-up run.
-    pub repeats: usize,
     /// The 1-minute load average at the end, to read software-renderer timings against.
     pub load_average_1min: Option<f64>,
     /// Every case and method; the first case's rows are Table 1's.
@@ -119,8 +118,12 @@ pub struct Measurement {
     pub tiles: usize,
     /// Rendering passes of each layer's matrix product per tile (empty on the CPU).
     pub product_passes: Vec<usize>,
+    /// The median of every step over the timed runs.
     pub times_ms: StepTimes,
     pub total_ms: f64,
+    /// The timed runs (after one warm-up run) and the spread of their product times.
+    pub runs: usize,
+    pub matmul_spread_ms: Spread,
     /// From the median product time.
     pub matmul_gflops: f64,
     /// From the fastest product time: the renderer's capability when the machine is shared.
@@ -151,7 +154,10 @@ pub struct DetectionRun {
     pub text_pixels: usize,
     /// Share of pixels given the same class as the CPU.
     pub agreement_with_cpu: f64,
+    /// The median over `runs` runs (at the papers' sizes, the runs of the "all of text.png"
+    /// case, which is this very classification).
     pub times_ms: StepTimes,
+    pub runs: usize,
 }
 
 /// One network and batch to measure.
@@ -161,16 +167,12 @@ struct Case {
     batch: Array2<f32>,
     /// Input vectors per texture (the paper's 2048 for its own row, else the renderer's max).
     max_vectors: Option<usize>,
+    /// Whether the batch is every pixel of text.png, row by row: Fig. 2's classification.
+    whole_photo: bool,
 }
 
-/// Timed runs per measurement.
-pub fn repeats(quick: bool) -> usize {
-    if quick {
-        1
-    } else {
-        5
-    }
-}
+/// Timed runs per measurement under `--quick` (see [`BenchOptions::runs`]).
+const QUICK_RUNS: usize = 1;
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
     let ctx = opts.gl;
@@ -179,7 +181,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         .context("decoding assets/mlp/text.png")?
         .to_luma8();
     let cases = cases(ctx, &photo, opts.quick)?;
-    let repeats = repeats(opts.quick);
+    let runs = opts.runs(QUICK_RUNS);
     let bar = opts.progress.add(indicatif::ProgressBar::new(
         (cases.len() * Method::ALL.len()) as u64,
     ));
@@ -188,6 +190,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
             .expect("template"),
     );
     let mut measurements = Vec::new();
+    let mut detection = None;
     for case in &cases {
         let mut measured = Vec::new();
         for method in Method::ALL {
@@ -197,7 +200,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
                 Some(_) => crate::gl::profile::scope(ctx, &label),
                 None => crate::gl::profile::cpu_scope(ctx, &label),
             };
-            measured.push(measure_case(&gpu, case, method, repeats)?);
+            measured.push(measure_case(&gpu, case, method, runs)?);
             bar.inc(1);
         }
         // every method against the plain CPU loop's outputs, measured above (not run again)
@@ -206,6 +209,11 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
             .find(|(m, _)| m.method == Method::CpuPlain)
             .map(|(_, outputs)| outputs.clone())
             .expect("the plain CPU loop is one of the methods");
+        if case.whole_photo {
+            // Fig. 2 is this case: every pixel of text.png through the detector, one batch
+            let _scope = crate::gl::profile::cpu_scope(ctx, "Fig. 2: text.png classified");
+            detection = Some(detection_of(opts, &photo, &measured)?);
+        }
         for (mut measurement, outputs) in measured {
             measurement.max_abs_diff_vs_cpu_plain = outputs
                 .iter()
@@ -216,14 +224,17 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         }
     }
     bar.finish_and_clear();
-    let detection = {
-        let _scope = crate::gl::profile::scope(ctx, "Fig. 2: text.png classified");
-        detect_photo(opts, &gpu, &photo)?
+    let detection = match detection {
+        Some(detection) => detection,
+        None => {
+            // --quick has no case of the whole photograph: classify it on its own
+            let _scope = crate::gl::profile::scope(ctx, "Fig. 2: text.png classified");
+            detect_photo(opts, &gpu, &photo)?
+        }
     };
     Ok(Paper3Results {
         renderer: ctx.info().renderer_line(),
         quick: opts.quick,
-        repeats,
         load_average_1min: load_average(),
         measurements,
         detection,
@@ -251,6 +262,7 @@ fn cases(ctx: &Context, photo: &GrayImage, quick: bool) -> anyhow::Result<Vec<Ca
         network: detector.clone(),
         batch: first(paper_l),
         max_vectors: Some(2048),
+        whole_photo: false,
     }];
     if quick {
         cases.push(wide_case(128, 2048));
@@ -262,12 +274,14 @@ fn cases(ctx: &Context, photo: &GrayImage, quick: bool) -> anyhow::Result<Vec<Ca
         network: detector.clone(),
         batch: first(one_texture),
         max_vectors: None,
+        whole_photo: false,
     });
     cases.push(Case {
         name: format!("121-30-1, L = {} (all of text.png)", all.nrows()),
         network: detector,
         batch: all,
         max_vectors: None,
+        whole_photo: true,
     });
     cases.push(wide_case(512, 4096));
     Ok(cases)
@@ -289,6 +303,7 @@ fn wide_case(width: usize, l: usize) -> Case {
         network,
         batch,
         max_vectors: None,
+        whole_photo: false,
     }
 }
 
@@ -348,6 +363,7 @@ fn warm_up(gpu: &GpuMlp, case: &Case, method: Method) -> anyhow::Result<()> {
         network: case.network.clone(),
         batch: case.batch.slice(s![..l, ..]).to_owned(),
         max_vectors: case.max_vectors,
+        whole_photo: false,
     };
     run_once(gpu, &head, method)?;
     Ok(())
@@ -357,12 +373,11 @@ fn measure_case(
     gpu: &GpuMlp,
     case: &Case,
     method: Method,
-    repeats: usize,
+    rules: Runs,
 ) -> anyhow::Result<(Measurement, Array2<f32>)> {
     warm_up(gpu, case, method)?;
-    let mut runs = (0..repeats)
-        .map(|_| run_once(gpu, case, method))
-        .collect::<anyhow::Result<Vec<Run>>>()?;
+    let mut runs = rules.run(|_| run_once(gpu, case, method))?;
+    let products: Vec<f64> = runs.iter().map(|r| r.times.matmul).collect();
     let median = |f: fn(&StepTimes) -> f64| {
         let mut v: Vec<f64> = runs.iter().map(|r| f(&r.times)).collect();
         v.sort_by(f64::total_cmp);
@@ -399,6 +414,8 @@ fn measure_case(
         tiles: runs[0].tiles,
         product_passes: runs[0].product_passes.clone(),
         total_ms: times.total(),
+        runs: runs.len(),
+        matmul_spread_ms: Spread::of(&products),
         matmul_gflops: flops / (times.matmul * 1e-3) / 1e9,
         best_matmul_gflops: flops / (fastest * 1e-3) / 1e9,
         times_ms: times,
@@ -408,7 +425,71 @@ fn measure_case(
     Ok((measurement, outputs))
 }
 
-/// Fig. 2 regenerated: text.png classified on the GPU (both formulations) and the CPU; the
+/// Fig. 2 from the measurements of the case that is text.png's every pixel in one batch (the
+/// batch [`classify_gpu`] and [`classify_cpu`] make of it, with one band and the renderer's
+/// tiles): the CPU's classes are sgemm's, the GPU runs' times their medians; the faithful
+/// GPU's mask is written as Fig. 2(b).
+fn detection_of(
+    opts: &BenchOptions,
+    photo: &GrayImage,
+    measured: &[(Measurement, Array2<f32>)],
+) -> anyhow::Result<Detection> {
+    let (width, height) = photo.dimensions();
+    let outputs_of = |method: Method| {
+        measured
+            .iter()
+            .find(|(m, _)| m.method == method)
+            .expect("every method is measured on every case")
+    };
+    let cpu = outputs_of(Method::CpuOptimised).1.column(0).to_vec();
+    anyhow::ensure!(
+        cpu.len() == (width * height) as usize,
+        "Fig. 2: {} outputs for {width} x {height} pixels",
+        cpu.len()
+    );
+    photo
+        .save(opts.out_dir.join(FIG2A_FILE))
+        .with_context(|| format!("writing {FIG2A_FILE}"))?;
+    let run_of = |method: Method| -> anyhow::Result<DetectionRun> {
+        let (measurement, outputs) = outputs_of(method);
+        let out = outputs.column(0).to_vec();
+        if method == Method::GpuFaithful {
+            mask_image(&out, width, height, THRESHOLD)
+                .save(opts.out_dir.join(FIG2B_FILE))
+                .with_context(|| format!("writing {FIG2B_FILE}"))?;
+        }
+        Ok(detection_run(
+            &out,
+            &cpu,
+            measurement.times_ms,
+            measurement.runs,
+        ))
+    };
+    Ok(Detection {
+        width,
+        height,
+        cpu_text_pixels: cpu.iter().filter(|&&v| v > THRESHOLD).count(),
+        faithful: run_of(Method::GpuFaithful)?,
+        packed: run_of(Method::GpuPacked)?,
+    })
+}
+
+/// A GPU classification's text pixels and agreement with the CPU's classes.
+fn detection_run(out: &[f32], cpu: &[f32], times_ms: StepTimes, runs: usize) -> DetectionRun {
+    let same = out
+        .iter()
+        .zip(cpu)
+        .filter(|(g, c)| (**g > THRESHOLD) == (**c > THRESHOLD))
+        .count();
+    DetectionRun {
+        text_pixels: out.iter().filter(|&&v| v > THRESHOLD).count(),
+        agreement_with_cpu: same as f64 / cpu.len() as f64,
+        times_ms,
+        runs,
+    }
+}
+
+/// Fig. 2 regenerated on its own (under `--quick`): text.png classified on the GPU (both formulations) and the CPU; the
 /// test image and the faithful GPU's mask are written as Fig. 2(a) and 2(b).
 fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow::Result<Detection> {
     let net = shipped_detector()?;
@@ -430,16 +511,7 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
                 .save(opts.out_dir.join(FIG2B_FILE))
                 .with_context(|| format!("writing {FIG2B_FILE}"))?;
         }
-        let same = out
-            .iter()
-            .zip(&cpu)
-            .filter(|(g, c)| (**g > THRESHOLD) == (**c > THRESHOLD))
-            .count();
-        Ok(DetectionRun {
-            text_pixels: out.iter().filter(|&&v| v > THRESHOLD).count(),
-            agreement_with_cpu: same as f64 / cpu.len() as f64,
-            times_ms: classified.times,
-        })
+        Ok(detection_run(&out, &cpu, classified.times, 1))
     };
     let faithful = classify(Formulation::Faithful)?;
     let packed = classify(Formulation::Packed)?;

@@ -18,10 +18,12 @@ pub fn table(results: &Paper3Results) -> Table {
     };
     Table {
         caption: format!(
-            "Fig. 2: text detection on text.png ({} x {} = {} pixels, one batch; {})",
+            "Fig. 2: text detection on text.png ({} x {} = {} pixels, one batch; GPU ms: \
+             median of {} runs; {})",
             d.width,
             d.height,
             d.pixels(),
+            d.faithful.runs.max(d.packed.runs),
             results.renderer
         ),
         header: ["evaluated by", "text pixels", "same class as CPU", "GPU ms"]

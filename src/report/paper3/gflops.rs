@@ -10,8 +10,8 @@ pub fn table(results: &Paper3Results) -> Table {
     Table {
         caption: format!(
             "Matrix product throughput, every method side by side (GFLOP/s = 2 M N L / \
-             median product time; best = fastest run; max |diff| against the CPU plain loop's \
-             outputs; {})",
+             median product time; best = fastest run; runs = timed runs after a warm-up; max \
+             |diff| against the CPU plain loop's outputs; {})",
             results.renderer
         ),
         header: [
@@ -25,6 +25,7 @@ pub fn table(results: &Paper3Results) -> Table {
             "total ms",
             "GFLOP/s",
             "best GFLOP/s",
+            "runs",
             "max |diff|",
         ]
         .map(String::from)
@@ -44,6 +45,7 @@ pub fn table(results: &Paper3Results) -> Table {
                     ms(m.total_ms),
                     format!("{:.2}", m.matmul_gflops),
                     format!("{:.2}", m.best_matmul_gflops),
+                    m.runs.to_string(),
                     format!("{:.1e}", m.max_abs_diff_vs_cpu_plain),
                 ]
             })

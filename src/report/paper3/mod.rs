@@ -69,12 +69,13 @@ fn summary(results: &Paper3Results) -> String {
          paper's ATI RADEON 9700 PRO allowed, a packed variant (RGBA \
          texels, 4 x 4 outputs per fragment), the plain CPU loop the paper compared with, and \
          matrixmultiply's sgemm. GPU passes are timed with GL timer queries, texture creation \
-         and CPU work with the wall clock; each figure is the median of {} run(s) after a \
-         warm-up run; {} cores, load average {} at the end (a software renderer shares the CPU \
-         with whatever else runs).{} The batches are windows of scikit-image's text.png.",
+         and CPU work with the wall clock; each figure is the median of its runs after a \
+         warm-up run ({} runs per measurement, as the throughput table lists); {} cores, load \
+         average {} at the end (a software renderer shares the CPU with whatever else \
+         runs).{} The batches are windows of scikit-image's text.png.",
         results.renderer,
         RADEON_9700_INPUTS_PER_PASS,
-        results.repeats,
+        runs_range(results),
         std::thread::available_parallelism().map_or(0, usize::from),
         results
             .load_average_1min
@@ -85,4 +86,14 @@ fn summary(results: &Paper3Results) -> String {
             ""
         }
     )
+}
+
+/// "3" or "3-5": the fewest and most timed runs of any measurement.
+fn runs_range(results: &Paper3Results) -> String {
+    let runs = results.measurements.iter().map(|m| m.runs);
+    match (runs.clone().min(), runs.max()) {
+        (Some(a), Some(b)) if a != b => format!("{a}-{b}"),
+        (Some(a), _) => a.to_string(),
+        _ => "no".into(),
+    }
 }

@@ -34,12 +34,8 @@ fn workload(l: usize) -> (Network, Array2<f32>) {
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
     let l = if opts.quick { 1024 } else { 8192 };
-    let runs = if opts.quick { 3 } else { 7 };
+    let rules = opts.runs(3);
     let (net, batch) = workload(l);
-    let workload_text = format!(
-        "a 121-30-1 sigmoid network on {l} input vectors (the detector's shape), median of \
-         {runs} runs"
-    );
     let ctx = opts.gl;
     let gpu = GpuMlp::new(ctx)?;
     // warm-ups on the first vectors: they compile the shader variants and take llvmpipe's
@@ -50,7 +46,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
     let mut c = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut cpu = (Vec::new(), Vec::new(), Vec::new());
     let mut classic_out = None;
-    for _ in 0..runs {
+    rules.run(|_| -> anyhow::Result<()> {
         ctx.finish_all();
         let t = Instant::now();
         let r = classic.forward(batch.view(), None)?;
@@ -65,7 +61,16 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
         cpu.2.push(t.elapsed().as_secs_f64() * 1e3);
         cpu.0.push(f.product.as_secs_f64() * 1e3);
         cpu.1.push(f.activation.as_secs_f64() * 1e3);
-    }
+        Ok(())
+    })?;
+    let runs = c.4.len();
+    let workload_text = |compute_runs: Option<usize>| {
+        format!(
+            "a 121-30-1 sigmoid network on {l} input vectors (the detector's shape), median of \
+             {runs} runs{}",
+            compute_runs.map_or(String::new(), |k| format!(" ({k} of compute)"))
+        )
+    };
     let classic_rows = |compute: [Option<f64>; 5]| {
         vec![
             StageRow::new(
@@ -96,7 +101,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
         ]
     };
     if let Err(e) = ctx.require_compute("the compute formulation") {
-        let mut out = ThenAndNow::unavailable(workload_text, e.to_string(), VERDICT);
+        let mut out = ThenAndNow::unavailable(workload_text(None), e.to_string(), VERDICT);
         out.stages = classic_rows([None; 5]);
         return Ok(out);
     }
@@ -105,7 +110,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
     loaded.forward(head)?;
     let mut k = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut compute_out = None;
-    for _ in 0..runs {
+    rules.run(|_| -> anyhow::Result<()> {
         ctx.finish_all();
         let t = Instant::now();
         let r = loaded.forward(batch.view())?;
@@ -114,7 +119,9 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
         k.1.push(r.times.matmul);
         k.2.push(r.times.readback);
         compute_out = Some(r.outputs);
-    }
+        Ok(())
+    })?;
+    let compute_runs = k.3.len();
     let bound = error_bound(&net, batch.view());
     let same = match (classic_out, compute_out) {
         (Some(a), Some(b)) => a
@@ -125,7 +132,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
         _ => false,
     };
     Ok(ThenAndNow {
-        workload: workload_text,
+        workload: workload_text((compute_runs != runs).then_some(compute_runs)),
         unavailable: None,
         stages: classic_rows([
             Some(median(k.0)),
