@@ -736,6 +736,9 @@ pub fn skewed_values(n: usize, seed: u64) -> Vec<f32> {
     (0..n).map(|_| g.next_f32().powi(3)).collect()
 }
 
+/// Values of the histogram passes' warm-up.
+const WARM_UP_VALUES: usize = 256;
+
 /// Technique 7: the histogram of `values` into `bins`, blended (and gathered if asked),
 /// against the CPU's.
 pub fn histogram_row(
@@ -751,12 +754,18 @@ pub fn histogram_row(
     let equal = |h: &Histogram| -> anyhow::Result<bool> {
         Ok(h.read()?.iter().map(|&c| c as f64).eq(cpu.iter().copied()))
     };
-    let blend = gpu_ms(ctx, runs, || {
+    // Warm-up: each timed pass once over the first few values (same programs and state).
+    let few = Values::new(ctx, &values[..values.len().min(WARM_UP_VALUES)], None)?;
+    histogram.draw(&few, blend_histogram::Method::Blend)?;
+    if with_gather {
+        histogram.draw(&few, blend_histogram::Method::Gather)?;
+    }
+    let blend = gpu_ms_warm(ctx, runs, || {
         Ok(histogram.draw(&data, blend_histogram::Method::Blend)?)
     })?;
     let blend_equal = equal(&histogram)?;
     let (gather, gather_equal) = if with_gather {
-        let spread = gpu_ms(ctx, runs, || {
+        let spread = gpu_ms_warm(ctx, runs, || {
             Ok(histogram.draw(&data, blend_histogram::Method::Gather)?)
         })?;
         (Some(spread), Some(equal(&histogram)?))
