@@ -56,10 +56,11 @@ pub fn gpu_timing(ctx: &Context) -> &'static str {
     }
 }
 
-/// GPU time of `work` (its runs as [`Runs`] says, median and range), after one warm-up run: a GL timer query on a GPU; on a software
-/// rasterizer the wall clock from glFinish to glFinish, because llvmpipe's TIME_ELAPSED
-/// queries miss most of the rasterisation, which runs in its worker threads when the scene is
-/// flushed (measured here: 5 ms by the query for a pass that took 22 ms to finish).
+/// GPU time of `work` (its runs as [`Runs`] says: median and range), after one warm-up run:
+/// a GL timer query on a GPU; on a software rasterizer the wall clock from glFinish to
+/// glFinish, because llvmpipe's TIME_ELAPSED queries miss most of the rasterisation, which
+/// runs in its worker threads when the scene is flushed (measured here: 5 ms by the query for
+/// a pass that took 22 ms to finish).
 pub fn gpu_ms(
     ctx: &Context,
     runs: Runs,
