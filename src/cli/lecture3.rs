@@ -17,6 +17,7 @@ use classic_gpgpu::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
 use classic_gpgpu::lecture3::light_hierarchy::shade::Terms;
 use classic_gpgpu::lecture3::light_hierarchy::Gather;
 use classic_gpgpu::report::lecture3::{self as bench, images::pyramid_png};
+use classic_gpgpu::report::timing::Runs;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
@@ -254,8 +255,8 @@ pub fn run(cmd: &Lecture3Command, ctx: &Context, json: bool) -> anyhow::Result<(
     }
 }
 
-/// Timed runs of the commands' measurements (the median is kept).
-const RUNS: usize = 3;
+/// How often the commands repeat a timing (the median is kept): the report's policy.
+const RUNS: Runs = Runs::PAPER;
 
 fn print(json: bool, value: serde_json::Value, text: String) -> anyhow::Result<()> {
     if json {
@@ -364,13 +365,13 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         )
     };
     let first = camera(0);
-    let gpu_ms = bench::gpu_ms(ctx, RUNS, || Ok(renderer.render(&target, &first, method)?))?;
+    let gpu_ms = bench::gpu_ms(ctx, RUNS, || Ok(renderer.render(&target, &first, method)?))?.median;
     let frame = renderer.read(&target)?;
     frame.check_finished()?;
     let check = if a.no_check {
         None
     } else {
-        let cpu_ms = bench::wall_ms(1, || exact::trace_image(renderer.surface(), &first, 0.0));
+        let cpu_ms = bench::wall_once_ms(|| exact::trace_image(renderer.surface(), &first, 0.0));
         let (comparison, _) =
             ReferenceImage::trace(renderer.surface(), &first).judge(&frame.pixels());
         Some((cpu_ms, comparison))

@@ -107,25 +107,42 @@ pub struct ReferenceImage {
 
 impl ReferenceImage {
     /// Traces every pixel of `camera` (three times: exact, raised and lowered by DELTA).
+    /// The rows are shared out among the machine's cores (every pixel traced on its own, as
+    /// one thread would).
     pub fn trace(surface: &Surface, camera: &Camera) -> ReferenceImage {
-        let eye = camera.eye.as_dvec3();
-        let scale = surface.world_to_grid().as_dvec3();
-        let (wp, hp) = surface.patches();
-        let pixels = (0..camera.width * camera.height)
-            .map(|i| {
-                let dir = camera.pixel_direction(i % camera.width, i / camera.width);
-                // Silhouette pixels: rasterisation and the analytic box may disagree there.
-                match box_interval(eye * scale, dir * scale, wp as f64, hp as f64) {
-                    Some((t0, t1)) if t1 - t0 > SLACK => Some(Reference {
-                        exact: trace(surface, eye, dir, 0.0),
-                        raised: trace(surface, eye, dir, DELTA),
-                        lowered: trace(surface, eye, dir, -DELTA),
-                    }),
-                    _ => None,
+        let (width, height) = (camera.width as usize, camera.height as usize);
+        let threads = std::thread::available_parallelism()
+            .map_or(1, |n| n.get())
+            .clamp(1, height.max(1));
+        let mut rows: Vec<Vec<Option<Reference>>> = (0..height).map(|_| Vec::new()).collect();
+        std::thread::scope(|scope| {
+            let workers: Vec<_> = (0..threads)
+                .map(|t| {
+                    scope.spawn(move || {
+                        (t..height)
+                            .step_by(threads)
+                            .map(|y| {
+                                let row = (0..width)
+                                    .map(|x| reference(surface, camera, x as u32, y as u32))
+                                    .collect::<Vec<_>>();
+                                (y, row)
+                            })
+                            .collect::<Vec<_>>()
+                    })
+                })
+                .collect();
+            for worker in workers {
+                let done = worker
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                for (y, row) in done {
+                    rows[y] = row;
                 }
-            })
-            .collect();
-        ReferenceImage { pixels }
+            }
+        });
+        ReferenceImage {
+            pixels: rows.into_iter().flatten().collect(),
+        }
     }
 
     /// Judges a frame of the same view.
@@ -162,6 +179,23 @@ impl ReferenceImage {
             })
             .collect();
         (c, verdicts)
+    }
+}
+
+/// The exact tracer's answers for pixel (x, y) of `camera`, `None` if not compared.
+fn reference(surface: &Surface, camera: &Camera, x: u32, y: u32) -> Option<Reference> {
+    let eye = camera.eye.as_dvec3();
+    let scale = surface.world_to_grid().as_dvec3();
+    let (wp, hp) = surface.patches();
+    let dir = camera.pixel_direction(x, y);
+    // Silhouette pixels: rasterisation and the analytic box may disagree there.
+    match box_interval(eye * scale, dir * scale, wp as f64, hp as f64) {
+        Some((t0, t1)) if t1 - t0 > SLACK => Some(Reference {
+            exact: trace(surface, eye, dir, 0.0),
+            raised: trace(surface, eye, dir, DELTA),
+            lowered: trace(surface, eye, dir, -DELTA),
+        }),
+        _ => None,
     }
 }
 

@@ -78,6 +78,23 @@ impl GatherPasses {
         pass.draw_full()
     }
 
+    /// Both gather programs drawn once with one node per receiver (the brute force over one
+    /// VPL, the tree from a level-0 root): their shader variants compiled and their textures
+    /// bound, at a small part of a gather's cost. The target is left with that partial sum.
+    pub fn warm_up(&self, gbuffer: &GBuffer, clusters: &GpuClusters) -> Result<(), GlError> {
+        self.target.clear_colors([0.0; 4])?;
+        let mut pass = self
+            .target
+            .pass(&self.brute, "warm up the brute-force gather")?;
+        bind_common(&mut pass, gbuffer, clusters);
+        pass.uniform("u_size", 1i32);
+        pass.draw_full()?;
+        let mut pass = self.target.pass(&self.tree, "warm up the tree gather")?;
+        bind_common(&mut pass, gbuffer, clusters);
+        pass.uniform("u_top", 0i32).uniform("u_theta", 0.0f32);
+        pass.draw_full()
+    }
+
     /// The gathered irradiance (rgb) and nodes visited, per pixel, row by row from the bottom.
     pub fn read(&self) -> Result<Vec<[f32; 4]>, GlError> {
         let rect = Rect::sized(self.target.width(), self.target.height());

@@ -77,6 +77,13 @@ impl IndirectLighting {
         Ok(())
     }
 
+    /// Both gathers' programs run once at a small part of their cost
+    /// ([`GatherPasses::warm_up`]), before they are timed.
+    pub fn warm_up_gathers(&self) -> Result<(), Error> {
+        self.gathers.warm_up(&self.gbuffer, &self.clusters)?;
+        Ok(())
+    }
+
     /// The picture of the last gather, into [`ShadePass::target`].
     pub fn shade(&self, terms: Terms, exposure: f32) -> Result<(), Error> {
         self.shade.shade(

@@ -22,22 +22,29 @@ use crate::lecture3::random_texture::statistics::{
 };
 use crate::lecture3::random_texture::{HybridTaus, RandomTexture};
 use crate::lecture3::HeightMap;
+use crate::report::timing::{Runs, Spread};
 use crate::report::BenchOptions;
 use std::path::Path;
 use std::time::Instant;
 
-/// Timed runs per measurement (the median is kept).
-pub fn runs(quick: bool) -> usize {
-    if quick {
-        3
-    } else {
-        5
-    }
+/// How many times the section repeats one timing: `--runs` when given, else exactly 3
+/// under `--quick`, else the report's policy ([`Runs::PAPER`]).
+pub fn runs(opts: &BenchOptions) -> Runs {
+    opts.runs(3)
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+/// The runs of `runs` in words, for the summary.
+pub fn runs_text(runs: Runs) -> String {
+    if runs.min == runs.max {
+        format!("exactly {} runs", runs.min)
+    } else {
+        format!(
+            "{} runs, up to {} while they took under {} s in all",
+            runs.min,
+            runs.max,
+            runs.budget.as_secs_f64()
+        )
+    }
 }
 
 /// How [`gpu_ms`] times GPU work on this renderer.
@@ -49,15 +56,16 @@ pub fn gpu_timing(ctx: &Context) -> &'static str {
     }
 }
 
-/// Median GPU time of `work`, after one warm-up run: a GL timer query on a GPU; on a software
-/// rasterizer the wall clock from glFinish to glFinish, because llvmpipe's TIME_ELAPSED
-/// queries miss most of the rasterisation, which runs in its worker threads when the scene is
-/// flushed (measured here: 5 ms by the query for a pass that took 22 ms to finish).
+/// GPU time of `work` (its runs as [`Runs`] says: median and range), after one warm-up run:
+/// a GL timer query on a GPU; on a software rasterizer the wall clock from glFinish to
+/// glFinish, because llvmpipe's TIME_ELAPSED queries miss most of the rasterisation, which
+/// runs in its worker threads when the scene is flushed (measured here: 5 ms by the query for
+/// a pass that took 22 ms to finish).
 pub fn gpu_ms(
     ctx: &Context,
-    runs: usize,
+    runs: Runs,
     mut work: impl FnMut() -> anyhow::Result<()>,
-) -> anyhow::Result<f64> {
+) -> anyhow::Result<Spread> {
     work()?;
     gpu_ms_warm(ctx, runs, work)
 }
@@ -67,49 +75,54 @@ pub fn gpu_ms(
 /// of the same pass (the one whose result it checks) or the previous point of a sweep.
 pub fn gpu_ms_warm(
     ctx: &Context,
-    runs: usize,
+    runs: Runs,
     mut work: impl FnMut() -> anyhow::Result<()>,
-) -> anyhow::Result<f64> {
+) -> anyhow::Result<Spread> {
     ctx.finish_all();
     let software = ctx.info().is_software();
     let query = TimerQuery::new(ctx)?;
-    let mut times = Vec::with_capacity(runs);
-    for _ in 0..runs.max(1) {
+    let times = runs.run(|_| -> anyhow::Result<f64> {
         if software {
             ctx.finish_all();
             let start = Instant::now();
             work()?;
             ctx.finish_all();
-            times.push(start.elapsed().as_secs_f64() * 1e3);
+            Ok(start.elapsed().as_secs_f64() * 1e3)
         } else {
             query.begin();
             let done = work();
             query.end();
             done?;
-            times.push(query.milliseconds()?);
+            Ok(query.milliseconds()?)
         }
-    }
-    Ok(median(times))
+    })?;
+    Ok(Spread::of(&times))
 }
 
-/// Median wall clock of `work`.
-pub fn wall_ms<T>(runs: usize, mut work: impl FnMut() -> T) -> f64 {
-    median(
-        (0..runs.max(1))
-            .map(|_| {
-                let start = Instant::now();
-                std::hint::black_box(work());
-                start.elapsed().as_secs_f64() * 1e3
-            })
-            .collect(),
-    )
+/// Wall clock of `work` (its runs as [`Runs`] says, median and range).
+pub fn wall_ms<T>(runs: Runs, mut work: impl FnMut() -> T) -> Spread {
+    let times = runs
+        .run(|_| {
+            let start = Instant::now();
+            std::hint::black_box(work());
+            Ok::<_, std::convert::Infallible>(start.elapsed().as_secs_f64() * 1e3)
+        })
+        .unwrap_or_else(|never| match never {});
+    Spread::of(&times)
+}
+
+/// Wall clock of one run of `work`, for CPU references of seconds timed once.
+pub fn wall_once_ms<T>(work: impl FnOnce() -> T) -> f64 {
+    let start = Instant::now();
+    std::hint::black_box(work());
+    start.elapsed().as_secs_f64() * 1e3
 }
 
 /// Everything, at the section's sizes.
 pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lecture3Results> {
     let ctx = opts.gl;
     let quick = opts.quick;
-    let runs = runs(quick);
+    let runs = runs(opts);
     let map = match height {
         Some(path) => HeightMap::load(path, ctx.info().limits.max_texture_size)?,
         None => HeightMap::generated(crate::lecture3::height_map::SHIPPED_SIZE),
@@ -172,7 +185,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         software: ctx.info().is_software(),
         gpu_timing: gpu_timing(ctx).into(),
         quick,
-        runs,
+        runs: runs_text(runs),
         pyramid,
         displacement,
         light,
@@ -185,25 +198,29 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
 
 /// Technique 1 on one map: the max and min pyramids on the GPU against the CPU's, and the
 /// times of the level passes and of the CPU pyramid.
-pub fn pyramid_row(ctx: &Context, map: &HeightMap, runs: usize) -> anyhow::Result<PyramidRow> {
+pub fn pyramid_row(ctx: &Context, map: &HeightMap, runs: Runs) -> anyhow::Result<PyramidRow> {
     let builder = PyramidBuilder::new(ctx)?;
     let (w, h) = (map.width(), map.height());
     let mut equal = true;
-    let mut gpu = 0.0;
+    let mut gpu = Spread::default();
     for extreme in [Extreme::Max, Extreme::Min] {
         let pyramid = builder.from_image(w, h, map.heights(), extreme)?;
         equal &= pyramid.read_levels()? == cpu_pyramid(w, h, map.heights(), extreme);
         if extreme == Extreme::Max {
-            gpu = gpu_ms(ctx, runs, || Ok(builder.build_levels(&pyramid)?))?;
+            // `from_image` drew the same levels with the same program: the warm-up.
+            gpu = gpu_ms_warm(ctx, runs, || Ok(builder.build_levels(&pyramid)?))?;
         }
     }
     let levels = crate::lecture3::pyramid::level_count(w, h);
+    let cpu = wall_ms(runs, || cpu_pyramid(w, h, map.heights(), Extreme::Max));
     Ok(PyramidRow {
         size: w.max(h),
         levels,
         equal_to_cpu: equal,
-        gpu_ms: gpu,
-        cpu_ms: wall_ms(runs, || cpu_pyramid(w, h, map.heights(), Extreme::Max)),
+        gpu_ms: gpu.median,
+        gpu_spread: gpu,
+        cpu_ms: cpu.median,
+        cpu_spread: cpu,
     })
 }
 
@@ -219,7 +236,7 @@ fn displacement(
     opts: &BenchOptions,
     map: HeightMap,
     map_name: String,
-    runs: usize,
+    runs: Runs,
 ) -> anyhow::Result<DisplacementRun> {
     let ctx = opts.gl;
     let image = if opts.quick { 96 } else { 256 };
@@ -306,7 +323,7 @@ pub fn artifact_row(
 }
 
 /// One map size: pyramid and relief frames timed, against the exact CPU tracer.
-pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: usize) -> anyhow::Result<SpeedRow> {
+pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: Runs) -> anyhow::Result<SpeedRow> {
     let surface = Surface::new(HeightMap::generated(size), DEPTH)?;
     let renderer = DisplacementRenderer::new(ctx, surface)?;
     let camera = Camera::orbit(
@@ -318,7 +335,21 @@ pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: usize) -> anyhow::R
         image,
     );
     let target = renderer.target(image, image)?;
-    let pyramid_ms = gpu_ms(ctx, runs, || {
+    // Warm-up: both programs once on a small frame of the same view (their shader variants
+    // compiled), not a full frame each.
+    let small = Camera::orbit(
+        renderer.surface().centre(),
+        DISTANCE,
+        225.0,
+        30.0,
+        WARM_UP_SIDE,
+        WARM_UP_SIDE,
+    );
+    let warm = renderer.target(WARM_UP_SIDE, WARM_UP_SIDE)?;
+    for method in [Method::Pyramid, Method::RELIEF] {
+        renderer.render(&warm, &small, method)?;
+    }
+    let pyramid = gpu_ms_warm(ctx, runs, || {
         Ok(renderer.render(&target, &camera, Method::Pyramid)?)
     })?;
     let frame = renderer.read(&target)?;
@@ -331,26 +362,31 @@ pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: usize) -> anyhow::R
             _ => None,
         })
         .collect();
-    let relief_ms = gpu_ms(ctx, runs, || {
+    let relief = gpu_ms_warm(ctx, runs, || {
         Ok(renderer.render(&target, &camera, Method::RELIEF)?)
     })?;
-    let cpu_ms = wall_ms(1, || exact::trace_image(renderer.surface(), &camera, 0.0));
+    let cpu_ms = wall_once_ms(|| exact::trace_image(renderer.surface(), &camera, 0.0));
     Ok(SpeedRow {
         map_size: size,
         levels: renderer.bounds().levels(),
-        pyramid_ms,
+        pyramid_ms: pyramid.median,
+        pyramid_spread: pyramid,
         pyramid_iterations: iterations.iter().map(|&i| i as f64).sum::<f64>()
             / iterations.len().max(1) as f64,
-        relief_ms,
+        relief_ms: relief.median,
+        relief_spread: relief,
         cpu_ms,
         hit_pixels: iterations.len(),
     })
 }
 
+/// Side of the small frame that warms up the displacement programs.
+const WARM_UP_SIDE: u32 = 16;
+
 /// The criteria of the error/speed plot.
 pub const THETAS: [f32; 8] = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5];
 
-fn light(opts: &BenchOptions, runs: usize) -> anyhow::Result<LightRun> {
+fn light(opts: &BenchOptions, runs: Runs) -> anyhow::Result<LightRun> {
     let (vpl_side, side) = if opts.quick { (32, 128) } else { (64, 256) };
     let (run, lighting, brute_pictures) = light_run(
         opts.gl,
@@ -370,30 +406,30 @@ fn light(opts: &BenchOptions, runs: usize) -> anyhow::Result<LightRun> {
 /// is in its target (for pictures); what it returns is returned. Returns the pipeline too,
 /// for pictures.
 ///
-/// Each gather pass is run the fewest times the timings allow: the untimed brute-force gather
-/// whose result is checked is also the warm-up of the timed ones, and the criteria are timed
-/// from the cheapest (largest theta) to the dearest, so that only the cheapest needs a
-/// warm-up run: the tree program is then warm for the others (the criterion is a uniform).
+/// Each gather pass is run the fewest times the timings allow: both gather programs are
+/// warmed up once with one node per receiver ([`IndirectLighting::warm_up_gathers`]), and
+/// the brute-force gather that is checked (and pictured) is the last timed one, still in its
+/// target (every run draws the same).
 pub fn light_run<T>(
     ctx: &Context,
     vpl_side: u32,
     width: u32,
     height: u32,
     thetas: &[f32],
-    runs: usize,
+    runs: Runs,
     with_brute_force: impl FnOnce(&IndirectLighting) -> anyhow::Result<T>,
 ) -> anyhow::Result<(LightRun, IndirectLighting, T)> {
     let lighting = IndirectLighting::new(ctx, Scene::room(), vpl_side, width, height)?;
-    let build_ms = gpu_ms(ctx, runs, || Ok(lighting.build_lights()?))?;
+    let build = gpu_ms(ctx, runs, || Ok(lighting.build_lights()?))?;
     lighting.draw_receivers()?;
-    lighting.gather(Gather::BruteForce)?;
+    lighting.warm_up_gathers()?;
+    let brute_gpu = gpu_ms_warm(ctx, runs, || Ok(lighting.gather(Gather::BruteForce)?))?;
     let brute = lighting.gathers.read()?;
     let seen = with_brute_force(&lighting)?;
-    let brute_gpu_ms = gpu_ms_warm(ctx, runs, || Ok(lighting.gather(Gather::BruteForce)?))?;
     let receivers = lighting.gbuffer.receivers()?;
     let levels = lighting.clusters.read_atlas_levels()?;
     let mut cpu = Vec::new();
-    let brute_cpu_ms = wall_ms(1, || {
+    let brute_cpu_ms = wall_once_ms(|| {
         cpu = receivers
             .iter()
             .map(|r| r.map(|r| brute_force(&r, &levels[0], MIN_DISTANCE as f64)))
@@ -409,19 +445,10 @@ pub fn light_run<T>(
         })
         .fold(0.0, f64::max);
     let covered = receivers.iter().filter(|r| r.is_some()).count();
-    // Cheapest criterion first; the rows keep the order of `thetas`.
-    let mut order: Vec<usize> = (0..thetas.len()).collect();
-    order.sort_by(|&a, &b| thetas[b].total_cmp(&thetas[a]));
-    let mut rows: Vec<Option<LightRow>> = vec![None; thetas.len()];
-    for (k, &i) in order.iter().enumerate() {
-        let theta = thetas[i];
+    let mut rows = Vec::with_capacity(thetas.len());
+    for &theta in thetas {
         let gather = Gather::tree(theta)?;
-        let work = || Ok(lighting.gather(gather)?);
-        let gpu_ms = if k == 0 {
-            gpu_ms(ctx, runs, work)?
-        } else {
-            gpu_ms_warm(ctx, runs, work)?
-        };
+        let gpu = gpu_ms_warm(ctx, runs, || Ok(lighting.gather(gather)?))?;
         let tree = lighting.gathers.read()?;
         let (mut err, mut norm, mut nodes) = (0.0, 0.0, 0.0);
         for ((t, b), r) in tree.iter().zip(&brute).zip(&receivers) {
@@ -434,11 +461,12 @@ pub fn light_run<T>(
             }
             nodes += t[3] as f64;
         }
-        rows[i] = Some(LightRow {
+        rows.push(LightRow {
             theta,
             relative_rms_error: (err / norm).sqrt(),
             mean_nodes: nodes / covered.max(1) as f64,
-            gpu_ms,
+            gpu_ms: gpu.median,
+            gpu_spread: gpu,
         });
     }
     let vpls = levels[0].nodes.iter().filter(|v| v.weight > 0.0).count();
@@ -448,11 +476,13 @@ pub fn light_run<T>(
             vpls,
             image: (width, height),
             receivers: covered,
-            build_ms,
-            brute_gpu_ms,
+            build_ms: build.median,
+            build_spread: build,
+            brute_gpu_ms: brute_gpu.median,
+            brute_gpu_spread: brute_gpu,
             brute_cpu_ms,
             brute_gpu_vs_cpu,
-            rows: rows.into_iter().flatten().collect(),
+            rows,
         },
         lighting,
         seen,
@@ -463,7 +493,7 @@ pub fn light_run<T>(
 pub const TEXELS: [u32; 5] = [16, 64, 256, 1024, 4096];
 
 /// Technique 4: errors per table size, and the speed of computing against looking up.
-pub fn function(ctx: &Context, quick: bool, runs: usize) -> anyhow::Result<FunctionRun> {
+pub fn function(ctx: &Context, quick: bool, runs: Runs) -> anyhow::Result<FunctionRun> {
     let side = if quick { 128 } else { 256 };
     let per_pixel = if quick { 16 } else { 64 };
     let passes = FunctionPasses::new(ctx, side, side)?;
@@ -512,17 +542,20 @@ pub fn function_speed_row(
     f: Function,
     texels: u32,
     per_pixel: u32,
-    runs: usize,
+    runs: Runs,
 ) -> anyhow::Result<FunctionSpeedRow> {
     let table = FunctionTable::new(ctx, f, texels)?;
-    let exact_ms = gpu_ms(ctx, runs, || {
+    // Warm-up: both programs once at one value per pixel (the values per pixel are a uniform).
+    passes.run(Evaluation::Exact(f), 1)?;
+    passes.run(Evaluation::Lookup(&table), 1)?;
+    let exact = gpu_ms_warm(ctx, runs, || {
         Ok(passes.run(Evaluation::Exact(f), per_pixel)?)
     })?;
-    let lookup_ms = gpu_ms(ctx, runs, || {
+    let lookup = gpu_ms_warm(ctx, runs, || {
         Ok(passes.run(Evaluation::Lookup(&table), per_pixel)?)
     })?;
     let total = passes.total(per_pixel);
-    let cpu_ms = wall_ms(1, || {
+    let cpu_ms = wall_once_ms(|| {
         (0..total)
             .map(|s| f.exact(sample_x(f, s, total)))
             .sum::<f64>()
@@ -530,8 +563,10 @@ pub fn function_speed_row(
     Ok(FunctionSpeedRow {
         function: f.name().into(),
         evaluations: total,
-        exact_ms,
-        lookup_ms,
+        exact_ms: exact.median,
+        exact_spread: exact,
+        lookup_ms: lookup.median,
+        lookup_spread: lookup,
         cpu_ms,
     })
 }
@@ -543,7 +578,7 @@ pub fn random(
     side: u32,
     steps: usize,
     seed: u64,
-    runs: usize,
+    runs: Runs,
 ) -> anyhow::Result<RandomRun> {
     let ctx = opts.gl;
     let gpu = RandomTexture::new(ctx, side, side, seed)?;
@@ -561,8 +596,9 @@ pub fn random(
     }
     let states: Vec<u32> = cpu.iter().flat_map(|g| g.z).collect();
     bit_exact &= gpu.states()? == states;
-    let gpu_ms_per_step = gpu_ms(ctx, runs, || Ok(gpu.step()?))?;
-    let cpu_ms_per_step = wall_ms(runs, || cpu.iter_mut().map(|g| g.next_f32()).sum::<f32>());
+    // The checked steps above were the warm-up.
+    let gpu_step = gpu_ms_warm(ctx, runs, || Ok(gpu.step()?))?;
+    let cpu_step = wall_ms(runs, || cpu.iter_mut().map(|g| g.next_f32()).sum::<f32>());
     let all: Vec<f32> = streams.iter().flatten().copied().collect();
     let serial: Vec<(f32, f32)> = streams
         .iter()
@@ -590,8 +626,10 @@ pub fn random(
         side,
         steps,
         bit_exact,
-        gpu_ms_per_step,
-        cpu_ms_per_step,
+        gpu_ms_per_step: gpu_step.median,
+        gpu_spread: gpu_step,
+        cpu_ms_per_step: cpu_step.median,
+        cpu_spread: cpu_step,
         chi_square: chi_square(&all, 64),
         chi_square_critical: chi_square_critical(63.0, 3.09),
         serial_correlation: correlation(&serial),
@@ -604,7 +642,7 @@ pub fn random(
 /// The mask fractions of the depth-mask table.
 pub const FRACTIONS: [f32; 5] = [0.05, 0.25, 0.5, 0.75, 1.0];
 
-fn depth_mask(opts: &BenchOptions, quick: bool, runs: usize) -> anyhow::Result<DepthMaskRun> {
+fn depth_mask(opts: &BenchOptions, quick: bool, runs: Runs) -> anyhow::Result<DepthMaskRun> {
     let (side, iterations) = if quick { (128, 64) } else { (256, 256) };
     let mut rows = Vec::new();
     let expensive = depth_mask::cpu_expensive(side, side, iterations);
@@ -653,7 +691,7 @@ pub fn depth_mask_row(
     fraction: f32,
     iterations: u32,
     expensive: Option<&[f64]>,
-    runs: usize,
+    runs: Runs,
 ) -> anyhow::Result<DepthMaskRow> {
     depth_mask::check_parameters(fraction, iterations)?;
     let (cpu, active) = match expensive {
@@ -670,21 +708,25 @@ pub fn depth_mask_row(
     let mut max_error = error(passes.read()?);
     let masked_fragments = passes.run_masked(fraction, iterations)?;
     max_error = max_error.max(error(passes.read()?));
+    // The checked runs above were the warm-up.
+    let branching = gpu_ms_warm(ctx, runs, || {
+        passes.run_branching(fraction, iterations)?;
+        Ok(())
+    })?;
+    let masked = gpu_ms_warm(ctx, runs, || {
+        passes.run_masked(fraction, iterations)?;
+        Ok(())
+    })?;
     Ok(DepthMaskRow {
         mask: shape,
         fraction,
         active,
         masked_fragments,
         branching_fragments,
-        // The checked runs above were the warm-up.
-        branching_ms: gpu_ms_warm(ctx, runs, || {
-            passes.run_branching(fraction, iterations)?;
-            Ok(())
-        })?,
-        masked_ms: gpu_ms_warm(ctx, runs, || {
-            passes.run_masked(fraction, iterations)?;
-            Ok(())
-        })?,
+        branching_ms: branching.median,
+        branching_spread: branching,
+        masked_ms: masked.median,
+        masked_spread: masked,
         max_error,
     })
 }
@@ -695,6 +737,9 @@ pub fn skewed_values(n: usize, seed: u64) -> Vec<f32> {
     (0..n).map(|_| g.next_f32().powi(3)).collect()
 }
 
+/// Values of the histogram passes' warm-up.
+const WARM_UP_VALUES: usize = 256;
+
 /// Technique 7: the histogram of `values` into `bins`, blended (and gathered if asked),
 /// against the CPU's.
 pub fn histogram_row(
@@ -702,7 +747,7 @@ pub fn histogram_row(
     values: &[f32],
     bins: Bins,
     with_gather: bool,
-    runs: usize,
+    runs: Runs,
 ) -> anyhow::Result<HistogramRow> {
     let (cpu, _) = blend_histogram::cpu_histogram(values, None, &bins);
     let data = Values::new(ctx, values, None)?;
@@ -710,25 +755,35 @@ pub fn histogram_row(
     let equal = |h: &Histogram| -> anyhow::Result<bool> {
         Ok(h.read()?.iter().map(|&c| c as f64).eq(cpu.iter().copied()))
     };
-    let blend_ms = gpu_ms(ctx, runs, || {
+    // Warm-up: each timed pass once over the first few values (same programs and state).
+    let few = Values::new(ctx, &values[..values.len().min(WARM_UP_VALUES)], None)?;
+    histogram.draw(&few, blend_histogram::Method::Blend)?;
+    if with_gather {
+        histogram.draw(&few, blend_histogram::Method::Gather)?;
+    }
+    let blend = gpu_ms_warm(ctx, runs, || {
         Ok(histogram.draw(&data, blend_histogram::Method::Blend)?)
     })?;
     let blend_equal = equal(&histogram)?;
-    let (gather_ms, gather_equal) = if with_gather {
-        let ms = gpu_ms(ctx, runs, || {
+    let (gather, gather_equal) = if with_gather {
+        let spread = gpu_ms_warm(ctx, runs, || {
             Ok(histogram.draw(&data, blend_histogram::Method::Gather)?)
         })?;
-        (Some(ms), Some(equal(&histogram)?))
+        (Some(spread), Some(equal(&histogram)?))
     } else {
         (None, None)
     };
+    let cpu = wall_ms(runs, || blend_histogram::cpu_histogram(values, None, &bins));
     Ok(HistogramRow {
         values: values.len(),
         bins: bins.bins,
         blend_equal,
         gather_equal,
-        blend_ms,
-        gather_ms,
-        cpu_ms: wall_ms(runs, || blend_histogram::cpu_histogram(values, None, &bins)),
+        blend_ms: blend.median,
+        blend_spread: blend,
+        gather_ms: gather.map(|g| g.median),
+        gather_spread: gather,
+        cpu_ms: cpu.median,
+        cpu_spread: cpu,
     })
 }

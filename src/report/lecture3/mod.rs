@@ -86,8 +86,8 @@ fn summary(r: &Lecture3Results) -> String {
          texture, (5) random numbers generated into a texture, (6) an if removed with the depth \
          buffer, (7) a histogram by additive blending. The sources' full texts are not \
          available: the algorithms are reconstructed from their abstracts and the standard \
-         formulations (see the fidelity table). Times are medians of {} runs on {}, GPU times \
-         by {}{}.{}",
+         formulations (see the fidelity table). Times are medians ({} per timing; results.json \
+         gives each timing's runs, min and max) on {}, GPU times by {}{}.{}",
         r.runs,
         r.renderer,
         r.gpu_timing,

@@ -2,6 +2,7 @@
 
 use crate::lecture3::depth_mask::MaskShape;
 use crate::lecture3::displacement::compare::Comparison;
+use crate::report::timing::Spread;
 use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
@@ -15,8 +16,9 @@ pub struct Lecture3Results {
     /// How GPU times were taken ([`super::bench::gpu_ms`]).
     pub gpu_timing: String,
     pub quick: bool,
-    /// Timed runs per measurement (the median is kept).
-    pub runs: usize,
+    /// How often each repeated timing ran (the median is kept; each `*_spread` beside a
+    /// time gives its runs, median, min and max).
+    pub runs: String,
     pub pyramid: Vec<PyramidRow>,
     pub displacement: DisplacementRun,
     pub light: LightRun,
@@ -35,8 +37,10 @@ pub struct PyramidRow {
     pub equal_to_cpu: bool,
     /// Median GPU time of the level passes, level 0 uploaded beforehand.
     pub gpu_ms: f64,
+    pub gpu_spread: Spread,
     /// Median wall clock of the CPU pyramid (one extreme).
     pub cpu_ms: f64,
+    pub cpu_spread: Spread,
 }
 
 /// Technique 2.
@@ -74,10 +78,12 @@ pub struct SpeedRow {
     pub levels: u32,
     /// Median GPU time of a pyramid-traversal frame.
     pub pyramid_ms: f64,
+    pub pyramid_spread: Spread,
     /// Mean loop iterations of the traversal per pixel that hits.
     pub pyramid_iterations: f64,
     /// Median GPU time of a relief-mapping frame (32 + 8 steps).
     pub relief_ms: f64,
+    pub relief_spread: Spread,
     /// Wall clock of the exact CPU tracer for the same frame (f64, one thread).
     pub cpu_ms: f64,
     /// Pixels of the pyramid frame that hit the surface.
@@ -95,7 +101,9 @@ pub struct LightRun {
     pub receivers: usize,
     /// GPU time of the VPL pass, the cluster passes and the atlas copies.
     pub build_ms: f64,
+    pub build_spread: Spread,
     pub brute_gpu_ms: f64,
+    pub brute_gpu_spread: Spread,
     /// The brute-force sum on the CPU (f64, one thread) over every receiver.
     pub brute_cpu_ms: f64,
     /// Largest |GPU - CPU| of the brute force, relative to the pixel's value.
@@ -112,6 +120,7 @@ pub struct LightRow {
     /// Mean nodes visited per receiver.
     pub mean_nodes: f64,
     pub gpu_ms: f64,
+    pub gpu_spread: Spread,
 }
 
 /// Technique 4.
@@ -141,8 +150,10 @@ pub struct FunctionSpeedRow {
     pub evaluations: u64,
     /// Computed in the shader.
     pub exact_ms: f64,
+    pub exact_spread: Spread,
     /// Looked up in a 256-texel table.
     pub lookup_ms: f64,
+    pub lookup_spread: Spread,
     /// The same evaluations on the CPU (f64, one thread).
     pub cpu_ms: f64,
 }
@@ -155,7 +166,9 @@ pub struct RandomRun {
     /// States and numbers equal to the CPU generator's after every step.
     pub bit_exact: bool,
     pub gpu_ms_per_step: f64,
+    pub gpu_spread: Spread,
     pub cpu_ms_per_step: f64,
+    pub cpu_spread: Spread,
     pub chi_square: f64,
     pub chi_square_critical: f64,
     pub serial_correlation: f64,
@@ -184,8 +197,10 @@ pub struct DepthMaskRow {
     /// Fragments of the branching shader (every pixel).
     pub branching_fragments: u64,
     pub branching_ms: f64,
+    pub branching_spread: Spread,
     /// Both passes of the depth-masked version.
     pub masked_ms: f64,
+    pub masked_spread: Spread,
     /// Largest |GPU - CPU| of either picture.
     pub max_error: f64,
 }
@@ -200,6 +215,9 @@ pub struct HistogramRow {
     /// Gathered counts equal to the CPU's (when run).
     pub gather_equal: Option<bool>,
     pub blend_ms: f64,
+    pub blend_spread: Spread,
     pub gather_ms: Option<f64>,
+    pub gather_spread: Option<Spread>,
     pub cpu_ms: f64,
+    pub cpu_spread: Spread,
 }
