@@ -596,6 +596,13 @@ pub fn random(
     }
     let states: Vec<u32> = cpu.iter().flat_map(|g| g.z).collect();
     bit_exact &= gpu.states()? == states;
+    // The picture is the last checked step (the numbers the histogram below counts), taken
+    // before the timed steps move the generators on by as many steps as the runs take.
+    crate::gl::dump::texture_png(
+        gpu.value_texture(),
+        &opts.out_dir.join(images::RANDOM_PNG),
+        crate::gl::dump::DumpRange::Fixed(0.0, 1.0),
+    )?;
     // The checked steps above were the warm-up.
     let gpu_step = gpu_ms_warm(ctx, runs, || Ok(gpu.step()?))?;
     let cpu_step = wall_ms(runs, || cpu.iter_mut().map(|g| g.next_f32()).sum::<f32>());
@@ -616,11 +623,6 @@ pub fn random(
     histogram.draw(
         &Values::new(ctx, &last, None)?,
         blend_histogram::Method::Blend,
-    )?;
-    crate::gl::dump::texture_png(
-        gpu.value_texture(),
-        &opts.out_dir.join(images::RANDOM_PNG),
-        crate::gl::dump::DumpRange::Fixed(0.0, 1.0),
     )?;
     Ok(RandomRun {
         side,
