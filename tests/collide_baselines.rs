@@ -104,3 +104,29 @@ fn unknown_scene_names_the_choices() {
         "{err}"
     );
 }
+
+/// CULLIDE's warm-up (the object level only, before the timed frames) changes nothing that
+/// a frame finds: the same pairs, survivors and query count as without it.
+#[test]
+fn a_cullide_warm_up_leaves_the_frames_unchanged() {
+    let ctx = context();
+    let scene = Scene::build("merging-tori", Some(800)).unwrap();
+    let (x, y) = (&scene.x.rest, &scene.y.rest);
+    let sx = AabbStream::build(x, 8).unwrap();
+    let sy = AabbStream::build(y, 8).unwrap();
+    let mut cold = Cullide::new(&ctx, (x, &sx), (y, &sy), 512).unwrap();
+    let mut warm = Cullide::new(&ctx, (x, &sx), (y, &sy), 512).unwrap();
+    let (px, py) = scene.frame(0);
+    warm.warm_up(&px, &py).unwrap();
+    for f in [1, 5] {
+        let (px, py) = scene.frame(f);
+        let a = cold.frame(&px, &py, Predicate::Moller).unwrap();
+        let b = warm.frame(&px, &py, Predicate::Moller).unwrap();
+        assert!(!a.pairs.is_empty(), "frame {f}");
+        assert_eq!(
+            (&a.pairs, a.survivors, a.pctps, a.queries),
+            (&b.pairs, b.survivors, b.pctps, b.queries),
+            "frame {f}"
+        );
+    }
+}

@@ -360,6 +360,50 @@ fn a_shared_calibration_serves_auto_and_none_is_an_error() {
     assert_eq!(r.pairs, expected);
 }
 
+/// `auto` calibrated lazily (the bench's colliders) measures only the point nearest to the
+/// frame's eta, on the same P0 contents as the whole calibration's point there (same CAPs
+/// and clustering, so the same random fills), finds the brute-force pairs, and hands the
+/// point on to the next collider of its size, which measures nothing again.
+#[test]
+fn a_lazy_calibration_measures_only_the_points_frames_need() {
+    use classic_gpgpu::collide::pipeline::LazyCalibration;
+    use classic_gpgpu::collide::reduction_gpu::{nearest, CALIBRATION_ETAS};
+    let ctx = context();
+    let x = soup(150, 0.1, 81);
+    let y = soup(150, 0.1, 82);
+    let whole = StreamingCollider::new(&ctx, &x, &y, options(ReadbackMode::Auto, 1)).unwrap();
+    let mut lazy =
+        StreamingCollider::new_uncalibrated(&ctx, &x, &y, options(ReadbackMode::Auto, 1)).unwrap();
+    lazy.calibrate_lazily(LazyCalibration::new(&CALIBRATION_ETAS, 1));
+    let r = lazy.frame(&x.positions, &y.positions).unwrap();
+    let expected = all_pairs(&x, &x.positions, &y, &y.positions, Predicate::Moller);
+    assert!(!expected.is_empty());
+    assert_eq!(r.pairs, expected);
+    let k = nearest(CALIBRATION_ETAS.iter().copied(), r.eta).unwrap();
+    let points = lazy.take_lazy_calibration().unwrap().points;
+    let measured: Vec<usize> = (0..points.len()).filter(|&i| points[i].is_some()).collect();
+    assert_eq!(measured, vec![k], "eta {}", r.eta);
+    let (got, want) = (points[k].as_ref().unwrap(), &whole.calibration[k]);
+    assert_eq!(got.eta, want.eta);
+    assert_eq!(
+        (got.caps, got.caps_per_set_p1_texel),
+        (want.caps, want.caps_per_set_p1_texel)
+    );
+    let mut next =
+        StreamingCollider::new_uncalibrated(&ctx, &x, &y, options(ReadbackMode::Auto, 1)).unwrap();
+    next.calibrate_lazily(LazyCalibration {
+        etas: CALIBRATION_ETAS.to_vec(),
+        repeats: 1,
+        points: points.clone(),
+    });
+    assert_eq!(
+        next.frame(&x.positions, &y.positions).unwrap().pairs,
+        expected
+    );
+    let again = next.take_lazy_calibration().unwrap().points;
+    assert_eq!(again.iter().filter(|p| p.is_some()).count(), 1);
+}
+
 /// The decoders take any non-zero mark for a CAP, so a NaN in a level read back would be
 /// a pair that does not exist: every value read is checked, and a non-finite one is an
 /// error naming the level and the pass that wrote it. (Here `P0` is filled by hand.)

@@ -76,6 +76,9 @@ pub struct CullideResult {
     pub queries: usize,
 }
 
+/// What is left of X and Y: index ranges of their potentially colliding sets.
+type PcsPair = (Vec<Range<usize>>, Vec<Range<usize>>);
+
 /// CULLIDE between two deforming meshes.
 pub struct Cullide {
     ctx: Context,
@@ -116,6 +119,20 @@ impl Cullide {
         })
     }
 
+    /// A warm-up before timed frames: the object level's passes only (the same program,
+    /// states and target as every level, so the shader variants are compiled and the target
+    /// touched), and an occlusion query for every triangle, the most any level can ask for.
+    /// A whole frame would do the leaf and triangle levels too, for nothing.
+    pub fn warm_up(&mut self, positions_x: &[Vec3], positions_y: &[Vec3]) -> Result<(), GlError> {
+        let most = self.x.order.len().max(self.y.order.len());
+        while self.queries.len() < most {
+            self.queries.push(OcclusionQuery::new(&self.ctx)?);
+        }
+        let mut queries = 0;
+        self.prune_levels(positions_x, positions_y, 1, &mut queries)?;
+        Ok(())
+    }
+
     /// One frame: prune, then test the surviving triangle pairs.
     pub fn frame(
         &mut self,
@@ -125,46 +142,12 @@ impl Cullide {
     ) -> Result<CullideResult, GlError> {
         let start = Instant::now();
         let mut out = CullideResult::default();
-        let gx = Aabb::from_points(positions_x.iter().copied());
-        let gy = Aabb::from_points(positions_y.iter().copied());
-        if !gx.overlaps(&gy) {
+        let Some((pcs_x, pcs_y)) =
+            self.prune_levels(positions_x, positions_y, 3, &mut out.queries)?
+        else {
             out.pruning_ms = start.elapsed().as_secs_f64() * 1e3;
             return Ok(out);
-        }
-        let view_box = Aabb {
-            min: gx.min.max(gy.min),
-            max: gx.max.min(gy.max),
         };
-        let flat = |p: &[Vec3]| p.iter().map(|v| v.to_array()).collect::<Vec<_>>();
-        self.x.buffers.update_positions(&flat(positions_x))?;
-        self.y.buffers.update_positions(&flat(positions_y))?;
-        // Object level, sub-object (leaf) level, triangle level.
-        // Object level: each model is one sub-object.
-        let whole = |n: usize| -> Vec<Range<usize>> { std::iter::once(0..n).collect() };
-        let mut pcs_x = whole(self.x.order.len());
-        let mut pcs_y = whole(self.y.order.len());
-        for level in 0..3 {
-            if level > 0 {
-                pcs_x = refine(&pcs_x, &self.x.groups, level);
-                pcs_y = refine(&pcs_y, &self.y.groups, level);
-            }
-            let most = pcs_x.len().max(pcs_y.len());
-            while self.queries.len() < most {
-                self.queries.push(OcclusionQuery::new(&self.ctx)?);
-            }
-            for axis in 0..3 {
-                let mvp = axis_view(&view_box, axis);
-                pcs_x = self.prune(&self.x, &pcs_x, &self.y, &pcs_y, mvp, &mut out.queries)?;
-                pcs_y = self.prune(&self.y, &pcs_y, &self.x, &pcs_x, mvp, &mut out.queries)?;
-                if pcs_x.is_empty() || pcs_y.is_empty() {
-                    break;
-                }
-            }
-        }
-        if pcs_x.is_empty() || pcs_y.is_empty() {
-            pcs_x.clear();
-            pcs_y.clear();
-        }
         out.pruning_ms = start.elapsed().as_secs_f64() * 1e3;
         // The exact test on every pair of surviving triangles.
         let t = Instant::now();
@@ -193,6 +176,58 @@ impl Cullide {
         out.ctps = out.pairs.len();
         out.tri_test_ms = t.elapsed().as_secs_f64() * 1e3;
         Ok(out)
+    }
+
+    /// The pruning of the first `levels` levels (object, sub-object, triangle): the
+    /// potentially colliding sets of X and Y left, or `None` when the global boxes do not
+    /// overlap (nothing is drawn then).
+    fn prune_levels(
+        &mut self,
+        positions_x: &[Vec3],
+        positions_y: &[Vec3],
+        levels: usize,
+        queries: &mut usize,
+    ) -> Result<Option<PcsPair>, GlError> {
+        let gx = Aabb::from_points(positions_x.iter().copied());
+        let gy = Aabb::from_points(positions_y.iter().copied());
+        if !gx.overlaps(&gy) {
+            return Ok(None);
+        }
+        let view_box = Aabb {
+            min: gx.min.max(gy.min),
+            max: gx.max.min(gy.max),
+        };
+        let flat = |p: &[Vec3]| p.iter().map(|v| v.to_array()).collect::<Vec<_>>();
+        self.x.buffers.update_positions(&flat(positions_x))?;
+        self.y.buffers.update_positions(&flat(positions_y))?;
+        // Object level, sub-object (leaf) level, triangle level.
+        // Object level: each model is one sub-object.
+        let whole = |n: usize| -> Vec<Range<usize>> { std::iter::once(0..n).collect() };
+        let mut pcs_x = whole(self.x.order.len());
+        let mut pcs_y = whole(self.y.order.len());
+        for level in 0..levels {
+            if level > 0 {
+                pcs_x = refine(&pcs_x, &self.x.groups, level);
+                pcs_y = refine(&pcs_y, &self.y.groups, level);
+            }
+            let most = pcs_x.len().max(pcs_y.len());
+            while self.queries.len() < most {
+                self.queries.push(OcclusionQuery::new(&self.ctx)?);
+            }
+            for axis in 0..3 {
+                let mvp = axis_view(&view_box, axis);
+                pcs_x = self.prune(&self.x, &pcs_x, &self.y, &pcs_y, mvp, queries)?;
+                pcs_y = self.prune(&self.y, &pcs_y, &self.x, &pcs_x, mvp, queries)?;
+                if pcs_x.is_empty() || pcs_y.is_empty() {
+                    break;
+                }
+            }
+        }
+        if pcs_x.is_empty() || pcs_y.is_empty() {
+            pcs_x.clear();
+            pcs_y.clear();
+        }
+        Ok(Some((pcs_x, pcs_y)))
     }
 
     /// One pass: draw `occluder`'s candidates into depth, then keep the candidates of

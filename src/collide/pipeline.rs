@@ -111,6 +111,31 @@ pub struct FrameResult {
     pub cap_leaves: Vec<(u32, u32)>,
 }
 
+/// The seed of `auto`'s calibration fills.
+const CALIBRATION_SEED: u64 = 0x5eed;
+
+/// `auto`'s calibration at `etas`, measured point by point as frames need them
+/// ([`StreamingCollider::calibrate_lazily`]).
+#[derive(Clone, Debug)]
+pub struct LazyCalibration {
+    pub etas: Vec<f64>,
+    /// Timed runs per scheme and point (the best is kept).
+    pub repeats: usize,
+    /// `points[k]`, at `etas[k]`: `None` until a frame needed it.
+    pub points: Vec<Option<CalibrationPoint>>,
+}
+
+impl LazyCalibration {
+    /// Nothing measured yet.
+    pub fn new(etas: &[f64], repeats: usize) -> LazyCalibration {
+        LazyCalibration {
+            etas: etas.to_vec(),
+            repeats,
+            points: vec![None; etas.len()],
+        }
+    }
+}
+
 /// Streaming collision detection between two deforming meshes X and Y.
 pub struct StreamingCollider {
     ctx: Context,
@@ -124,8 +149,12 @@ pub struct StreamingCollider {
     pub reduction: Reduction,
     test: StreamingTest,
     update: StreamUpdate,
-    /// `auto`'s calibration (empty for the fixed schemes).
+    /// `auto`'s calibration (empty for the fixed schemes, and when calibrated lazily).
     pub calibration: Vec<CalibrationPoint>,
+    /// `auto`'s calibration made point by point ([`StreamingCollider::calibrate_lazily`]).
+    lazy: Option<LazyCalibration>,
+    /// Wall time this frame spent calibrating lazily (left out of the frame's total), ms.
+    calibration_ms: f64,
     stencil_ready: bool,
 }
 
@@ -182,6 +211,8 @@ impl StreamingCollider {
             test: StreamingTest::new(ctx)?,
             update: StreamUpdate::new(ctx)?,
             calibration: Vec::new(),
+            lazy: None,
+            calibration_ms: 0.0,
             stencil_ready: false,
         })
     }
@@ -209,19 +240,63 @@ impl StreamingCollider {
             etas,
             repeats,
             P0Contents::Clustered,
-            0x5eed,
+            CALIBRATION_SEED,
         )?;
         Ok(&self.calibration)
     }
 
-    fn scheme_for(&self, eta: f64) -> Scheme {
-        match self.options.readback {
+    /// Calibrate `auto` point by point instead: the first frame whose `eta` is nearest to a
+    /// point of `lazy` that is not measured yet measures it, on a `P0` of its own (this
+    /// frame's `P0` holds its CAPs) and with the fills of a whole calibration
+    /// ([`reduction_gpu::calibrate_some`]), so `auto` chooses as [`StreamingCollider::calibrate`]
+    /// would have it, without measuring the points no frame is near. The time it takes is
+    /// left out of the frame's total. `lazy` may hold points measured by another collider of
+    /// this `P0` size; [`StreamingCollider::take_lazy_calibration`] hands them on.
+    pub fn calibrate_lazily(&mut self, lazy: LazyCalibration) {
+        self.lazy = Some(lazy);
+    }
+
+    /// The lazy calibration with the points measured so far.
+    pub fn take_lazy_calibration(&mut self) -> Option<LazyCalibration> {
+        self.lazy.take()
+    }
+
+    fn scheme_for(&mut self, eta: f64) -> anyhow::Result<Scheme> {
+        Ok(match self.options.readback {
             ReadbackMode::Hierarchical => Scheme::Hierarchical,
             ReadbackMode::Reduced => Scheme::Reduced,
             ReadbackMode::Full => Scheme::Full,
             ReadbackMode::PaperSwitch => reduction_gpu::paper_switch(eta),
+            ReadbackMode::Auto if self.lazy.is_some() => self.lazy_point(eta)?.fastest(),
             ReadbackMode::Auto => reduction_gpu::choose(&self.calibration, eta),
+        })
+    }
+
+    /// The lazy calibration's point nearest to `eta`, measured now if it was not yet.
+    fn lazy_point(&mut self, eta: f64) -> anyhow::Result<&CalibrationPoint> {
+        let lazy = self.lazy.as_mut().expect("a lazy calibration");
+        let k = reduction_gpu::nearest(lazy.etas.iter().copied(), eta)
+            .ok_or_else(|| anyhow::anyhow!("readback auto: a lazy calibration without etas"))?;
+        if lazy.points[k].is_none() {
+            let start = Instant::now();
+            let _scope = profile::scope(&self.ctx, "readback calibration (auto)");
+            let scratch = PairTarget::new(&self.ctx, self.target.width(), self.target.height())?;
+            let mut points = reduction_gpu::calibrate_some(
+                &self.ctx,
+                &scratch,
+                &self.reduction,
+                &lazy.etas,
+                |i| i == k,
+                &|done, _| done < lazy.repeats,
+                P0Contents::Clustered,
+                CALIBRATION_SEED,
+            )?;
+            lazy.points[k] = points[k].take();
+            self.calibration_ms += start.elapsed().as_secs_f64() * 1e3;
         }
+        lazy.points[k]
+            .as_ref()
+            .ok_or_else(|| anyhow::anyhow!("readback auto: calibration point {k} not measured"))
     }
 
     /// One frame: the vertices of X and Y (the meshes' topology, deformed) in, every
@@ -232,8 +307,11 @@ impl StreamingCollider {
         positions_y: &[Vec3],
     ) -> anyhow::Result<FrameResult> {
         let start = Instant::now();
+        self.calibration_ms = 0.0;
         anyhow::ensure!(
-            self.options.readback != ReadbackMode::Auto || !self.calibration.is_empty(),
+            self.options.readback != ReadbackMode::Auto
+                || !self.calibration.is_empty()
+                || self.lazy.is_some(),
             "readback auto: no calibration (calibrate, or set one, before the first frame)"
         );
         check_positions(
@@ -307,7 +385,7 @@ impl StreamingCollider {
         out.ctps = result.pairs.len();
         out.pairs = result.pairs;
         out.cap_leaves = caps;
-        out.timings.total = start.elapsed().as_secs_f64() * 1e3;
+        out.timings.total = start.elapsed().as_secs_f64() * 1e3 - self.calibration_ms;
         Ok(out)
     }
 
@@ -334,7 +412,7 @@ impl StreamingCollider {
             return Ok(());
         }
         let tile_pairs = (self.target.width() * self.target.height()) as f64;
-        let scheme = self.scheme_for(count as f64 / tile_pairs);
+        let scheme = self.scheme_for(count as f64 / tile_pairs)?;
         let readback = self.reduction.read(&self.ctx, &self.target, scheme)?;
         anyhow::ensure!(
             readback.decoded.caps.len() as u64 == count,

@@ -17,7 +17,7 @@ use crate::gl::{
     ensure_finite, Context, Framebuffer, GlError, Program, Rect, Texture, TextureFormat,
 };
 use crate::shader;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// How the CAPs are read back.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -322,6 +322,8 @@ pub struct CalibrationPoint {
     pub caps: usize,
     /// CAPs per set `P1` texel (4x4 block of `P0`): 1 when no two CAPs share a block.
     pub caps_per_set_p1_texel: f64,
+    /// Timed runs of each scheme (the best is kept).
+    pub runs: usize,
     /// In the order hierarchical, reduced, full.
     pub schemes: Vec<SchemeCost>,
 }
@@ -367,11 +369,49 @@ pub fn calibrate(
     contents: P0Contents,
     seed: u64,
 ) -> Result<Vec<CalibrationPoint>, GlError> {
+    let runs = |done: usize, _| done < repeats.max(1);
+    calibrate_with(ctx, p0, reduction, etas, &runs, contents, seed)
+}
+
+/// [`calibrate`] with the number of timed runs per point decided by `another(done, spent)`:
+/// whether run `done + 1` happens after `done` runs (every scheme once each) that took
+/// `spent` (a policy like the report's `timing::Runs`).
+pub fn calibrate_with(
+    ctx: &Context,
+    p0: &PairTarget,
+    reduction: &Reduction,
+    etas: &[f64],
+    another: &dyn Fn(usize, Duration) -> bool,
+    contents: P0Contents,
+    seed: u64,
+) -> Result<Vec<CalibrationPoint>, GlError> {
+    let points = calibrate_some(ctx, p0, reduction, etas, |_| true, another, contents, seed)?;
+    Ok(points.into_iter().flatten().collect())
+}
+
+/// [`calibrate`] at the points `wanted(k)` picks (`None` at the others), each measured on
+/// the same `P0` contents as in a whole calibration: the fills of the points skipped are
+/// still made on the CPU, so the random sequence that fills the next point is the same.
+#[allow(clippy::too_many_arguments)]
+pub fn calibrate_some(
+    ctx: &Context,
+    p0: &PairTarget,
+    reduction: &Reduction,
+    etas: &[f64],
+    wanted: impl Fn(usize) -> bool,
+    another: &dyn Fn(usize, Duration) -> bool,
+    contents: P0Contents,
+    seed: u64,
+) -> Result<Vec<Option<CalibrationPoint>>, GlError> {
     let (w, h) = (p0.width(), p0.height());
     let mut rng = super::deform::SplitMix64(seed);
     let mut points = Vec::new();
-    for &eta in etas {
+    for (k, &eta) in etas.iter().enumerate() {
         let cells = fill_p0(w, h, eta, contents, &mut rng);
+        if !wanted(k) {
+            points.push(None);
+            continue;
+        }
         let caps = cells.iter().filter(|&&c| c != 0.0).count();
         p0.p0.upload_f32(&cells)?;
         let mut schemes =
@@ -382,7 +422,9 @@ pub fn calibrate(
                 bytes: 0,
             });
         // The schemes take turns, so that a change of load on a shared machine hits all alike.
-        for _ in 0..repeats.max(1) {
+        let (start, mut runs) = (Instant::now(), 0);
+        while runs == 0 || another(runs, start.elapsed()) {
+            runs += 1;
             for best in &mut schemes {
                 ctx.finish_all();
                 let r = reduction.read(ctx, p0, best.scheme)?;
@@ -393,28 +435,34 @@ pub fn calibrate(
             }
         }
         let schemes = schemes.to_vec();
-        points.push(CalibrationPoint {
+        points.push(Some(CalibrationPoint {
             eta,
             contents,
             caps,
             caps_per_set_p1_texel: caps_per_set_block(&cells, w, h, HIER_BLOCK),
+            runs,
             schemes,
-        });
+        }));
     }
     Ok(points)
 }
 
+/// The index of the `eta` of `etas` nearest to `eta` in log scale (the first of equals).
+pub fn nearest(etas: impl Iterator<Item = f64>, eta: f64) -> Option<usize> {
+    let log = |e: f64| e.max(1e-9).ln();
+    etas.enumerate()
+        .min_by(|(_, a), (_, b)| {
+            (log(*a) - log(eta))
+                .abs()
+                .total_cmp(&(log(*b) - log(eta)).abs())
+        })
+        .map(|(k, _)| k)
+}
+
 /// The scheme `auto` uses at `eta`: the fastest at the nearest calibrated `eta` (in log scale).
 pub fn choose(points: &[CalibrationPoint], eta: f64) -> Scheme {
-    let log = |e: f64| e.max(1e-9).ln();
-    points
-        .iter()
-        .min_by(|a, b| {
-            (log(a.eta) - log(eta))
-                .abs()
-                .total_cmp(&(log(b.eta) - log(eta)).abs())
-        })
-        .map(|p| p.fastest())
+    nearest(points.iter().map(|p| p.eta), eta)
+        .map(|k| points[k].fastest())
         .unwrap_or(Scheme::Hierarchical)
 }
 
@@ -464,6 +512,7 @@ mod tests {
             contents: P0Contents::Clustered,
             caps: 0,
             caps_per_set_p1_texel: 0.0,
+            runs: 1,
             schemes,
         }
     }

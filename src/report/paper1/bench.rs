@@ -6,7 +6,7 @@
 
 use super::Paper1Args;
 use crate::collide::cullide::{Cullide, CullideResult};
-use crate::collide::pipeline::{FrameResult, Options, StreamingCollider};
+use crate::collide::pipeline::{FrameResult, LazyCalibration, Options, StreamingCollider};
 use crate::collide::reduction::{P0Contents, HIER_BLOCK};
 use crate::collide::reduction_gpu::{self, CalibrationPoint, ReadbackMode, Reduction};
 use crate::collide::scenes::{Scene, SCENES};
@@ -59,8 +59,6 @@ pub struct Setup {
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Fig7 {
     pub p0: usize,
-    /// Timed runs per scheme and point (the best is kept).
-    pub repeats: usize,
     /// CAPs in blobs, as the scenes make them (what Sec. 5.3.1 assumes).
     pub clustered: Fig7Curve,
     /// CAPs uniformly at random.
@@ -327,10 +325,11 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
 }
 
 /// `auto`'s calibrations made so far in this run, by `P0` size. `auto` is calibrated per
-/// `P0` size: a collider whose `P0` size was calibrated already (the tori scenes, the readback
-/// schemes and the sweep share sizes) reuses that calibration instead of measuring it again.
+/// `P0` size and lazily: a point is measured when a frame first needs it
+/// ([`StreamingCollider::calibrate_lazily`]), and the colliders of one size (the tori
+/// scenes, the readback schemes and the sweep share sizes) share the points measured.
 #[derive(Default)]
-struct Calibrations(Vec<((usize, usize), Vec<CalibrationPoint>)>);
+struct Calibrations(Vec<((usize, usize), LazyCalibration)>);
 
 impl Calibrations {
     fn collider(
@@ -343,15 +342,20 @@ impl Calibrations {
         let mut c = StreamingCollider::new_uncalibrated(ctx, x, y, options)?;
         if options.readback == ReadbackMode::Auto {
             let size = (c.target.width(), c.target.height());
-            match self.0.iter().find(|(s, _)| *s == size) {
-                Some((_, points)) => c.set_calibration(points.clone()),
-                None => {
-                    let points = c.calibrate(&reduction_gpu::CALIBRATION_ETAS, 2)?.to_vec();
-                    self.0.push((size, points));
-                }
-            }
+            let lazy = match self.0.iter().position(|(s, _)| *s == size) {
+                Some(k) => self.0.swap_remove(k).1,
+                None => LazyCalibration::new(&reduction_gpu::CALIBRATION_ETAS, 2),
+            };
+            c.calibrate_lazily(lazy);
         }
         Ok(c)
+    }
+
+    /// Keep the points `c` measured for the next collider of its size.
+    fn keep(&mut self, c: &mut StreamingCollider) {
+        if let Some(lazy) = c.take_lazy_calibration() {
+            self.0.push(((c.target.width(), c.target.height()), lazy));
+        }
     }
 }
 
@@ -395,22 +399,23 @@ fn cullide_resolutions(
     let sx = AabbStream::build(x, leaf_size)?;
     let sy = AabbStream::build(y, leaf_size)?;
     let frames = if opts.quick { 1 } else { 3 };
-    // The frames and their exact pairs, the same at every resolution: computed once.
+    // The frames and their exact pairs, the same at every resolution: computed once (none
+    // for the warm-up frame 0).
     let positions: Vec<(Vec<Vec3>, Vec<Vec3>)> = (0..=frames).map(|f| scene.frame(f)).collect();
     let exact: Vec<PrimitiveResult> = positions
         .iter()
+        .skip(1)
         .map(|(px, py)| solid_pairs((x, px, &sx), (y, py, &sy)))
         .collect();
     let mut rows = Vec::new();
     for resolution in [256u32, 512, 1024, 2048] {
         let mut cullide = Cullide::new(opts.gl, (x, &sx), (y, &sy), resolution)?;
         let (mut ms, mut missed, mut exact_total, mut pctps) = (0.0, 0, 0, 0);
-        for (f, (px, py)) in positions.iter().enumerate() {
+        // Frame 0 is the warm-up ([`Cullide::warm_up`]).
+        cullide.warm_up(&positions[0].0, &positions[0].1)?;
+        for (f, (px, py)) in positions.iter().enumerate().skip(1) {
             let c = cullide.frame(px, py, Predicate::Moller)?;
-            if f == 0 {
-                continue;
-            }
-            let exact = &exact[f];
+            let exact = &exact[f - 1];
             missed += exact.pairs.len() - c.pairs.len();
             exact_total += exact.pairs.len();
             ms += c.pruning_ms + c.tri_test_ms;
@@ -461,6 +466,7 @@ fn readback_schemes(
                 eta += r.eta;
             }
         }
+        calibrations.keep(&mut c);
         let n = frames.max(1) as f64;
         rows.push(SchemeRun {
             scheme,
@@ -513,8 +519,14 @@ fn run_scene(
     let mut missed = 0usize;
     let mut exact_total = 0usize;
     let mut clustering = 0.0;
-    // Frame 0 warms up shader compilation and is not counted.
-    for f in 0..=frames {
+    // Frame 0 warms up shader compilation and is not counted: a whole streaming frame (it
+    // also measures the calibration point `auto` needs first), CULLIDE's object level only
+    // (the same shader variants as every level; [`Cullide::warm_up`]); SOLID is CPU code.
+    let (px, py) = scene.frame(0);
+    study(opts, "streaming frame", || stream.frame(&px, &py))?;
+    cullide.warm_up(&px, &py)?;
+    bar.inc(1);
+    for f in 1..=frames {
         let (px, py) = scene.frame(f);
         let s = study(opts, "streaming frame", || stream.frame(&px, &py))?;
         // SOLID: refit, traverse, the same triangle test.
@@ -539,9 +551,6 @@ fn run_scene(
             Ok(cullide.frame(&px, &py, Predicate::Moller)?)
         })?;
         bar.inc(1);
-        if f == 0 {
-            continue;
-        }
         out.solid_agrees += usize::from(sp.pairs == s.pairs);
         let found = c
             .pairs
@@ -576,6 +585,7 @@ fn run_scene(
             out.snapshot = Some(file);
         }
     }
+    calibrations.keep(&mut stream);
     average(&mut out, frames.max(1) as f64);
     out.caps_per_set_p1_texel = clustering / frames.max(1) as f64;
     out.frames = frames;
@@ -687,20 +697,22 @@ fn caps_per_set_p1_texel(c: &StreamingCollider, cap_leaves: &[(u32, u32)]) -> f6
 /// 2048 x 2048 (512 x 512 in quick mode), filled with clustered and with uniform CAPs.
 fn fig7(opts: &BenchOptions) -> anyhow::Result<Fig7> {
     let p0 = if opts.quick { 512 } else { 2048 };
-    let repeats = 5;
+    // Each point is one timed measurement: every scheme is run as often as the report's
+    // policy says (5 runs exactly under --quick), the best run is kept.
+    let runs = opts.runs(5);
+    let another = |done, spent| runs.another(done, spent);
     let target = PairTarget::new(opts.gl, p0, p0)?;
     let reduction = Reduction::new(opts.gl, p0, p0)?;
     let etas = [
         1e-5, 3e-5, 1e-4, 3e-4, 6e-4, 9.5e-4, 2e-3, 5e-3, 1e-2, 3e-2, 1e-1,
     ];
     let curve = |contents| -> anyhow::Result<Fig7Curve> {
-        Ok(Fig7Curve::of(reduction_gpu::calibrate(
-            opts.gl, &target, &reduction, &etas, repeats, contents, 7,
+        Ok(Fig7Curve::of(reduction_gpu::calibrate_with(
+            opts.gl, &target, &reduction, &etas, &another, contents, 7,
         )?))
     };
     Ok(Fig7 {
         p0,
-        repeats,
         clustered: curve(P0Contents::Clustered)?,
         uniform: curve(P0Contents::Uniform)?,
     })
@@ -809,6 +821,7 @@ fn leaf_sweep(
                 p.pctps += r.pctps / frames as u64;
             }
         }
+        calibrations.keep(&mut c);
         out.push(p);
     }
     Ok(out)

@@ -239,6 +239,7 @@ mod tests {
             contents,
             caps: 1,
             caps_per_set_p1_texel: 1.0,
+            runs: 1,
             schemes: vec![
                 cost(Scheme::Hierarchical, h),
                 cost(Scheme::Reduced, r),
@@ -264,7 +265,6 @@ mod tests {
             scenes,
             fig7: Fig7 {
                 p0,
-                repeats: 1,
                 clustered: curve(P0Contents::Clustered, clustered),
                 uniform: curve(P0Contents::Uniform, &[(1e-4, [1.0, 1.0, 1.0])]),
             },

@@ -56,11 +56,10 @@ fn table(results: &Paper1Results, curve: &Fig7Curve) -> Table {
     let f = &results.fig7;
     Table {
         caption: format!(
-            "Fig. 7, {}: readback of a {p0}x{p0} P0 against eta, best of {} ({}): encode (GPU) + \
-             read/decode (wall) ms, and bytes read back; {} (paper: 0.095%, GeForce 7800, \
-             2048x2048); auto leaves the hierarchy at {}",
+            "Fig. 7, {}: readback of a {p0}x{p0} P0 against eta, best of each point's runs ({}): \
+             encode (GPU) + read/decode (wall) ms, and bytes read back; {} (paper: 0.095%, \
+             GeForce 7800, 2048x2048); auto leaves the hierarchy at {}",
             contents_name(contents_of(curve)),
-            f.repeats,
             results.renderer,
             crossover_text(curve),
             curve
@@ -83,6 +82,7 @@ fn table(results: &Paper1Results, curve: &Fig7Curve) -> Table {
             "hier/full bytes %",
             "faster of H, RH",
             "fastest",
+            "runs",
         ]),
         rows: curve
             .points
@@ -105,6 +105,7 @@ fn table(results: &Paper1Results, curve: &Fig7Curve) -> Table {
                     p.paper_fastest()
                         .map_or("-".into(), |(scheme, _)| scheme.to_string()),
                     p.fastest().to_string(),
+                    p.runs.to_string(),
                 ]
             })
             .collect(),

@@ -142,7 +142,8 @@ fn summary(results: &Paper1Results) -> String {
          triangle counts (scanned models not available), named as such. Streaming pairs are \
          exact (tests compare them with brute force); SOLID and CULLIDE are measured against \
          them. Leaf size {leaf_size}; readback auto (calibrated per P0 size on clustered CAPs, \
-         like the scenes' own: {clustering} CAPs per set P1 texel here). SOLID: the same \
+         like the scenes' own: {clustering} CAPs per set P1 texel here; each calibration point \
+         is measured when a frame first needs it, outside the frame's time). SOLID: the same \
          leaves in a CPU tree, refitted bottom-up and traversed as a tree pair each frame. \
          CULLIDE: {res}x{res} views along x, y, z over the overlap of the two global boxes, two \
          passes per view, pruning objects, then leaves, then triangles. GPU passes are timed \
