@@ -106,7 +106,7 @@ fn section_ids(results_json: &Path) -> Vec<String> {
         .collect()
 }
 
-/// `--only` merges into the report it finds, refuses to mix renderers or sizes without
+/// `--only` merges into the report it finds, refuses to mix renderers, sizes or run counts without
 /// `--force`, a file as `--out` is refused before any work, and the staging folders of killed
 /// runs are cleaned up.
 fn nothing_of_the_report_is_lost(out: &Path, results_before: &[u8]) {
@@ -136,6 +136,16 @@ fn nothing_of_the_report_is_lost(out: &Path, results_before: &[u8]) {
     assert!(!mixed.status.success());
     let stderr = String::from_utf8_lossy(&mixed.stderr);
     assert!(stderr.contains("--force"), "{stderr}");
+    assert_eq!(section_ids(&out.join("results.json")), all);
+
+    // Timed another way (--runs): refused too, before any work.
+    let other_runs = reproduce_with(&["--quick", "--only", "blocks", "--runs", "2"], out, &[]);
+    assert!(!other_runs.status.success());
+    let stderr = String::from_utf8_lossy(&other_runs.stderr);
+    assert!(
+        stderr.contains("--runs 2") && stderr.contains("--force"),
+        "{stderr}"
+    );
     assert_eq!(section_ids(&out.join("results.json")), all);
 
     let file = out.with_file_name(format!("{name}-a-file"));

@@ -190,7 +190,7 @@ fn kept_sections(
             sizes(args.quick)
         ));
     }
-    let runs = super::timing::runs_policy(args.runs);
+    let runs = super::timing::runs_policy(args.runs, args.quick);
     if old["runs"]
         .as_str()
         .is_some_and(|old_runs| old_runs != runs)
@@ -322,7 +322,7 @@ fn run_stages(
         cpu: cpu_name(),
         date: utc_now(),
         quick: args.quick,
-        runs: super::timing::runs_policy(args.runs),
+        runs: super::timing::runs_policy(args.runs, args.quick),
         elapsed_s: start.elapsed().as_secs_f64(),
         sections,
     })

@@ -114,9 +114,12 @@ impl Spread {
 }
 
 /// What `--runs` makes of the timings, as the report states it.
-pub fn runs_policy(runs: Option<usize>) -> String {
+pub fn runs_policy(runs: Option<usize>, quick: bool) -> String {
     match runs {
         Some(n) => format!("every repeated timing ran exactly {n} times (--runs {n})"),
+        None if quick => "--quick: each repeated timing ran a small fixed number of times, \
+                          set per section"
+            .into(),
         None => {
             let p = Runs::PAPER;
             format!(
@@ -176,10 +179,11 @@ mod tests {
             let e = parse_runs(bad).unwrap_err();
             assert!(e.contains("--runs") && e.contains(bad), "{e}");
         }
-        assert!(runs_policy(Some(5)).contains("exactly 5"));
+        assert!(runs_policy(Some(5), true).contains("exactly 5"));
+        assert!(runs_policy(None, true).contains("--quick"));
         assert_eq!(Runs::PAPER.to_string(), "3 to 5");
         assert_eq!(Runs::exactly(7).to_string(), "7");
-        assert!(runs_policy(None).contains("up to 5"));
+        assert!(runs_policy(None, false).contains("up to 5"));
     }
 
     #[test]
