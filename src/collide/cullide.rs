@@ -244,44 +244,24 @@ impl Cullide {
         self.target.clear_depth_stencil(1.0, 0)?;
         {
             let mut pass = self.target.pass(&self.program, "CULLIDE occluders")?;
-            pass.uniform("u_mvp", mvp).state(DrawState {
-                depth: Some(DepthTest {
-                    func: Compare::Less,
-                    write: true,
-                }),
-                color_write: false,
-                ..DrawState::default()
-            });
-            let ranges: Vec<(usize, usize)> = merge_ranges(occluders)
-                .iter()
-                .map(|r| (3 * r.start, 3 * r.len()))
-                .collect();
+            pass.uniform("u_mvp", mvp)
+                .state(depth_only(Compare::Less, true));
             pass.draw_element_ranges(
                 occluder.buffers.vertex_array(),
                 Primitive::Triangles,
-                &ranges,
+                &index_ranges(&merge_ranges(occluders)),
             )?;
         }
         let mut pass = self
             .target
             .pass(&self.program, "CULLIDE visibility queries")?;
-        pass.uniform("u_mvp", mvp).state(DrawState {
-            depth: Some(DepthTest {
-                func: Compare::GreaterEqual,
-                write: false,
-            }),
-            color_write: false,
-            ..DrawState::default()
-        });
+        pass.uniform("u_mvp", mvp)
+            .state(depth_only(Compare::GreaterEqual, false));
         // One query per candidate, all issued before any is read.
-        let ranges: Vec<(usize, usize)> = candidates
-            .iter()
-            .map(|r| (3 * r.start, 3 * r.len()))
-            .collect();
         pass.draw_elements_counted(
             tested.buffers.vertex_array(),
             Primitive::Triangles,
-            &ranges,
+            &index_ranges(candidates),
             &self.queries,
         )?;
         drop(pass);
@@ -294,6 +274,23 @@ impl Cullide {
             .map(|(r, _)| r.clone())
             .collect())
     }
+}
+
+/// Depth test `func`, depth writes as `write` says, no colour: both CULLIDE passes.
+fn depth_only(func: Compare, write: bool) -> DrawState {
+    DrawState {
+        depth: Some(DepthTest { func, write }),
+        color_write: false,
+        ..DrawState::default()
+    }
+}
+
+/// Triangle ranges as (first index, index count) of a triangle list.
+fn index_ranges(triangles: &[Range<usize>]) -> Vec<(usize, usize)> {
+    triangles
+        .iter()
+        .map(|r| (3 * r.start, 3 * r.len()))
+        .collect()
 }
 
 /// Split each surviving range into the next level's sub-objects: leaves (level 1) or single

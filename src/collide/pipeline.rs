@@ -168,7 +168,10 @@ impl StreamingCollider {
     ) -> anyhow::Result<StreamingCollider> {
         let mut collider = Self::new_uncalibrated(ctx, x, y, options)?;
         if options.readback == ReadbackMode::Auto {
-            collider.calibrate(&reduction_gpu::CALIBRATION_ETAS, 2)?;
+            collider.calibrate(
+                &reduction_gpu::CALIBRATION_ETAS,
+                reduction_gpu::CALIBRATION_REPEATS,
+            )?;
         }
         Ok(collider)
     }

@@ -344,7 +344,10 @@ impl Calibrations {
             let size = (c.target.width(), c.target.height());
             let lazy = match self.0.iter().position(|(s, _)| *s == size) {
                 Some(k) => self.0.swap_remove(k).1,
-                None => LazyCalibration::new(&reduction_gpu::CALIBRATION_ETAS, 2),
+                None => LazyCalibration::new(
+                    &reduction_gpu::CALIBRATION_ETAS,
+                    reduction_gpu::CALIBRATION_REPEATS,
+                ),
             };
             c.calibrate_lazily(lazy);
         }
