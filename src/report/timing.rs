@@ -49,6 +49,21 @@ impl Runs {
         }
     }
 
+    /// The rules in words: "exactly 3 runs", or "3 runs, up to 5 while they took under 1 s
+    /// in all".
+    pub fn in_words(&self) -> String {
+        if self.max > self.min {
+            format!(
+                "{} runs, up to {} while they took under {} s in all",
+                self.min,
+                self.max,
+                self.budget.as_secs_f64()
+            )
+        } else {
+            format!("exactly {} runs", self.min.max(1))
+        }
+    }
+
     /// Whether run number `done + 1` happens after `done` runs that took `spent`.
     pub fn another(&self, done: usize, spent: Duration) -> bool {
         done < self.min.max(1) || (done < self.max && spent < self.budget)
@@ -66,15 +81,16 @@ impl Runs {
     }
 }
 
-impl std::fmt::Display for Runs {
-    /// "3 to 5" (as the budget allows) or "5".
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.max > self.min {
-            write!(f, "{} to {}", self.min, self.max)
-        } else {
-            write!(f, "{}", self.min.max(1))
-        }
-    }
+/// Wall clock (ms) of `work`, run as `runs` says: median and range.
+pub fn wall_ms<T>(runs: Runs, mut work: impl FnMut() -> T) -> Spread {
+    let times = runs
+        .run(|_| {
+            let start = Instant::now();
+            std::hint::black_box(work());
+            Ok::<_, std::convert::Infallible>(start.elapsed().as_secs_f64() * 1e3)
+        })
+        .unwrap_or_else(|never| match never {});
+    Spread::of(&times)
 }
 
 /// The runs of one timing: their number, median and range.
@@ -116,19 +132,14 @@ impl Spread {
 /// What `--runs` makes of the timings, as the report states it.
 pub fn runs_policy(runs: Option<usize>, quick: bool) -> String {
     match runs {
-        Some(n) => format!("every repeated timing ran exactly {n} times (--runs {n})"),
+        Some(n) => format!(
+            "every repeated timing: {} (--runs {n})",
+            Runs::exactly(n).in_words()
+        ),
         None if quick => "--quick: each repeated timing ran a small fixed number of times, \
                           set per section"
             .into(),
-        None => {
-            let p = Runs::PAPER;
-            format!(
-                "every repeated timing ran {} times, and up to {} while its runs took under {} s in all",
-                p.min,
-                p.max,
-                p.budget.as_secs_f64()
-            )
-        }
+        None => format!("every repeated timing: {}", Runs::PAPER.in_words()),
     }
 }
 
@@ -181,8 +192,11 @@ mod tests {
         }
         assert!(runs_policy(Some(5), true).contains("exactly 5"));
         assert!(runs_policy(None, true).contains("--quick"));
-        assert_eq!(Runs::PAPER.to_string(), "3 to 5");
-        assert_eq!(Runs::exactly(7).to_string(), "7");
+        assert_eq!(
+            Runs::PAPER.in_words(),
+            "3 runs, up to 5 while they took under 1 s in all"
+        );
+        assert_eq!(Runs::exactly(7).in_words(), "exactly 7 runs");
         assert!(runs_policy(None, false).contains("up to 5"));
     }
 

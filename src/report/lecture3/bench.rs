@@ -22,7 +22,7 @@ use crate::lecture3::random_texture::statistics::{
 };
 use crate::lecture3::random_texture::{HybridTaus, RandomTexture};
 use crate::lecture3::HeightMap;
-use crate::report::timing::{Runs, Spread};
+use crate::report::timing::{wall_ms, Runs, Spread};
 use crate::report::BenchOptions;
 use std::path::Path;
 use std::time::Instant;
@@ -31,20 +31,6 @@ use std::time::Instant;
 /// under `--quick`, else the report's policy ([`Runs::PAPER`]).
 pub fn runs(opts: &BenchOptions) -> Runs {
     opts.runs(3)
-}
-
-/// The runs of `runs` in words, for the summary.
-pub fn runs_text(runs: Runs) -> String {
-    if runs.min == runs.max {
-        format!("exactly {} runs", runs.min)
-    } else {
-        format!(
-            "{} runs, up to {} while they took under {} s in all",
-            runs.min,
-            runs.max,
-            runs.budget.as_secs_f64()
-        )
-    }
 }
 
 /// How [`gpu_ms`] times GPU work on this renderer.
@@ -97,18 +83,6 @@ pub fn gpu_ms_warm(
         }
     })?;
     Ok(Spread::of(&times))
-}
-
-/// Wall clock of `work` (its runs as [`Runs`] says, median and range).
-pub fn wall_ms<T>(runs: Runs, mut work: impl FnMut() -> T) -> Spread {
-    let times = runs
-        .run(|_| {
-            let start = Instant::now();
-            std::hint::black_box(work());
-            Ok::<_, std::convert::Infallible>(start.elapsed().as_secs_f64() * 1e3)
-        })
-        .unwrap_or_else(|never| match never {});
-    Spread::of(&times)
 }
 
 /// Wall clock of one run of `work`, for CPU references of seconds timed once.
@@ -185,7 +159,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         software: ctx.info().is_software(),
         gpu_timing: gpu_timing(ctx).into(),
         quick,
-        runs: runs_text(runs),
+        runs: runs.in_words(),
         pyramid,
         displacement,
         light,
@@ -326,25 +300,21 @@ pub fn artifact_row(
 pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: Runs) -> anyhow::Result<SpeedRow> {
     let surface = Surface::new(HeightMap::generated(size), DEPTH)?;
     let renderer = DisplacementRenderer::new(ctx, surface)?;
-    let camera = Camera::orbit(
-        renderer.surface().centre(),
-        DISTANCE,
-        225.0,
-        30.0,
-        image,
-        image,
-    );
+    let view = |side| {
+        Camera::orbit(
+            renderer.surface().centre(),
+            DISTANCE,
+            225.0,
+            30.0,
+            side,
+            side,
+        )
+    };
+    let camera = view(image);
     let target = renderer.target(image, image)?;
     // Warm-up: both programs once on a small frame of the same view (their shader variants
     // compiled), not a full frame each.
-    let small = Camera::orbit(
-        renderer.surface().centre(),
-        DISTANCE,
-        225.0,
-        30.0,
-        WARM_UP_SIDE,
-        WARM_UP_SIDE,
-    );
+    let small = view(WARM_UP_SIDE);
     let warm = renderer.target(WARM_UP_SIDE, WARM_UP_SIDE)?;
     for method in [Method::Pyramid, Method::RELIEF] {
         renderer.render(&warm, &small, method)?;

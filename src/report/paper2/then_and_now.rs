@@ -3,14 +3,14 @@
 //! formulation (skinning into a storage buffer, one instanced draw reading it) and linear
 //! blend skinning on the CPU, on one crowd of soldiers at full detail.
 
-use super::super::then_and_now::{median, StageRow, ThenAndNow};
+use super::super::then_and_now::{StageRow, ThenAndNow};
+use super::super::timing::wall_ms;
 use super::super::BenchOptions;
 use crate::crowd::compute::{self, ComputeCrowd};
 use crate::crowd::cpu_skinning;
 use crate::crowd::renderer::{CrowdRenderer, Method};
 use crate::crowd::scene::{self, RunStats};
 use crate::crowd::{CharacterModel, ModelKind};
-use std::time::Instant;
 
 const VERDICT: &str = "What compute no longer needs: the n x m render target and its \
     128-characters-per-row cap (the vertex stride limit), batching by texture size, the copy \
@@ -44,17 +44,14 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
     let (models, phases) = scene::placements(&cpu_scene.crowd);
     // The same crowd each run (it does not walk): repeats of one timing, as the report's
     // timing policy says ([`BenchOptions::runs`]).
-    let cpu = opts.runs(frames).run(|_| -> anyhow::Result<f64> {
-        let t = Instant::now();
+    let cpu = wall_ms(opts.runs(frames), || {
         for (place, &phase) in models.iter().zip(&phases) {
             let pose = model.clip.sample(&model.skeleton, phase);
             let bones = model.skeleton.skinning_matrices(&pose, *place);
             std::hint::black_box(cpu_skinning::skin(&model.lods[0], &bones));
         }
-        Ok(t.elapsed().as_secs_f64() * 1e3)
-    })?;
-    let cpu_runs = cpu.len();
-    let cpu_ms = median(cpu);
+    });
+    let (cpu_runs, cpu_ms) = (cpu.runs, cpu.median);
     let workload = format!(
         "{n} soldiers at full detail (LOD 0, {} vertices each), {w}x{h}, median of {frames} \
          frames (CPU skinning: median of {cpu_runs} runs on one frame's poses)",

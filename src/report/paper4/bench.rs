@@ -10,7 +10,7 @@ use crate::mass::gpu::GpuMass;
 use crate::mass::peel::{PeelOrder, PeelSettings};
 use crate::mass::{analytic, models, surface, MassProperties};
 use crate::mesh::Mesh;
-use crate::report::timing::{Runs, Spread};
+use crate::report::timing::{wall_ms, Runs, Spread};
 use crate::report::BenchOptions;
 use serde::Serialize;
 use std::time::Instant;
@@ -295,11 +295,7 @@ fn measure_object(
         max: runs.max.max(5),
         ..runs
     };
-    let analytic_ms = median_ms(analytic_runs, || {
-        let start = Instant::now();
-        std::hint::black_box(analytic::volume_integrals(&mesh));
-        Ok(start.elapsed().as_secs_f64() * 1e3)
-    })?;
+    let analytic_ms = wall_ms(analytic_runs, || analytic::volume_integrals(&mesh)).median;
     let mut rows = Vec::new();
     for &n in resolutions {
         let gpu = GpuMass::new(ctx, n)?;

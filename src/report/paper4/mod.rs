@@ -72,7 +72,7 @@ fn summary(opts: &BenchOptions, results: &Paper4Results) -> String {
         "The seven test objects of Table 1 (the mesh module's generators and the shipped bunny; \
          the exact meshes are not published) integrated by the section 3.1 fragment shader under \
          depth peeling at {} resolutions, against Mirtich's analytic method on the CPU (f64). \
-         Times are medians of {} runs after a warm-up, on {}: a software rasterizer runs the \
+         Times are medians ({}) after a warm-up, on {}: a software rasterizer runs the \
          'GPU' passes on the CPU, so the ratios are not the paper's. The buoyancy scene is the 50 \
          bodies of section 5.3 at 32x32 per body, all bodies as tiles of one target, timed after \
          60 steps that bring them into the water; the scene's teapot is a closed one (Newell's \
@@ -82,7 +82,7 @@ fn summary(opts: &BenchOptions, results: &Paper4Results) -> String {
          glibc's trim and mmap thresholds, so the driver's per-draw buffers are not faulted in \
          afresh every time (about 30 -> 40 steps/s on llvmpipe, 2 cores).{}",
         bench::resolutions(opts.quick).len(),
-        opts.runs(bench::QUICK_RUNS),
+        opts.runs(bench::QUICK_RUNS).in_words(),
         results.renderer,
         if opts.quick {
             " Quick mode: resolutions up to 128 and a short buoyancy run."
