@@ -148,6 +148,21 @@ fn nothing_of_the_report_is_lost(out: &Path, results_before: &[u8]) {
     );
     assert_eq!(section_ids(&out.join("results.json")), all);
 
+    // A report that does not say how it was timed (made before --runs): refused as well.
+    let results = out.join("results.json");
+    let kept = std::fs::read(&results).unwrap();
+    let mut unstated: serde_json::Value = serde_json::from_slice(&kept).unwrap();
+    unstated.as_object_mut().unwrap().remove("runs").unwrap();
+    std::fs::write(&results, serde_json::to_vec(&unstated).unwrap()).unwrap();
+    let unstated_runs = reproduce_with(&["--quick", "--only", "blocks"], out, &[]);
+    assert!(!unstated_runs.status.success());
+    let stderr = String::from_utf8_lossy(&unstated_runs.stderr);
+    assert!(
+        stderr.contains("not stated") && stderr.contains("--force"),
+        "{stderr}"
+    );
+    std::fs::write(&results, kept).unwrap();
+
     let file = out.with_file_name(format!("{name}-a-file"));
     std::fs::write(&file, "not a folder").unwrap();
     // The first section is made to fail: the error must be the --out check's, made first.

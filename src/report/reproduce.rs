@@ -191,14 +191,14 @@ fn kept_sections(
         ));
     }
     let runs = super::timing::runs_policy(args.runs, args.quick);
-    if old["runs"]
-        .as_str()
-        .is_some_and(|old_runs| old_runs != runs)
-    {
+    // A report made before `--runs` existed does not say how it was timed: it is refused
+    // too, as another policy may have timed it.
+    let old_runs = old["runs"].as_str();
+    if old_runs != Some(runs.as_str()) {
         return refuse(format!(
             "in the report in {} {}; in this run {runs}",
             args.out.display(),
-            old["runs"].as_str().unwrap_or_default()
+            old_runs.unwrap_or("the timing policy is not stated (a report from before --runs)")
         ));
     }
     let sections: Vec<Section> = match serde_json::from_value(old["sections"].clone()) {
