@@ -39,7 +39,8 @@ fn every_mass_shader_compiles() {
 
 /// The GPU's pixel sums equal the CPU's at the same pixel centres. fp32 per fragment
 /// (p interpolated, ~1e-7 relative) and fp32 tree sums over <= 64^2 pixels: 1e-4 of the
-/// largest integral leaves room for a few silhouette pixels decided differently.
+/// largest integral leaves room for a few silhouette pixels decided differently. 45 is not a
+/// power of two: the reduction's last blocks reach past the target's edge.
 #[test]
 fn gpu_pixel_sums_equal_the_cpu_reference() {
     let ctx = context();
@@ -48,7 +49,7 @@ fn gpu_pixel_sums_equal_the_cpu_reference() {
         DQuat::from_euler(glam::EulerRot::XYZ, 0.5, 0.2, 0.1),
         DVec3::new(2.0, -1.0, 0.5),
     );
-    for (n, tilt) in [(32, 0.5), (64, 1.3)] {
+    for (n, tilt) in [(32, 0.5), (45, 0.9), (64, 1.3)] {
         let mesh = transformed(&mesh, DQuat::from_rotation_y(tilt), DVec3::ZERO);
         let gpu = GpuMass::new(&ctx, n)
             .unwrap()

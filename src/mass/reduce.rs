@@ -1,9 +1,16 @@
 //! Two-dimensional integrals by buffer reduction [section 3.3, Fig. 2]. By default each
 //! peel's three integrand targets are added into running sums (one blended pass) and the
 //! sums are reduced once; in the paper's order (`PeelOrder::KeepLayers`) every kept layer
-//! `T_k` and `T_w` is reduced on its own. Either way the reduction is ping-pong 2x2 sums,
-//! the three targets at once (MRT), to one texel per body (per tile). (The GL layer's `Reducer` does the same for one texture at a time; doing
-//! the three together saves two thirds of the passes of every buoyancy step.)
+//! `T_k` and `T_w` is reduced on its own. Either way the reduction is ping-pong block sums,
+//! the three targets at once (MRT), to one texel per body (per tile). (The GL layer's
+//! `Reducer` does the same for one texture at a time; doing the three together saves two
+//! thirds of the passes of every buoyancy step.)
+//!
+//! Each pass reads "two or more values" per output [3.3]: here blocks of up to 8 x 8, so a
+//! 32 x 32 tile is one texel after two passes (8 x 8, then 4 x 4) instead of five 2 x 2
+//! ones. The sums are the same up to fp32 rounding; the passes are fewer, and each pass
+//! has a fixed cost that a software rasterizer pays in full (its scene is binned,
+//! rasterized and waited for before the next pass may read it).
 
 use super::integrands::TARGETS;
 use crate::gl::reduce::passes_for;
@@ -16,13 +23,27 @@ use glam::IVec2;
 /// The name of the reduction pass, whose sums are what the GPU path reads back.
 pub const REDUCTION_PASS: &str = "mass: sum reduction";
 
+/// The widest block one reduction pass sums: 2^3 = 8 texels a side.
+const MAX_FAN_IN_LOG2: u32 = 3;
+
+/// The side of the blocks each pass sums, to reduce a side of `2^bits` texels: as few
+/// passes as [`MAX_FAN_IN_LOG2`] allows, the bits shared evenly (32: 8 then 4; 64: 8 then
+/// 8), and at least one pass.
+pub fn fan_ins(bits: u32) -> Vec<u32> {
+    let passes = bits.div_ceil(MAX_FAN_IN_LOG2).max(1);
+    (0..passes)
+        .map(|i| 1 << (bits / passes + u32::from(i < bits % passes)).max(1))
+        .collect()
+}
+
 /// The running sums over peels, and the reduction.
 pub struct Accumulator {
     program: Program,
     /// sum0..2.
     target: Framebuffer,
     reduce_program: Program,
-    /// Half-size targets for the reduction's ping-pong (three RGBA32F each).
+    /// Half-size targets for the reduction's ping-pong (three RGBA32F each; every pass at
+    /// least halves).
     ping_pong: [Framebuffer; 2],
 }
 
@@ -87,8 +108,8 @@ impl Accumulator {
 
     /// The three sums of every `block x block` tile (row by row from the bottom), or of the
     /// whole target when `block` is `None`, of `source` (three RGBA32F targets of the
-    /// accumulator's size): 2x2 ping-pong passes that reduce the three targets at once
-    /// (MRT), then one small read per target.
+    /// accumulator's size): ping-pong passes of [`fan_ins`] that reduce the three targets
+    /// at once (MRT), then one small read per target.
     pub fn reduce_from(
         &self,
         source_target: &Framebuffer,
@@ -96,12 +117,13 @@ impl Accumulator {
     ) -> Result<Vec<[[f64; 4]; TARGETS]>, GlError> {
         let (mut w, mut h) = (source_target.width(), source_target.height());
         let levels = match block {
-            Some(b) => b.trailing_zeros(),
-            None => passes_for(w, h),
+            Some(b) if b <= 1 => Vec::new(),
+            Some(b) => fan_ins(b.trailing_zeros()),
+            None => fan_ins(passes_for(w, h)),
         };
         let mut index = 0;
-        for level in 0..levels {
-            let (out_w, out_h) = (w.div_ceil(2), h.div_ceil(2));
+        for (level, &fan_in) in levels.iter().enumerate() {
+            let (out_w, out_h) = (w.div_ceil(fan_in), h.div_ceil(fan_in));
             let source = if level == 0 {
                 source_target
             } else {
@@ -112,12 +134,13 @@ impl Accumulator {
                 .texture("u_source0", source.color(0))
                 .texture("u_source1", source.color(1))
                 .texture("u_source2", source.color(2))
-                .uniform("u_source_size", IVec2::new(w as i32, h as i32));
+                .uniform("u_source_size", IVec2::new(w as i32, h as i32))
+                .uniform("u_fan_in", fan_in as i32);
             pass.draw_full()?;
             (w, h) = (out_w, out_h);
             index = 1 - index;
         }
-        let result = if levels == 0 {
+        let result = if levels.is_empty() {
             source_target
         } else {
             &self.ping_pong[1 - index]
@@ -131,5 +154,25 @@ impl Accumulator {
         Ok((0..(w * h) as usize)
             .map(|k| [texel(0, k), texel(1, k), texel(2, k)])
             .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each pass sums 2..=8 texels a side, the passes together exactly 2^bits, in as few
+    /// passes as 8 x 8 blocks allow.
+    #[test]
+    fn fan_ins_cover_the_side_in_the_fewest_passes() {
+        assert_eq!(fan_ins(5), [8, 4]);
+        assert_eq!(fan_ins(1), [2]);
+        assert_eq!(fan_ins(0), [2]);
+        for bits in 1..=16 {
+            let f = fan_ins(bits);
+            assert!(f.iter().all(|&k| (2..=8).contains(&k)), "{bits}: {f:?}");
+            assert_eq!(f.iter().product::<u32>(), 1 << bits, "{bits}: {f:?}");
+            assert_eq!(f.len() as u32, bits.div_ceil(3), "{bits}: {f:?}");
+        }
     }
 }
