@@ -28,6 +28,7 @@ fn every_mass_shader_compiles() {
     integrands::water_depth_program(&ctx).unwrap();
     integrands::water_patch_program(&ctx).unwrap();
     classic_gpgpu::mass::reduce::Accumulator::new(&ctx, 8, 8).unwrap();
+    classic_gpgpu::mass::peel_end::PeelEnd::new(&ctx).unwrap();
     // The frame renderer's body, water and arrow programs.
     let shape = classic_gpgpu::mass::buoyancy::simulation::Shape::new(
         "box",
@@ -360,4 +361,44 @@ fn peeler_names_a_body_with_non_finite_integrals() {
         message.contains("body 1 (box)") && message.contains("pass 'mass: sum reduction'"),
         "{message}"
     );
+}
+
+/// Peeling ends with the last layer that drew, not with an empty peel after it (pass 2 on
+/// counts fragments per pixel in the stencil, `mass::peel_end`): as many peel passes as
+/// layers, and exactly the layers the CPU reference counts, so no layer is lost by
+/// stopping early. A sphere (2 layers), a tilted torus (4 at some pixels) and a torus seen
+/// edge-on, below a plane through it (odd layer counts where the water cuts the body).
+#[test]
+fn peeling_ends_with_the_last_layer_without_an_empty_peel() {
+    let ctx = context();
+    let sphere = uv_sphere(24, 48, |_| 1.0);
+    let torus_mesh = torus(1.0, 0.35, 40, 20);
+    let tilted = transformed(&torus_mesh, DQuat::from_rotation_x(0.4), DVec3::ZERO);
+    let edge_on = transformed(&torus_mesh, DQuat::from_rotation_x(1.5), DVec3::ZERO);
+    for (name, mesh, below) in [
+        ("sphere", &sphere, None),
+        ("tilted torus", &tilted, None),
+        ("edge-on torus below z = 0.2", &edge_on, Some(0.2)),
+    ] {
+        let gpu = GpuMass::new(&ctx, 32).unwrap();
+        classic_gpgpu::gl::profile::start(&ctx);
+        let got = gpu.integrate(mesh, below, None).unwrap();
+        let table = classic_gpgpu::gl::profile::finish(&ctx).unwrap();
+        let framing = Framing::fit(mesh, 32).unwrap();
+        assert_eq!(
+            got.peels,
+            cpu_reference::layers(mesh, &framing, below),
+            "{name}"
+        );
+        let peel_passes = table
+            .row("mass: passes 1..n, depth peel")
+            .unwrap_or_else(|| panic!("{name}: no peel row in\n{table}"))
+            .calls;
+        assert_eq!(
+            peel_passes, got.peels as u64,
+            "{name}: peel passes\n{table}"
+        );
+        let cpu = cpu_reference::integrate(mesh, &framing, below);
+        assert_integrals_close(name, &got.integrals, &cpu, 1e-3);
+    }
 }

@@ -45,6 +45,7 @@ pub mod integrals;
 pub mod integrands;
 pub mod models;
 pub mod peel;
+pub mod peel_end;
 pub mod reduce;
 pub mod surface;
 

@@ -8,10 +8,11 @@
 //!   layer's `peel_discard`, against the previous layer's depth) and the water test, in
 //!   one pass: a draw per group of the [`Soup`] (which holds the bodies posed in their
 //!   tiles; a group per body in the buoyancy batch), each counted by its own occlusion
-//!   query. A group whose layer drew nothing is done and is not drawn again, and peeling
-//!   ends when every group is done. Pass 1 also writes the paper's stencil bit by
-//!   two-sided stencil: 1 where the kept fragment faces down (a back face seen from
-//!   above), 0 where it faces up.
+//!   query. From pass 2 on, the stencil counts the fragments met at each pixel, and a
+//!   group with no pixel that met two ([`super::peel_end`]) is done and is not drawn
+//!   again, nor is one whose layer drew nothing; peeling ends when every group is done.
+//!   Pass 1 writes the paper's stencil bit instead, by two-sided stencil: 1 where the
+//!   kept fragment faces down (a back face seen from above), 0 where it faces up.
 //! - Pass n + 1 (with water): the fluid surface where that stencil bit is 1 (`T_w`).
 //!
 //! Two orders of the sums ([`PeelOrder`]): by default each peel is added into running sums
@@ -26,6 +27,7 @@
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::{self, Soup, TARGETS};
+use super::peel_end::{self, PeelEnd};
 use super::reduce::{Accumulator, REDUCTION_PASS};
 use crate::gl::dump::{self, DumpRange};
 use crate::gl::profile;
@@ -131,6 +133,8 @@ pub struct Peeler {
     tile_data: RefCell<Option<Texture>>,
     /// One occlusion query per group (grown on demand).
     queries: RefCell<Vec<OcclusionQuery>>,
+    /// Which groups have a layer behind the last peel.
+    peel_end: PeelEnd,
     width: u32,
     height: u32,
     accumulator: Accumulator,
@@ -167,9 +171,9 @@ impl Peeler {
     ) -> Result<Peeler, GlError> {
         let accumulator = Accumulator::new(ctx, width, height)?;
         let layers = [
-            peel_layer(ctx, width, height, "mass: peel 1", true)?,
-            peel_layer(ctx, width, height, "mass: peels (even)", false)?,
-            peel_layer(ctx, width, height, "mass: peels (odd)", false)?,
+            peel_layer(ctx, width, height, "mass: peel 1")?,
+            peel_layer(ctx, width, height, "mass: peels (even)")?,
+            peel_layer(ctx, width, height, "mass: peels (odd)")?,
         ];
         let water_depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
         let sums: Vec<&Texture> = accumulator.sums().iter().collect();
@@ -195,6 +199,7 @@ impl Peeler {
             kept: RefCell::new(None),
             tile_data: RefCell::new(None),
             queries: RefCell::new(Vec::new()),
+            peel_end: PeelEnd::new(ctx)?,
             width,
             height,
             accumulator,
@@ -332,7 +337,7 @@ impl Peeler {
         {
             let mut slot = self.kept.borrow_mut();
             if slot.is_none() {
-                let first = peel_layer(&self.ctx, self.width, self.height, "mass: T_1", true)?;
+                let first = peel_layer(&self.ctx, self.width, self.height, "mass: T_1")?;
                 let colors: Vec<Texture> = (0..TARGETS)
                     .map(|_| {
                         Texture::new_2d(&self.ctx, self.width, self.height, TextureFormat::Rgba32F)
@@ -352,13 +357,8 @@ impl Peeler {
             let kept = slot.as_mut().expect("made above");
             while kept.layers.len() <= layer {
                 let name = format!("mass: T_{}", kept.layers.len() + 1);
-                kept.layers.push(peel_layer(
-                    &self.ctx,
-                    self.width,
-                    self.height,
-                    &name,
-                    false,
-                )?);
+                kept.layers
+                    .push(peel_layer(&self.ctx, self.width, self.height, &name)?);
             }
         }
         Ok(LayerTarget::Kept(Ref::map(self.kept.borrow(), |k| {
@@ -375,8 +375,8 @@ impl Peeler {
             .clone())
     }
 
-    /// Passes 1..n: peel until no body draws anything or a layer past the limit still
-    /// does; each peel goes into the sums (or is kept). Returns (n, truncated).
+    /// Passes 1..n: peel until no body has a layer left or a layer past the limit still
+    /// draws something; each peel goes into the sums (or is kept). Returns (n, truncated).
     fn peel_passes(
         &self,
         soup: &Soup,
@@ -397,6 +397,15 @@ impl Peeler {
         while queries.len() < groups.len() {
             queries.push(OcclusionQuery::new(&self.ctx)?);
         }
+        let tiles: Vec<Vec<Rect>> = (0..groups.len())
+            .map(|g| {
+                jobs.iter()
+                    .filter(|j| j.group == g)
+                    .map(|j| j.tile)
+                    .collect()
+            })
+            .collect();
+        self.peel_end.set_tiles(&tiles, (self.width, self.height))?;
         let mut active: Vec<bool> = vec![true; groups.len()];
         let water_depth = self.water.depth().expect("T_dw has a depth attachment");
         let max = self.settings.max_peels;
@@ -423,15 +432,27 @@ impl Peeler {
                     .texture("u_water_depth", water_depth)
                     .uniform("u_peel_layer", layer as i32);
                 let ranges: Vec<(usize, usize)> = drawing.iter().map(|&g| groups[g]).collect();
-                pass.draw_elements_counted(&soup.vertices, Primitive::Triangles, &ranges, counted)
+                pass.draw_elements_counted(&soup.vertices, Primitive::Triangles, &ranges, counted)?;
+                if layer > 0 {
+                    self.peel_end.test(&target, &drawing)?;
+                }
+                Ok(())
             })?;
-            let samples = self.pass("mass: occlusion queries", || {
-                OcclusionQuery::samples_of(counted)
+            let (samples, more) = self.pass("mass: occlusion queries", || {
+                let samples = OcclusionQuery::samples_of(counted)?;
+                let more = if layer > 0 {
+                    self.peel_end.another_layer(drawing.len())?
+                } else {
+                    vec![true; drawing.len()]
+                };
+                Ok((samples, more))
             })?;
-            for (&g, drew) in drawing.iter().zip(samples) {
-                active[g] = drew > 0;
+            let mut drew = vec![false; groups.len()];
+            for ((&g, pixels), another) in drawing.iter().zip(samples).zip(more) {
+                drew[g] = pixels > 0;
+                active[g] = drew[g] && another;
             }
-            if !active.iter().any(|&a| a) {
+            if !drew.iter().any(|&d| d) {
                 return Ok((layer, false));
             }
             if layer == max {
@@ -441,7 +462,7 @@ impl Peeler {
                 dump_peel(&target, dir, layer)?;
             }
             if !keep {
-                let tiles = row_runs(jobs.iter().filter(|j| active[j.group]).map(|j| j.tile));
+                let tiles = row_runs(jobs.iter().filter(|j| drew[j.group]).map(|j| j.tile));
                 let depth = target.depth().expect("peel targets have depth");
                 self.accumulator.add_peel(target.colors(), depth, &tiles)?;
             }
@@ -455,6 +476,9 @@ impl Peeler {
                     height: self.height,
                     targets,
                 });
+            }
+            if !active.iter().any(|&a| a) {
+                return Ok((layer + 1, false));
             }
         }
         unreachable!("the loop returns at layer == max")
@@ -577,43 +601,36 @@ impl std::ops::Deref for LayerTarget<'_> {
 }
 
 /// Three RGBA32F integrand targets and the depth `T_d(k)` (32-bit float, as the peel test
-/// compares fragment depths with it exactly), with the stencil for pass 1 (`stencil`).
-/// Only pass 1's target carries a stencil: a software rasterizer samples the packed
-/// depth-stencil format more slowly than plain depth.
-fn peel_layer(
-    ctx: &Context,
-    width: u32,
-    height: u32,
-    name: &str,
-    stencil: bool,
-) -> Result<Framebuffer, GlError> {
+/// compares fragment depths with it exactly), with a stencil: pass 1's faces-down bit, the
+/// later passes' fragment counts ([`super::peel_end`]).
+fn peel_layer(ctx: &Context, width: u32, height: u32, name: &str) -> Result<Framebuffer, GlError> {
     let colors: Vec<Texture> = (0..TARGETS)
         .map(|_| Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F))
         .collect::<Result<_, _>>()?;
-    let format = if stencil {
-        TextureFormat::Depth32FStencil8
-    } else {
-        TextureFormat::Depth32F
-    };
-    let depth = Texture::new_2d(ctx, width, height, format)?;
+    let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32FStencil8)?;
     Framebuffer::new(ctx, name, &colors.iter().collect::<Vec<_>>(), Some(&depth))
 }
 
 /// The state of a peel pass: the nearest remaining fragment wins (LESS); pass 1 also
 /// writes the stencil bit by facing (two-sided stencil: the last fragment to pass the
-/// depth test, the nearest, decides).
+/// depth test, the nearest, decides), the later passes count fragments in it.
 fn peel_state(first: bool) -> DrawState {
     let write = |reference| StencilTest {
         pass: StencilOp::Replace,
         ..StencilTest::write(reference)
+    };
+    let (front, back) = if first {
+        (write(0), Some(write(1)))
+    } else {
+        (peel_end::counting(), None)
     };
     DrawState {
         depth: Some(DepthTest {
             func: Compare::Less,
             write: true,
         }),
-        stencil: first.then(|| write(0)),
-        stencil_back: first.then(|| write(1)),
+        stencil: Some(front),
+        stencil_back: back,
         ..DrawState::default()
     }
 }
