@@ -12,20 +12,26 @@ pub fn rows() -> Vec<Fidelity> {
              closing brace restored; a prelude renames its main() so the peel test runs first",
         ),
         Fidelity::new(
-            "depth peeling until an occlusion query counts nothing",
+            "depth peeling until every surface fragment is found",
             "section 3.2",
-            "src/mass/peel.rs, src/gl/peel.rs",
-            "by default each peel is added into running sums by blending (peel memory and \
-             passes do not grow with n); the paper's order, keeping the n layers and reducing \
-             each, is the mode `--order keep-layers` and agrees to fp32 rounding (table \
-             'Order of peels and sums'); peeling stops at `--max-peels` (64) with a warning; \
-             the bodies of a batch are tiles of one target, each with its own occlusion query",
+            "src/mass/peel.rs, src/mass/peel_end.rs",
+            "the paper does not say how the end is found; here an occlusion query per body \
+             counts each peel, and from pass 2 on the stencil counts the fragments met at \
+             each pixel, so a body with no pixel that met two is not peeled again (no empty \
+             last peel; pass 1's stencil holds the faces-down bit, so a body that drew in \
+             pass 1 is always peeled once more); by default each peel is added into running \
+             sums by blending (peel memory and passes do not grow with n); the paper's order, \
+             keeping the n layers and reducing each, is the mode `--order keep-layers` and \
+             agrees to fp32 rounding (table 'Order of peels and sums'); peeling stops at \
+             `--max-peels` (64) with a warning; the bodies of a batch are tiles of one target",
         ),
         Fidelity::new(
             "summation by ping-pong buffer reduction",
             "section 3.3, Fig. 2",
             "src/mass/reduce.rs, src/gl/reduce.rs",
-            "the three integrand targets are reduced together (MRT), one texel per body tile",
+            "the three integrand targets are reduced together (MRT), one texel per body tile; \
+             each pass sums blocks of up to 8x8 texels (the paper: 'two or more values'), so a \
+             32x32 tile takes 2 passes instead of 5",
         ),
         Fidelity::new(
             "n + 2 passes: fluid depth, peels below it, fluid patch where pass 1 faced down",

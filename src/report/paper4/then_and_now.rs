@@ -12,7 +12,7 @@ use std::time::Instant;
 const VERDICT: &str = "What compute no longer needs: the orthographic framing, the \
     resolution, the depth peeling with its occlusion query per layer and the per-pixel fp32 \
     integrands; the divergence theorem is summed per triangle, exactly, and the reduction \
-    keeps 512 values per work group in shared memory instead of one 2x2 pass per level. What \
+    keeps 512 values per work group in shared memory instead of one 8x8 pass per level. What \
     the peeling bought in 2006 (a scatter-free way to visit every layer of a non-convex body) \
     is worth nothing here: the compute sum is exact where the peeled one carries resolution \
     error.";
@@ -98,7 +98,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
         unavailable: None,
         stages: vec![
             StageRow::new(
-                "integrals (peels + 2x2 reduction / triangle terms + shared-memory reduction)",
+                "integrals (peels + 8x8 reduction / triangle terms + shared-memory reduction)",
                 Some(median(classic_gpu)),
                 Some(median(compute_gpu)),
                 Some(median(cpu.clone())),
