@@ -516,5 +516,8 @@ fn copies_of_one_crowd_stepped_once_per_round_equal_crowds_stepped_alone() {
     for (i, (scene, crowd)) in scenes.iter().zip(&alone).enumerate() {
         assert!(scene.crowd == *crowd, "scene {i}");
     }
-    assert!(scenes[0].crowd != scenes[1].crowd, "different seeds walk differently");
+    assert!(
+        scenes[0].crowd != scenes[1].crowd,
+        "different seeds walk differently"
+    );
 }

@@ -269,13 +269,7 @@ pub fn crowd_sources(scenes: &[Scene]) -> Vec<Option<usize>> {
 /// Steps scene `i`'s crowd by `dt`, in a round that steps the scenes in order: a crowd with
 /// a source ([`crowd_sources`]) becomes a copy of it, already stepped this round, instead of
 /// taking the same step again.
-pub fn step_crowd(
-    scenes: &mut [Scene],
-    sources: &[Option<usize>],
-    i: usize,
-    dt: f32,
-    stride: f64,
-) {
+pub fn step_crowd(scenes: &mut [Scene], sources: &[Option<usize>], i: usize, dt: f32, stride: f64) {
     match sources[i] {
         Some(k) => {
             let (before, from_i) = scenes.split_at_mut(i);
