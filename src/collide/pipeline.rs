@@ -12,7 +12,7 @@ use super::streaming_test::{PairTarget, StreamingTest};
 use super::tiles::TileLayout;
 use super::tri_test::{test_caps, ModelView, Predicate};
 use super::vertex_textures::VertexTexture;
-use crate::gl::{profile, query::time_gpu, Context};
+use crate::gl::{profile, query::time_gpu, Context, Rect};
 use crate::mesh::Mesh;
 use glam::Vec3;
 use serde::Serialize;
@@ -302,6 +302,51 @@ impl StreamingCollider {
             .ok_or_else(|| anyhow::anyhow!("readback auto: calibration point {k} not measured"))
     }
 
+    /// A warm-up before timed frames, smaller than a frame that is not counted: the
+    /// vertices downloaded and the streams updated, the first tile's stencil set (and kept,
+    /// as a frame keeps it when there is one tile), the overlap pass drawn over one
+    /// [`WARM_UP_SIDE`]-square corner of `P0` (the same program, states and target; `P0`
+    /// cleared whole), and the encode passes and reads of every scheme the readback mode can
+    /// choose ([`warm_up_schemes`]), each over a corner of its levels
+    /// ([`Reduction::warm_up`]). A whole frame would also draw the overlap and encode passes
+    /// over all of their targets and test the triangles, and `auto` would measure a
+    /// calibration point for it.
+    pub fn warm_up(&mut self, positions_x: &[Vec3], positions_y: &[Vec3]) -> anyhow::Result<()> {
+        check_positions(
+            "X",
+            positions_x,
+            self.x.stream.leaves.iter().flat_map(|l| &l.vertices),
+        )?;
+        check_positions(
+            "Y",
+            positions_y,
+            self.y.stream.leaves.iter().flat_map(|l| &l.vertices),
+        )?;
+        for (stream, positions) in [(&mut self.x, positions_x), (&mut self.y, positions_y)] {
+            for (_, vertices) in &mut stream.segments {
+                vertices.upload(positions)?;
+            }
+        }
+        for stream in [&self.x, &self.y] {
+            for (aabb, vertices) in &stream.segments {
+                self.update.run(vertices, aabb)?;
+            }
+        }
+        let (ax, _) = &self.x.segments[0];
+        let (ay, _) = &self.y.segments[0];
+        self.test.set_stencil(&self.target, ax, ay)?;
+        self.stencil_ready = true;
+        let corner = Rect::sized(
+            WARM_UP_SIDE.min(self.target.width() as u32),
+            WARM_UP_SIDE.min(self.target.height() as u32),
+        );
+        self.test.run_on(&self.target, ax, ay, Some(corner))?;
+        self.reduction
+            .warm_up(&self.target, warm_up_schemes(self.options.readback))?;
+        self.ctx.finish_all();
+        Ok(())
+    }
+
     /// One frame: the vertices of X and Y (the meshes' topology, deformed) in, every
     /// intersecting triangle pair out.
     pub fn frame(
@@ -448,6 +493,21 @@ impl StreamingCollider {
 
     pub fn context(&self) -> &Context {
         &self.ctx
+    }
+}
+
+/// Side of the corner of `P0` that [`StreamingCollider::warm_up`] draws the overlap pass
+/// over.
+pub const WARM_UP_SIDE: u32 = 16;
+
+/// The schemes that readback `mode` can choose, which [`StreamingCollider::warm_up`] warms up.
+pub fn warm_up_schemes(mode: ReadbackMode) -> &'static [Scheme] {
+    match mode {
+        ReadbackMode::Hierarchical => &[Scheme::Hierarchical],
+        ReadbackMode::Reduced => &[Scheme::Reduced],
+        ReadbackMode::Full => &[Scheme::Full],
+        ReadbackMode::PaperSwitch => &[Scheme::Hierarchical, Scheme::Reduced],
+        ReadbackMode::Auto => &[Scheme::Hierarchical, Scheme::Reduced, Scheme::Full],
     }
 }
 
