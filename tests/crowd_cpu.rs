@@ -508,9 +508,9 @@ fn copies_of_one_crowd_stepped_once_per_round_equal_crowds_stepped_alone() {
     assert_eq!(sources, [None, None, Some(0), Some(1)]);
     let mut alone: Vec<Crowd> = scenes.iter().map(|s| s.crowd.clone()).collect();
     for _ in 0..12 {
-        for i in 0..scenes.len() {
+        for (i, crowd) in alone.iter_mut().enumerate() {
             step_crowd(&mut scenes, &sources, i, 1.0 / 30.0, stride);
-            alone[i].step(1.0 / 30.0, stride);
+            crowd.step(1.0 / 30.0, stride);
         }
     }
     for (i, (scene, crowd)) in scenes.iter().zip(&alone).enumerate() {
