@@ -130,3 +130,56 @@ fn a_cullide_warm_up_leaves_the_frames_unchanged() {
         );
     }
 }
+
+/// The streaming collider's warm-up (before the timed frames, smaller than a frame) changes
+/// nothing that a frame finds, in one rectangle and in tiles, for every fixed scheme and the
+/// paper's switch: the same pairs, CAPs, eta, scheme and bytes read back as after a whole
+/// frame 0. `auto`'s lazy calibration measures no point for it.
+#[test]
+fn a_streaming_warm_up_leaves_the_frames_unchanged() {
+    use classic_gpgpu::collide::pipeline::LazyCalibration;
+    use classic_gpgpu::collide::reduction_gpu::CALIBRATION_ETAS;
+    let ctx = context();
+    let scene = Scene::build("merging-tori", Some(800)).unwrap();
+    let (x, y) = (&scene.x.rest, &scene.y.rest);
+    let (px, py) = scene.frame(0);
+    for (readback, max_tile) in [
+        (ReadbackMode::PaperSwitch, None),
+        (ReadbackMode::Hierarchical, Some(64)),
+        (ReadbackMode::Reduced, None),
+        (ReadbackMode::Full, Some(64)),
+    ] {
+        let options = Options {
+            leaf_size: 4,
+            readback,
+            max_tile,
+            ..Options::default()
+        };
+        let mut cold = StreamingCollider::new(&ctx, x, y, options).unwrap();
+        let mut warm = StreamingCollider::new(&ctx, x, y, options).unwrap();
+        assert_eq!(warm.layout.count() > 1, max_tile.is_some(), "{readback:?}");
+        cold.frame(&px, &py).unwrap();
+        warm.warm_up(&px, &py).unwrap();
+        for f in [1, 5] {
+            let (px, py) = scene.frame(f);
+            let a = cold.frame(&px, &py).unwrap();
+            let b = warm.frame(&px, &py).unwrap();
+            assert!(!a.pairs.is_empty(), "{readback:?} frame {f}");
+            assert_eq!(
+                (&a.pairs, &a.cap_leaves, a.eta, a.scheme, a.readback_bytes),
+                (&b.pairs, &b.cap_leaves, b.eta, b.scheme, b.readback_bytes),
+                "{readback:?} frame {f}"
+            );
+        }
+    }
+    let options = Options {
+        leaf_size: 4,
+        readback: ReadbackMode::Auto,
+        ..Options::default()
+    };
+    let mut auto = StreamingCollider::new_uncalibrated(&ctx, x, y, options).unwrap();
+    auto.calibrate_lazily(LazyCalibration::new(&CALIBRATION_ETAS, 1));
+    auto.warm_up(&px, &py).unwrap();
+    let lazy = auto.take_lazy_calibration().unwrap();
+    assert!(lazy.points.iter().all(Option::is_none));
+}

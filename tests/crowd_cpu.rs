@@ -490,3 +490,34 @@ fn one_pass1_draw_holds_3712_characters_at_lod0_on_16384_texel_targets() {
     assert_eq!(characters_per_target(256, 1), 256);
     assert_eq!(characters_per_target(4096, 5000), 0);
 }
+
+#[test]
+fn copies_of_one_crowd_stepped_once_per_round_equal_crowds_stepped_alone() {
+    // Side-by-side runs step a crowd once per round and copy it into the scenes whose crowd
+    // was equal to it: each scene must end as if it had stepped its own crowd.
+    use classic_gpgpu::crowd::scene::{crowd_sources, lod_scene, step_crowd, table1_scene};
+    let kind = ModelKind::Soldier;
+    let stride = CharacterModel::build(kind).unwrap().clip.stride;
+    let mut scenes = [
+        table1_scene(kind, 40, 1.5, 1),
+        lod_scene(kind, 40, 1.5, 2, LodPolicy::default()),
+        table1_scene(kind, 40, 1.5, 1),
+        lod_scene(kind, 40, 1.5, 2, LodPolicy::with_sprites()),
+    ];
+    let sources = crowd_sources(&scenes);
+    assert_eq!(sources, [None, None, Some(0), Some(1)]);
+    let mut alone: Vec<Crowd> = scenes.iter().map(|s| s.crowd.clone()).collect();
+    for _ in 0..12 {
+        for (i, crowd) in alone.iter_mut().enumerate() {
+            step_crowd(&mut scenes, &sources, i, 1.0 / 30.0, stride);
+            crowd.step(1.0 / 30.0, stride);
+        }
+    }
+    for (i, (scene, crowd)) in scenes.iter().zip(&alone).enumerate() {
+        assert!(scene.crowd == *crowd, "scene {i}");
+    }
+    assert!(
+        scenes[0].crowd != scenes[1].crowd,
+        "different seeds walk differently"
+    );
+}

@@ -84,3 +84,40 @@ fn bad_parameters_are_named() {
     assert!(err.contains("--iterations"), "{err}");
     assert!(DepthMask::new(&ctx, &[0.0; 12], 4, 3).is_err());
 }
+
+#[test]
+fn the_report_row_checks_and_leaves_the_depth_masked_picture() {
+    // The section's depth-mask row checks the pictures of its last timed runs and its
+    // picture is what the row leaves in the target: the depth-masked one.
+    use classic_gpgpu::report::lecture3::depth_mask_row;
+    use classic_gpgpu::report::timing::Runs;
+    let ctx = context();
+    let (w, iterations, fraction) = (32, 64, 0.25);
+    let values = mask(MaskShape::Scattered, w, w, 1);
+    let passes = DepthMask::new(&ctx, &values, w, w).unwrap();
+    let (cpu, active) = cpu_picture(&values, w, w, fraction, iterations);
+    let row = depth_mask_row(
+        &ctx,
+        &passes,
+        &values,
+        MaskShape::Scattered,
+        w,
+        fraction,
+        iterations,
+        None,
+        Runs::exactly(2),
+    )
+    .unwrap();
+    assert_eq!(row.active, active);
+    assert_eq!(row.masked_fragments, active);
+    assert_eq!(row.branching_fragments, (w * w) as u64);
+    assert!(row.max_error <= 2e-5, "{}", row.max_error);
+    let left = passes.read().unwrap();
+    for (i, (&g, &c)) in left.iter().zip(&cpu).enumerate() {
+        if values[i] >= fraction {
+            assert_eq!(g, 0.0, "pixel {i} is masked off");
+        } else {
+            assert!((g as f64 - c).abs() <= 2e-5, "pixel {i}: {g} vs {c}");
+        }
+    }
+}

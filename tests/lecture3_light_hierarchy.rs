@@ -222,3 +222,34 @@ fn bad_parameters_are_named() {
         "{err}"
     );
 }
+
+#[test]
+fn the_report_run_leaves_its_last_criterion_gathered_for_the_picture() {
+    // The section's picture of the coarsest criterion shades what `light_run` left in the
+    // gather target: it must be that criterion's gather, as a gather of its own draws it.
+    use classic_gpgpu::report::lecture3::light_run;
+    use classic_gpgpu::report::timing::Runs;
+    let ctx = context();
+    let (run, lighting, ()) =
+        light_run(
+            &ctx,
+            VPLS,
+            32,
+            32,
+            &[0.2, 1.5],
+            Runs::exactly(2),
+            |_| Ok(()),
+        )
+        .unwrap();
+    assert_eq!(run.rows.len(), 2);
+    let left = lighting.gathers.read().unwrap();
+    lighting.gather(Gather::tree(1.5).unwrap()).unwrap();
+    let again = lighting.gathers.read().unwrap();
+    assert_eq!(left, again, "the target holds theta 1.5's gather");
+    lighting.gather(Gather::tree(0.2).unwrap()).unwrap();
+    let other = lighting.gathers.read().unwrap();
+    assert_ne!(
+        left, other,
+        "the two criteria draw different gathers (the check can fail)"
+    );
+}

@@ -436,11 +436,12 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
 fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     a.output.check(&[])?;
     check_size("--size", a.size)?;
-    let gather = Gather::tree(a.theta)?;
+    // The criterion is checked before anything runs.
+    Gather::tree(a.theta)?;
     let (run, lighting, ()) =
         bench::light_run(ctx, a.vpls, a.size, a.size, &[a.theta], RUNS, |_| Ok(()))?;
     if let Some(png) = &a.output.png {
-        lighting.gather(gather)?;
+        // `light_run` left the gather of `a.theta` in the target.
         let terms = if a.indirect_only {
             Terms::Indirect
         } else {
@@ -579,7 +580,7 @@ fn depth_mask(a: &DepthMaskArgs, ctx: &Context, json: bool) -> anyhow::Result<()
         );
     }
     if let Some(png) = &a.output.png {
-        passes.run_masked(a.fraction, a.iterations)?;
+        // `depth_mask_row` left the depth-masked picture in the target.
         texture_png(passes.target.color(0), png, DumpRange::Auto)?;
     }
     let renderer = ctx.info().renderer_line();

@@ -12,7 +12,7 @@ use super::streaming_test::{PairTarget, StreamingTest};
 use super::tiles::TileLayout;
 use super::tri_test::{test_caps, ModelView, Predicate};
 use super::vertex_textures::VertexTexture;
-use crate::gl::{profile, query::time_gpu, Context};
+use crate::gl::{profile, query::time_gpu, Context, GlError, Rect};
 use crate::mesh::Mesh;
 use glam::Vec3;
 use serde::Serialize;
@@ -302,6 +302,68 @@ impl StreamingCollider {
             .ok_or_else(|| anyhow::anyhow!("readback auto: calibration point {k} not measured"))
     }
 
+    /// A warm-up before timed frames, smaller than a frame that is not counted: the
+    /// vertices downloaded and the streams updated, the first tile's stencil set (and kept,
+    /// as a frame keeps it when there is one tile), the overlap pass drawn over one
+    /// [`WARM_UP_SIDE`]-square corner of `P0` (the same program, states and target; `P0`
+    /// cleared whole), and the encode passes and reads of every scheme the readback mode can
+    /// choose ([`warm_up_schemes`]), each over a corner of its levels
+    /// ([`Reduction::warm_up`]). A whole frame would also draw the overlap and encode passes
+    /// over all of their targets and test the triangles, and `auto` would measure a
+    /// calibration point for it.
+    pub fn warm_up(&mut self, positions_x: &[Vec3], positions_y: &[Vec3]) -> anyhow::Result<()> {
+        self.check_inputs(positions_x, positions_y)?;
+        self.upload(positions_x, positions_y)?;
+        self.update_streams()?;
+        let (ax, _) = &self.x.segments[0];
+        let (ay, _) = &self.y.segments[0];
+        self.test.set_stencil(&self.target, ax, ay)?;
+        self.stencil_ready = true;
+        let corner = Rect::sized(
+            WARM_UP_SIDE.min(self.target.width() as u32),
+            WARM_UP_SIDE.min(self.target.height() as u32),
+        );
+        self.test.run_on(&self.target, ax, ay, Some(corner))?;
+        self.reduction
+            .warm_up(&self.target, warm_up_schemes(self.options.readback))?;
+        self.ctx.finish_all();
+        Ok(())
+    }
+
+    /// The positions of X and Y must match the meshes and be finite.
+    fn check_inputs(&self, positions_x: &[Vec3], positions_y: &[Vec3]) -> anyhow::Result<()> {
+        check_positions(
+            "X",
+            positions_x,
+            self.x.stream.leaves.iter().flat_map(|l| &l.vertices),
+        )?;
+        check_positions(
+            "Y",
+            positions_y,
+            self.y.stream.leaves.iter().flat_map(|l| &l.vertices),
+        )
+    }
+
+    /// Texture download: the positions into every segment's vertex texture.
+    fn upload(&mut self, positions_x: &[Vec3], positions_y: &[Vec3]) -> anyhow::Result<()> {
+        for (stream, positions) in [(&mut self.x, positions_x), (&mut self.y, positions_y)] {
+            for (_, vertices) in &mut stream.segments {
+                vertices.upload(positions)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Stream update: every segment's leaf boxes from its vertex texture.
+    fn update_streams(&self) -> Result<(), GlError> {
+        for stream in [&self.x, &self.y] {
+            for (aabb, vertices) in &stream.segments {
+                self.update.run(vertices, aabb)?;
+            }
+        }
+        Ok(())
+    }
+
     /// One frame: the vertices of X and Y (the meshes' topology, deformed) in, every
     /// intersecting triangle pair out.
     pub fn frame(
@@ -317,16 +379,7 @@ impl StreamingCollider {
                 || self.lazy.is_some(),
             "readback auto: no calibration (calibrate, or set one, before the first frame)"
         );
-        check_positions(
-            "X",
-            positions_x,
-            self.x.stream.leaves.iter().flat_map(|l| &l.vertices),
-        )?;
-        check_positions(
-            "Y",
-            positions_y,
-            self.y.stream.leaves.iter().flat_map(|l| &l.vertices),
-        )?;
+        self.check_inputs(positions_x, positions_y)?;
         let mut out = FrameResult {
             tiles: self.layout.count(),
             ..FrameResult::default()
@@ -338,24 +391,14 @@ impl StreamingCollider {
             return Ok(out);
         }
         // Texture download, then stream update.
+        let ctx = self.ctx.clone();
         let t = Instant::now();
-        let download = profile::scope(&self.ctx, "texture download");
-        for (stream, positions) in [(&mut self.x, positions_x), (&mut self.y, positions_y)] {
-            for (_, vertices) in &mut stream.segments {
-                vertices.upload(positions)?;
-            }
-        }
+        let download = profile::scope(&ctx, "texture download");
+        self.upload(positions_x, positions_y)?;
         self.ctx.finish_all();
         drop(download);
         out.timings.download = t.elapsed().as_secs_f64() * 1e3;
-        let ((), update_ms) = time_gpu(&self.ctx, || {
-            for stream in [&self.x, &self.y] {
-                for (aabb, vertices) in &stream.segments {
-                    self.update.run(vertices, aabb)?;
-                }
-            }
-            Ok(())
-        })?;
+        let ((), update_ms) = time_gpu(&self.ctx, || self.update_streams())?;
         out.timings.update = update_ms;
         // Streaming AABB test and stream reduction, tile by tile.
         let total_pairs = (self.x.stream.len() * self.y.stream.len()) as f64;
@@ -448,6 +491,21 @@ impl StreamingCollider {
 
     pub fn context(&self) -> &Context {
         &self.ctx
+    }
+}
+
+/// Side of the corner of `P0` that [`StreamingCollider::warm_up`] draws the overlap pass
+/// over.
+pub const WARM_UP_SIDE: u32 = 16;
+
+/// The schemes that readback `mode` can choose, which [`StreamingCollider::warm_up`] warms up.
+pub fn warm_up_schemes(mode: ReadbackMode) -> &'static [Scheme] {
+    match mode {
+        ReadbackMode::Hierarchical => &[Scheme::Hierarchical],
+        ReadbackMode::Reduced => &[Scheme::Reduced],
+        ReadbackMode::Full => &[Scheme::Full],
+        ReadbackMode::PaperSwitch => &[Scheme::Hierarchical, Scheme::Reduced],
+        ReadbackMode::Auto => &[Scheme::Hierarchical, Scheme::Reduced, Scheme::Full],
     }
 }
 

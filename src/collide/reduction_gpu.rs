@@ -212,11 +212,61 @@ impl Reduction {
         target: &Level,
         name: &str,
     ) -> Result<(), GlError> {
+        self.encode_on(program, source, target, name, None)
+    }
+
+    /// [`Reduction::encode`] over `rect` of `target` only (all of it for `None`).
+    fn encode_on(
+        &self,
+        program: &Program,
+        source: &Texture,
+        target: &Level,
+        name: &str,
+        rect: Option<Rect>,
+    ) -> Result<(), GlError> {
         let mut pass = target.framebuffer.pass(program, name)?;
         pass.texture("u_level", source);
-        pass.draw_full()
+        match rect {
+            Some(rect) => pass.draw_rect(rect),
+            None => pass.draw_full(),
+        }
+    }
+
+    /// A warm-up of [`Reduction::read`] for `schemes`, smaller than a read of a whole `P0`:
+    /// each level a scheme encodes is cleared whole, encoded over a corner of
+    /// [`WARM_UP_TEXELS`] square only (the same programs, states and targets) and read at one
+    /// texel, as `P0` is.
+    pub fn warm_up(&self, p0: &PairTarget, schemes: &[Scheme]) -> Result<(), GlError> {
+        p0.framebuffer.read_f32(0, Rect::sized(1, 1))?;
+        for &scheme in schemes {
+            let passes: Vec<(&Program, &Texture, &Level, &str)> = match scheme {
+                Scheme::Hierarchical => (0..self.levels.len())
+                    .map(|i| {
+                        let source = if i == 0 {
+                            &p0.p0
+                        } else {
+                            &self.levels[i - 1].texture
+                        };
+                        (&self.encode4, source, &self.levels[i], ENCODE_4X4_PASSES[i])
+                    })
+                    .collect(),
+                Scheme::Reduced => vec![(&self.encode8, &p0.p0, &self.reduced, ENCODE_8X8_PASS)],
+                Scheme::Full => Vec::new(),
+            };
+            for (program, source, level, name) in passes {
+                level.framebuffer.clear_color(0, [0.0; 4])?;
+                let (w, h) = (level.texture.width(), level.texture.height());
+                let corner = Rect::sized(w.min(WARM_UP_TEXELS), h.min(WARM_UP_TEXELS));
+                self.encode_on(program, source, level, name, Some(corner))?;
+                level.framebuffer.read_f32(0, Rect::sized(1, 1))?;
+            }
+        }
+        Ok(())
     }
 }
+
+/// Side of the corner of each level that [`Reduction::warm_up`] encodes.
+pub const WARM_UP_TEXELS: u32 = 4;
 
 /// The passes that write `P1`, `P2`, `P3` and `P1'` (named in errors).
 const ENCODE_4X4_PASSES: [&str; 3] = [

@@ -6,7 +6,7 @@
 
 use super::aabb_textures::AabbTextures;
 use crate::gl::{
-    Context, DrawState, Framebuffer, GlError, OcclusionQuery, Program, StencilTest, Texture,
+    Context, DrawState, Framebuffer, GlError, OcclusionQuery, Program, Rect, StencilTest, Texture,
     TextureFormat,
 };
 use crate::shader;
@@ -94,6 +94,18 @@ impl StreamingTest {
         x: &AabbTextures,
         y: &AabbTextures,
     ) -> Result<u64, GlError> {
+        self.run_on(target, x, y, None)
+    }
+
+    /// [`StreamingTest::run`] drawn over `rect` of `P0` only (all of it for `None`), after
+    /// clearing the whole of `P0`.
+    pub fn run_on(
+        &self,
+        target: &PairTarget,
+        x: &AabbTextures,
+        y: &AabbTextures,
+        rect: Option<Rect>,
+    ) -> Result<u64, GlError> {
         target.framebuffer.clear_color(0, [0.0; 4])?;
         let mut pass = target.framebuffer.pass(&self.overlap, OVERLAP_PASS)?;
         pass.state(DrawState {
@@ -105,7 +117,10 @@ impl StreamingTest {
         .texture("minTextureB", &y.t_min)
         .texture("maxTextureB", &y.t_max);
         self.query.begin();
-        let drawn = pass.draw_full();
+        let drawn = match rect {
+            Some(rect) => pass.draw_rect(rect),
+            None => pass.draw_full(),
+        };
         self.query.end();
         drawn?;
         self.query.samples()

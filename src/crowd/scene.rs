@@ -253,40 +253,42 @@ pub fn run(
         &configs,
         frames,
         dt,
+        |_, _| Ok::<(), GlError>(()),
     )?;
     Ok(runs.remove(0))
+}
+
+/// For each scene, the first earlier scene whose crowd equals its own (agents, parameters
+/// and random stream), if any: stepped alike, the two stay equal ([`step_crowd`]).
+pub fn crowd_sources(scenes: &[Scene]) -> Vec<Option<usize>> {
+    (0..scenes.len())
+        .map(|j| (0..j).find(|&k| scenes[k].crowd == scenes[j].crowd))
+        .collect()
+}
+
+/// Steps scene `i`'s crowd by `dt`, in a round that steps the scenes in order: a crowd with
+/// a source ([`crowd_sources`]) becomes a copy of it, already stepped this round, instead of
+/// taking the same step again.
+pub fn step_crowd(scenes: &mut [Scene], sources: &[Option<usize>], i: usize, dt: f32, stride: f64) {
+    match sources[i] {
+        Some(k) => {
+            let (before, from_i) = scenes.split_at_mut(i);
+            from_i[0].crowd.clone_from(&before[k].crowd);
+        }
+        None => scenes[i].crowd.step(dt, stride),
+    }
 }
 
 /// Measures several configurations side by side: frame by frame in turn, each on its own
 /// copy of the scene, so that whatever else the machine is doing slows them alike. Each
 /// gets a warm-up ([`warm_up`]), `frames` timed frames (median reported) and one frame
-/// with per-stage timing.
-pub fn run_side_by_side(
-    ctx: &Context,
-    renderer: &mut CrowdRenderer,
-    target: &Framebuffer,
-    scenes: &mut [Scene],
-    configs: &[Config],
-    frames: usize,
-    dt: f32,
-) -> Result<Vec<RunStats>, GlError> {
-    run_side_by_side_then(
-        ctx,
-        renderer,
-        target,
-        scenes,
-        configs,
-        frames,
-        dt,
-        |_, _| Ok(()),
-    )
-}
-
-/// [`run_side_by_side`], calling `shown(i, target)` right after configuration `i`'s
-/// per-stage frame, while `target` still holds it: a caller that wants a picture of a
-/// configuration's last frame takes it there instead of drawing the frame again.
+/// with per-stage timing. Copies of one crowd are stepped once per round ([`step_crowd`]).
+///
+/// `shown(i, target)` is called right after configuration `i`'s per-stage frame, while
+/// `target` still holds it: a caller that wants a picture of a configuration's last frame
+/// takes it there instead of drawing the frame again.
 #[allow(clippy::too_many_arguments)]
-pub fn run_side_by_side_then<E: From<GlError>>(
+pub fn run_side_by_side<E: From<GlError>>(
     ctx: &Context,
     renderer: &mut CrowdRenderer,
     target: &Framebuffer,
@@ -310,22 +312,19 @@ pub fn run_side_by_side_then<E: From<GlError>>(
         warm_up(renderer, target, scene, config)?;
         ctx.finish_all();
     }
+    let sources = crowd_sources(scenes);
     for _ in 0..frames {
-        for ((scene, config), times) in scenes.iter_mut().zip(configs).zip(&mut times_ms) {
-            scene.crowd.step(dt, stride);
+        for (i, (config, times)) in configs.iter().zip(&mut times_ms).enumerate() {
+            step_crowd(scenes, &sources, i, dt, stride);
             let started = Instant::now();
-            frame(renderer, scene, config, false)?;
+            frame(renderer, &scenes[i], config, false)?;
             times.push(started.elapsed().as_secs_f64() * 1e3);
         }
     }
     let mut out = Vec::with_capacity(configs.len());
-    for (i, ((scene, config), times)) in scenes
-        .iter_mut()
-        .zip(configs)
-        .zip(&mut times_ms)
-        .enumerate()
-    {
-        scene.crowd.step(dt, stride);
+    for (i, (config, times)) in configs.iter().zip(&mut times_ms).enumerate() {
+        step_crowd(scenes, &sources, i, dt, stride);
+        let scene = &scenes[i];
         let (passes, plan) = frame(renderer, scene, config, true)?;
         shown(i, target)?;
         let frame_ms = median(times);

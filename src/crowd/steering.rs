@@ -45,8 +45,9 @@ pub struct SteeringParams {
     pub bounds: (Vec2, Vec2),
 }
 
-/// A crowd of agents with its own random stream (deterministic for a seed).
-#[derive(Clone, Debug)]
+/// A crowd of agents with its own random stream (deterministic for a seed: equal crowds
+/// stay equal step by step).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Crowd {
     pub agents: Vec<Agent>,
     pub params: SteeringParams,

@@ -374,7 +374,8 @@ fn light(opts: &BenchOptions, runs: Runs) -> anyhow::Result<LightRun> {
 /// Technique 3: the hierarchy built and every criterion gathered, against the brute force on
 /// the GPU and on the CPU. `with_brute_force` sees the lighting while the brute-force gather
 /// is in its target (for pictures); what it returns is returned. Returns the pipeline too,
-/// for pictures.
+/// for pictures: its gather target then holds the last criterion's gather (its last timed
+/// run), so a picture of that criterion needs no gather of its own.
 ///
 /// Each gather pass is run the fewest times the timings allow: both gather programs are
 /// warmed up once with one node per receiver ([`IndirectLighting::warm_up_gathers`]), and
@@ -633,14 +634,15 @@ fn depth_mask(opts: &BenchOptions, quick: bool, runs: Runs) -> anyhow::Result<De
                 Some(&expensive),
                 runs,
             )?);
-        }
-        if shape == MaskShape::Scattered {
-            passes.run_masked(0.25, iterations)?;
-            crate::gl::dump::texture_png(
-                passes.target.color(0),
-                &opts.out_dir.join(images::DEPTH_MASK_PNG),
-                crate::gl::dump::DumpRange::Auto,
-            )?;
+            // The picture is the scattered mask at 25%, the row's masked picture still in
+            // the target.
+            if shape == MaskShape::Scattered && fraction == DEPTH_MASK_PICTURE_FRACTION {
+                crate::gl::dump::texture_png(
+                    passes.target.color(0),
+                    &opts.out_dir.join(images::DEPTH_MASK_PNG),
+                    crate::gl::dump::DumpRange::Auto,
+                )?;
+            }
         }
     }
     Ok(DepthMaskRun {
@@ -650,9 +652,17 @@ fn depth_mask(opts: &BenchOptions, quick: bool, runs: Runs) -> anyhow::Result<De
     })
 }
 
+/// The fraction of the depth-mask picture (scattered mask).
+const DEPTH_MASK_PICTURE_FRACTION: f32 = 0.25;
+
 /// One mask and fraction: both versions timed, their fragments counted, their pictures
 /// checked against the CPU's (from `expensive`, [`depth_mask::cpu_expensive`] of this size
 /// and iteration count, where a sweep computed it once).
+///
+/// The checked pictures are those of each version's last timed run (every run draws the
+/// same), so `passes.target` holds the depth-masked picture afterwards. Both versions are
+/// warmed up first at one iteration per pixel (the iterations are a uniform: same programs
+/// and states).
 #[allow(clippy::too_many_arguments)]
 pub fn depth_mask_row(
     ctx: &Context,
@@ -676,19 +686,20 @@ pub fn depth_mask_row(
             .map(|(&g, &c)| (g as f64 - c).abs())
             .fold(0.0, f64::max)
     };
-    let branching_fragments = passes.run_branching(fraction, iterations)?;
-    let mut max_error = error(passes.read()?);
-    let masked_fragments = passes.run_masked(fraction, iterations)?;
-    max_error = max_error.max(error(passes.read()?));
-    // The checked runs above were the warm-up.
+    passes.run_branching(fraction, 1)?;
+    passes.run_masked(fraction, 1)?;
+    let mut branching_fragments = 0;
     let branching = gpu_ms_warm(ctx, runs, || {
-        passes.run_branching(fraction, iterations)?;
+        branching_fragments = passes.run_branching(fraction, iterations)?;
         Ok(())
     })?;
+    let mut max_error = error(passes.read()?);
+    let mut masked_fragments = 0;
     let masked = gpu_ms_warm(ctx, runs, || {
-        passes.run_masked(fraction, iterations)?;
+        masked_fragments = passes.run_masked(fraction, iterations)?;
         Ok(())
     })?;
+    max_error = max_error.max(error(passes.read()?));
     Ok(DepthMaskRow {
         mask: shape,
         fraction,

@@ -6,7 +6,7 @@ use crate::gl::dump::{map_floats, DumpRange};
 use crate::lecture3::displacement::compare::Verdict;
 use crate::lecture3::displacement::{Camera, DisplacementRenderer, Method};
 use crate::lecture3::light_hierarchy::shade::Terms;
-use crate::lecture3::light_hierarchy::{Gather, IndirectLighting};
+use crate::lecture3::light_hierarchy::IndirectLighting;
 use crate::lecture3::pyramid::{cpu_pyramid, Extreme};
 use crate::lecture3::pyramid_atlas::atlas_layout;
 use crate::lecture3::HeightMap;
@@ -216,14 +216,13 @@ pub fn brute_force_pictures(lighting: &IndirectLighting) -> anyhow::Result<[Rgba
 }
 
 /// The brute-force pictures ([`brute_force_pictures`]) beside indirect light alone with the
-/// coarsest criterion of the plot.
+/// coarsest criterion of the plot, the last of [`super::bench::THETAS`]: the gather that
+/// [`super::bench::light_run`] leaves in `lighting`'s target (its last timed run).
 pub fn light_png(
     opts: &BenchOptions,
     lighting: &IndirectLighting,
     brute_force: [Rgba; 2],
 ) -> anyhow::Result<()> {
-    let theta = *super::bench::THETAS.last().expect("criteria");
-    lighting.gather(Gather::tree(theta)?)?;
     let coarse = shaded(lighting, Terms::Indirect)?;
     let [both, indirect] = brute_force;
     Rgba::row(&[both, indirect, coarse], 4).save(&opts.out_dir.join(LIGHT_PNG))

@@ -459,15 +459,16 @@ fn readback_schemes(
         let mut c = calibrations.collider(opts.gl, &scene.x.rest, &scene.y.rest, options)?;
         p0 = c.target.width();
         let (mut enc, mut dec, mut bytes, mut eta) = (0.0, 0.0, 0u64, 0.0);
-        for f in 0..=frames {
+        // Frame 0 is the warm-up ([`StreamingCollider::warm_up`]).
+        let (px, py) = scene.frame(0);
+        c.warm_up(&px, &py)?;
+        for f in 1..=frames {
             let (px, py) = scene.frame(f);
             let r = c.frame(&px, &py)?;
-            if f > 0 {
-                enc += r.timings.encode;
-                dec += r.timings.readback;
-                bytes += r.readback_bytes;
-                eta += r.eta;
-            }
+            enc += r.timings.encode;
+            dec += r.timings.readback;
+            bytes += r.readback_bytes;
+            eta += r.eta;
         }
         calibrations.keep(&mut c);
         let n = frames.max(1) as f64;
@@ -748,16 +749,18 @@ fn tile_study(opts: &BenchOptions) -> anyhow::Result<TileStudy> {
         let mut tiled = collider(Some(tile))?;
         let mut whole = collider(None)?;
         let (mut tiled_times, mut whole_times, mut caps) = (Vec::new(), Vec::new(), 0);
-        for f in 0..=frames {
+        // Frame 0 is the warm-up ([`StreamingCollider::warm_up`]).
+        let (px, py) = scene.frame(0);
+        tiled.warm_up(&px, &py)?;
+        whole.warm_up(&px, &py)?;
+        for f in 1..=frames {
             let (px, py) = scene.frame(f);
             let t = tiled.frame(&px, &py)?;
             let w = whole.frame(&px, &py)?;
             anyhow::ensure!(t.pairs == w.pairs, "tiles changed the pairs at frame {f}");
-            if f > 0 {
-                tiled_times.push(cull_times(&t));
-                whole_times.push(cull_times(&w));
-                caps += t.caps;
-            }
+            tiled_times.push(cull_times(&t));
+            whole_times.push(cull_times(&w));
+            caps += t.caps;
         }
         rows.push(TileRow {
             leaf_size,
@@ -814,15 +817,16 @@ fn leaf_sweep(
             tri_ms: 0.0,
             pctps: 0,
         };
-        for f in 0..=frames {
+        // Frame 0 is the warm-up ([`StreamingCollider::warm_up`]).
+        let (px, py) = scene.frame(0);
+        c.warm_up(&px, &py)?;
+        for f in 1..=frames {
             let (px, py) = scene.frame(f);
             let r = c.frame(&px, &py)?;
-            if f > 0 {
-                p.total_ms += r.timings.total / frames as f64;
-                p.overlap_ms += r.timings.overlap / frames as f64;
-                p.tri_ms += r.timings.tri_test / frames as f64;
-                p.pctps += r.pctps / frames as u64;
-            }
+            p.total_ms += r.timings.total / frames as f64;
+            p.overlap_ms += r.timings.overlap / frames as f64;
+            p.tri_ms += r.timings.tri_test / frames as f64;
+            p.pctps += r.pctps / frames as u64;
         }
         calibrations.keep(&mut c);
         out.push(p);

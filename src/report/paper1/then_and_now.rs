@@ -83,9 +83,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<ThenAndNow> {
     let (mut c, mut k) = (Columns::default(), Columns::default());
     let mut cpu = Columns::default();
     let mut same = true;
-    // One warm-up frame each (shader compilation).
+    // Warm-ups (shader compilation): the classic pipeline's own
+    // ([`StreamingCollider::warm_up`]), a frame of compute.
     let (px, py) = scene.frame(0);
-    classic.frame(&px, &py)?;
+    classic.warm_up(&px, &py)?;
     if let Some(k) = compute.as_mut() {
         k.frame(&px, &py)?;
     }
