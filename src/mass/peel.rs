@@ -397,14 +397,11 @@ impl Peeler {
         while queries.len() < groups.len() {
             queries.push(OcclusionQuery::new(&self.ctx)?);
         }
-        let tiles: Vec<Vec<Rect>> = (0..groups.len())
-            .map(|g| {
-                jobs.iter()
-                    .filter(|j| j.group == g)
-                    .map(|j| j.tile)
-                    .collect()
-            })
-            .collect();
+        // Each group's tiles, for the test of where its peeling ends.
+        let mut tiles: Vec<Vec<Rect>> = vec![Vec::new(); groups.len()];
+        for job in jobs {
+            tiles[job.group].push(job.tile);
+        }
         self.peel_end.set_tiles(&tiles, (self.width, self.height))?;
         let mut active: Vec<bool> = vec![true; groups.len()];
         let water_depth = self.water.depth().expect("T_dw has a depth attachment");
