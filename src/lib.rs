@@ -15,9 +15,11 @@
 
 pub mod collide;
 pub mod crowd;
+pub mod files;
 // Raw GL and EGL calls, behind safe RAII types; GL ids never leave the module.
 #[allow(unsafe_code)]
 pub mod gl;
+pub mod learn;
 pub mod lecture3;
 pub mod mass;
 pub mod mesh;

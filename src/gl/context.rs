@@ -164,6 +164,8 @@ pub(super) struct Inner {
     pub(super) extra: ExtraEntryPoints,
     /// The running per-pass profile, if any ([`super::profile`]).
     pub(super) profile: std::cell::RefCell<Option<Box<super::profile::State>>>,
+    /// `--glsl-dir`: shader files found here replace the compiled-in ones ([`Context::set_glsl_dir`]).
+    glsl_dir: std::cell::RefCell<Option<std::path::PathBuf>>,
     platform: Platform,
 }
 
@@ -354,6 +356,7 @@ impl Context {
                 empty_vao,
                 extra,
                 profile: std::cell::RefCell::new(None),
+                glsl_dir: std::cell::RefCell::new(None),
                 platform: platform_state,
             }),
         };
@@ -400,6 +403,18 @@ impl Context {
     /// Turn the per-pass checks on (tests) or off (timed benchmark loops).
     pub fn set_checks(&self, on: bool) {
         self.inner.checks.set(on);
+    }
+
+    /// Load shaders from `dir` where it has them: a program built from `glsl/x.frag` reads
+    /// `dir/glsl/x.frag` if that file exists, and the compiled-in copy otherwise (a learner's
+    /// edit without a rebuild). `None` goes back to the compiled-in shaders only.
+    pub fn set_glsl_dir(&self, dir: Option<std::path::PathBuf>) {
+        *self.inner.glsl_dir.borrow_mut() = dir;
+    }
+
+    /// The folder set by [`Context::set_glsl_dir`], if any.
+    pub fn glsl_dir(&self) -> Option<std::path::PathBuf> {
+        self.inner.glsl_dir.borrow().clone()
     }
 
     pub(super) fn gl(&self) -> &glow::Context {

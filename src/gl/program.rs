@@ -94,6 +94,31 @@ impl Program {
         ctx: &Context,
         stages: &[(u32, &'static str, &[ShaderSource])],
     ) -> Result<Program, GlError> {
+        // `--glsl-dir`: each file the folder has replaces the compiled-in copy.
+        let loaded: Vec<Vec<(String, Option<String>)>> = stages
+            .iter()
+            .map(|(_, _, parts)| parts.iter().map(|p| from_glsl_dir(ctx, p)).collect())
+            .collect::<Result<_, _>>()?;
+        let replaced: Vec<Vec<ShaderSource>> = stages
+            .iter()
+            .zip(&loaded)
+            .map(|((_, _, parts), loaded)| {
+                parts
+                    .iter()
+                    .zip(loaded)
+                    .map(|(part, (name, text))| match text {
+                        Some(text) => ShaderSource { name, source: text },
+                        None => *part,
+                    })
+                    .collect()
+            })
+            .collect();
+        let stages: Vec<(u32, &'static str, &[ShaderSource])> = stages
+            .iter()
+            .zip(&replaced)
+            .map(|(&(kind, stage, _), parts)| (kind, stage, parts.as_slice()))
+            .collect();
+        let stages = stages.as_slice();
         let gl = ctx.gl();
         let files: Vec<&str> = stages
             .iter()
@@ -251,6 +276,23 @@ impl Program {
             .insert(name.to_string(), location);
         location
     }
+}
+
+/// The file `part` names under the context's `--glsl-dir` folder, if that folder has it: its
+/// path on disk (which errors then name) and its text. `(_, None)`: use the compiled-in copy.
+fn from_glsl_dir(ctx: &Context, part: &ShaderSource) -> Result<(String, Option<String>), GlError> {
+    let Some(dir) = ctx.glsl_dir() else {
+        return Ok((String::new(), None));
+    };
+    let path = dir.join(part.name);
+    if !path.is_file() {
+        return Ok((String::new(), None));
+    }
+    let text = std::fs::read_to_string(&path).map_err(|e| GlError::Io {
+        path: path.display().to_string(),
+        message: format!("cannot read this shader (given by --glsl-dir): {e}"),
+    })?;
+    Ok((path.display().to_string(), Some(text)))
 }
 
 /// Join the files of one stage, each numbered as its own source string.

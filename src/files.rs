@@ -1,0 +1,262 @@
+//! Every file the project writes goes through here, so that nothing of the user's is lost and
+//! no file is ever left half-written:
+//! - [`check_output`] runs before any work: an input is never overwritten (not even with
+//!   `--force`), an existing file only with `--force`, a folder is not a file, and the name's
+//!   extension must be the format that will be written;
+//! - [`write`] writes to a temporary file in the same folder, flushes and syncs it, checks every
+//!   error, and only then renames it into place: a full disk or a kill leaves the old file as it
+//!   was (and at worst a `.NAME.tmp-PID` beside it), never an empty or truncated one;
+//! - [`write_png`] and [`write_npy`] encode in memory first and write through [`write`].
+
+use anyhow::{bail, Context as _};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Refuses `out` before anything is computed or touched: over one of `inputs` (ever), over an
+/// existing file without `force`, over a folder, or with an extension other than one of
+/// `extensions` (lower case, without the dot; empty accepts any). `what` names the option
+/// (`--png`, `--out`) in the message.
+pub fn check_output(
+    what: &str,
+    out: &Path,
+    inputs: &[&Path],
+    force: bool,
+    extensions: &[&str],
+) -> anyhow::Result<()> {
+    if let Some(input) = inputs.iter().find(|input| same_file(out, input)) {
+        bail!(
+            "{what} {} is the input {}; an input is never overwritten (not even with --force), \
+             so write to another file",
+            out.display(),
+            input.display()
+        );
+    }
+    if out.is_dir() {
+        bail!("{what} {} is a folder; give a file name", out.display());
+    }
+    if !extensions.is_empty() {
+        let ext = out
+            .extension()
+            .map(|e| e.to_string_lossy().to_lowercase())
+            .unwrap_or_default();
+        if !extensions.contains(&ext.as_str()) {
+            bail!(
+                "{what} {}: the file is written as {}, so its name must end in .{}",
+                out.display(),
+                extensions[0].to_uppercase(),
+                extensions.join(" or .")
+            );
+        }
+    }
+    if out.exists() && !force {
+        bail!(
+            "{what} {} exists; pass --force to replace it",
+            out.display()
+        );
+    }
+    Ok(())
+}
+
+/// Whether two paths name one existing file (through links, `.`/`..`, or hard links).
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
+/// Writes `path` whole or not at all: `contents` writes into a temporary file beside it, which
+/// is flushed, synced and renamed over `path`. Missing parent folders are created. On any error
+/// the temporary file is removed and `path` is as it was.
+pub fn write(
+    path: &Path,
+    contents: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
+    let dir = match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("creating the folder {}", dir.display()))?;
+            dir.to_path_buf()
+        }
+        None => PathBuf::from("."),
+    };
+    let tmp = temporary_name(path, &dir)?;
+    let result = write_synced(&tmp, contents).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e).with_context(|| format!("writing {}", path.display()));
+    }
+    // The rename itself is durable once the folder is synced (not every file system allows it).
+    if let Ok(folder) = std::fs::File::open(&dir) {
+        let _ = folder.sync_all();
+    }
+    Ok(())
+}
+
+/// `bytes` written to `path` through [`write`].
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    write(path, |w| w.write_all(bytes))
+}
+
+fn temporary_name(path: &Path, dir: &Path) -> anyhow::Result<PathBuf> {
+    let name = path
+        .file_name()
+        .with_context(|| format!("{} names no file", path.display()))?;
+    Ok(dir.join(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    )))
+}
+
+fn write_synced(
+    tmp: &Path,
+    contents: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let file = std::fs::File::create(tmp)?;
+    let mut writer = std::io::BufWriter::new(file);
+    contents(&mut writer)?;
+    let file = writer.into_inner().map_err(|e| e.into_error())?;
+    file.sync_all()
+}
+
+/// An RGBA8 image, rows top first as images are stored, written to `path` as PNG.
+pub fn write_png(path: &Path, rgba: &[u8], width: u32, height: u32) -> anyhow::Result<()> {
+    write_bytes(path, &encode_png(rgba, width, height)?)
+}
+
+/// An RGBA8 image as the bytes of a PNG file.
+pub fn encode_png(rgba: &[u8], width: u32, height: u32) -> anyhow::Result<Vec<u8>> {
+    use image::ImageEncoder as _;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(rgba, width, height, image::ExtendedColorType::Rgba8)
+        .context("encoding a PNG")?;
+    Ok(png)
+}
+
+/// Any image (`image`'s buffers: luma, RGB, RGBA) written to `path` as PNG through [`write`].
+pub fn write_image(path: &Path, image: &image::DynamicImage) -> anyhow::Result<()> {
+    let mut png = std::io::Cursor::new(Vec::new());
+    image
+        .write_to(&mut png, image::ImageFormat::Png)
+        .with_context(|| format!("encoding {} as PNG", path.display()))?;
+    write_bytes(path, png.get_ref())
+}
+
+/// `data` (row-major, C order) with `shape` written to `path` in numpy's `.npy` format, float32
+/// little-endian: `numpy.load(path)` gives the exact values.
+pub fn write_npy(path: &Path, shape: &[usize], data: &[f32]) -> anyhow::Result<()> {
+    use ndarray_npy::WriteNpyExt as _;
+    let array =
+        ndarray::ArrayViewD::from_shape(ndarray::IxDyn(shape), data).with_context(|| {
+            format!(
+                "{}: {} values do not fill shape {shape:?}",
+                path.display(),
+                data.len()
+            )
+        })?;
+    let mut npy = Vec::new();
+    array
+        .write_npy(&mut npy)
+        .with_context(|| format!("encoding {} as .npy", path.display()))?;
+    write_bytes(path, &npy)
+}
+
+/// A `.npy` file of float32 values: its shape and values (for tests and for checking dumps).
+pub fn read_npy(path: &Path) -> anyhow::Result<(Vec<usize>, Vec<f32>)> {
+    use ndarray_npy::ReadNpyExt as _;
+    let file = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let array = ndarray::ArrayD::<f32>::read_npy(file)
+        .with_context(|| format!("reading {} as a float32 .npy", path.display()))?;
+    let shape = array.shape().to_vec();
+    Ok((shape, array.iter().copied().collect()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("classic-gpgpu-files-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn a_failed_write_leaves_the_old_file_and_no_temporary() {
+        let dir = scratch("failed");
+        let path = dir.join("kept.txt");
+        std::fs::write(&path, "old").unwrap();
+        let err = write(&path, |w| {
+            w.write_all(b"half")?;
+            Err(std::io::Error::other("disk full"))
+        })
+        .unwrap_err();
+        assert!(format!("{err:#}").contains("disk full"), "{err:#}");
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            1,
+            "temporary left behind"
+        );
+    }
+
+    #[test]
+    fn a_write_replaces_whole() {
+        let dir = scratch("whole");
+        let path = dir.join("sub/new.txt");
+        write_bytes(&path, b"one").unwrap();
+        write_bytes(&path, b"two").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "two");
+    }
+
+    #[test]
+    fn outputs_are_checked_before_anything_is_written() {
+        let dir = scratch("check");
+        let input = dir.join("in.png");
+        std::fs::write(&input, "x").unwrap();
+        let err = |out: &Path, force, ext: &[&str]| {
+            check_output("--out", out, &[&input], force, ext)
+                .unwrap_err()
+                .to_string()
+        };
+        assert!(err(&input, true, &["png"]).contains("is the input"));
+        assert!(err(&input, false, &[]).contains("is the input"));
+        assert!(err(&dir.join("a.jpg"), false, &["png"]).contains("must end in .png"));
+        assert!(err(&dir, true, &["png"]).contains("is a folder"));
+        let other = dir.join("other.png");
+        std::fs::write(&other, "y").unwrap();
+        assert!(err(&other, false, &["png"]).contains("pass --force"));
+        check_output("--out", &other, &[&input], true, &["png"]).unwrap();
+        check_output("--out", &dir.join("new.PNG"), &[&input], false, &["png"]).unwrap();
+    }
+
+    #[test]
+    fn npy_round_trips_exact_values() {
+        let dir = scratch("npy");
+        let path = dir.join("a.npy");
+        let data = [0.0f32, -1.5, f32::MIN_POSITIVE, 1e30, 3.25, -0.0];
+        write_npy(&path, &[2, 3], &data).unwrap();
+        let (shape, back) = read_npy(&path).unwrap();
+        assert_eq!(shape, [2, 3]);
+        assert_eq!(
+            back.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            data.map(f32::to_bits)
+        );
+        assert!(write_npy(&path, &[4, 3], &data).is_err());
+    }
+
+    #[test]
+    fn png_round_trips() {
+        let dir = scratch("png");
+        let path = dir.join("a.png");
+        let rgba: Vec<u8> = (0..2 * 3 * 4).map(|i| (i * 10) as u8).collect();
+        write_png(&path, &rgba, 2, 3).unwrap();
+        let back = image::open(&path).unwrap().to_rgba8();
+        assert_eq!(back.dimensions(), (2, 3));
+        assert_eq!(back.into_raw(), rgba);
+    }
+}
