@@ -39,6 +39,23 @@ pub struct ViewArgs {
     /// Start paused (space runs, right arrow steps).
     #[arg(long, global = true)]
     pub paused: bool,
+    /// The texel probe at window pixel X,Y (from the top-left corner), as the mouse gives it:
+    /// the buffer's texel there, its GPU value and its CPU reference's (printed too with
+    /// --headless).
+    #[arg(long, global = true, value_parser = parse_point)]
+    pub probe: Option<(u32, u32)>,
+}
+
+fn parse_point(s: &str) -> Result<(u32, u32), String> {
+    let (x, y) = s
+        .split_once(',')
+        .ok_or_else(|| format!("'{s}' is not X,Y (e.g. 120,80)"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("'{s}': X and Y must be whole numbers of pixels"))
+    };
+    Ok((parse(x)?, parse(y)?))
 }
 
 #[derive(clap::Subcommand, Debug)]
@@ -146,13 +163,27 @@ pub fn run(
     let view = ViewState {
         shown: args.buffer,
         help: args.help_overlay,
+        probe: args.probe,
         ..ViewState::default()
     };
+    if let Some((x, y)) = args.probe {
+        if x >= args.size.0 || y >= args.size.1 {
+            anyhow::bail!(
+                "--probe {x},{y}: outside the {}x{} window",
+                args.size.0,
+                args.size.1
+            );
+        }
+    }
     if args.headless {
         let ctx = context()?;
         let frames = args.frames.unwrap_or(0);
-        let pixels = viewer::headless(&spec, &ctx, args.size, frames, &view, &args.keys)
-            .with_context(|| format!("view {}", spec.name()))?;
+        let (pixels, probe) =
+            viewer::headless_frame(&spec, &ctx, args.size, frames, &view, &args.keys)
+                .with_context(|| format!("view {}", spec.name()))?;
+        for line in probe {
+            println!("probe: {line}");
+        }
         let path = args
             .screenshot
             .as_ref()

@@ -1,24 +1,92 @@
 //! Look at it: any texture or framebuffer attachment as a PNG (the tutorial's first debugging
-//! tip, and how the report shows intermediate buffers).
+//! tip, and how the report and the viewer show intermediate buffers).
 //!
-//! Mapping, documented once: byte formats are written as they are. Float formats are mapped
-//! linearly per colour channel from `[lo, hi]` to `[0, 255]`, where [`DumpRange::Auto`] takes
-//! `lo` and `hi` as that channel's smallest and largest finite value (a constant channel shows
-//! as mid-grey) and [`DumpRange::Fixed`] takes the given pair for every channel. Single-channel
-//! textures (R32F, depth) become grey. Alpha is written opaque, since data in alpha would
-//! otherwise hide the picture. NaN and infinite texels are magenta. Row 0 (GL's bottom) is
-//! written at the bottom of the image.
+//! # The mapping of float buffers, the same in the report, the viewer and every dump
+//!
+//! - **One channel, one picture.** A float buffer's channels are separate quantities (a peel's
+//!   `rx, ry, rz, V`), so each is drawn as its own panel ([`super::picture`]); a channel is
+//!   never a colour component, which would mix them into hues that mean nothing.
+//! - **Zero is a fixed neutral colour** (dark grey, [`super::picture::NEUTRAL`]) in every
+//!   picture: most buffers are mostly zero, and an empty texel must look the same in all.
+//! - **Sequential for non-negative data, diverging for signed data.** Non-negative values run
+//!   from the neutral grey through dark red and orange to pale yellow; negative values, when
+//!   there are any, run from the same grey through dark blue to pale cyan, both halves scaled
+//!   by the largest magnitude. Lightness rises with the magnitude in both halves (the picture
+//!   reads in grey and for colour-blind readers), hue tells the sign, and the sequential map is
+//!   exactly the positive half of the diverging one, so a value has one colour whatever else
+//!   shares its picture.
+//! - **One scale per set of related pictures** ([`super::picture::Scale::of`] over all of them:
+//!   all peels of a body, all levels of a pyramid), always containing zero; a lone picture is a
+//!   set of one.
+//! - **NaN and infinite texels are magenta**, a colour neither half of the map uses.
+//! - **Every picture carries a colour key** with its numeric range (and zero when the map is
+//!   diverging), and its title; numbers never print as "-0".
+//! - **Small targets are enlarged by whole factors, nearest texel** (no smoothing: a texel is
+//!   a block of equal pixels); a strip much longer one way than the picture is stretched each
+//!   way so that it is not drawn as a line. Titles wrap inside their panel and key labels that
+//!   would touch are left out, so labels never overlap or get cut.
+//!
+//! Images are not data: byte formats, and float targets that hold colours (a rendered frame),
+//! are written as they are, each channel from `[lo, hi]` ([`DumpRange`]) to `[0, 255]`.
+//! Single-channel float textures (R32F, depth) go through the colour map above at their own
+//! size ([`map_floats`]); [`texture_picture_png`] draws any float texture as panels with keys.
+//! Alpha is written opaque. Row 0 (GL's bottom) is written at the bottom of the image.
 
+use super::picture::{self, Panel, Scale};
 use super::{GlError, Texture, TextureFormat};
 use std::path::Path;
 
 /// How float values map to bytes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum DumpRange {
-    /// Each channel from its own finite minimum to maximum.
+    /// The data's own range: for one channel the [`Scale::of`] its values; for colours each
+    /// channel from its own finite minimum to maximum.
     Auto,
-    /// Every channel from `lo` to `hi`.
+    /// From `lo` to `hi` (one channel: the colour map's scale, widened to contain zero).
     Fixed(f32, f32),
+}
+
+impl DumpRange {
+    /// The colour map's scale of one channel's `values`.
+    pub fn scale(self, values: &[f32]) -> Scale {
+        match self {
+            DumpRange::Auto => Scale::of([values]),
+            DumpRange::Fixed(lo, hi) => Scale::fixed(lo, hi),
+        }
+    }
+}
+
+/// Write a float `texture` to `path` as a picture of `size` pixels: one panel per channel
+/// (named by `channels`, which also says how many are drawn), each with its own scale from
+/// `range` and its colour key, as the module doc says.
+pub fn texture_picture_png(
+    texture: &Texture,
+    channels: &[&str],
+    range: DumpRange,
+    size: (u32, u32),
+    path: &Path,
+) -> Result<(), GlError> {
+    let n = texture.format().components();
+    let values = texture.download_f32()?;
+    let panels: Vec<Panel> = channels
+        .iter()
+        .enumerate()
+        .take(n)
+        .map(|(c, name)| {
+            let dims = (texture.width(), texture.height());
+            let panel = Panel::channel(*name, &values, n, c, dims, Scale::fixed(0.0, 0.0));
+            let scale = range.scale(&panel.values);
+            Panel { scale, ..panel }
+        })
+        .collect();
+    picture_png(&panels, size, path)
+}
+
+/// Write `panels` as one picture of `size` pixels ([`picture::picture`]).
+pub fn picture_png(panels: &[Panel], size: (u32, u32), path: &Path) -> Result<(), GlError> {
+    let (image, _) = picture::picture(panels, size);
+    crate::files::write_image(path, &image::DynamicImage::ImageRgba8(image))
+        .map_err(|e| io_error(path, e))
 }
 
 /// Write `texture` to `path` as PNG.
@@ -87,8 +155,13 @@ pub fn to_rgba8(texture: &Texture, range: DumpRange) -> Result<Vec<u8>, GlError>
     })
 }
 
-/// Map `channels`-component floats to RGBA bytes.
+/// Map `channels`-component floats to RGBA bytes: one channel through the colour map (the
+/// module doc), more as colours (each channel to red, green, blue).
 pub fn map_floats(values: &[f32], channels: usize, range: DumpRange) -> Vec<u8> {
+    if channels == 1 {
+        let scale = range.scale(values);
+        return values.iter().flat_map(|&v| scale.colour(v)).collect();
+    }
     let colour_channels = channels.min(3);
     let bounds: Vec<(f32, f32)> = (0..colour_channels)
         .map(|c| match range {
@@ -114,18 +187,13 @@ pub fn map_floats(values: &[f32], channels: usize, range: DumpRange) -> Vec<u8> 
         .chunks_exact(channels)
         .flat_map(|texel| {
             if texel[..colour_channels].iter().any(|v| !v.is_finite()) {
-                return [255, 0, 255, 255];
+                return picture::NOT_FINITE;
             }
-            if channels == 1 {
-                let g = byte(texel[0], bounds[0]);
-                [g, g, g, 255]
-            } else {
-                let mut out = [0, 0, 0, 255];
-                for c in 0..colour_channels {
-                    out[c] = byte(texel[c], bounds[c]);
-                }
-                out
+            let mut out = [0, 0, 0, 255];
+            for c in 0..colour_channels {
+                out[c] = byte(texel[c], bounds[c]);
             }
+            out
         })
         .collect()
 }
@@ -154,7 +222,10 @@ mod tests {
         assert_eq!(&bytes[0..4], &[0, 0, 0, 255]);
         assert_eq!(&bytes[4..8], &[255, 255, 255, 255]);
         assert_eq!(&bytes[8..12], &[255, 0, 255, 255]);
-        let grey = map_floats(&[0.5, 0.25], 1, DumpRange::Fixed(0.0, 1.0));
-        assert_eq!(grey, vec![128, 128, 128, 255, 64, 64, 64, 255]);
+        let one = map_floats(&[0.0, 1.0, f32::INFINITY], 1, DumpRange::Fixed(0.0, 2.0));
+        let scale = Scale::fixed(0.0, 2.0);
+        assert_eq!(&one[0..4], &picture::NEUTRAL);
+        assert_eq!(&one[4..8], &scale.colour(1.0));
+        assert_eq!(&one[8..12], &picture::NOT_FINITE);
     }
 }

@@ -30,6 +30,7 @@ mod framebuffer;
 mod mesh_buffers;
 mod pass;
 pub mod peel;
+pub mod picture;
 pub mod profile;
 mod program;
 pub mod query;

@@ -30,6 +30,14 @@ pub const WATER_PATCH: ShaderSource<'static> = shader!("glsl/mass/water_patch.fr
 /// `(rx, ry, rz, V)`, `(Ixx, Ixy, Ixz, .)`, `(Iyy, Iyz, Izz, .)`.
 pub const TARGETS: usize = 3;
 
+/// The channels of each target by name (the pictures' titles); the fourth of the last two
+/// targets is unused.
+pub const CHANNELS: [&[&str]; TARGETS] = [
+    &["rx", "ry", "rz", "V"],
+    &["Ixx", "Ixy", "Ixz"],
+    &["Iyy", "Iyz", "Izz"],
+];
+
 /// The program of the peel passes: the listing wrapped by the peel and water tests.
 pub fn peel_program(ctx: &Context) -> Result<Program, GlError> {
     Program::new(

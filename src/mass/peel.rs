@@ -29,7 +29,8 @@ use super::integrals::VolumeIntegrals;
 use super::integrands::{self, Soup, TARGETS};
 use super::peel_end::{self, PeelEnd};
 use super::reduce::{Accumulator, REDUCTION_PASS};
-use crate::gl::dump::{self, DumpRange};
+use crate::gl::dump;
+use crate::gl::picture::{Panel, Scale};
 use crate::gl::profile;
 use crate::gl::{
     ensure_finite, Blend, Compare, Context, DepthTest, DrawState, Framebuffer, GlError,
@@ -142,17 +143,74 @@ pub struct Peeler {
     /// the whole target (one body).
     block: Option<u32>,
     settings: PeelSettings,
-    /// When on, each peel's integrand targets are kept as RGBA bytes (the viewer's insets).
+    /// When on, each peel's integrand targets are kept as floats (the viewer's insets and the
+    /// dumps).
     capture: RefCell<Option<Vec<CapturedPeel>>>,
 }
 
-/// One peel's integrand targets as [`crate::gl::dump`] maps them (each channel from its own
-/// minimum to maximum), rows from the bottom, `width x height` of the whole target.
+/// One peel's integrand targets read back: RGBA floats (the channels of
+/// [`integrands::CHANNELS`]), rows from the bottom, `width x height` of the whole target.
 #[derive(Clone, Debug)]
 pub struct CapturedPeel {
     pub width: u32,
     pub height: u32,
-    pub targets: Vec<Vec<u8>>,
+    pub targets: Vec<Vec<f32>>,
+}
+
+impl CapturedPeel {
+    /// Channel `channel` of target `target` as a picture panel, on `scale`.
+    pub fn panel(&self, target: usize, channel: usize, title: &str, scale: Scale) -> Panel {
+        Panel::channel(
+            title,
+            &self.targets[target],
+            4,
+            channel,
+            (self.width, self.height),
+            scale,
+        )
+    }
+
+    /// The scale shared by channel `channel` of target `target` in all `peels` (one set of
+    /// related pictures, as [`crate::gl::dump`] says).
+    pub fn scale(peels: &[CapturedPeel], target: usize, channel: usize) -> Scale {
+        let values: Vec<Vec<f32>> = peels
+            .iter()
+            .map(|p| {
+                p.targets[target]
+                    .iter()
+                    .skip(channel)
+                    .step_by(4)
+                    .copied()
+                    .collect()
+            })
+            .collect();
+        Scale::of(values.iter().map(|v| v.as_slice()))
+    }
+}
+
+/// Fig. 10: each target of each peel as a picture, `peel<k>_target<i>.png` in `dir`, one panel
+/// per channel, each channel on one scale for all the peels.
+pub fn write_peel_pictures(dir: &Path, peels: &[CapturedPeel]) -> Result<(), GlError> {
+    for target in 0..TARGETS {
+        let names = integrands::CHANNELS[target];
+        let scales: Vec<Scale> = (0..names.len())
+            .map(|c| CapturedPeel::scale(peels, target, c))
+            .collect();
+        for (k, peel) in peels.iter().enumerate() {
+            let panels: Vec<Panel> = names
+                .iter()
+                .enumerate()
+                .map(|(c, name)| {
+                    peel.panel(target, c, &format!("peel {} {name}", k + 1), scales[c])
+                })
+                .collect();
+            let side = 2 * peel.width.clamp(64, 160) + 24;
+            let size = (side * panels.len() as u32, side + 96);
+            let path: PathBuf = dir.join(format!("peel{}_target{target}.png", k + 1));
+            dump::picture_png(&panels, size, &path)?;
+        }
+    }
+    Ok(())
 }
 
 /// The names of the passes (errors and the profile).
@@ -244,7 +302,26 @@ impl Peeler {
             self.pass(CLEAR_PASS, || self.accumulator.clear())?;
         }
         self.water_depth_pass(jobs, water)?;
-        let (peels, truncated) = self.peel_passes(soup, jobs, dump)?;
+        // The dumps share one scale over all the peels: kept until the last, then written.
+        let capturing = self.capture.borrow().is_some();
+        let first = self.capture.borrow().as_ref().map_or(0, |c| c.len());
+        if dump.is_some() && !capturing {
+            self.set_capture(true);
+        }
+        let passes = self.peel_passes(soup, jobs);
+        let captured: Vec<CapturedPeel> = match dump {
+            Some(_) if capturing => self.capture.borrow().as_ref().expect("on")[first..].to_vec(),
+            Some(_) => {
+                let c = self.take_captured();
+                self.set_capture(false);
+                c
+            }
+            None => Vec::new(),
+        };
+        let (peels, truncated) = passes?;
+        if let Some(dir) = dump {
+            write_peel_pictures(dir, &captured)?;
+        }
         if let Some(level) = water {
             self.water_patch_pass(jobs, level)?;
         }
@@ -377,12 +454,7 @@ impl Peeler {
 
     /// Passes 1..n: peel until no body has a layer left or a layer past the limit still
     /// draws something; each peel goes into the sums (or is kept). Returns (n, truncated).
-    fn peel_passes(
-        &self,
-        soup: &Soup,
-        jobs: &[Job],
-        dump: Option<&Path>,
-    ) -> Result<(usize, bool), GlError> {
+    fn peel_passes(&self, soup: &Soup, jobs: &[Job]) -> Result<(usize, bool), GlError> {
         let keep = self.settings.order == PeelOrder::KeepLayers;
         let groups = soup.groups();
         if let Some(job) = jobs.iter().find(|j| j.group >= groups.len()) {
@@ -414,7 +486,7 @@ impl Peeler {
                 // this peel did not reach. Kept layers are reduced whole, so their
                 // colours start at zero.
                 target.clear_depth_stencil(1.0, 0)?;
-                if keep || dump.is_some() || self.capture.borrow().is_some() {
+                if keep || self.capture.borrow().is_some() {
                     target.clear_colors([0.0; 4])?;
                 }
                 Ok(())
@@ -455,9 +527,6 @@ impl Peeler {
             if layer == max {
                 return Ok((max, true));
             }
-            if let Some(dir) = dump {
-                dump_peel(&target, dir, layer)?;
-            }
             if !keep {
                 let tiles = row_runs(jobs.iter().filter(|j| drew[j.group]).map(|j| j.tile));
                 let depth = target.depth().expect("peel targets have depth");
@@ -466,7 +535,7 @@ impl Peeler {
             if let Some(peels) = self.capture.borrow_mut().as_mut() {
                 let targets = target.colors()[..TARGETS]
                     .iter()
-                    .map(|t| dump::to_rgba8(t, DumpRange::Auto))
+                    .map(|t| t.download_f32())
                     .collect::<Result<_, _>>()?;
                 peels.push(CapturedPeel {
                     width: self.width,
@@ -630,15 +699,6 @@ fn peel_state(first: bool) -> DrawState {
         stencil_back: back,
         ..DrawState::default()
     }
-}
-
-/// Fig. 10: each target of peel `layer` as a PNG, each channel mapped to [0, 255].
-fn dump_peel(target: &Framebuffer, dir: &Path, layer: usize) -> Result<(), GlError> {
-    for (i, texture) in target.colors().iter().take(TARGETS).enumerate() {
-        let path: PathBuf = dir.join(format!("peel{}_target{i}.png", layer + 1));
-        dump::texture_png(texture, &path, DumpRange::Auto)?;
-    }
-    Ok(())
 }
 
 /// The rectangles covering `tiles` row by row: one per row of tiles, from its leftmost to

@@ -1,13 +1,17 @@
 //! The canvas a demo draws a frame into: an RGBA8 colour target of the window's size with a
 //! depth buffer. The window copies it to the screen; the headless path reads it back.
 
+use super::inset::Probed;
 use crate::gl::{Context, Framebuffer, GlError, Program, Rect, Texture, TextureFormat};
 use crate::shader;
+use std::cell::RefCell;
 
 pub struct Canvas {
     target: Framebuffer,
     /// Draws text and insets over the frame (`glsl/view/overlay.frag`), compiled once.
     overlay: Program,
+    /// The buffers drawn into this frame and where, for the texel probe (cleared each frame).
+    probed: RefCell<Vec<Probed>>,
 }
 
 impl Canvas {
@@ -17,7 +21,28 @@ impl Canvas {
         Ok(Canvas {
             target: Framebuffer::new(ctx, "viewer canvas", &[&colour], Some(&depth))?,
             overlay: Program::rect(ctx, &[shader!("glsl/view/overlay.frag")])?,
+            probed: RefCell::new(Vec::new()),
         })
+    }
+
+    /// Forget the buffers of the last frame (a new frame starts).
+    pub fn clear_probed(&self) {
+        self.probed.borrow_mut().clear();
+    }
+
+    /// A buffer drawn into this frame, for the probe.
+    pub fn add_probed(&self, probed: Probed) {
+        self.probed.borrow_mut().push(probed);
+    }
+
+    /// The probe's lines for canvas pixel (`x`, `y`) (top-left origin, as the mouse gives it):
+    /// the topmost buffer drawn there, its texel, its value and its reference's.
+    pub fn probe(&self, (x, y): (u32, u32)) -> Vec<String> {
+        let probed = self.probed.borrow();
+        match probed.iter().rev().find_map(|p| p.readout(x, y)) {
+            Some(lines) => lines,
+            None => vec![format!("({x}, {y}): no buffer here")],
+        }
     }
 
     /// The program that blends an RGBA image over the canvas.

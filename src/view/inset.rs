@@ -1,10 +1,123 @@
 //! Insets: an intermediate buffer (any texture the paper code keeps) drawn small in a corner of
-//! the frame, or filling it when it is the buffer shown. Float textures are mapped to bytes as
-//! `gl::dump` maps them for PNGs, so the inset looks like the dumped file.
+//! the frame, or filling it when it is the buffer shown. Float buffers are drawn as
+//! `gl::dump` states the mapping ([`crate::gl::picture`]: one panel per channel, zero neutral,
+//! a colour key), so the inset looks like the dumped file; each panel is recorded on the
+//! canvas for the texel probe, with the CPU reference's values where the demo has one.
 
 use super::{overlay, Canvas};
 use crate::gl::dump::{self, DumpRange};
+use crate::gl::picture::{self, fixed, number, Panel, Placement};
 use crate::gl::{GlError, Rect, Texture};
+
+/// A panel drawn into the frame, for the probe: where its texels are (canvas pixels, top-left
+/// origin), the values the probe shows (the GPU's) and the reference's, when there is one.
+#[derive(Clone, Debug)]
+pub struct Probed {
+    pub name: String,
+    pub placement: Placement,
+    pub values: Vec<f32>,
+    pub reference: Option<Vec<f32>>,
+}
+
+impl Probed {
+    /// The readout for canvas pixel (`x`, `y`) (top-left origin), if it is over this panel.
+    pub fn readout(&self, x: u32, y: u32) -> Option<Vec<String>> {
+        let (tx, ty) = self.placement.texel(x, y)?;
+        let i = (ty * self.placement.texels.0 + tx) as usize;
+        let gpu = *self.values.get(i)?;
+        let mut lines = vec![
+            format!("{} texel ({tx}, {ty})", self.name),
+            format!("GPU {}", probe_number(gpu)),
+        ];
+        if let Some(cpu) = self.reference.as_ref().and_then(|r| r.get(i)) {
+            lines.push(format!("CPU {}", probe_number(*cpu)));
+        }
+        Some(lines)
+    }
+}
+
+/// A probed value in full: integers as integers, others with 7 significant digits (fp32's).
+fn probe_number(v: f32) -> String {
+    if v.is_finite() && v == v.trunc() && v.abs() < 1e7 {
+        fixed(v as f64, 0)
+    } else if v.is_finite() && (1e-3..1e6).contains(&v.abs()) {
+        let decimals = (6 - v.abs().log10().floor() as i32).clamp(0, 9) as usize;
+        fixed(v as f64, decimals)
+    } else {
+        number(v as f64)
+    }
+}
+
+/// A panel of a picture, with what its probe shows when that is not the colours' values (the
+/// masks of collide's levels are coloured by their set bits) and the CPU reference's values.
+pub struct Shown {
+    pub panel: Panel,
+    pub probe_values: Option<Vec<f32>>,
+    pub reference: Option<Vec<f32>>,
+}
+
+impl From<Panel> for Shown {
+    fn from(panel: Panel) -> Shown {
+        Shown {
+            panel,
+            probe_values: None,
+            reference: None,
+        }
+    }
+}
+
+/// Draw `shown` as one picture ([`picture::picture`]: panels with titles and colour keys)
+/// filling `rect` of `canvas`, and record each panel for the probe.
+pub fn draw_picture(canvas: &Canvas, shown: Vec<Shown>, rect: Rect) -> Result<(), GlError> {
+    if rect.w < 8 || rect.h < 8 || shown.is_empty() {
+        return Ok(());
+    }
+    let panels: Vec<Panel> = shown.iter().map(|s| s.panel.clone()).collect();
+    let (image, placements) = picture::picture(&panels, (rect.w, rect.h));
+    overlay::draw_image(
+        canvas,
+        &picture::rows_from_bottom(&image),
+        rect.w,
+        rect.h,
+        (rect.x, rect.y),
+    )?;
+    // The picture's top-left corner in canvas pixels from the top.
+    let top = canvas.height() - (rect.y + rect.h);
+    for (s, p) in shown.into_iter().zip(placements) {
+        canvas.add_probed(Probed {
+            name: s.panel.title.clone(),
+            placement: Placement {
+                x: p.x + rect.x,
+                y: p.y + top,
+                ..p
+            },
+            values: s.probe_values.unwrap_or(s.panel.values),
+            reference: s.reference,
+        });
+    }
+    Ok(())
+}
+
+/// A float `texture` as one panel per named channel, each on its own scale from `range`.
+pub fn texture_panels(
+    texture: &Texture,
+    channels: &[&str],
+    range: DumpRange,
+) -> Result<Vec<Panel>, GlError> {
+    let n = texture.format().components();
+    let values = texture.download_f32()?;
+    let dims = (texture.width(), texture.height());
+    Ok(channels
+        .iter()
+        .enumerate()
+        .take(n)
+        .map(|(c, name)| {
+            let panel = Panel::channel(*name, &values, n, c, dims, picture::Scale::fixed(0.0, 0.0));
+            let scale = range.scale(&panel.values);
+            Panel { scale, ..panel }
+        })
+        .collect())
+}
 
 /// Draw `texture` scaled (nearest texel) into `rect` of `canvas`, with `label` under it.
 pub fn draw_texture(
@@ -21,20 +134,22 @@ pub fn draw_texture(
         (texture.width(), texture.height()),
         rect,
         label,
-    )
+    )?;
+    Ok(())
 }
 
 /// Draw an RGBA image (rows from the bottom) scaled into `rect` of `canvas`, framed in grey,
-/// keeping its aspect ratio, with `label` in its bottom-left corner.
+/// keeping its aspect ratio, with `label` in its bottom-left corner. Where its pixels are
+/// (canvas pixels, top-left origin), for the probe.
 pub fn draw_rgba(
     canvas: &Canvas,
     rgba: &[u8],
     (width, height): (u32, u32),
     rect: Rect,
     label: &str,
-) -> Result<(), GlError> {
+) -> Result<Option<Placement>, GlError> {
     if rect.w < 3 || rect.h < 3 || width == 0 || height == 0 {
-        return Ok(());
+        return Ok(None);
     }
     // Fit inside the frame's 1-pixel border, keeping the aspect ratio.
     let (inner_w, inner_h) = (rect.w - 2, rect.h - 2);
@@ -60,14 +175,36 @@ pub fn draw_rgba(
         }
     }
     overlay::draw_image(canvas, &out, fw, fh, (rect.x, rect.y))?;
-    if label.is_empty() {
-        return Ok(());
+    let placement = Placement {
+        x: rect.x + 1,
+        y: canvas.height() - (rect.y + fh) + 1,
+        w,
+        h,
+        texels: (width, height),
+    };
+    if !label.is_empty() {
+        overlay::draw_text(
+            canvas,
+            &[label.to_string()],
+            overlay::Corner::At(rect.x, rect.y),
+        )?;
     }
-    overlay::draw_text(
-        canvas,
-        &[label.to_string()],
-        overlay::Corner::At(rect.x, rect.y),
-    )
+    Ok(Some(placement))
+}
+
+/// The rectangle of a strip of `count` panels along the bottom right of `canvas` (drawn as one
+/// picture): each panel at most a fifth of its width, the strip at most half its height.
+pub fn strip_rect(canvas: &Canvas, count: usize) -> Rect {
+    let (w, h) = (canvas.width(), canvas.height());
+    let cell = (w / 5).min(w / count.max(1) as u32).max(1);
+    let width = cell * count as u32;
+    let text = if picture::glyph_for(width) > 8 {
+        70
+    } else {
+        40
+    };
+    let height = (cell + text).min(h / 2);
+    Rect::new(w - width, 0, width, height)
 }
 
 /// `count` inset rectangles along the bottom of `canvas`, each at most a fifth of its width.

@@ -33,6 +33,8 @@ pub struct ViewState {
     pub zoom: f32,
     /// The help text is drawn over the frame (`h`).
     pub help: bool,
+    /// The texel probe: the canvas pixel (top-left origin) under the mouse, or `--probe X,Y`.
+    pub probe: Option<(u32, u32)>,
 }
 
 impl Default for ViewState {
@@ -43,6 +45,7 @@ impl Default for ViewState {
             pitch: 0.0,
             zoom: 1.0,
             help: false,
+            probe: None,
         }
     }
 }
@@ -72,25 +75,28 @@ pub trait Demo {
 }
 
 /// The keys every demo has, for the help text.
-pub const COMMON_KEYS: [(&str, &str); 8] = [
+pub const COMMON_KEYS: [(&str, &str); 9] = [
     ("space", "pause / run"),
     ("right", "one step"),
     ("tab", "next buffer"),
     ("drag", "orbit (3D)"),
-    ("wheel", "zoom (3D)"),
+    ("wheel", "zoom in / out (3D)"),
+    ("mouse", "probe a buffer's texel"),
     ("s", "save a PNG"),
     ("h", "this help"),
     ("esc", "quit"),
 ];
 
-/// Draw frame `frames` of `demo` (after that many steps) on `canvas`, with the overlay text
-/// and, if `view.help`, the help, as the window shows it.
+/// Draw frame `frames` of `demo` (after that many steps) on `canvas`, with the overlay text,
+/// the probe's readout when `view.probe` points somewhere and, if `view.help`, the help, as
+/// the window shows it. The probe's lines (empty without a probe).
 pub fn draw_frame(
     demo: &mut dyn Demo,
     canvas: &Canvas,
     view: &ViewState,
     frame: usize,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<Vec<String>> {
+    canvas.clear_probed();
     demo.render(canvas, view)?;
     let buffers = demo.buffers();
     let shown = buffers
@@ -107,7 +113,14 @@ pub fn draw_frame(
         }
         overlay::draw_text(canvas, &help, overlay::Corner::Centre)?;
     }
-    Ok(())
+    let Some((x, y)) = view.probe else {
+        return Ok(Vec::new());
+    };
+    let probe = canvas.probe((x, y));
+    // Beside the pointer (below and right of it, moved inside the frame where it must be).
+    let below = canvas.height().saturating_sub(y + 12);
+    overlay::draw_text(canvas, &probe, overlay::Corner::Probe(x + 12, below))?;
+    Ok(probe)
 }
 
 /// Press the demo's own keys `keys` (one character each) in order: a demo's settings as a
@@ -135,19 +148,31 @@ pub fn press_keys(demo: &mut dyn Demo, keys: &str) -> anyhow::Result<()> {
 pub fn headless(
     spec: &DemoSpec,
     ctx: &Context,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     frames: usize,
     view: &ViewState,
     keys: &str,
 ) -> anyhow::Result<Vec<u8>> {
+    Ok(headless_frame(spec, ctx, size, frames, view, keys)?.0)
+}
+
+/// [`headless`], and the probe's lines (empty without `view.probe`).
+pub fn headless_frame(
+    spec: &DemoSpec,
+    ctx: &Context,
+    (width, height): (u32, u32),
+    frames: usize,
+    view: &ViewState,
+    keys: &str,
+) -> anyhow::Result<(Vec<u8>, Vec<String>)> {
     let mut demo = spec.build(ctx, (width, height))?;
     press_keys(demo.as_mut(), keys)?;
     for _ in 0..frames {
         demo.step()?;
     }
     let canvas = Canvas::new(ctx, width, height)?;
-    draw_frame(demo.as_mut(), &canvas, view, frames)?;
-    Ok(canvas.pixels()?)
+    let probe = draw_frame(demo.as_mut(), &canvas, view, frames)?;
+    Ok((canvas.pixels()?, probe))
 }
 
 /// Write RGBA pixels (rows from the bottom) as a PNG.

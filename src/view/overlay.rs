@@ -13,6 +13,8 @@ pub enum Corner {
     Centre,
     /// The bottom-left pixel of the box.
     At(u32, u32),
+    /// The top-left pixel of the box (rows from the bottom), moved inside the canvas.
+    Probe(u32, u32),
 }
 
 const TEXT: [u8; 4] = [240, 240, 240, 255];
@@ -20,17 +22,19 @@ const BACKDROP: [u8; 4] = [0, 0, 0, 170];
 const MARGIN: u32 = 4;
 
 /// Draw `lines` in a dark box at `corner` of `canvas`: 8x8 glyphs, doubled on canvases at least
-/// 640 pixels wide. Characters outside ASCII show as '?'.
+/// 640 pixels wide. Text that would not fit the canvas is drawn in single-size glyphs, then
+/// wrapped at spaces, so no line is cut; lines still below the canvas's bottom are left out
+/// (the canvas holds fewer than them). Characters outside ASCII show as '?'.
 pub fn draw_text(canvas: &Canvas, lines: &[String], corner: Corner) -> Result<(), GlError> {
     if lines.is_empty() {
         return Ok(());
     }
-    let scale = if canvas.width() >= 640 { 2 } else { 1 };
+    let (scale, lines) = fit(lines, canvas.width(), canvas.height());
     let glyph = 8 * scale;
     let columns = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0) as u32;
     let width = (columns * glyph + 2 * MARGIN).min(canvas.width());
     let height = (lines.len() as u32 * (glyph + 2 * scale) + 2 * MARGIN).min(canvas.height());
-    let image = text_image(lines, scale, width, height);
+    let image = text_image(&lines, scale, width, height);
     let (x, y) = match corner {
         Corner::TopLeft => (0, canvas.height() - height),
         Corner::BottomLeft => (0, 0),
@@ -39,8 +43,32 @@ pub fn draw_text(canvas: &Canvas, lines: &[String], corner: Corner) -> Result<()
             x.min(canvas.width() - width),
             y.min(canvas.height() - height),
         ),
+        Corner::Probe(x, top) => (
+            x.min(canvas.width() - width),
+            top.saturating_sub(height).min(canvas.height() - height),
+        ),
     };
     draw_image(canvas, &image, width, height, (x, y))
+}
+
+/// The glyph scale and the lines as they fit a `width x height` canvas: doubled glyphs where
+/// the canvas is wide enough for them and they fit, else single ones; lines longer than the
+/// canvas wrapped; lines past its height left out.
+pub fn fit(lines: &[String], width: u32, height: u32) -> (u32, Vec<String>) {
+    let longest = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0) as u32;
+    let fits = |scale: u32| {
+        longest * 8 * scale + 2 * MARGIN <= width
+            && lines.len() as u32 * 10 * scale + 2 * MARGIN <= height
+    };
+    let scale = if width >= 640 && fits(2) { 2 } else { 1 };
+    let columns = (width.saturating_sub(2 * MARGIN) / (8 * scale)).max(1) as usize;
+    let rows = (height.saturating_sub(2 * MARGIN) / (10 * scale)).max(1) as usize;
+    let mut wrapped: Vec<String> = lines
+        .iter()
+        .flat_map(|l| crate::gl::picture::wrap(l, columns))
+        .collect();
+    wrapped.truncate(rows);
+    (scale, wrapped)
 }
 
 /// Blend an RGBA image (rows from the bottom) over `canvas` with its bottom-left pixel at `at`.

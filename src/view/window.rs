@@ -238,11 +238,26 @@ impl App<'_> {
             WindowEvent::CursorMoved { position, .. } => {
                 if let Some(r) = self.running.as_mut() {
                     r.cursor = (position.x, position.y);
+                    // The probe follows the mouse, unless the command line fixed it (a
+                    // scripted run draws the frame it names, wherever the pointer is).
+                    if self.options.view.probe.is_none() && self.options.frames.is_none() {
+                        let (x, y) = (position.x.max(0.0) as u32, position.y.max(0.0) as u32);
+                        r.view.probe = Some((x, y));
+                        r.redraw = true;
+                    }
                     if let Some((x, y)) = r.drag {
                         r.view.yaw += ((position.x - x) * 0.01) as f32;
                         r.view.pitch =
                             (r.view.pitch + ((position.y - y) * 0.01) as f32).clamp(-1.5, 1.5);
                         r.drag = Some(r.cursor);
+                        r.redraw = true;
+                    }
+                }
+            }
+            WindowEvent::CursorLeft { .. } => {
+                if let Some(r) = self.running.as_mut() {
+                    if self.options.view.probe.is_none() {
+                        r.view.probe = None;
                         r.redraw = true;
                     }
                 }
@@ -253,7 +268,8 @@ impl App<'_> {
                         MouseScrollDelta::LineDelta(_, y) => y,
                         MouseScrollDelta::PixelDelta(p) => (p.y / 40.0) as f32,
                     };
-                    r.view.zoom = (r.view.zoom * 0.9f32.powf(lines)).clamp(0.1, 10.0);
+                    // Wheel away from the user (positive lines) brings the scene closer.
+                    r.view.zoom = (r.view.zoom * 1.1f32.powf(lines)).clamp(0.1, 10.0);
                     r.redraw = true;
                 }
             }

@@ -3,6 +3,7 @@
 //! peel layers of the batch one key away [Kim et al., Sec. 5].
 
 use super::peels::PeelChoice;
+use crate::gl::picture::fixed;
 use crate::gl::Context;
 use crate::mass::buoyancy::batch::GpuSolver;
 use crate::mass::buoyancy::render::{FrameRenderer, Turn};
@@ -79,15 +80,18 @@ impl Demo for BuoyancyDemo {
         let submerged: f64 = self.sim.bodies.iter().map(|b| b.submerged.volume).sum();
         vec![
             format!(
-                "buoyancy: {} bodies, step {}, t = {:.2} s",
+                "buoyancy: {} bodies, step {}, t = {} s",
                 self.sim.bodies.len(),
                 self.steps,
-                self.sim.time
+                fixed(self.sim.time, 2)
             ),
             format!(
-                "peels {}  submerged volume {:.3}",
-                self.solver.last_peels, submerged
+                "peels {}  submerged volume {}",
+                self.solver.last_peels,
+                fixed(submerged, 3)
             ),
+            "arrows: blue gravity at the centre of mass (its length the weight),".into(),
+            "yellow buoyancy at the centre of buoyancy (length: force / weight x blue's)".into(),
         ]
     }
 

@@ -70,18 +70,41 @@ impl Demo for CrowdDemo {
         let pass1 = (self.method == Method::TwoPass)
             .then(|| self.renderer.render_target(0))
             .flatten();
-        let full = Rect::sized(canvas.width(), canvas.height());
+        // Pass 1 writes each skinned vertex's position: a column per character, a row per
+        // vertex; x, y and z are separate quantities, so three panels.
+        let channels = |full: bool| {
+            let what = if full {
+                " (column: character, row: vertex)"
+            } else {
+                ""
+            };
+            [
+                format!("pass 1 x{what}"),
+                format!("pass 1 y{what}"),
+                format!("pass 1 z{what}"),
+            ]
+        };
         match (view.shown, pass1) {
             (1, Some(t)) => {
                 canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-                inset::draw_texture(canvas, t, DumpRange::Auto, full, "pass 1 target (LOD 0)")?;
+                let names = channels(true);
+                let names: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+                let panels = inset::texture_panels(t, &names, DumpRange::Auto)?;
+                let text = if canvas.width() >= 640 { 80 } else { 44 };
+                let rect = Rect::sized(canvas.width(), canvas.height().saturating_sub(text));
+                inset::draw_picture(canvas, panels.into_iter().map(Into::into).collect(), rect)?;
             }
             (1, None) => {
                 canvas.clear([0.0, 0.0, 0.0, 1.0])?;
             }
             (_, Some(t)) => {
-                let rect = inset::strip(canvas, 1)[0];
-                inset::draw_texture(canvas, t, DumpRange::Auto, rect, "pass 1")?;
+                let names = channels(false);
+                let names: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+                let panels = inset::texture_panels(t, &names, DumpRange::Auto)?;
+                // Three panels a fifth of the width each, at least a third of the height.
+                let (w, h) = (canvas.width(), canvas.height());
+                let rect = Rect::new(w - 3 * (w / 5), 0, 3 * (w / 5), h / 3);
+                inset::draw_picture(canvas, panels.into_iter().map(Into::into).collect(), rect)?;
             }
             _ => {}
         }

@@ -4,6 +4,7 @@
 
 use super::peels::PeelChoice;
 use crate::collide::snapshot::{self, Orbit, SnapshotModel};
+use crate::gl::picture::fixed;
 use crate::gl::Context;
 use crate::mass::assemble::MassProperties;
 use crate::mass::gpu::{GpuMass, GpuResult};
@@ -99,17 +100,29 @@ impl Demo for MassDemo {
             n = self.resolution
         )];
         if let Some((gpu, got, want)) = &self.result {
-            let c = |v: Vec3| format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z);
+            let c = |v: Vec3| {
+                let f = |x: f32| fixed(x as f64, 3);
+                format!("({}, {}, {})", f(v.x), f(v.y), f(v.z))
+            };
+            let error = (got.volume / want.volume - 1.0) * 100.0;
+            let sign = if fixed(error, 2).starts_with('-') {
+                ""
+            } else {
+                "+"
+            };
             lines.push(format!(
-                "peels {}  volume GPU {:.4}  analytic {:.4} ({:+.2}%)",
+                "peels {}  volume GPU {}  analytic {} ({sign}{}%)",
                 gpu.peels,
-                got.volume,
-                want.volume,
-                (got.volume / want.volume - 1.0) * 100.0
+                fixed(got.volume, 4),
+                fixed(want.volume, 4),
+                fixed(error, 2)
             ));
             lines.push(format!(
-                "centre of mass GPU {}  analytic {}",
-                c(got.center_of_mass.as_vec3()),
+                "centre of mass GPU {}",
+                c(got.center_of_mass.as_vec3())
+            ));
+            lines.push(format!(
+                "centre of mass analytic {}",
                 c(want.center_of_mass.as_vec3())
             ));
         }

@@ -3,10 +3,13 @@
 //! [Oh & Jung 2004, Sec. 4, Fig. 2]. The network runs once, when the demo starts (the image
 //! does not change); each step leaves it as it is.
 
+use crate::gl::picture::{fixed, Panel, Scale};
 use crate::gl::Context;
 use crate::mlp::chain::{Formulation, GpuMlp, StepTimes};
-use crate::mlp::detect::{classify_gpu, shipped_detector, THRESHOLD};
-use crate::view::{inset, Canvas, Demo, ViewState};
+use crate::mlp::cpu::CpuProduct;
+use crate::mlp::detect::{classify_cpu, classify_gpu, shipped_detector, THRESHOLD};
+use crate::view::inset::{self, Probed, Shown};
+use crate::view::{Canvas, Demo, ViewState};
 use anyhow::Context as _;
 use image::GrayImage;
 use std::path::Path;
@@ -15,6 +18,8 @@ pub struct MlpDemo {
     name: String,
     image: GrayImage,
     outputs: Vec<f32>,
+    /// The CPU forward pass's outputs (the probe's reference).
+    cpu_outputs: Vec<f32>,
     times: StepTimes,
     /// The threshold in hundredths (keys step it by 5).
     threshold: i32,
@@ -46,10 +51,12 @@ impl MlpDemo {
             "the detector's outputs",
             "mlp detect (viewer)",
         )?;
+        let cpu_outputs = classify_cpu(&net, &image, CpuProduct::Optimised, 1 << 18).outputs;
         Ok(MlpDemo {
             name: path.display().to_string(),
             image,
             outputs: classified.outputs,
+            cpu_outputs,
             times: classified.times,
             threshold: (THRESHOLD * 100.0).round() as i32,
         })
@@ -97,14 +104,43 @@ impl Demo for MlpDemo {
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
         canvas.clear([0.1, 0.1, 0.12, 1.0])?;
         let shown = view.shown % 3;
-        let rect = crate::gl::Rect::sized(canvas.width(), canvas.height());
-        inset::draw_rgba(
-            canvas,
-            &self.picture(shown),
-            self.image.dimensions(),
-            rect,
-            "",
-        )?;
+        // Below the overlay text (two lines in doubled or single glyphs).
+        let text = if canvas.width() >= 640 { 60 } else { 32 };
+        let rect = crate::gl::Rect::sized(canvas.width(), canvas.height().saturating_sub(text));
+        // Rows from the bottom, as the probe and the pictures count them.
+        let (w, h) = self.image.dimensions();
+        let from_bottom = |v: &[f32]| -> Vec<f32> {
+            v.chunks_exact(w as usize)
+                .rev()
+                .flatten()
+                .copied()
+                .collect()
+        };
+        let (gpu, cpu) = (from_bottom(&self.outputs), from_bottom(&self.cpu_outputs));
+        if shown == 1 {
+            let panel = Panel {
+                title: "network output (0: background, 1: text)".into(),
+                values: gpu,
+                width: w,
+                height: h,
+                scale: Scale::fixed(0.0, 1.0),
+            };
+            let shown = Shown {
+                panel,
+                probe_values: None,
+                reference: Some(cpu),
+            };
+            return Ok(inset::draw_picture(canvas, vec![shown], rect)?);
+        }
+        let placed = inset::draw_rgba(canvas, &self.picture(shown), (w, h), rect, "")?;
+        if let Some(placement) = placed {
+            canvas.add_probed(Probed {
+                name: "network output".into(),
+                placement,
+                values: gpu,
+                reference: Some(cpu),
+            });
+        }
         Ok(())
     }
 
@@ -127,8 +163,8 @@ impl Demo for MlpDemo {
                 self.image.height()
             ),
             format!(
-                "threshold {t:.2} [+/-]: {text} text pixels ({:.1}%)",
-                100.0 * text as f64 / self.outputs.len() as f64
+                "threshold {t:.2} [+/-]: {text} text pixels ({}%)",
+                fixed(100.0 * text as f64 / self.outputs.len() as f64, 1)
             ),
         ]
     }

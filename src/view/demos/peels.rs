@@ -1,67 +1,94 @@
 //! What the two paper-4 demos share: a strip of depth-peel insets, and the full view of one
-//! peel's integrand target, cycled with `l` (layer) and `t` (target).
+//! peel's integrand target, cycled with `l` (layer), `t` (target) and `c` (the channel of the
+//! strip). Every channel is on one scale for all the peels of the step, as `gl::dump` says.
 
 use crate::gl::Rect;
+use crate::mass::integrands::CHANNELS;
 use crate::mass::peel::CapturedPeel;
-use crate::view::{inset, Canvas};
+use crate::view::inset::{self, Shown};
+use crate::view::Canvas;
 
-/// Which captured peel and which of its integrand targets is shown.
+/// Which captured peel and which of its integrand targets (and, in the strip, channel) is
+/// shown.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PeelChoice {
     pub layer: usize,
     pub target: usize,
+    /// Counted from the last channel of the target (0: `V` of target 0, the volume).
+    pub channel: usize,
 }
 
 impl PeelChoice {
-    /// `l`: next layer; `t`: next integrand target. Whether the key was used.
+    /// `l`: next layer; `t`: next integrand target; `c`: next channel. Whether the key was used.
     pub fn key(&mut self, key: &str, peels: &[CapturedPeel]) -> bool {
         match key {
             "l" => self.layer = (self.layer + 1) % peels.len().max(1),
-            "t" => {
-                let targets = peels.first().map_or(1, |p| p.targets.len().max(1));
-                self.target = (self.target + 1) % targets;
-            }
+            "t" => self.target = (self.target + 1) % CHANNELS.len(),
+            "c" => self.channel += 1,
             _ => return false,
         }
         true
     }
 
-    pub const KEYS: [(&'static str, &'static str); 2] =
-        [("l", "next peel layer"), ("t", "next integrand target")];
+    pub const KEYS: [(&'static str, &'static str); 3] = [
+        ("l", "next peel layer"),
+        ("t", "next integrand target"),
+        ("c", "next channel (strip)"),
+    ];
 
-    /// The chosen peel's target filling `canvas`.
+    fn target(&self) -> usize {
+        self.target % CHANNELS.len()
+    }
+
+    /// The strip's channel of the chosen target.
+    fn channel(&self) -> usize {
+        let n = CHANNELS[self.target()].len();
+        n - 1 - self.channel % n
+    }
+
+    /// The chosen peel's target filling `canvas`, one panel per channel.
     pub fn draw_full(&self, canvas: &Canvas, peels: &[CapturedPeel]) -> anyhow::Result<()> {
         canvas.clear([0.0, 0.0, 0.0, 1.0])?;
         if peels.is_empty() {
             return Ok(());
         }
         let layer = self.layer % peels.len();
-        let peel = &peels[layer];
-        let target = self.target % peel.targets.len().max(1);
-        inset::draw_rgba(
-            canvas,
-            &peel.targets[target],
-            (peel.width, peel.height),
-            Rect::sized(canvas.width(), canvas.height()),
-            &format!("peel {} of {}, target {target}", layer + 1, peels.len()),
-        )?;
+        let target = self.target();
+        let shown: Vec<Shown> = CHANNELS[target]
+            .iter()
+            .enumerate()
+            .map(|(c, name)| {
+                let title = format!("peel {} of {}, {name}", layer + 1, peels.len());
+                let scale = CapturedPeel::scale(peels, target, c);
+                peels[layer].panel(target, c, &title, scale).into()
+            })
+            .collect();
+        // Below the overlay text (its three lines in doubled or single glyphs).
+        let text = if canvas.width() >= 640 { 80 } else { 44 };
+        let rect = Rect::sized(canvas.width(), canvas.height().saturating_sub(text));
+        inset::draw_picture(canvas, shown, rect)?;
         Ok(())
     }
 
-    /// Every peel's chosen target along the bottom of `canvas`.
+    /// Every peel's chosen channel along the bottom of `canvas`, on one scale.
     pub fn draw_strip(&self, canvas: &Canvas, peels: &[CapturedPeel]) -> anyhow::Result<()> {
-        let shown = peels.len().min(6);
-        for (k, rect) in inset::strip(canvas, shown).into_iter().enumerate() {
-            let peel = &peels[shown - 1 - k];
-            let target = self.target % peel.targets.len().max(1);
-            inset::draw_rgba(
-                canvas,
-                &peel.targets[target],
-                (peel.width, peel.height),
-                rect,
-                &format!("peel {}", shown - k),
-            )?;
+        if peels.is_empty() {
+            return Ok(());
         }
+        let shown = peels.len().min(6);
+        let (target, c) = (self.target(), self.channel());
+        let scale = CapturedPeel::scale(&peels[..shown], target, c);
+        let name = CHANNELS[target][c];
+        let panels: Vec<Shown> = peels[..shown]
+            .iter()
+            .enumerate()
+            .map(|(k, p)| -> Shown {
+                p.panel(target, c, &format!("peel {} {name}", k + 1), scale)
+                    .into()
+            })
+            .collect();
+        let rect = inset::strip_rect(canvas, shown);
+        inset::draw_picture(canvas, panels, rect)?;
         Ok(())
     }
 }

@@ -1,0 +1,567 @@
+//! Pictures of float buffers as [`super::dump`] states the mapping: the colour map ([`Scale`]),
+//! panels with a colour key and their title ([`picture`]), nearest-texel enlargement, and the
+//! number format of every label ([`number`], [`fixed`]: never "-0"). CPU only: the same
+//! pictures go into PNG files and, through the viewer, onto the screen.
+
+use font8x8::legacy::BASIC_LEGACY;
+use image::{Rgba, RgbaImage};
+
+/// The colour of zero in every picture: a dark neutral grey, the background a buffer starts
+/// from (most buffers are mostly zero), distinct from the picture's black margin.
+pub const NEUTRAL: [u8; 4] = [48, 48, 48, 255];
+/// NaN and infinite texels: a colour neither half of the map uses.
+pub const NOT_FINITE: [u8; 4] = [255, 0, 255, 255];
+/// Around and between panels.
+const BACKGROUND: [u8; 4] = [8, 8, 10, 255];
+const FRAME: [u8; 4] = [140, 140, 140, 255];
+const TEXT: [u8; 4] = [235, 235, 235, 255];
+
+/// Positive values, from zero to the largest magnitude: neutral, dark red, orange, pale yellow
+/// (lightness rises with the value, so the picture reads in grey too).
+const POSITIVE: [[f32; 3]; 4] = [
+    [48.0, 48.0, 48.0],
+    [150.0, 30.0, 20.0],
+    [240.0, 130.0, 20.0],
+    [255.0, 245.0, 170.0],
+];
+/// Negative values, from zero to the largest magnitude: neutral, dark blue, blue, pale cyan.
+const NEGATIVE: [[f32; 3]; 4] = [
+    [48.0, 48.0, 48.0],
+    [25.0, 55.0, 160.0],
+    [40.0, 145.0, 235.0],
+    [175.0, 240.0, 255.0],
+];
+
+/// The numeric range one colour map covers, shared by a set of related pictures. It always
+/// contains zero (zero is the neutral colour); `lo < 0` makes the map diverging.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scale {
+    pub lo: f32,
+    pub hi: f32,
+}
+
+impl Scale {
+    /// The scale of every finite value of every slice (one set of related pictures).
+    pub fn of<'a>(sets: impl IntoIterator<Item = &'a [f32]>) -> Scale {
+        let mut scale = Scale { lo: 0.0, hi: 0.0 };
+        for set in sets {
+            for &v in set.iter().filter(|v| v.is_finite()) {
+                scale.lo = scale.lo.min(v);
+                scale.hi = scale.hi.max(v);
+            }
+        }
+        scale
+    }
+
+    /// A given range, widened to contain zero.
+    pub fn fixed(lo: f32, hi: f32) -> Scale {
+        Scale {
+            lo: lo.min(0.0),
+            hi: hi.max(0.0),
+        }
+    }
+
+    /// Whether the data has negative values (a diverging map).
+    pub fn is_signed(&self) -> bool {
+        self.lo < 0.0
+    }
+
+    /// The largest magnitude: both halves of a diverging map are scaled by it, so that equal
+    /// magnitudes have equal lightness.
+    fn magnitude(&self) -> f32 {
+        (-self.lo).max(self.hi)
+    }
+
+    /// The colour of `v`.
+    pub fn colour(&self, v: f32) -> [u8; 4] {
+        if !v.is_finite() {
+            return NOT_FINITE;
+        }
+        let m = self.magnitude();
+        if v == 0.0 || m <= 0.0 {
+            return NEUTRAL;
+        }
+        let t = (v.abs() / m).clamp(0.0, 1.0);
+        let stops = if v > 0.0 { &POSITIVE } else { &NEGATIVE };
+        let x = t * (stops.len() - 1) as f32;
+        let i = (x.floor() as usize).min(stops.len() - 2);
+        let f = x - i as f32;
+        let mut out = [0, 0, 0, 255];
+        for c in 0..3 {
+            let value = stops[i][c] + (stops[i + 1][c] - stops[i][c]) * f;
+            out[c] = value.round().clamp(0.0, 255.0) as u8;
+        }
+        out
+    }
+}
+
+/// `v` with at most 4 significant digits (exponent form outside 1e-3..1e5), "0" for both
+/// zeros: the numbers of keys and probes.
+pub fn number(v: f64) -> String {
+    if !v.is_finite() {
+        return if v.is_nan() {
+            "NaN"
+        } else if v > 0.0 {
+            "inf"
+        } else {
+            "-inf"
+        }
+        .into();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let a = v.abs();
+    let s = if (1e-3..1e5).contains(&a) {
+        let decimals = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
+        let s = format!("{v:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        format!("{v:.2e}")
+    };
+    if s.trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+/// `v` with `decimals` decimals, without the sign of a value that rounds to zero ("0.000",
+/// never "-0.000").
+pub fn fixed(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// One channel of a buffer drawn as one panel: values row by row from the bottom (as GL reads
+/// them), `width x height`.
+#[derive(Clone, Debug)]
+pub struct Panel {
+    pub title: String,
+    pub values: Vec<f32>,
+    pub width: u32,
+    pub height: u32,
+    pub scale: Scale,
+}
+
+impl Panel {
+    /// Channel `channel` of `channels`-component texels.
+    pub fn channel(
+        title: impl Into<String>,
+        texels: &[f32],
+        channels: usize,
+        channel: usize,
+        (width, height): (u32, u32),
+        scale: Scale,
+    ) -> Panel {
+        Panel {
+            title: title.into(),
+            values: texels
+                .iter()
+                .skip(channel)
+                .step_by(channels)
+                .copied()
+                .collect(),
+            width,
+            height,
+            scale,
+        }
+    }
+
+    /// The texel at (`x`, `y`), `y` from the bottom.
+    pub fn at(&self, x: u32, y: u32) -> f32 {
+        self.values[(y * self.width + x) as usize]
+    }
+}
+
+/// Where a panel's texels landed in a picture: the image area, top-left origin, in picture
+/// pixels; the texel under a picture pixel is found from it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Placement {
+    pub x: u32,
+    pub y: u32,
+    pub w: u32,
+    pub h: u32,
+    pub texels: (u32, u32),
+}
+
+impl Placement {
+    /// The texel (x, y from the bottom) under picture pixel (`px`, `py`) (top-left origin).
+    pub fn texel(&self, px: u32, py: u32) -> Option<(u32, u32)> {
+        if px < self.x || py < self.y || px >= self.x + self.w || py >= self.y + self.h {
+            return None;
+        }
+        let tx = (px - self.x) as u64 * self.texels.0 as u64 / self.w as u64;
+        let from_top = (py - self.y) as u64 * self.texels.1 as u64 / self.h as u64;
+        Some((tx as u32, self.texels.1 - 1 - from_top as u32))
+    }
+}
+
+/// The glyph size (pixels) of text in a picture of `width` pixels: 16 from 640 up, else 8.
+pub fn glyph_for(width: u32) -> u32 {
+    if width >= 640 {
+        16
+    } else {
+        8
+    }
+}
+
+const MARGIN: u32 = 4;
+const BAR: u32 = 8;
+
+/// `panels` laid out in a grid that fits `width x height` (the columns chosen to give the
+/// panels the largest texels), each with its title above and its colour key (the scale's
+/// range, and zero for a diverging map) below; texels enlarged by whole factors, nearest
+/// texel, when there is room. The picture, and where each panel's texels are.
+pub fn picture(panels: &[Panel], (width, height): (u32, u32)) -> (RgbaImage, Vec<Placement>) {
+    let mut image = RgbaImage::from_pixel(width.max(1), height.max(1), Rgba(BACKGROUND));
+    let mut placements = Vec::new();
+    if panels.is_empty() {
+        return (image, placements);
+    }
+    let glyph = glyph_for(width);
+    let n = panels.len() as u32;
+    let mut best: Option<(f64, u32)> = None;
+    for columns in 1..=n {
+        let rows = n.div_ceil(columns);
+        let (cw, ch) = (width / columns, height / rows);
+        let (aw, ah) = image_area(panels, cw, ch, glyph);
+        let s = panels
+            .iter()
+            .map(|p| (aw as f64 / p.width as f64).min(ah as f64 / p.height as f64))
+            .fold(f64::INFINITY, f64::min);
+        if best.is_none_or(|(b, _)| s > b) {
+            best = Some((s, columns));
+        }
+    }
+    let columns = best.map_or(1, |(_, c)| c);
+    let rows = n.div_ceil(columns);
+    let (cw, ch) = (width / columns, height / rows);
+    for (k, panel) in panels.iter().enumerate() {
+        let (col, row) = (k as u32 % columns, k as u32 / columns);
+        let placement = draw_panel(&mut image, panel, (col * cw, row * ch), (cw, ch), glyph);
+        placements.push(placement);
+    }
+    (image, placements)
+}
+
+/// The lines of a panel's title in a cell `cw` wide.
+fn title_lines(panel: &Panel, cw: u32, glyph: u32) -> Vec<String> {
+    let columns = (cw.saturating_sub(2 * MARGIN) / glyph).max(1) as usize;
+    wrap(&panel.title, columns)
+}
+
+/// The room for a panel's texels in a `cw x ch` cell.
+fn image_area(panels: &[Panel], cw: u32, ch: u32, glyph: u32) -> (u32, u32) {
+    let title = panels
+        .iter()
+        .map(|p| title_lines(p, cw, glyph).len() as u32)
+        .max()
+        .unwrap_or(1)
+        * (glyph + 2);
+    let key = BAR + 2 * (glyph + 2) + MARGIN;
+    (
+        cw.saturating_sub(2 * MARGIN + 2),
+        ch.saturating_sub(title + key + 2 * MARGIN + 2),
+    )
+}
+
+fn draw_panel(
+    image: &mut RgbaImage,
+    panel: &Panel,
+    (x0, y0): (u32, u32),
+    (cw, ch): (u32, u32),
+    glyph: u32,
+) -> Placement {
+    let lines = title_lines(panel, cw, glyph);
+    let mut y = y0 + MARGIN;
+    for line in &lines {
+        draw_text(image, x0 + MARGIN, y, line, glyph);
+        y += glyph + 2;
+    }
+    let (aw, ah) = image_area(std::slice::from_ref(panel), cw, ch, glyph);
+    let (sx, sy) = stretch(
+        aw as f64 / panel.width as f64,
+        ah as f64 / panel.height as f64,
+    );
+    let (w, h) = (
+        ((panel.width as f64 * sx) as u32).max(1),
+        ((panel.height as f64 * sy) as u32).max(1),
+    );
+    let (ix, iy) = (x0 + MARGIN + 1, y + 1);
+    fill(image, (ix - 1, iy - 1), (w + 2, h + 2), FRAME);
+    let placement = Placement {
+        x: ix,
+        y: iy,
+        w,
+        h,
+        texels: (panel.width, panel.height),
+    };
+    for py in 0..h {
+        for px in 0..w {
+            let (tx, ty) = placement.texel(ix + px, iy + py).expect("inside");
+            put(
+                image,
+                ix + px,
+                iy + py,
+                panel.scale.colour(panel.at(tx, ty)),
+            );
+        }
+    }
+    let key_y = iy + h + 1 + MARGIN;
+    let key_w = cw.saturating_sub(2 * MARGIN).max(1);
+    draw_key(image, panel.scale, (x0 + MARGIN, key_y), key_w, glyph);
+    placement
+}
+
+/// The enlargement of each axis from the room's (`sx`, `sy`): one factor for both (square
+/// texels), whole when it is at least 1 so that every texel is a block of equal pixels; but a
+/// target more than 4 times longer one way than the room (a strip) is stretched each way
+/// (rectangular texels) so that it is not drawn as a line.
+fn stretch(sx: f64, sy: f64) -> (f64, f64) {
+    let whole = |s: f64| if s >= 1.0 { s.floor() } else { s };
+    if sx.max(sy) > 4.0 * sx.min(sy) {
+        (whole(sx), whole(sy))
+    } else {
+        let s = whole(sx.min(sy));
+        (s, s)
+    }
+}
+
+/// The colour key: a bar from the scale's low to high end, the two numbers under its ends and
+/// zero under its place when the map is diverging (left out where it would touch the others).
+fn draw_key(image: &mut RgbaImage, scale: Scale, (x, y): (u32, u32), width: u32, glyph: u32) {
+    let span = scale.hi - scale.lo;
+    for px in 0..width {
+        let v = if span > 0.0 {
+            scale.lo + span * (px as f32 + 0.5) / width as f32
+        } else {
+            0.0
+        };
+        for py in 0..BAR {
+            put(image, x + px, y + py, scale.colour(v));
+        }
+    }
+    let label_y = y + BAR + 2;
+    if span <= 0.0 {
+        draw_fitted(image, x, label_y, width, "all 0", glyph);
+        return;
+    }
+    let lo = number(scale.lo as f64);
+    let hi = number(scale.hi as f64);
+    let len = |s: &str| s.chars().count() as u32 * glyph;
+    if len(&lo) + len(&hi) + glyph > width {
+        // Too narrow for both ends on one line: the range on two lines.
+        draw_fitted(image, x, label_y, width, &lo, glyph);
+        draw_fitted(
+            image,
+            x,
+            label_y + glyph + 2,
+            width,
+            &format!("to {hi}"),
+            glyph,
+        );
+        return;
+    }
+    draw_text(image, x, label_y, &lo, glyph);
+    draw_text(image, x + width - len(&hi), label_y, &hi, glyph);
+    if scale.is_signed() && scale.hi > 0.0 {
+        let zero_x = x + ((-scale.lo / span) * width as f32) as u32;
+        let left = zero_x.saturating_sub(glyph / 2);
+        if left >= x + len(&lo) + glyph / 2 && left + glyph + glyph / 2 <= x + width - len(&hi) {
+            draw_text(image, left, label_y, "0", glyph);
+        }
+    }
+}
+
+/// Text that must fit `width`: in smaller glyphs, then cut to the characters that fit (the
+/// last resort of a key narrower than its numbers).
+fn draw_fitted(image: &mut RgbaImage, x: u32, y: u32, width: u32, text: &str, glyph: u32) {
+    let n = text.chars().count() as u32;
+    let glyph = if n * glyph > width { 8 } else { glyph };
+    let fit = (width / glyph) as usize;
+    draw_text(
+        image,
+        x,
+        y,
+        &text.chars().take(fit).collect::<String>(),
+        glyph,
+    );
+}
+
+/// Split `text` into lines of at most `columns` characters, at spaces where it can.
+pub fn wrap(text: &str, columns: usize) -> Vec<String> {
+    let columns = columns.max(1);
+    let mut lines = Vec::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        let mut word = word.to_string();
+        while word.chars().count() > columns {
+            if !line.is_empty() {
+                lines.push(std::mem::take(&mut line));
+            }
+            let head: String = word.chars().take(columns).collect();
+            word = word.chars().skip(columns).collect();
+            lines.push(head);
+        }
+        let needed = line.chars().count() + usize::from(!line.is_empty()) + word.chars().count();
+        if needed > columns && !line.is_empty() {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(&word);
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// Draw `text` with its top-left corner at (`x`, `y`) in `glyph`-pixel 8x8 font glyphs.
+pub fn draw_text(image: &mut RgbaImage, x: u32, y: u32, text: &str, glyph: u32) {
+    let scale = (glyph / 8).max(1);
+    for (col, c) in text.chars().enumerate() {
+        let code = if c.is_ascii() {
+            c as usize
+        } else {
+            '?' as usize
+        };
+        for (gy, bits) in BASIC_LEGACY[code].iter().enumerate() {
+            for gx in 0..8u32 {
+                if bits & (1 << gx) == 0 {
+                    continue;
+                }
+                let px = x + col as u32 * 8 * scale + gx * scale;
+                let py = y + gy as u32 * scale;
+                fill(image, (px, py), (scale, scale), TEXT);
+            }
+        }
+    }
+}
+
+fn fill(image: &mut RgbaImage, (x, y): (u32, u32), (w, h): (u32, u32), colour: [u8; 4]) {
+    for py in y..y + h {
+        for px in x..x + w {
+            put(image, px, py, colour);
+        }
+    }
+}
+
+fn put(image: &mut RgbaImage, x: u32, y: u32, colour: [u8; 4]) {
+    if x < image.width() && y < image.height() {
+        image.put_pixel(x, y, Rgba(colour));
+    }
+}
+
+/// An image (top row first) as RGBA bytes with rows from the bottom, as GL and the viewer's
+/// overlay take them.
+pub fn rows_from_bottom(image: &RgbaImage) -> Vec<u8> {
+    image
+        .as_raw()
+        .chunks_exact(image.width() as usize * 4)
+        .rev()
+        .flatten()
+        .copied()
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn panel(values: Vec<f32>, w: u32, h: u32) -> Panel {
+        let scale = Scale::of([values.as_slice()]);
+        Panel {
+            title: "t".into(),
+            values,
+            width: w,
+            height: h,
+            scale,
+        }
+    }
+
+    #[test]
+    fn zero_is_neutral_in_every_scale_and_sign_picks_the_half() {
+        for scale in [
+            Scale::fixed(0.0, 1.0),
+            Scale::fixed(-3.0, 0.5),
+            Scale::of([[1e-6f32, 2e-6].as_slice()]),
+        ] {
+            assert_eq!(scale.colour(0.0), NEUTRAL);
+            assert_eq!(scale.colour(-0.0), NEUTRAL);
+            assert_eq!(scale.colour(f32::NAN), NOT_FINITE);
+        }
+        let s = Scale::fixed(-2.0, 2.0);
+        let (pos, neg) = (s.colour(2.0), s.colour(-2.0));
+        assert!(pos[0] > pos[2], "positive warm: {pos:?}");
+        assert!(neg[2] > neg[0], "negative cool: {neg:?}");
+    }
+
+    #[test]
+    fn numbers_never_print_negative_zero() {
+        assert_eq!(fixed(-0.0001, 3), "0.000");
+        assert_eq!(fixed(-0.0, 2), "0.00");
+        assert_eq!(fixed(-0.5, 1), "-0.5");
+        assert_eq!(number(-0.0), "0");
+        assert_eq!(number(-1e-9), "-1.00e-9");
+        assert_eq!(number(12.5), "12.5");
+        assert_eq!(number(0.1234567), "0.1235");
+        assert_eq!(number(65535.0), "65535");
+    }
+
+    #[test]
+    fn small_targets_are_enlarged_by_whole_factors_nearest_texel() {
+        let p = panel(vec![1.0, 2.0, 3.0, 4.0], 2, 2);
+        let (image, places) = picture(std::slice::from_ref(&p), (200, 200));
+        let place = places[0];
+        assert_eq!(place.w % 2, 0);
+        assert_eq!(place.w, place.h);
+        let factor = place.w / 2;
+        assert!(factor > 1, "a 2x2 target is enlarged");
+        for py in 0..place.h {
+            for px in 0..place.w {
+                let (tx, ty) = (px / factor, 1 - py / factor);
+                let want = p.scale.colour(p.at(tx, ty));
+                assert_eq!(image.get_pixel(place.x + px, place.y + py).0, want);
+                assert_eq!(place.texel(place.x + px, place.y + py), Some((tx, ty)));
+            }
+        }
+    }
+
+    #[test]
+    fn the_key_spans_the_scale_of_the_data() {
+        let p = panel(vec![-1.0, 0.0, 0.0, 4.0], 2, 2);
+        assert_eq!(p.scale, Scale { lo: -1.0, hi: 4.0 });
+        let (image, places) = picture(std::slice::from_ref(&p), (160, 200));
+        // The bar's first and last pixels are the colours of the range's ends (at half a
+        // pixel in), so the key's range is the data's.
+        let y = places[0].y + places[0].h + 1 + MARGIN;
+        let x0 = MARGIN;
+        let x1 = 160 - MARGIN - 1;
+        let first = image.get_pixel(x0, y).0;
+        let last = image.get_pixel(x1, y).0;
+        let width = 160 - 2 * MARGIN;
+        let step = 5.0 / width as f32;
+        assert_eq!(first, p.scale.colour(-1.0 + step / 2.0));
+        assert_eq!(last, p.scale.colour(4.0 - step / 2.0));
+    }
+
+    #[test]
+    fn titles_wrap_inside_their_cell() {
+        let lines = wrap("P1' (reduced) 8x8 masks of P0", 10);
+        assert!(lines.iter().all(|l| l.chars().count() <= 10), "{lines:?}");
+        assert_eq!(lines.join(" "), "P1' (reduced) 8x8 masks of P0");
+    }
+}
