@@ -336,3 +336,66 @@ fn mlp_detect_window_matches_headless() {
         1,
     );
 }
+
+/// Each lecture-3 technique's window against its headless frame, on its second buffer where
+/// it has one (Tab), so that a picture of a buffer and the frame are both checked.
+fn lecture3_window_matches_headless(technique: &str, frames: usize, buffer: &str) {
+    window_matches_headless(
+        &format!("lecture3-{technique}"),
+        &["lecture3", technique, "--buffer", buffer],
+        frames,
+    );
+}
+
+#[test]
+fn lecture3_pyramid_window_matches_headless() {
+    lecture3_window_matches_headless("pyramid", 1, "1");
+}
+
+#[test]
+fn lecture3_displace_window_matches_headless() {
+    lecture3_window_matches_headless("displace", 2, "1");
+}
+
+#[test]
+fn lecture3_light_window_matches_headless() {
+    lecture3_window_matches_headless("light", 1, "1");
+}
+
+#[test]
+fn lecture3_function_window_matches_headless() {
+    lecture3_window_matches_headless("function", 1, "1");
+}
+
+#[test]
+fn lecture3_random_window_matches_headless() {
+    lecture3_window_matches_headless("random", 3, "0");
+}
+
+#[test]
+fn lecture3_depth_mask_window_matches_headless() {
+    lecture3_window_matches_headless("depth-mask", 1, "0");
+}
+
+#[test]
+fn lecture3_histogram_window_matches_headless() {
+    lecture3_window_matches_headless("histogram", 1, "0");
+}
+
+#[test]
+fn the_probe_draws_the_same_readout_in_the_window_and_headless() {
+    window_matches_headless(
+        "collide-probe",
+        &[
+            "collide-scene",
+            "touching-tori",
+            "--triangles",
+            "300",
+            "--buffer",
+            "2",
+            "--probe",
+            "128,100",
+        ],
+        2,
+    );
+}

@@ -3,6 +3,7 @@
 
 use anyhow::Context as _;
 use classic_gpgpu::gl::Context;
+use classic_gpgpu::view::demos::lecture3::Technique as Lecture3Technique;
 use classic_gpgpu::view::window::{self, WindowOptions};
 use classic_gpgpu::view::{self as viewer, DemoSpec, ViewState};
 use std::path::PathBuf;
@@ -100,6 +101,13 @@ pub enum DemoCommand {
     /// adjustable (keys + and -).
     #[command(subcommand)]
     Mlp(MlpDemo),
+    /// The tutorial's lecture 3: one technique live, its buffers one Tab away, each texel
+    /// probed against the CPU reference.
+    Lecture3 {
+        /// The technique, as `classic-gpgpu lecture3` names it.
+        #[arg(value_enum)]
+        technique: Lecture3Technique,
+    },
 }
 
 #[derive(clap::Subcommand, Debug)]
@@ -146,6 +154,9 @@ impl DemoCommand {
             },
             DemoCommand::Mlp(MlpDemo::Detect { image }) => DemoSpec::MlpDetect {
                 image: image.clone(),
+            },
+            DemoCommand::Lecture3 { technique } => DemoSpec::Lecture3 {
+                technique: *technique,
             },
         }
     }

@@ -4,6 +4,7 @@
 mod buoyancy;
 mod collide;
 mod crowd;
+pub mod lecture3;
 mod mass;
 mod mlp;
 mod peels;
@@ -27,6 +28,8 @@ pub enum DemoSpec {
     Crowd { characters: usize },
     /// Paper 3: text detection on an image.
     MlpDetect { image: std::path::PathBuf },
+    /// The tutorial's lecture 3: one technique.
+    Lecture3 { technique: lecture3::Technique },
 }
 
 impl DemoSpec {
@@ -38,6 +41,7 @@ impl DemoSpec {
             DemoSpec::Buoyancy { .. } => "buoyancy".to_string(),
             DemoSpec::Crowd { .. } => "crowd".to_string(),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
+            DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
         }
     }
 
@@ -59,6 +63,7 @@ impl DemoSpec {
             }
             DemoSpec::Crowd { characters } => format!("crowd --characters {characters}"),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
+            DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
         }
     }
 
@@ -85,6 +90,9 @@ impl DemoSpec {
                     image.display()
                 )
             }
+            DemoSpec::Lecture3 { technique } => {
+                format!("classic-gpgpu lecture3 {}", technique.name())
+            }
         };
         format!(
             "`classic-gpgpu view {} --headless --screenshot frame.png` (or `{paper}`)",
@@ -108,6 +116,7 @@ impl DemoSpec {
                 Box::new(crowd::CrowdDemo::new(ctx, *characters, size)?)
             }
             DemoSpec::MlpDetect { image } => Box::new(mlp::MlpDemo::new(ctx, image)?),
+            DemoSpec::Lecture3 { technique } => technique.build(ctx)?,
         })
     }
 }
