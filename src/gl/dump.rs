@@ -128,7 +128,7 @@ pub fn to_rgba8(texture: &Texture, range: DumpRange) -> Result<Vec<u8>, GlError>
             .flat_map(|v| [v, v, v, 255])
             .collect(),
         TextureFormat::Rgba32F => map_floats(&texture.download_f32()?, 4, range),
-        TextureFormat::R32F | TextureFormat::Depth32F => {
+        TextureFormat::R32F | TextureFormat::R16F | TextureFormat::Depth32F => {
             map_floats(&texture.download_f32()?, 1, range)
         }
         TextureFormat::Depth24Stencil8 => {

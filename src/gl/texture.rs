@@ -11,6 +11,9 @@ pub enum TextureFormat {
     Rgba32F,
     /// One 32-bit float.
     R32F,
+    /// One 16-bit (half) float: 11 significant bits, largest finite 65504. Uploaded and read
+    /// back as 32-bit floats (the driver converts).
+    R16F,
     /// One normalised byte.
     R8,
     /// Four normalised bytes (images).
@@ -32,6 +35,7 @@ impl TextureFormat {
         match self {
             TextureFormat::Rgba32F => (glow::RGBA32F, glow::RGBA, glow::FLOAT),
             TextureFormat::R32F => (glow::R32F, glow::RED, glow::FLOAT),
+            TextureFormat::R16F => (glow::R16F, glow::RED, glow::FLOAT),
             TextureFormat::R8 => (glow::R8, glow::RED, glow::UNSIGNED_BYTE),
             TextureFormat::Rgba8 => (glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE),
             TextureFormat::Depth32F => {
@@ -73,7 +77,10 @@ impl TextureFormat {
     pub fn is_float(self) -> bool {
         matches!(
             self,
-            TextureFormat::Rgba32F | TextureFormat::R32F | TextureFormat::Depth32F
+            TextureFormat::Rgba32F
+                | TextureFormat::R32F
+                | TextureFormat::R16F
+                | TextureFormat::Depth32F
         )
     }
 
@@ -98,6 +105,7 @@ impl TextureFormat {
         match self {
             TextureFormat::Rgba32F => "RGBA32F",
             TextureFormat::R32F => "R32F",
+            TextureFormat::R16F => "R16F",
             TextureFormat::R8 => "R8",
             TextureFormat::Rgba8 => "RGBA8",
             TextureFormat::Depth32F => "DEPTH_COMPONENT32F",

@@ -16,7 +16,14 @@
 
 use crate::gl::Context;
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+mod ping_pong;
+mod quad_is_loop;
+mod reduction;
+mod scatter_and_blend;
+mod several_outputs;
+mod texture_is_array;
 
 /// A paper step that uses the lesson's idea: where to read next.
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -113,8 +120,52 @@ pub struct LessonRun {
     pub compute: Option<String>,
     /// The hint of the exercise that was run, when it failed.
     pub hint: Option<String>,
+    /// The buffers the passes wrote, as read back (what `--png` writes and `view learn`
+    /// shows); not in the JSON, whose passes name the pictures instead.
+    #[serde(skip)]
+    pub buffers: Vec<PassBuffer>,
 }
 
+/// A buffer one pass wrote, read back: rows from the bottom, `channels` values per texel.
+#[derive(Clone, Debug)]
+pub struct PassBuffer {
+    /// The index of its pass in [`LessonRun::passes`].
+    pub pass: usize,
+    /// The file stem its pictures get, e.g. `3-level-2`.
+    pub stem: String,
+    pub width: u32,
+    pub height: u32,
+    pub channels: usize,
+    pub values: Vec<f32>,
+    /// A float buffer (also written as `.npy`); false for a byte format read as 0..1.
+    pub float: bool,
+}
+
+impl PassBuffer {
+    /// A float buffer of `width x height` texels of `channels` values each.
+    pub fn floats(width: u32, height: u32, channels: usize, values: Vec<f32>) -> PassBuffer {
+        PassBuffer {
+            pass: 0,
+            stem: String::new(),
+            width,
+            height,
+            channels,
+            values,
+            float: true,
+        }
+    }
+
+    /// The buffer as RGBA bytes, rows from the bottom, mapped as `gl::dump` maps float
+    /// textures (each channel from its smallest to its largest value; bytes as they are).
+    pub fn rgba(&self) -> Vec<u8> {
+        let range = if self.float {
+            crate::gl::dump::DumpRange::Auto
+        } else {
+            crate::gl::dump::DumpRange::Fixed(0.0, 1.0)
+        };
+        crate::gl::dump::map_floats(&self.values, self.channels, range)
+    }
+}
 impl LessonRun {
     /// An empty run of `info` on `ctx`, to be filled pass by pass.
     pub fn new(info: &LessonInfo, ctx: &Context) -> LessonRun {
@@ -130,7 +181,84 @@ impl LessonRun {
             notes: Vec::new(),
             compute: None,
             hint: None,
+            buffers: Vec::new(),
         }
+    }
+
+    /// Record one pass: its note, the shader it ran (once in `shaders`), and the buffer it
+    /// wrote when there is one to look at.
+    pub fn pass(&mut self, name: &str, shader: &str, what: &str, buffer: Option<PassBuffer>) {
+        let index = self.passes.len();
+        self.passes.push(PassNote {
+            name: name.into(),
+            shader: shader.into(),
+            what: what.into(),
+            picture: None,
+        });
+        if !shader.is_empty() && !self.shaders.iter().any(|s| s == shader) {
+            self.shaders.push(shader.into());
+        }
+        if let Some(mut buffer) = buffer {
+            buffer.pass = index;
+            buffer.stem = format!("{index}-{}", file_stem(name));
+            self.buffers.push(buffer);
+        }
+    }
+
+    /// Record a measured fact that is not a check.
+    pub fn note(&mut self, name: &str, value: impl Into<String>) {
+        self.notes.push((name.into(), value.into()));
+    }
+
+    /// Finish a run: the exercise's hint when a check failed, and the pictures when
+    /// `opts.png_dir` asks for them (overwriting: the command line checks its folder first).
+    pub fn finish(
+        &mut self,
+        info: &LessonInfo,
+        ctx: &Context,
+        opts: &LessonOptions,
+    ) -> anyhow::Result<()> {
+        if !self.passed {
+            self.hint = failed_exercise(info, ctx, opts).map(|e| e.hint.to_string());
+        }
+        match &opts.png_dir {
+            Some(dir) => self.write_pictures(dir),
+            None => Ok(()),
+        }
+    }
+
+    /// The files [`LessonRun::write_pictures`] writes into `dir`.
+    pub fn picture_files(&self, dir: &Path) -> Vec<PathBuf> {
+        let mut files = Vec::new();
+        for b in &self.buffers {
+            files.push(dir.join(format!("{}.png", b.stem)));
+            if b.float {
+                files.push(dir.join(format!("{}.npy", b.stem)));
+            }
+        }
+        files
+    }
+
+    /// Write each pass's buffer as `DIR/<pass>-<name>.png` (and `.npy` for float buffers),
+    /// and name the picture in its pass's note.
+    pub fn write_pictures(&mut self, dir: &Path) -> anyhow::Result<()> {
+        for b in &self.buffers {
+            let png = format!("{}.png", b.stem);
+            let top_first: Vec<u8> = b
+                .rgba()
+                .chunks_exact(b.width as usize * 4)
+                .rev()
+                .flatten()
+                .copied()
+                .collect();
+            crate::files::write_png(&dir.join(&png), &top_first, b.width, b.height)?;
+            if b.float {
+                let shape = [b.height as usize, b.width as usize, b.channels];
+                crate::files::write_npy(&dir.join(format!("{}.npy", b.stem)), &shape, &b.values)?;
+            }
+            self.passes[b.pass].picture = Some(png);
+        }
+        Ok(())
     }
 
     /// Record a comparison: passes when `max_error <= tolerance` (and is finite).
@@ -156,11 +284,100 @@ pub trait Lesson {
     fn info(&self) -> &'static LessonInfo;
     /// Run the lesson on `ctx`: every pass, every check against the CPU reference.
     fn run(&self, ctx: &Context, opts: &LessonOptions) -> anyhow::Result<LessonRun>;
+    /// Whether the lesson iterates (ping-pong): `view learn` then steps its iterations.
+    fn iterates(&self) -> bool {
+        false
+    }
+    /// Run with `iterations` steps instead of the lesson's own count (lessons that iterate;
+    /// the others run as [`Lesson::run`]).
+    fn run_iterations(
+        &self,
+        ctx: &Context,
+        opts: &LessonOptions,
+        _iterations: u32,
+    ) -> anyhow::Result<LessonRun> {
+        self.run(ctx, opts)
+    }
+}
+
+/// The exercise `opts.exercise` names, or an error listing the lesson's exercises.
+pub fn chosen_exercise(
+    info: &LessonInfo,
+    opts: &LessonOptions,
+) -> anyhow::Result<Option<&'static Exercise>> {
+    let Some(n) = opts.exercise else {
+        return Ok(None);
+    };
+    match info.exercises.iter().find(|e| e.number == n) {
+        Some(e) => Ok(Some(e)),
+        None => {
+            let numbers: Vec<String> = info.exercises.iter().map(|e| e.number.to_string()).collect();
+            anyhow::bail!(
+                "--exercise {n}: lesson {} has exercise{} {}",
+                info.id,
+                if numbers.len() == 1 { "" } else { "s" },
+                numbers.join(", ")
+            )
+        }
+    }
+}
+
+/// The exercise whose hint a failed run shows: the one run with `--exercise`, else the
+/// first whose shader the `--glsl-dir` folder replaces, else the lesson's first.
+fn failed_exercise(
+    info: &LessonInfo,
+    ctx: &Context,
+    opts: &LessonOptions,
+) -> Option<&'static Exercise> {
+    if let Some(n) = opts.exercise {
+        return info.exercises.iter().find(|e| e.number == n);
+    }
+    let replaced = |e: &&Exercise| {
+        ctx.glsl_dir()
+            .is_some_and(|dir| dir.join(e.shader).is_file())
+    };
+    info.exercises
+        .iter()
+        .find(replaced)
+        .or(info.exercises.first())
+}
+
+/// A pass name as a file name: lower case, words joined by `-`.
+fn file_stem(name: &str) -> String {
+    let mut stem = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            stem.push(c.to_ascii_lowercase());
+        } else if !stem.ends_with('-') && !stem.is_empty() {
+            stem.push('-');
+        }
+    }
+    stem.trim_end_matches('-').to_string()
+}
+
+/// The exercise templates of the lessons (`glsl/learn/exercises/X`), for `glsl export
+/// --exercises`.
+pub fn templates() -> Vec<crate::gl::ShaderSource<'static>> {
+    vec![
+        crate::shader!("glsl/learn/exercises/texel_sample.frag"),
+        crate::shader!("glsl/learn/exercises/saxpy.frag"),
+        crate::shader!("glsl/learn/exercises/jacobi.frag"),
+        crate::shader!("glsl/learn/exercises/reduce_wide.frag"),
+        crate::shader!("glsl/learn/exercises/integrands.frag"),
+        crate::shader!("glsl/learn/exercises/scatter_points.vert"),
+    ]
 }
 
 /// Every lesson, in teaching order.
 pub fn all() -> Vec<&'static dyn Lesson> {
-    vec![]
+    vec![
+        &texture_is_array::TextureIsArray,
+        &quad_is_loop::QuadIsLoop,
+        &ping_pong::PingPong,
+        &reduction::Reduction,
+        &several_outputs::SeveralOutputs,
+        &scatter_and_blend::ScatterAndBlend,
+    ]
 }
 
 /// The lesson `id` (or its number), or an error listing the ids.
@@ -174,4 +391,30 @@ pub fn find(id: &str) -> anyhow::Result<&'static dyn Lesson> {
             let ids: Vec<&str> = lessons.iter().map(|l| l.info().id).collect();
             anyhow::anyhow!("no lesson '{id}'; the lessons are: {}", ids.join(", "))
         })
+}
+
+/// Why a lesson's compute counterpart cannot run here, or `None` when it can (OpenGL 4.3).
+pub(crate) fn no_compute(ctx: &Context) -> Option<String> {
+    let (major, minor) = ctx.info().gl_version;
+    (!ctx.has_compute()).then(|| {
+        format!("not run: this context is OpenGL {major}.{minor}; compute shaders need 4.3")
+    })
+}
+
+/// The largest `|a[i] - b[i]|`, infinite when a value is not finite or the lengths differ.
+pub(crate) fn max_difference(a: &[f32], b: &[f32]) -> f64 {
+    if a.len() != b.len() {
+        return f64::INFINITY;
+    }
+    a.iter()
+        .zip(b)
+        .map(|(&x, &y)| (x as f64 - y as f64).abs())
+        .fold(0.0, |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) })
+}
+
+/// `n` values drawn uniformly from `[lo, hi)` by a seeded generator: the same data each run.
+pub(crate) fn random_values(n: usize, seed: u64, lo: f32, hi: f32) -> Vec<f32> {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    (0..n).map(|_| rng.gen_range(lo..hi)).collect()
 }

@@ -1,0 +1,27 @@
+#version 330 core
+// Lesson 2, ping-pong: one Jacobi step for Laplace's equation on a grid. Every interior value
+// becomes the mean of its four neighbours in the previous iterate; the boundary keeps its
+// values (Dirichlet). The previous iterate is a texture this pass reads, the next one the
+// target it writes: two textures, swapped after each step.
+
+uniform sampler2D u_current; // iterate k
+uniform ivec2 u_size;
+
+out float o_value;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float here = texelFetch(u_current, p, 0).r;
+    // The boundary is fixed.
+    if (p.x == 0 || p.y == 0 || p.x == u_size.x - 1 || p.y == u_size.y - 1) {
+        o_value = here;
+        return;
+    }
+    // The four neighbours, all from iterate k (none from the iterate being written).
+    float left = texelFetch(u_current, p - ivec2(1, 0), 0).r;
+    float right = texelFetch(u_current, p + ivec2(1, 0), 0).r;
+    float down = texelFetch(u_current, p - ivec2(0, 1), 0).r;
+    float up = texelFetch(u_current, p + ivec2(0, 1), 0).r;
+    // Iterate k + 1: their mean, added in the CPU reference's order.
+    o_value = 0.25 * (((left + right) + down) + up);
+}

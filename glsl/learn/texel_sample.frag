@@ -1,0 +1,20 @@
+#version 330 core
+// Lesson 0, texel centres: sample one row of N texels with texture() (normalised
+// coordinates, linear filtering) at a chosen point of texel i. Texel i covers [i/N, (i+1)/N);
+// its centre (i + 0.5)/N gives its value exactly, its left edge i/N gives the mean of texels
+// i-1 and i (texel 0 clamps to the edge and gives its own value).
+
+uniform sampler2D u_input; // one row, GL_LINEAR
+uniform vec2 u_size;       // the row's size in texels (N, 1)
+uniform float u_offset;    // where in the texel: 0.5 its centre, 0.0 its left edge
+
+out float o_value;
+
+void main() {
+    // Which element this fragment computes.
+    float i = floor(gl_FragCoord.x);
+    // The normalised coordinate of the point u_offset into texel i.
+    float x = (i + u_offset) / u_size.x;
+    // The row's one texel row has its centre at y = 0.5.
+    o_value = texture(u_input, vec2(x, 0.5)).r;
+}

@@ -1,0 +1,195 @@
+//! Lesson 3, reduction level by level: the sum and the maximum of an array by passes that each
+//! combine a block of the level below into one texel, until one texel is left; first with
+//! 2x2 blocks, then with 4x4 blocks (a wider fan-in: fewer passes, more reads per fragment).
+
+use super::{
+    chosen_exercise, no_compute, random_values, Exercise, Lesson, LessonInfo, LessonOptions,
+    LessonRun, PaperStep, PassBuffer,
+};
+use crate::gl::reduce::ReduceOp;
+use crate::gl::reduce_shared::SharedReducer;
+use crate::gl::{Buffer, BufferUsage, Context, Framebuffer, Program, Texture, TextureFormat};
+use crate::shader;
+
+const REDUCE_2X2: &str = "glsl/learn/reduce_2x2.frag";
+const REDUCE_WIDE: &str = "glsl/learn/reduce_wide.frag";
+const REDUCE_COMPUTE: &str = "glsl/gl/compute/reduce.comp";
+
+/// The array is `W x H` (not powers of two: the edges take the identities).
+const W: u32 = 48;
+const H: u32 = 40;
+/// The wider fan-in.
+const WIDE: u32 = 4;
+
+/// fp32's unit roundoff, 2^-24.
+const UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+
+pub struct Reduction;
+
+static INFO: LessonInfo = LessonInfo {
+    id: "reduction",
+    number: 3,
+    title: "Reduction, level by level",
+    idea: "A fragment writes one texel, so a sum over the whole array takes several passes: \
+           each output texel combines a block of the level below, each level is smaller by \
+           the block's side, and the last is one texel. 2x2 blocks take ceil(log2 n) passes; \
+           4x4 blocks take ceil(log4 n), half as many, with four times the reads per \
+           fragment. The same ladder gives the maximum (or any associative operation).",
+    paper_steps: &[
+        PaperStep {
+            paper: "Paper 4, section 3.3",
+            step: "two-dimensional integrals by buffer reduction of the integrand targets",
+            file: "src/mass/reduce.rs",
+        },
+        PaperStep {
+            paper: "Paper 1, section 5.3.1",
+            step: "hierarchical readback: P0 encoded 4x4 into P1, P2, P3",
+            file: "src/collide/reduction_gpu.rs",
+        },
+    ],
+    shaders: &[REDUCE_2X2, REDUCE_WIDE, REDUCE_COMPUTE],
+    exercises: &[Exercise {
+        number: 1,
+        task: "Widen the reduction's fan-in to 4x4: each output texel must combine the whole \
+               u_fan x u_fan block below it.",
+        shader: REDUCE_WIDE,
+        hint: "The loops must run i and j from 0 to u_fan, not to 2: with 2 each pass keeps a \
+               quarter of the 4x4 block and the sum comes out too small.",
+    }],
+};
+
+impl Lesson for Reduction {
+    fn info(&self) -> &'static LessonInfo {
+        &INFO
+    }
+
+    fn run(&self, ctx: &Context, opts: &LessonOptions) -> anyhow::Result<LessonRun> {
+        chosen_exercise(&INFO, opts)?;
+        let mut run = LessonRun::new(&INFO, ctx);
+        let values = random_values((W * H) as usize, 4, 0.0, 1.0);
+        let sum: f64 = values.iter().map(|&v| v as f64).sum();
+        let max = values.iter().fold(f32::MIN, |m, &v| m.max(v));
+        // Red and green both start as the value: red will hold sums, green maxima.
+        let rg: Vec<f32> = values.iter().flat_map(|&v| [v, v, 0.0, 0.0]).collect();
+        let input = Texture::from_f32(ctx, W, H, TextureFormat::Rgba32F, &rg)?;
+        run.pass(
+            "upload",
+            "",
+            &format!("{} values in [0, 1) into a {W}x{H} RGBA32F texture, red = green = value", W * H),
+            Some(PassBuffer::floats(W, H, 1, values.clone())),
+        );
+        let two = Program::rect(ctx, &[shader!("glsl/learn/reduce_2x2.frag")])?;
+        let wide = Program::rect(ctx, &[shader!("glsl/learn/reduce_wide.frag")])?;
+        for (program, fan, shader) in [(&two, 2, REDUCE_2X2), (&wide, WIDE, REDUCE_WIDE)] {
+            let (gpu_sum, gpu_max, sizes) = ladder(ctx, &mut run, &input, program, fan, shader)?;
+            check_results(&mut run, &format!("{fan}x{fan}"), (gpu_sum, gpu_max), (sum, max), &values, sizes.len() as u32 * (fan * fan - 1));
+            let ladder: Vec<String> = std::iter::once((W, H))
+                .chain(sizes.iter().copied())
+                .map(|(w, h)| format!("{w}x{h}"))
+                .collect();
+            run.note(
+                &format!("{fan}x{fan} passes"),
+                format!("{} ({})", sizes.len(), ladder.join(" -> ")),
+            );
+        }
+        run.compute = Some(match no_compute(ctx) {
+            Some(why) => why,
+            None => compute(ctx, &mut run, &values, (sum, max))?,
+        });
+        run.finish(&INFO, ctx, opts)?;
+        Ok(run)
+    }
+}
+
+/// The passes of one fan-in down to one texel: (sum, maximum, the size of each level drawn).
+fn ladder(
+    ctx: &Context,
+    run: &mut LessonRun,
+    input: &Texture,
+    program: &Program,
+    fan: u32,
+    shader: &str,
+) -> anyhow::Result<(f32, f32, Vec<(u32, u32)>)> {
+    let mut level = input.clone();
+    let mut sizes = Vec::new();
+    while level.width() > 1 || level.height() > 1 {
+        let (w, h) = (level.width().div_ceil(fan), level.height().div_ceil(fan));
+        let next = Texture::new_2d(ctx, w, h, TextureFormat::Rgba32F)?;
+        let fb = Framebuffer::new(ctx, "reduction level", &[&next], None)?;
+        let size = glam::IVec2::new(level.width() as i32, level.height() as i32);
+        fb.pass(program, "reduce")?
+            .texture("u_level", &level)
+            .uniform("u_size", size)
+            .uniform_if_used("u_fan", fan as i32)
+            .draw_full()?;
+        let rgba = next.download_f32()?;
+        let rg: Vec<f32> = rgba.chunks_exact(4).flat_map(|t| [t[0], t[1]]).collect();
+        sizes.push((w, h));
+        run.pass(
+            &format!("{fan}x{fan} level {}", sizes.len()),
+            shader,
+            &format!(
+                "{}x{} -> {w}x{h}: each texel sums (red) and takes the maximum (green) of the \
+                 {fan}x{fan} block below it",
+                level.width(),
+                level.height()
+            ),
+            Some(PassBuffer::floats(w, h, 2, rg)),
+        );
+        level = next;
+    }
+    let top = level.download_f32()?;
+    Ok((top[0], top[1], sizes))
+}
+
+/// Compare a reduction's sum and maximum with the CPU's. `path` is the most additions any one
+/// value goes through; the fp32 sum is then within `path * 2^-24 * sum |x|` of the exact one
+/// (the values are non-negative, so sum |x| is the sum).
+fn check_results(
+    run: &mut LessonRun,
+    how: &str,
+    (gpu_sum, gpu_max): (f32, f32),
+    (sum, max): (f64, f32),
+    values: &[f32],
+    path: u32,
+) {
+    let magnitude: f64 = values.iter().map(|&v| (v as f64).abs()).sum();
+    run.check(
+        &format!("{how}: sum = the CPU's (f64) sum, within {path} additions' fp32 rounding"),
+        (gpu_sum as f64 - sum).abs(),
+        path as f64 * UNIT_ROUNDOFF * magnitude,
+    );
+    run.check(
+        &format!("{how}: maximum = the CPU's (exact)"),
+        (gpu_max as f64 - max as f64).abs(),
+        0.0,
+    );
+}
+
+/// The compute counterpart: the GL layer's work-group reduction in shared memory.
+fn compute(
+    ctx: &Context,
+    run: &mut LessonRun,
+    values: &[f32],
+    expected: (f64, f32),
+) -> anyhow::Result<String> {
+    let reducer = SharedReducer::new(ctx)?;
+    let vec4s: Vec<f32> = values.iter().flat_map(|&v| [v; 4]).collect();
+    let buffer = Buffer::from_slice(ctx, &vec4s, BufferUsage::Static)?;
+    let n = values.len() as u32;
+    let sum = reducer.reduce(&buffer, n, ReduceOp::Sum)?[0];
+    let max = reducer.reduce(&buffer, n, ReduceOp::Max)?[0];
+    let passes = crate::gl::reduce_shared::passes_for(n);
+    run.pass(
+        "compute: shared-memory reduction",
+        REDUCE_COMPUTE,
+        &format!(
+            "work groups of 256 invocations combine 512 values each in shared memory: {passes} \
+             passes for {n} values"
+        ),
+        None,
+    );
+    // Each pass is a tree of 9 additions (2 per invocation, then 8 halvings).
+    check_results(run, "compute", (sum, max), expected, values, passes * 9);
+    Ok(format!("ran {REDUCE_COMPUTE}, checked against the same CPU sum and maximum"))
+}
