@@ -25,6 +25,7 @@ mod buffer;
 pub mod compute;
 mod context;
 pub mod dump;
+pub mod feedback;
 mod finite;
 mod framebuffer;
 mod mesh_buffers;

@@ -94,6 +94,26 @@ impl Program {
         ctx: &Context,
         stages: &[(u32, &'static str, &[ShaderSource])],
     ) -> Result<Program, GlError> {
+        Program::link_capturing(ctx, stages, &[])
+    }
+
+    /// A program of a vertex stage alone whose outputs `varyings` are captured, interleaved in
+    /// that order, into a buffer by transform feedback ([`super::feedback`]): vertices computed
+    /// by a vertex shader and kept, with nothing rasterized.
+    pub fn feedback(
+        ctx: &Context,
+        vertex: &[ShaderSource],
+        varyings: &[&str],
+    ) -> Result<Program, GlError> {
+        Program::link_capturing(ctx, &[(glow::VERTEX_SHADER, "vertex", vertex)], varyings)
+    }
+
+    /// [`Program::link`], declaring `varyings` for transform feedback before linking.
+    fn link_capturing(
+        ctx: &Context,
+        stages: &[(u32, &'static str, &[ShaderSource])],
+        varyings: &[&str],
+    ) -> Result<Program, GlError> {
         // `--glsl-dir`: each file the folder has replaces the compiled-in copy.
         let loaded: Vec<Vec<(String, Option<String>)>> = stages
             .iter()
@@ -155,6 +175,9 @@ impl Program {
         unsafe {
             for &s in &compiled {
                 gl.attach_shader(id, s);
+            }
+            if !varyings.is_empty() {
+                gl.transform_feedback_varyings(id, varyings, glow::INTERLEAVED_ATTRIBS);
             }
             gl.link_program(id);
             for s in compiled {

@@ -1,6 +1,6 @@
 //! 1D and 2D textures: the GPGPU programmer's arrays.
 
-use super::{Context, GlError};
+use super::{Buffer, Context, GlError};
 use glow::HasContext;
 use std::rc::Rc;
 
@@ -490,6 +490,43 @@ impl Texture {
             self.height(),
             bytemuck::cast_slice(data),
         )
+    }
+
+    /// Upload the whole texture from `buffer` at byte `offset`, bound as the pixel unpack
+    /// buffer (PBO): the copy is queued on the GPU and the call returns at once, where an
+    /// upload from client memory must copy the data before it returns.
+    pub fn upload_from_buffer(&self, buffer: &Buffer, offset: usize) -> Result<(), GlError> {
+        let bytes = self.len() * self.format().bytes_per_texel();
+        if self.is_1d() || offset + bytes > buffer.len_bytes() {
+            return Err(GlError::Invalid(format!(
+                "uploading a {}x{} {} texture ({bytes} bytes, 2D only) from byte {offset} of a \
+                 {}-byte buffer",
+                self.width(),
+                self.height(),
+                self.format().name(),
+                buffer.len_bytes()
+            )));
+        }
+        let gl = self.obj.ctx.gl();
+        let (_, pixel_format, pixel_type) = self.format().gl();
+        unsafe {
+            gl.bind_buffer(glow::PIXEL_UNPACK_BUFFER, Some(buffer.id()));
+            gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
+            gl.bind_texture(self.obj.target, Some(self.obj.id));
+            gl.tex_sub_image_2d(
+                self.obj.target,
+                0,
+                0,
+                0,
+                self.width() as i32,
+                self.height() as i32,
+                pixel_format,
+                pixel_type,
+                glow::PixelUnpackData::BufferOffset(offset as u32),
+            );
+            gl.bind_buffer(glow::PIXEL_UNPACK_BUFFER, None);
+        }
+        self.obj.ctx.check("texture upload from a pixel buffer")
     }
 
     fn upload_bytes(&self, x: u32, y: u32, w: u32, h: u32, bytes: &[u8]) -> Result<(), GlError> {
