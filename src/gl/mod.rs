@@ -28,6 +28,7 @@ pub mod dump;
 mod finite;
 mod framebuffer;
 mod mesh_buffers;
+pub mod npy;
 mod pass;
 pub mod peel;
 pub mod profile;

@@ -632,11 +632,13 @@ fn peel_state(first: bool) -> DrawState {
     }
 }
 
-/// Fig. 10: each target of peel `layer` as a PNG, each channel mapped to [0, 255].
+/// Fig. 10: each target of peel `layer` as a PNG, each channel mapped to [0, 255], and its
+/// exact values beside it as `.npy`.
 fn dump_peel(target: &Framebuffer, dir: &Path, layer: usize) -> Result<(), GlError> {
     for (i, texture) in target.colors().iter().take(TARGETS).enumerate() {
         let path: PathBuf = dir.join(format!("peel{}_target{i}.png", layer + 1));
         dump::texture_png(texture, &path, DumpRange::Auto)?;
+        crate::gl::npy::texture_npy(texture, &path.with_extension("npy"))?;
     }
     Ok(())
 }
