@@ -80,7 +80,10 @@ pub struct CollideArgs {
     pub b: PathBuf,
     #[command(flatten)]
     pub pipeline: PipelineArgs,
-    /// Write P0..P3, P1' and the AABB textures as PNG into this directory (paper Fig. 6).
+    /// Write P0..P3, P1' and the AABB textures as PNG into this directory (paper Fig. 6),
+    /// and each one's exact float values beside it as .npy (numpy, float32, shape [height,
+    /// width, channels]; row 0 is the texture's bottom row, GL's order, so a[y, x] is texel
+    /// (x, y) and the PNG's top row is the array's last).
     #[arg(long)]
     pub dump: Option<PathBuf>,
     #[command(flatten)]

@@ -29,7 +29,10 @@ pub struct MassArgs {
     /// Only the part below the horizontal plane z = Z (section 5.2, the submerged part).
     #[arg(long, value_name = "Z", allow_hyphen_values = true)]
     pub below: Option<f64>,
-    /// Write the colour-encoded integrand buffers of each peel here as PNG (Fig. 10).
+    /// Write the colour-encoded integrand buffers of each peel here as PNG (Fig. 10), and
+    /// each one's exact float values beside it as .npy (numpy, float32, shape [height, width,
+    /// 4]; row 0 is the buffer's bottom row, GL's order, so the PNG's top row is the array's
+    /// last).
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
     /// The paper's peeling passes (classic) or one compute pass over the triangles with a

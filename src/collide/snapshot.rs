@@ -265,5 +265,30 @@ pub fn dump_buffers(collider: &StreamingCollider, dir: &Path) -> anyhow::Result<
             )?;
         }
     }
+    dump_npy(collider, dir)
+}
+
+/// The float buffers of [`dump_buffers`] by the names of their files (without extension).
+pub fn dumped_textures(collider: &StreamingCollider) -> Vec<(String, &crate::gl::Texture)> {
+    let mut out = vec![("P0".to_string(), &collider.target.p0)];
+    for (i, t) in collider.reduction.level_textures().into_iter().enumerate() {
+        out.push((format!("P{}", i + 1), t));
+    }
+    out.push(("P1_reduced".into(), collider.reduction.reduced_texture()));
+    for (name, stream) in [("X", &collider.x), ("Y", &collider.y)] {
+        for (s, (aabb, vertices)) in stream.segments.iter().enumerate() {
+            out.push((format!("T_min_{name}_{s}"), &aabb.t_min));
+            out.push((format!("T_max_{name}_{s}"), &aabb.t_max));
+            out.push((format!("vertices_{name}_{s}"), &vertices.texture));
+        }
+    }
+    out
+}
+
+/// Beside each PNG, the exact values as `.npy` ([`crate::gl::npy`]: rows from GL's bottom).
+fn dump_npy(collider: &StreamingCollider, dir: &Path) -> anyhow::Result<()> {
+    for (name, texture) in dumped_textures(collider) {
+        crate::gl::npy::texture_npy(texture, &dir.join(format!("{name}.npy")))?;
+    }
     Ok(())
 }

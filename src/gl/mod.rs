@@ -29,6 +29,7 @@ pub mod feedback;
 mod finite;
 mod framebuffer;
 mod mesh_buffers;
+pub mod npy;
 mod pass;
 pub mod peel;
 pub mod picture;

@@ -189,7 +189,8 @@ impl CapturedPeel {
 }
 
 /// Fig. 10: each target of each peel as a picture, `peel<k>_target<i>.png` in `dir`, one panel
-/// per channel, each channel on one scale for all the peels.
+/// per channel, each channel on one scale for all the peels, and its exact values beside it as
+/// `peel<k>_target<i>.npy`.
 pub fn write_peel_pictures(dir: &Path, peels: &[CapturedPeel]) -> Result<(), GlError> {
     for target in 0..TARGETS {
         let names = integrands::CHANNELS[target];
@@ -208,6 +209,13 @@ pub fn write_peel_pictures(dir: &Path, peels: &[CapturedPeel]) -> Result<(), GlE
             let size = (side * panels.len() as u32, side + 96);
             let path: PathBuf = dir.join(format!("peel{}_target{target}.png", k + 1));
             dump::picture_png(&panels, size, &path)?;
+            // The exact values beside the picture (the layout of `gl::npy`).
+            let shape = [peel.height as usize, peel.width as usize, 4];
+            crate::files::write_npy(&path.with_extension("npy"), &shape, &peel.targets[target])
+                .map_err(|e| GlError::Io {
+                    path: path.with_extension("npy").display().to_string(),
+                    message: format!("{e:#}"),
+                })?;
         }
     }
     Ok(())

@@ -1,5 +1,8 @@
-//! How many times the report times one measurement (issue 16), and what it keeps of the
-//! runs: the median, and the spread so a reader can judge it.
+//! How many times the report times one measurement, and what it keeps of the runs: the
+//! median, and the spread so a reader can judge it; and how a claim about a time is judged
+//! ([`judge`]): not at all while the machine is loaded or while its runs fall on both sides
+//! of the paper's number, so that a verdict does not flip from one run of the report to the
+//! next with the load of a shared machine.
 //!
 //! A measurement runs at least [`Runs::min`] times, and again, up to [`Runs::max`], only
 //! while the runs so far took less than [`Runs::budget`] in all (like hyperfine's minimum
@@ -129,6 +132,151 @@ impl Spread {
     }
 }
 
+/// The load average above which a machine counts as loaded, per core: more runnable tasks
+/// than cores means the timed work waited for a core part of the time, so a timing says as
+/// much about the other work as about the paper's method.
+pub const LOADED_PER_CORE: f64 = 1.0;
+
+/// How busy the machine was when a timing was taken: the 1-minute load average of
+/// `/proc/loadavg` and the cores this process may use.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Load {
+    pub one_minute: f64,
+    pub cores: usize,
+}
+
+impl Load {
+    /// Now; `None` where there is no `/proc/loadavg` (not Linux).
+    pub fn now() -> Option<Load> {
+        let text = std::fs::read_to_string("/proc/loadavg").ok()?;
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        Load::parse(&text, cores)
+    }
+
+    /// From the text of `/proc/loadavg` ("0.52 0.58 0.59 1/467 12345").
+    pub fn parse(loadavg: &str, cores: usize) -> Option<Load> {
+        let one_minute = loadavg.split_whitespace().next()?.parse::<f64>().ok()?;
+        Some(Load {
+            one_minute,
+            cores: cores.max(1),
+        })
+    }
+
+    pub fn per_core(&self) -> f64 {
+        self.one_minute / self.cores as f64
+    }
+
+    /// Above [`LOADED_PER_CORE`].
+    pub fn is_loaded(&self) -> bool {
+        self.per_core() > LOADED_PER_CORE
+    }
+
+    /// "load average 3.10 on 2 cores".
+    pub fn in_words(&self) -> String {
+        format!(
+            "load average {:.2} on {} core{}",
+            self.one_minute,
+            self.cores,
+            if self.cores == 1 { "" } else { "s" }
+        )
+    }
+}
+
+/// Which side of the paper's number a claim needs the measurement on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// At least this much (a rate, a speed-up).
+    AtLeast(f64),
+    /// At most this much (a time).
+    AtMost(f64),
+}
+
+impl Target {
+    fn value(self) -> f64 {
+        match self {
+            Target::AtLeast(t) | Target::AtMost(t) => t,
+        }
+    }
+
+    fn met_by(self, v: f64) -> bool {
+        match self {
+            Target::AtLeast(t) => v >= t,
+            Target::AtMost(t) => v <= t,
+        }
+    }
+}
+
+/// A verdict on a timing and the words that go with it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimedVerdict {
+    /// `None`: not judged (the note says why).
+    pub holds: Option<bool>,
+    /// The runs and the load, and the reason when not judged, to append to the measured text.
+    pub note: String,
+}
+
+/// Judges a timed quantity against `target`: not judged while `load` is above
+/// [`LOADED_PER_CORE`] ("not judged: machine loaded") or while the runs fall on both sides of
+/// the target ("not judged: the runs straddle ..."); otherwise by the median. The note always
+/// gives the runs' range and the load (or says it is unknown). `unit` follows each number.
+pub fn judge(spread: &Spread, target: Target, load: Option<Load>, unit: &str) -> TimedVerdict {
+    let runs = format!(
+        "{} run{}: {:.3}-{:.3}{unit}, median {:.3}{unit}",
+        spread.runs,
+        if spread.runs == 1 { "" } else { "s" },
+        spread.min,
+        spread.max,
+        spread.median
+    );
+    let load_words = load.map_or("load average unknown".to_string(), |l| l.in_words());
+    let t = target.value();
+    let (holds, reason) = if let Some(l) = load.filter(Load::is_loaded) {
+        (
+            None,
+            format!(
+                "not judged: machine loaded ({:.2} per core, above the {LOADED_PER_CORE:.1}                  this report judges timings under)",
+                l.per_core()
+            ),
+        )
+    } else if target.met_by(spread.min) != target.met_by(spread.max) {
+        (
+            None,
+            format!("not judged: the runs fall on both sides of {t}{unit}"),
+        )
+    } else {
+        (Some(target.met_by(spread.median)), String::new())
+    };
+    let mut note = format!("{runs}; {load_words}");
+    if !reason.is_empty() {
+        note = format!("{note}; {reason}");
+    }
+    TimedVerdict { holds, note }
+}
+
+/// The verdict of a claim judged on timings whose runs are not kept one by one (ratios of
+/// medians): not judged while `load` is above [`LOADED_PER_CORE`], else `holds`. The note
+/// gives the load.
+pub fn judge_under_load(holds: bool, load: Option<Load>) -> TimedVerdict {
+    match load {
+        Some(l) if l.is_loaded() => TimedVerdict {
+            holds: None,
+            note: format!(
+                "{}; not judged: machine loaded ({:.2} per core, above the                  {LOADED_PER_CORE:.1} this report judges timings under)",
+                l.in_words(),
+                l.per_core()
+            ),
+        },
+        Some(l) => TimedVerdict {
+            holds: Some(holds),
+            note: l.in_words(),
+        },
+        None => TimedVerdict {
+            holds: Some(holds),
+            note: "load average unknown".into(),
+        },
+    }
+}
+
 /// What `--runs` makes of the timings, as the report states it.
 pub fn runs_policy(runs: Option<usize>, quick: bool) -> String {
     match runs {
@@ -198,6 +346,72 @@ mod tests {
         );
         assert_eq!(Runs::exactly(7).in_words(), "exactly 7 runs");
         assert!(runs_policy(None, false).contains("up to 5"));
+    }
+
+    fn load(one_minute: f64, cores: usize) -> Option<Load> {
+        Some(Load { one_minute, cores })
+    }
+
+    #[test]
+    fn a_loaded_machine_gives_not_judged() {
+        let runs = Spread::of(&[20.0, 21.0, 22.0]);
+        // 15 runnable tasks on 2 cores: loaded, whichever side of the target the runs fall.
+        for target in [Target::AtLeast(16.0), Target::AtLeast(30.0)] {
+            let v = judge(&runs, target, load(15.0, 2), " steps/s");
+            assert_eq!(v.holds, None);
+            assert!(v.note.contains("not judged: machine loaded"), "{}", v.note);
+            assert!(
+                v.note.contains("load average 15.00 on 2 cores"),
+                "{}",
+                v.note
+            );
+        }
+        // The same runs on a quiet machine are judged by them.
+        let quiet = judge(&runs, Target::AtLeast(16.0), load(0.5, 2), " steps/s");
+        assert_eq!(quiet.holds, Some(true));
+        assert!(
+            quiet.note.contains("20.000-22.000 steps/s"),
+            "{}",
+            quiet.note
+        );
+        assert_eq!(
+            judge(&runs, Target::AtLeast(30.0), load(0.5, 2), "").holds,
+            Some(false)
+        );
+        assert_eq!(judge_under_load(true, load(4.1, 4)).holds, None);
+        assert_eq!(judge_under_load(false, load(3.9, 4)).holds, Some(false));
+        assert_eq!(judge_under_load(true, None).holds, Some(true));
+    }
+
+    #[test]
+    fn runs_on_both_sides_of_the_target_are_not_judged() {
+        let runs = Spread::of(&[12.8, 20.0, 36.2]);
+        let v = judge(&runs, Target::AtLeast(16.0), load(0.2, 8), " steps/s");
+        assert_eq!(v.holds, None);
+        assert!(v.note.contains("both sides of 16 steps/s"), "{}", v.note);
+        let v = judge(&runs, Target::AtMost(12.8), load(0.2, 8), " ms");
+        assert_eq!(v.holds, None, "{}", v.note);
+        assert_eq!(
+            judge(&runs, Target::AtMost(36.2), load(0.2, 8), " ms").holds,
+            Some(true)
+        );
+    }
+
+    #[test]
+    fn the_load_is_read_from_loadavg() {
+        let l = Load::parse("3.10 2.00 1.00 2/345 678\n", 2).unwrap();
+        assert_eq!(
+            l,
+            Load {
+                one_minute: 3.1,
+                cores: 2
+            }
+        );
+        assert!(l.is_loaded());
+        assert!(Load::parse("", 2).is_none());
+        if std::path::Path::new("/proc/loadavg").exists() {
+            assert!(Load::now().is_some());
+        }
     }
 
     #[test]

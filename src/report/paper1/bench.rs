@@ -16,6 +16,7 @@ use crate::collide::tri_test::{test_caps, ModelView, Predicate, PrimitiveResult}
 use crate::collide::{solid, AabbStream};
 use crate::gl::profile::{self, ProfileTable};
 use crate::mesh::Mesh;
+use crate::report::timing::Load;
 use crate::report::BenchOptions;
 use glam::Vec3;
 use serde::Serialize;
@@ -38,6 +39,10 @@ pub struct Paper1Results {
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
     /// Where the time of this run went, pass by pass.
     pub profile: Option<ProfileTable>,
+    /// The machine's load when the scenes' timings ended (the frame-time claims).
+    pub scenes_load: Option<Load>,
+    /// The machine's load when Fig. 7's timings ended (the readback claims).
+    pub fig7_load: Option<Load>,
 }
 
 /// How the run was set up.
@@ -290,7 +295,13 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
     }
     drop(scope);
     bar.finish_and_clear();
+    let scenes_load = Load::now();
     let tori_leaf_size = args.leaf_size.unwrap_or(DEFAULT_LEAF_SIZE);
+    let cullide_resolutions = study(opts, "CULLIDE resolutions", || {
+        cullide_resolutions(opts, tori_leaf_size)
+    })?;
+    let fig7 = study(opts, "Fig. 7 readback curves", || fig7(opts))?;
+    let fig7_load = Load::now();
     let software = opts.gl.info().is_software();
     Ok(Paper1Results {
         renderer: opts.gl.info().renderer_line(),
@@ -304,10 +315,8 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
             cullide_resolution: args.cullide_resolution,
         },
         scenes: runs,
-        cullide_resolutions: study(opts, "CULLIDE resolutions", || {
-            cullide_resolutions(opts, tori_leaf_size)
-        })?,
-        fig7: study(opts, "Fig. 7 readback curves", || fig7(opts))?,
+        cullide_resolutions,
+        fig7,
         readback_schemes: study(opts, "readback schemes on real frames", || {
             readback_schemes(opts, tori_leaf_size, frames, &mut calibrations)
         })?,
@@ -321,6 +330,8 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
         },
         then_and_now: super::then_and_now::measure(opts)?,
         profile: None,
+        scenes_load,
+        fig7_load,
     })
 }
 

@@ -3,6 +3,7 @@
 //! on the same crowds, with this project's sprite level, with the snapshots that need live
 //! GL state (Fig. 2's render target, Fig. 3-5's frames, the impostor atlases).
 
+use crate::report::timing::Load;
 use anyhow::Context as _;
 use serde::Serialize;
 
@@ -44,6 +45,8 @@ pub struct Paper2Results {
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
     /// Where the time of this run went, pass by pass.
     pub profile: Option<crate::gl::profile::ProfileTable>,
+    /// The machine's highest load when each model's Table 1 runs ended (the timing claims).
+    pub table1_load: Option<Load>,
 }
 
 /// What the runs were set up with.
@@ -314,6 +317,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         snapshots: Vec::new(),
         then_and_now: Default::default(),
         profile: None,
+        table1_load: None,
     };
     let mut snapshots = Vec::new();
     let mut snapshot = |texture: &Texture, file: String, shows: Shows| -> anyhow::Result<()> {
@@ -358,6 +362,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
             )?);
             bar.inc(Variant::ALL.len() as u64);
         }
+        results.table1_load = [results.table1_load, Load::now()]
+            .into_iter()
+            .flatten()
+            .max_by(|a, b| a.one_minute.total_cmp(&b.one_minute));
         renderer.set_vertex_shader_batch(u32::MAX);
         if let Some(texture) = renderer.render_target(0) {
             snapshot(

@@ -2,6 +2,7 @@
 
 use super::bench::{Paper2Results, Variant};
 use crate::crowd::ModelKind;
+use crate::report::timing::judge_under_load;
 use crate::report::Claim;
 
 pub fn claims(results: &Paper2Results) -> Vec<Claim> {
@@ -94,6 +95,7 @@ pub fn crossover(results: &Paper2Results, baseline: Variant) -> Claim {
             }
         }
     }
+    let verdict = judge_under_load(holds, results.table1_load);
     Claim {
         claim: format!(
             "Two-pass (pixel-shader) skinning overtakes vertex-shader skinning ({}) once there \
@@ -103,8 +105,13 @@ pub fn crossover(results: &Paper2Results, baseline: Variant) -> Claim {
         paper: "VS is faster for 1 character; two-pass is faster from 16 characters on (Table 1, \
                 GeForce 7800 GTX)"
             .into(),
-        measured: format!("{} ({})", parts.join("; "), results.renderer),
-        holds: Some(holds),
+        measured: format!(
+            "{} ({}; {})",
+            parts.join("; "),
+            results.renderer,
+            verdict.note
+        ),
+        holds: verdict.holds,
     }
 }
 
@@ -131,12 +138,18 @@ pub fn stage_costs(results: &Paper2Results) -> Option<Claim> {
             100.0 * w.pass2 / baseline
         ));
     }
+    let verdict = judge_under_load(holds, results.table1_load);
     Some(Claim {
         claim: "Skinning once in a pixel shader and drawing pre-skinned vertices costs the GPU \
                 less than skinning in the vertex shader while drawing"
             .into(),
         paper: "Implied by Table 1: 2-pass is 3.6-7x faster than VS from 256 characters on".into(),
-        measured: format!("{} ({})", parts.join("; "), results.renderer),
-        holds: Some(holds),
+        measured: format!(
+            "{} ({}; {})",
+            parts.join("; "),
+            results.renderer,
+            verdict.note
+        ),
+        holds: verdict.holds,
     })
 }

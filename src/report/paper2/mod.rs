@@ -32,7 +32,7 @@ pub struct Paper2;
 
 impl Paper for Paper2 {
     const ID: &'static str = "paper2";
-    const TITLE: &'static str = "Kang & Han 2006: Real-Time Animation of Large Crowds";
+    const TITLE: &'static str = "Paper 2: Kang & Han 2006, real-time animation of large crowds";
     type Options = NoOptions;
     type Results = Paper2Results;
 

@@ -9,7 +9,7 @@ use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 use crate::mlp::tiling::max_vectors_per_texture;
 use crate::mlp::window::window_batch;
 use crate::mlp::{Activation, Formulation, GpuMlp, Layer, Network, StepTimes};
-use crate::report::timing::{Runs, Spread};
+use crate::report::timing::{Load, Runs, Spread};
 use crate::report::BenchOptions;
 use anyhow::Context as _;
 use image::GrayImage;
@@ -30,8 +30,8 @@ pub const FIG2B_FILE: &str = "paper3_fig2b_mask.png";
 pub struct Paper3Results {
     pub renderer: String,
     pub quick: bool,
-    /// The 1-minute load average at the end, to read software-renderer timings against.
-    pub load_average_1min: Option<f64>,
+    /// The machine's load at the end, to read software-renderer timings against.
+    pub load: Option<Load>,
     /// Every case and method; the first case's rows are Table 1's.
     pub measurements: Vec<Measurement>,
     pub detection: Detection,
@@ -235,18 +235,12 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
     Ok(Paper3Results {
         renderer: ctx.info().renderer_line(),
         quick: opts.quick,
-        load_average_1min: load_average(),
+        load: Load::now(),
         measurements,
         detection,
         then_and_now: super::then_and_now::measure(opts)?,
         profile: None,
     })
-}
-
-/// The 1-minute load average (Linux).
-fn load_average() -> Option<f64> {
-    let text = std::fs::read_to_string("/proc/loadavg").ok()?;
-    text.split_whitespace().next()?.parse().ok()
 }
 
 /// The cases: the paper's shape (one 2048-vector texture), one texture at this renderer's

@@ -70,16 +70,15 @@ fn summary(results: &Paper3Results) -> String {
          texels, 4 x 4 outputs per fragment), the plain CPU loop the paper compared with, and \
          matrixmultiply's sgemm. GPU passes are timed with GL timer queries, texture creation \
          and CPU work with the wall clock; each figure is the median of its runs after a \
-         warm-up run ({} runs per measurement, as the throughput table lists); {} cores, load \
-         average {} at the end (a software renderer shares the CPU with whatever else \
-         runs).{} The batches are windows of scikit-image's text.png.",
+         warm-up run ({} runs per measurement, as the throughput table lists); {} at the \
+         end (a software renderer shares the CPU with whatever else runs).{} The batches are \
+         windows of scikit-image's text.png.",
         results.renderer,
         RADEON_9700_INPUTS_PER_PASS,
         runs_range(results),
-        std::thread::available_parallelism().map_or(0, usize::from),
         results
-            .load_average_1min
-            .map_or("unknown".to_string(), |l| format!("{l:.1}")),
+            .load
+            .map_or("load average unknown".to_string(), |l| l.in_words()),
         if results.quick {
             " QUICK MODE: reduced sizes."
         } else {

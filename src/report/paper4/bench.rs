@@ -10,7 +10,7 @@ use crate::mass::gpu::GpuMass;
 use crate::mass::peel::{PeelOrder, PeelSettings};
 use crate::mass::{analytic, models, surface, MassProperties};
 use crate::mesh::Mesh;
-use crate::report::timing::{wall_ms, Runs, Spread};
+use crate::report::timing::{wall_ms, Load, Runs, Spread};
 use crate::report::BenchOptions;
 use serde::Serialize;
 use std::time::Instant;
@@ -21,6 +21,8 @@ pub struct Paper4Results {
     pub renderer: String,
     pub quick: bool,
     pub objects: Vec<ObjectRun>,
+    /// The machine's load when the paper objects' timings ended (Fig. 5's claims).
+    pub objects_load: Option<Load>,
     pub buoyancy: BuoyancyRun,
     /// Peels of the buoyant bunny dumped for Fig. 10 (`fig10_bunny/peel<k>_target0.png`).
     pub fig10_peels: usize,
@@ -140,6 +142,11 @@ pub struct BuoyancyRun {
     pub max_peels: usize,
     pub mean_peels: f64,
     pub cpu_solver_steps_per_second: f64,
+    /// Steps per second of each of [`RATE_PARTS`] consecutive parts of the timed steps: the
+    /// runs the interactive-rate claim is judged on.
+    pub rate_runs: Spread,
+    /// The machine's load when the timed steps ended.
+    pub load: Option<Load>,
     /// Median of [`BuoyancyRun::batching_runs`] interleaved runs of each.
     pub batched_ms: f64,
     pub one_body_at_a_time_ms: f64,
@@ -177,6 +184,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         bar.inc(1);
     }
     bar.finish_and_clear();
+    let objects_load = Load::now();
     let steps = if opts.quick { 20 } else { 200 };
     let bunny = models::paper_object("bunny").expect("bunny");
     let peel_orders = peel_orders(opts.gl, &bunny, opts.runs(QUICK_RUNS))?;
@@ -187,6 +195,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         renderer: opts.gl.info().renderer_line(),
         quick: opts.quick,
         objects,
+        objects_load,
         buoyancy: scene.run,
         fig10_peels: buoyant_bunny_peels(opts)?,
         then_and_now: super::then_and_now::measure(opts)?,
@@ -429,6 +438,7 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
     let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
     let gpu = run_scene(&mut sim, &mut solver, total, |s| s.last_peels, &bar)?;
+    let load = Load::now();
     let mut cpu_sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
     let cpu = run_scene(&mut cpu_sim, &mut AnalyticSolver, total, |_| 0, &bar)?;
     bar.finish_and_clear();
@@ -455,6 +465,8 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
         max_peels: peels.iter().copied().max().unwrap_or(0),
         mean_peels: peels.iter().sum::<usize>() as f64 / steps as f64,
         cpu_solver_steps_per_second: 1e3 * steps as f64 / timed(&cpu.step_ms),
+        rate_runs: rate_runs(&gpu.step_ms[settle..]),
+        load,
         batched_ms: batching.batched.median,
         one_body_at_a_time_ms: batching.one_at_a_time.median,
         batching_runs: batching.batched.runs,
@@ -466,6 +478,19 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
         cpu,
         profile,
     })
+}
+
+/// How many consecutive parts of the timed steps count as runs of the interactive rate.
+pub const RATE_PARTS: usize = 3;
+
+/// Steps per second of each of [`RATE_PARTS`] consecutive parts of `step_ms`.
+pub(crate) fn rate_runs(step_ms: &[f64]) -> Spread {
+    let part = step_ms.len().div_ceil(RATE_PARTS).max(1);
+    let rates: Vec<f64> = step_ms
+        .chunks(part)
+        .map(|c| 1e3 * c.len() as f64 / c.iter().sum::<f64>())
+        .collect();
+    Spread::of(&rates)
 }
 
 /// Wall clock of the submerged parts of one state, both ways (ms).
