@@ -5,7 +5,8 @@
 //! Layout: shape `[height, width, channels]` (a 1D texture has height 1), rows in GL's order,
 //! so row 0 is the texture's bottom row (the PNG's last) and `a[y, x]` is texel `(x, y)`;
 //! `matplotlib.pyplot.imshow(a, origin="lower")` shows it the way up the PNG has it.
-//! Float formats are written as they are (RGBA32F: 4 channels; R32F and DEPTH32F: 1);
+//! Float formats are written as they are (RGBA32F: 4 channels; R32F, R16F (widened to f32) and
+//! DEPTH32F: 1);
 //! DEPTH24_STENCIL8 writes its depth as GL reads it, `d / (2^24 - 1)`. Byte and integer
 //! formats are not float buffers and have no `.npy`.
 
@@ -17,9 +18,10 @@ use std::path::Path;
 pub fn texture_floats(texture: &Texture) -> Result<Option<([usize; 3], Vec<f32>)>, GlError> {
     let (width, height) = (texture.width() as usize, texture.height() as usize);
     let (channels, values) = match texture.format() {
-        TextureFormat::Rgba32F | TextureFormat::R32F | TextureFormat::Depth32F => {
-            (texture.format().components(), texture.download_f32()?)
-        }
+        TextureFormat::Rgba32F
+        | TextureFormat::R32F
+        | TextureFormat::R16F
+        | TextureFormat::Depth32F => (texture.format().components(), texture.download_f32()?),
         TextureFormat::Depth24Stencil8 => (
             1,
             texture

@@ -219,7 +219,10 @@ fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], ba
                 .iter()
                 .zip(back)
                 .map(|(&x, &b)| (round_half(x) as f64 - b as f64).abs() / half_step(x) as f64)
-                .fold(0.0, |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) });
+                .fold(
+                    0.0,
+                    |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+                );
             run.check(
                 "R16F read back = the CPU's rounding to half floats (error in half-float steps)",
                 steps,
@@ -247,7 +250,10 @@ fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], ba
                 max_difference(back, values),
                 0.0,
             );
-            run.note("R32F keeps", "every value, bit for bit (24 significant bits)");
+            run.note(
+                "R32F keeps",
+                "every value, bit for bit (24 significant bits)",
+            );
         }
     }
 }
@@ -261,7 +267,10 @@ fn texel_centres(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
     input.set_filter(Filter::Linear);
     let sample = Program::rect(ctx, &[shader!("glsl/learn/texel_sample.frag")])?;
     let scale = row.iter().fold(0f32, |m, v| m.max(v.abs())) as f64;
-    for (offset, name) in [(0.5f32, "sample at (i + 0.5) / N"), (0.0, "sample at i / N")] {
+    for (offset, name) in [
+        (0.5f32, "sample at (i + 0.5) / N"),
+        (0.0, "sample at i / N"),
+    ] {
         let target = Texture::new_2d(ctx, ROW, 1, TextureFormat::R32F)?;
         let fb = Framebuffer::new(ctx, name, &[&target], None)?;
         fb.pass(&sample, name)?
@@ -337,7 +346,9 @@ fn compute(
         max_difference(&back, values),
         0.0,
     );
-    Ok(format!("ran {READ_COMPUTE}, checked against the same values"))
+    Ok(format!(
+        "ran {READ_COMPUTE}, checked against the same values"
+    ))
 }
 
 #[cfg(test)]
