@@ -116,3 +116,60 @@ fn mesh_generate_refuses_a_triangle_count_it_cannot_make() {
     assert_eq!(err.matches("os error").count(), 1, "{err}");
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn reproduce_help_lists_every_section_only_takes() {
+    let out = classic_gpgpu(&["reproduce", "--help"]);
+    assert!(out.status.success());
+    let help = String::from_utf8_lossy(&out.stdout);
+    for stage in classic_gpgpu::report::reproduce::stages() {
+        assert!(
+            help.contains(stage.id),
+            "{} missing from:\n{help}",
+            stage.id
+        );
+    }
+    let out = classic_gpgpu(&["reproduce", "--only", "paper9", "--out", "/nonexistent"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("paper9") && err.contains("lecture3"), "{err}");
+}
+
+#[test]
+fn view_collide_scene_without_a_scene_lists_the_scenes() {
+    for args in [
+        &["view", "collide-scene"][..],
+        &["view", "collide-scene", "tori"],
+    ] {
+        let out = classic_gpgpu(args);
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        for scene in classic_gpgpu::collide::scenes::SCENES {
+            assert!(err.contains(scene), "{scene} missing: {err}");
+        }
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+#[test]
+fn collide_scene_ends_with_a_summary_line() {
+    let out = classic_gpgpu(&[
+        "collide-scene",
+        "touching-tori",
+        "--frames",
+        "2",
+        "--triangles",
+        "300",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let last = stdout.lines().last().unwrap();
+    assert!(
+        last.starts_with("touching-tori: 2 frames of ") && last.contains("median frame"),
+        "{last}"
+    );
+}

@@ -1,4 +1,4 @@
-//! Paper 1's baselines and scenes (issue 4): SOLID finds exactly the brute-force pairs,
+//! Paper 1's baselines and scenes: SOLID finds exactly the brute-force pairs,
 //! CULLIDE finds a subset of them (it may miss, never invent) after pruning most triangles,
 //! and every scene is deterministic. Small scenes, so llvmpipe runs them quickly.
 

@@ -442,7 +442,7 @@ fn a_non_finite_mark_is_an_error_naming_the_level_and_the_pass() {
     }
 }
 
-/// The tori scaled by ~10^25 (here 2^83, and 2^-70, so that scaling is exact in
+/// Two crossing tori scaled by ~10^25 (here 2^83, and 2^-70, so that scaling is exact in
 /// f32 and the geometry is the same): with the default options the pipeline reports exactly
 /// the pairs of the unscaled tori (exact predicate, brute force). Möller's float test
 /// answered 1048 pairs, 564 false, at 10^25.

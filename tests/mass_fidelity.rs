@@ -1,4 +1,4 @@
-//! Paper 4 as the paper words it (issue 17): the stencil bit of section 5.2, the paper's
+//! Paper 4 as the paper words it: the stencil bit of section 5.2, the paper's
 //! order of peels and sums, the peel limit, principal moments, the scene's closed shapes
 //! and the 50-body scene against the CPU reference solver. Each on a real headless GL
 //! context (llvmpipe and softpipe), against the CPU.

@@ -497,3 +497,27 @@ fn train_on_an_image_and_mask_then_detect_with_the_retrained_network() {
     ]);
     assert_clear_failure(&out, &["no pixel as text"]);
 }
+
+/// The sample the README shows: the shipped XOR network on the four corners of the square.
+#[test]
+fn the_shipped_sample_computes_xor() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let net = format!("{root}/assets/mlp/xor_network.json");
+    let input = format!("{root}/assets/mlp/xor_inputs.json");
+    for extra in [&[][..], &["--cpu", "plain"]] {
+        let mut args = vec!["mlp", "run", "--network", &net, "--input", &input, "--json"];
+        args.extend_from_slice(extra);
+        let v = json_of(&args);
+        let outputs: Vec<f64> = v["outputs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|row| row[0].as_f64().unwrap())
+            .collect();
+        // sigmoid(±10) is 4.5e-5 from 0 or 1; fp32 adds far less.
+        for (got, want) in outputs.iter().zip([0.0, 1.0, 1.0, 0.0]) {
+            assert!((got - want).abs() < 1e-4, "{extra:?}: {outputs:?}");
+        }
+        assert_eq!(outputs.len(), 4);
+    }
+}

@@ -260,6 +260,7 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
         )?)),
     };
     let mut frames = Vec::new();
+    let mut summary = SceneSummary::default();
     args.profile.start(ctx);
     for f in 0..args.frames {
         let (px, py) = scene.frame(f);
@@ -268,12 +269,19 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
             print!("frame {f:4}: ");
             print_frame(&r);
         }
+        summary.add(&r);
         frames.push(json!({
             "frame": f, "caps": r.caps, "pctps": r.pctps, "ctps": r.ctps, "eta": r.eta,
             "scheme": r.scheme, "readback_bytes": r.readback_bytes, "timings_ms": timings_json(&r),
         }));
     }
     super::profile::print(ctx);
+    if !json {
+        println!(
+            "{}",
+            summary.line(&scene.name, scene.triangles, &ctx.info().renderer_line())
+        );
+    }
     if json {
         let out = json!({
             "renderer": ctx.info().renderer_line(),
@@ -288,6 +296,42 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
         println!("{}", serde_json::to_string(&out)?);
     }
     Ok(())
+}
+
+/// What a scene's run comes to, for its last line: the range of CAPs and colliding triangle
+/// pairs over the frames, and the median frame time.
+#[derive(Default)]
+struct SceneSummary {
+    caps: Vec<usize>,
+    ctps: Vec<usize>,
+    total_ms: Vec<f64>,
+}
+
+impl SceneSummary {
+    fn add(&mut self, frame: &FrameResult) {
+        self.caps.push(frame.caps);
+        self.ctps.push(frame.ctps);
+        self.total_ms.push(frame.timings.total);
+    }
+
+    fn line(&self, scene: &str, triangles: usize, renderer: &str) -> String {
+        let range = |v: &[usize]| {
+            let (lo, hi) = (v.iter().min(), v.iter().max());
+            match (lo, hi) {
+                (Some(lo), Some(hi)) if lo == hi => format!("{lo}"),
+                (Some(lo), Some(hi)) => format!("{lo}-{hi}"),
+                _ => "none".into(),
+            }
+        };
+        let median = classic_gpgpu::report::timing::Spread::of(&self.total_ms).median;
+        format!(
+            "{scene}: {} frames of {triangles} x {triangles} triangles, colliding triangle \
+             pairs {} per frame (CAPs {}), median frame {median:.2} ms on {renderer}",
+            self.caps.len(),
+            range(&self.ctps),
+            range(&self.caps),
+        )
+    }
 }
 
 /// Memory per triangle of each model, measured: 160 bytes for the pair (interlocking tori,

@@ -11,7 +11,7 @@ pub mod mesh;
 pub mod mlp;
 pub mod selftest;
 
-/// `--formulation`: which formulation of a paper's kernels runs (issue 15, "then and now"):
+/// `--formulation`: which formulation of a paper's kernels runs ("then and now"):
 /// the paper's own, through the graphics pipeline (OpenGL 3.3), or compute shaders (OpenGL
 /// 4.3). `mlp` names its classic formulations `faithful` and `packed` instead of `classic`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]

@@ -66,7 +66,7 @@ pub enum DemoCommand {
     CollideScene {
         /// One of: interlocking-tori, touching-tori, merging-tori, bump-bunnies,
         /// happy-buddhas, intimate-animals.
-        scene: String,
+        scene: Option<String>,
         /// Triangles per model instead of the paper's count.
         #[arg(long)]
         triangles: Option<usize>,
@@ -135,10 +135,10 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 impl DemoCommand {
-    fn spec(&self) -> DemoSpec {
-        match self {
+    fn spec(&self) -> anyhow::Result<DemoSpec> {
+        Ok(match self {
             DemoCommand::CollideScene { scene, triangles } => DemoSpec::CollideScene {
-                scene: scene.clone(),
+                scene: known_scene(scene.as_deref())?,
                 triangles: *triangles,
             },
             DemoCommand::Mass { model, resolution } => DemoSpec::Mass {
@@ -158,7 +158,24 @@ impl DemoCommand {
             DemoCommand::Lecture3 { technique } => DemoSpec::Lecture3 {
                 technique: *technique,
             },
-        }
+        })
+    }
+}
+
+/// The scene `view collide-scene` was given, or an error that lists the scenes.
+fn known_scene(scene: Option<&str>) -> anyhow::Result<String> {
+    use classic_gpgpu::collide::scenes::SCENES;
+    match scene {
+        Some(name) if SCENES.contains(&name) => Ok(name.to_string()),
+        Some(name) => anyhow::bail!(
+            "view collide-scene: no scene '{name}'; the scenes are {}",
+            SCENES.join(", ")
+        ),
+        None => anyhow::bail!(
+            "view collide-scene needs a scene, one of {} (e.g. `classic-gpgpu view \
+             collide-scene interlocking-tori`)",
+            SCENES.join(", ")
+        ),
     }
 }
 
@@ -167,7 +184,7 @@ pub fn run(
     args: &ViewArgs,
     context: impl FnOnce() -> anyhow::Result<Context>,
 ) -> anyhow::Result<()> {
-    let spec = args.demo.spec();
+    let spec = args.demo.spec()?;
     if let Some(path) = &args.screenshot {
         window::check_output(path, args.force)?;
     }

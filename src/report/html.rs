@@ -10,20 +10,129 @@ fn escape(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
-fn table(t: &Table) -> String {
-    let mut out = format!("<table>\n<caption>{}</caption>\n<tr>", escape(&t.caption));
-    for h in &t.header {
-        out.push_str(&format!("<th>{}</th>", escape(h)));
+/// Whether a cell reads as a number (possibly with a unit or a range: "7.86", "-0.5%",
+/// "12.8 steps/s", "1.4-2x", "2048 x 2048"): such columns are right-aligned, text left.
+fn is_numeric(cell: &str) -> bool {
+    let cell = cell.trim();
+    let Some(first) = cell.chars().next() else {
+        return false;
+    };
+    let starts_like_a_number = first.is_ascii_digit()
+        || (matches!(first, '-' | '+' | '.' | '~' | '<' | '>' | '\u{2248}')
+            && cell
+                .chars()
+                .nth(1)
+                .is_some_and(|c| c.is_ascii_digit() || c == '.'));
+    // A number with at most a unit or two after it, not a sentence that starts with one.
+    starts_like_a_number && cell.split_whitespace().count() <= 4
+}
+
+/// A column is numeric when every filled cell of it is (a dash or an empty cell counts as
+/// filler).
+fn numeric_columns(t: &Table) -> Vec<bool> {
+    let columns = t
+        .rows
+        .iter()
+        .map(Vec::len)
+        .chain([t.header.len()])
+        .max()
+        .unwrap_or(0);
+    (0..columns)
+        .map(|c| {
+            let mut filled = t
+                .rows
+                .iter()
+                .filter_map(|r| r.get(c))
+                .map(|v| v.trim())
+                .filter(|v| !v.is_empty() && !matches!(*v, "-" | "\u{2014}" | "n/a"))
+                .peekable();
+            filled.peek().is_some() && filled.all(is_numeric)
+        })
+        .collect()
+}
+
+/// A table in its own scrolling box (a wide table scrolls there, not the page); the columns
+/// marked in `numeric` right-aligned, the others (text) left. `row_ids` gives rows an anchor.
+fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
+    let class = |c: usize| {
+        if numeric.get(c).copied().unwrap_or(false) {
+            " class=\"num\""
+        } else {
+            ""
+        }
+    };
+    let mut out = format!(
+        "<div class=\"table\"><table>\n<caption>{}</caption>\n<tr>",
+        escape(&t.caption)
+    );
+    for (c, h) in t.header.iter().enumerate() {
+        out.push_str(&format!("<th{}>{}</th>", class(c), escape(h)));
     }
     out.push_str("</tr>\n");
-    for row in &t.rows {
-        out.push_str("<tr>");
-        for cell in row {
-            out.push_str(&format!("<td>{}</td>", escape(cell)));
+    for (r, row) in t.rows.iter().enumerate() {
+        match row_ids.get(r) {
+            Some(id) => out.push_str(&format!("<tr id=\"{}\">", escape(id))),
+            None => out.push_str("<tr>"),
+        }
+        for (c, cell) in row.iter().enumerate() {
+            out.push_str(&format!("<td{}>{}</td>", class(c), escape(cell)));
         }
         out.push_str("</tr>\n");
     }
-    out.push_str("</table>\n");
+    out.push_str("</table></div>\n");
+    out
+}
+
+/// A table of measurements: numeric columns right-aligned.
+fn table(t: &Table) -> String {
+    table_with_ids(t, &[], &numeric_columns(t))
+}
+
+/// A table of sentences (claims, fidelity): every column left-aligned.
+fn text_table(t: &Table, row_ids: &[String]) -> String {
+    table_with_ids(t, row_ids, &[])
+}
+
+/// The anchor of claim `i` of section `id`.
+fn claim_anchor(id: &str, i: usize) -> String {
+    format!("{id}-claim-{}", i + 1)
+}
+
+/// The holds column: "yes", "no", or "not judged" (the measured text says why).
+fn holds_text(holds: Option<bool>) -> &'static str {
+    match holds {
+        Some(true) => "yes",
+        Some(false) => "no",
+        None => "not judged",
+    }
+}
+
+/// Every claim of every section, each linking to its row in its section.
+fn claims_summary(sections: &[Section]) -> String {
+    let mut out = String::from(
+        "<div class=\"table\"><table class=\"summary\">\n<caption>Every claim at a glance \
+         (a link leads to the claim and what was measured)</caption>\n\
+         <tr><th>section</th><th>claim</th><th>holds here</th></tr>\n",
+    );
+    for s in sections {
+        for (i, c) in s.claims.iter().enumerate() {
+            out.push_str(&format!(
+                "<tr><td><a href=\"#{}\">{}</a></td><td><a href=\"#{}\">{}</a></td>\
+                 <td class=\"{}\">{}</td></tr>\n",
+                escape(&s.id),
+                escape(&s.id),
+                escape(&claim_anchor(&s.id, i)),
+                escape(&c.claim),
+                match c.holds {
+                    Some(true) => "yes",
+                    Some(false) => "no",
+                    None => "unjudged",
+                },
+                holds_text(c.holds)
+            ));
+        }
+    }
+    out.push_str("</table></div>\n");
     out
 }
 
@@ -44,21 +153,19 @@ fn section(s: &Section) -> String {
                 .claims
                 .iter()
                 .map(|c| {
-                    let holds = match c.holds {
-                        Some(true) => "yes",
-                        Some(false) => "no",
-                        None => "not judged here",
-                    };
                     vec![
                         c.claim.clone(),
                         c.paper.clone(),
                         c.measured.clone(),
-                        holds.into(),
+                        holds_text(c.holds).into(),
                     ]
                 })
                 .collect(),
         };
-        out.push_str(&table(&claims));
+        let ids: Vec<String> = (0..s.claims.len())
+            .map(|i| claim_anchor(&s.id, i))
+            .collect();
+        out.push_str(&text_table(&claims, &ids));
     }
     for t in &s.tables {
         out.push_str(&table(t));
@@ -92,17 +199,19 @@ fn section(s: &Section) -> String {
                 })
                 .collect(),
         };
-        out.push_str(&table(&fidelity));
+        out.push_str(&text_table(&fidelity, &[]));
     }
     out.push_str("</section>\n");
     out
 }
 
 const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
-color:#222}table{border-collapse:collapse;margin:1em 0;font-size:90%}caption{text-align:left;\
-font-weight:bold;padding:.3em 0}td,th{border:1px solid #bbb;padding:.25em .5em;text-align:right}\
-th{background:#eee}td:first-child{text-align:left}img{max-width:100%;border:1px solid #ddd}\
-figure{margin:1em 0}.note{background:#ffd;padding:.5em 1em;border:1px solid #dd8}";
+color:#222}div.table{overflow-x:auto;max-width:100%;margin:1em 0}table{border-collapse:collapse;\
+font-size:90%}caption{text-align:left;font-weight:bold;padding:.3em 0}td,th{border:1px solid \
+#bbb;padding:.25em .5em;text-align:left;vertical-align:top}td.num,th.num{text-align:right;\
+white-space:nowrap}th{background:#eee}td.yes{color:#060}td.no{color:#a00}td.unjudged{color:#666}\
+img{max-width:100%;border:1px solid #ddd}figure{margin:1em 0}\
+.note{background:#ffd;padding:.5em 1em;border:1px solid #dd8}";
 
 /// The whole page.
 pub fn page(report: &Report) -> String {
@@ -128,8 +237,16 @@ pub fn page(report: &Report) -> String {
              without <code>--quick</code> for that.</p>\n",
         );
     }
-    out.push_str("<ul>\n");
-    for s in &report.sections {
+    out.push_str(&contents(&report.sections));
+    out.push_str("</body></html>\n");
+    out
+}
+
+/// Everything below the page's header: the list of sections, how timings are judged, the
+/// summary of every claim, and the sections.
+fn contents(sections: &[Section]) -> String {
+    let mut out = String::from("<ul>\n");
+    for s in sections {
         out.push_str(&format!(
             "<li><a href=\"#{}\">{}</a></li>\n",
             escape(&s.id),
@@ -137,9 +254,118 @@ pub fn page(report: &Report) -> String {
         ));
     }
     out.push_str("</ul>\n");
-    for s in &report.sections {
+    out.push_str(&format!(
+        "<p>A claim judged on a timing is not judged (\"not judged: machine loaded\") when the \
+         1-minute load average was above {:.1} per core while it was measured, or when its runs \
+         fall on both sides of the paper's number; its measured text gives the runs and the \
+         load.</p>\n",
+        super::timing::LOADED_PER_CORE
+    ));
+    out.push_str(&claims_summary(sections));
+    for s in sections {
         out.push_str(&section(s));
     }
-    out.push_str("</body></html>\n");
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::{Claim, Table};
+
+    fn section(id: &str, claims: &[(&str, Option<bool>)]) -> Section {
+        Section {
+            id: id.into(),
+            title: format!("Paper {id}"),
+            claims: claims
+                .iter()
+                .map(|&(claim, holds)| Claim {
+                    claim: claim.into(),
+                    paper: "the paper's words".into(),
+                    measured: "12.5 ms on llvmpipe".into(),
+                    holds,
+                })
+                .collect(),
+            tables: vec![Table {
+                caption: "Table III".into(),
+                header: ["scene", "triangles", "ms", "note"]
+                    .map(String::from)
+                    .to_vec(),
+                rows: vec![
+                    ["tori", "15000", "7.86", "a long note in words"]
+                        .map(String::from)
+                        .to_vec(),
+                    ["bunnies", "69451 x 2", "-", "another note"]
+                        .map(String::from)
+                        .to_vec(),
+                ],
+            }],
+            ..Section::default()
+        }
+    }
+
+    /// The `<td>` cells of the first row of the table with `caption`.
+    fn first_row_cells<'a>(html: &'a str, caption: &str) -> Vec<&'a str> {
+        let table = &html[html.find(&format!("<caption>{caption}</caption>")).unwrap()..];
+        let start = ["<tr><td", "<tr id"]
+            .iter()
+            .filter_map(|t| table.find(t))
+            .min()
+            .unwrap();
+        let row = &table[start..];
+        let row = &row[..row.find("</tr>").unwrap()];
+        row.split("<td").skip(1).collect()
+    }
+
+    #[test]
+    fn text_columns_are_left_aligned_and_numbers_right() {
+        let html = contents(&[section("paper1", &[("fast", Some(true))])]);
+        let cells = first_row_cells(&html, "Table III");
+        assert!(cells[0].starts_with('>'), "scene is text: {}", cells[0]);
+        assert!(cells[1].starts_with(" class=\"num\""), "{}", cells[1]);
+        assert!(cells[2].starts_with(" class=\"num\""), "{}", cells[2]);
+        assert!(cells[3].starts_with('>'), "note is text: {}", cells[3]);
+        // The claim table: claim, paper and measured are text.
+        let claim = first_row_cells(
+            &html,
+            "What the paper claims, and what this machine measured",
+        );
+        assert!(claim.iter().all(|c| c.starts_with('>')), "{claim:?}");
+        assert!(
+            STYLE.contains("text-align:left") && STYLE.contains("td.num,th.num{text-align:right")
+        );
+        // Every table scrolls in its own box.
+        assert_eq!(
+            html.matches("<table").count(),
+            html.matches("<div class=\"table\"><table").count()
+        );
+        assert!(STYLE.contains("div.table{overflow-x:auto"));
+    }
+
+    #[test]
+    fn the_summary_lists_every_claim_and_its_links_resolve() {
+        let html = contents(&[
+            section("paper1", &[("fast", Some(true)), ("exact", Some(false))]),
+            section("paper4", &[("interactive", None)]),
+        ]);
+        let summary = &html[html.find("Every claim at a glance").unwrap()..];
+        let summary = &summary[..summary.find("</table>").unwrap()];
+        for claim in ["fast", "exact", "interactive"] {
+            assert!(summary.contains(&format!(">{claim}</a>")), "{claim}");
+        }
+        assert!(summary.contains(">not judged</td>"));
+        let links: Vec<&str> = summary
+            .split("href=\"#")
+            .skip(1)
+            .map(|rest| &rest[..rest.find('"').unwrap()])
+            .collect();
+        assert_eq!(links.len(), 6, "a section link and a claim link per claim");
+        for link in links {
+            assert_eq!(
+                html.matches(&format!(" id=\"{link}\"")).count(),
+                1,
+                "#{link} names no single element"
+            );
+        }
+    }
 }

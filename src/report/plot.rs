@@ -1,5 +1,6 @@
 //! Line plots as PNG (plotters), for the papers' figures: one or more series of (x, y)
-//! points, optional log axes, a legend.
+//! points, optional log axes, a legend below the axes (never over the data). An axis whose
+//! values are all whole numbers (frames, counts) is labelled at whole numbers only.
 
 use anyhow::{bail, Context as _};
 use plotters::prelude::*;
@@ -34,7 +35,24 @@ pub struct Plot {
 }
 
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+/// The size of the axes' part of the image; the legend adds rows below it.
 const SIZE: (u32, u32) = (900, 560);
+/// Height of one legend row, px.
+const LEGEND_ROW: u32 = 22;
+/// Legend entries per row.
+const LEGEND_COLUMNS: usize = 2;
+
+/// Rows of the legend below the axes for `series` curves.
+fn legend_rows(series: usize) -> u32 {
+    series.div_ceil(LEGEND_COLUMNS) as u32
+}
+
+/// The whole image: the axes and the legend rows below them (with a margin).
+fn image_size(series: usize) -> (u32, u32) {
+    let legend = legend_rows(series);
+    let margin = if legend > 0 { 12 } else { 0 };
+    (SIZE.0, SIZE.1 + legend * LEGEND_ROW + margin)
+}
 
 fn register_font() {
     static REGISTER: Once = Once::new();
@@ -80,22 +98,57 @@ impl Plot {
             std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         }
         // Drawn into a buffer and written with `image`, so plotters needs no PNG encoder of its own.
-        let mut pixels = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
+        let size = image_size(self.series.len());
+        let whole_x = !self.log_x && points.iter().all(|p| p.0.fract() == 0.0);
+        let mut pixels = vec![0u8; (size.0 * size.1 * 3) as usize];
         {
-            let root = BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area();
+            let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
             root.fill(&WHITE)?;
+            let (axes, legend) = root.split_vertically(SIZE.1);
             match (self.log_x, self.log_y) {
-                (false, false) => self.draw(&root, x.0..x.1, y.0..y.1),
-                (true, false) => self.draw(&root, (x.0..x.1).log_scale(), y.0..y.1),
-                (false, true) => self.draw(&root, x.0..x.1, (y.0..y.1).log_scale()),
-                (true, true) => self.draw(&root, (x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
+                (false, false) => self.draw(&axes, x.0..x.1, y.0..y.1, whole_x),
+                (true, false) => self.draw(&axes, (x.0..x.1).log_scale(), y.0..y.1, false),
+                (false, true) => self.draw(&axes, x.0..x.1, (y.0..y.1).log_scale(), whole_x),
+                (true, true) => {
+                    self.draw(&axes, (x.0..x.1).log_scale(), (y.0..y.1).log_scale(), false)
+                }
             }
             .with_context(|| format!("drawing {}", path.display()))?;
+            self.draw_legend(&legend)
+                .with_context(|| format!("drawing {}", path.display()))?;
             root.present()
                 .with_context(|| format!("drawing {}", path.display()))?;
         }
-        image::save_buffer(path, &pixels, SIZE.0, SIZE.1, image::ColorType::Rgb8)
-            .with_context(|| format!("writing {}", path.display()))?;
+        let image = image::RgbImage::from_raw(size.0, size.1, pixels)
+            .context("the plot's pixels do not fill its size")?;
+        crate::files::write_image(path, &image::DynamicImage::ImageRgb8(image))
+    }
+
+    /// The legend in its own strip below the axes: a line and name per curve, in
+    /// [`LEGEND_COLUMNS`] columns.
+    fn draw_legend(
+        &self,
+        area: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+    ) -> anyhow::Result<()> {
+        let column_width = (SIZE.0 as i32 - 100) / LEGEND_COLUMNS as i32;
+        for (i, series) in self.series.iter().enumerate() {
+            let colour = Palette99::pick(i).to_rgba();
+            let x = 80 + (i % LEGEND_COLUMNS) as i32 * column_width;
+            let y = 6 + (i / LEGEND_COLUMNS) as i32 * LEGEND_ROW as i32 + LEGEND_ROW as i32 / 2;
+            area.draw(&PathElement::new(
+                vec![(x, y), (x + 24, y)],
+                colour.stroke_width(2),
+            ))
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+            area.draw(&Circle::new((x + 12, y), 3, colour.filled()))
+                .map_err(|e| anyhow::anyhow!("{e}"))?;
+            area.draw(&Text::new(
+                series.name.clone(),
+                (x + 32, y - 8),
+                ("sans-serif", 14).into_font().color(&BLACK),
+            ))
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        }
         Ok(())
     }
 
@@ -108,6 +161,7 @@ impl Plot {
         root: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
         x: X,
         y: Y,
+        whole_x: bool,
     ) -> anyhow::Result<()>
     where
         X: plotters::coord::ranged1d::AsRangedCoord<Value = f64>,
@@ -123,12 +177,26 @@ impl Plot {
             .y_label_area_size(70)
             .build_cartesian_2d(x, y)
             .map_err(|e| anyhow::anyhow!("{e}"))?;
+        let x_ticks = if whole_x {
+            self.x_span()
+                .map_or(10, |span| (span as usize + 1).clamp(2, 10))
+        } else {
+            10
+        };
+        let x_label = |v: &f64| {
+            if whole_x && v.fract() != 0.0 {
+                String::new()
+            } else {
+                tick_label(*v)
+            }
+        };
         chart
             .configure_mesh()
             .x_desc(self.x_label.as_str())
             .y_desc(self.y_label.as_str())
             .label_style(("sans-serif", 14))
-            .x_label_formatter(&|v| tick_label(*v))
+            .x_labels(x_ticks)
+            .x_label_formatter(&x_label)
             .y_label_formatter(&|v| tick_label(*v))
             .draw()
             .map_err(|e| anyhow::anyhow!("{e}"))?;
@@ -142,11 +210,7 @@ impl Plot {
                 .collect();
             chart
                 .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
-                .map_err(|e| anyhow::anyhow!("{e}"))?
-                .label(series.name.as_str())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
-                });
+                .map_err(|e| anyhow::anyhow!("{e}"))?;
             chart
                 .draw_series(
                     points
@@ -155,14 +219,21 @@ impl Plot {
                 )
                 .map_err(|e| anyhow::anyhow!("{e}"))?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(|e| anyhow::anyhow!("{e}"))?;
         Ok(())
+    }
+
+    /// The largest x minus the smallest, over the drawable points.
+    fn x_span(&self) -> Option<f64> {
+        let xs = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter())
+            .filter(|&&(x, y)| self.usable(x, y))
+            .map(|p| p.0);
+        let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+        (hi >= lo).then_some(hi - lo)
     }
 }
 
@@ -194,6 +265,18 @@ mod tests {
     }
 
     #[test]
+    fn whole_number_axes_span_and_legend_rows() {
+        let plot = Plot {
+            series: vec![Series::new("frames", vec![(1.0, 3.0), (2.0, 4.0)])],
+            ..Plot::default()
+        };
+        assert_eq!(plot.x_span(), Some(1.0));
+        assert_eq!(legend_rows(0), 0);
+        assert_eq!(legend_rows(3), 2);
+        assert_eq!(image_size(0), SIZE);
+    }
+
+    #[test]
     fn writes_a_png_with_log_axes() {
         let dir = std::env::temp_dir().join(format!("classic-gpgpu-plot-{}", std::process::id()));
         let path = dir.join("plot.png");
@@ -209,8 +292,15 @@ mod tests {
             ],
         };
         plot.write_png(&path).unwrap();
-        let image = image::open(&path).unwrap();
-        assert_eq!((image.width(), image.height()), SIZE);
+        let image = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(image.dimensions(), image_size(2));
+        // The legend is below the axes: its rows hold the curves' colours, and the axes'
+        // part holds no legend box (the old legend drew a black frame inside the axes).
+        let colour = Palette99::pick(0).to_rgba().rgb();
+        let legend_has_colour = (SIZE.1..image.height()).any(|y| {
+            (0..image.width()).any(|x| image.get_pixel(x, y).0 == [colour.0, colour.1, colour.2])
+        });
+        assert!(legend_has_colour, "no legend below the axes");
         std::fs::remove_dir_all(dir).ok();
         let empty = Plot {
             title: "empty".into(),

@@ -42,14 +42,19 @@ pub fn stages() -> Vec<Stage> {
     ]
 }
 
+/// `--only`'s values: every stage's id, so that the help lists each section there is.
+fn section_ids() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(stages().into_iter().map(|s| s.id))
+}
+
 /// The `reproduce` options.
 #[derive(Clone, Debug, clap::Args)]
 pub struct ReproduceArgs {
     /// Small sizes, for CI and smoke tests; the report says so.
     #[arg(long)]
     pub quick: bool,
-    /// Only these sections (comma separated ids: blocks, paper1, paper2, paper3, paper4).
-    #[arg(long, value_delimiter = ',')]
+    /// Only these sections (comma separated ids, from the list of sections the report has).
+    #[arg(long, value_delimiter = ',', value_parser = section_ids())]
     pub only: Vec<String>,
     /// Where the report goes. With --only, the sections run are merged into the report
     /// already there (made on the same renderer at the same sizes).

@@ -1,4 +1,4 @@
-//! "Then and now" (issue 15): each paper's kernels in their 2007 formulation beside a
+//! "Then and now": each paper's kernels in their 2007 formulation beside a
 //! compute-shader one (OpenGL 4.3) and the CPU baseline, measured in one run on the renderer
 //! at hand. Each section measures its own workload (`paperN/then_and_now.rs`); this file holds
 //! the shared result type and the table.

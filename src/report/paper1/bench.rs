@@ -35,7 +35,7 @@ pub struct Paper1Results {
     pub tiles: TileStudy,
     /// Empty when the sweep was skipped.
     pub leaf_sweep: Vec<SweepPoint>,
-    /// Classic vs compute vs CPU (issue 15).
+    /// Classic vs compute vs CPU: the 2007 formulation beside today's compute shaders.
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
     /// Where the time of this run went, pass by pass.
     pub profile: Option<ProfileTable>,

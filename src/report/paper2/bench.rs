@@ -41,7 +41,7 @@ pub struct Paper2Results {
     pub sprite_runs: Vec<RunStats>,
     /// PNGs written during the run, in the order they were taken.
     pub snapshots: Vec<Snapshot>,
-    /// Classic vs compute vs CPU (issue 15).
+    /// Classic vs compute vs CPU: the 2007 formulation beside today's compute shaders.
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
     /// Where the time of this run went, pass by pass.
     pub profile: Option<crate::gl::profile::ProfileTable>,

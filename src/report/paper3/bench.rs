@@ -35,7 +35,7 @@ pub struct Paper3Results {
     /// Every case and method; the first case's rows are Table 1's.
     pub measurements: Vec<Measurement>,
     pub detection: Detection,
-    /// Classic vs compute vs CPU (issue 15).
+    /// Classic vs compute vs CPU: the 2007 formulation beside today's compute shaders.
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
     /// Where the time of this run went, pass by pass.
     pub profile: Option<crate::gl::profile::ProfileTable>,

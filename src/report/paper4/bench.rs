@@ -26,11 +26,11 @@ pub struct Paper4Results {
     pub buoyancy: BuoyancyRun,
     /// Peels of the buoyant bunny dumped for Fig. 10 (`fig10_bunny/peel<k>_target0.png`).
     pub fig10_peels: usize,
-    /// Classic vs compute vs CPU (issue 15).
+    /// Classic vs compute vs CPU: the 2007 formulation beside today's compute shaders.
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
     /// The two orders of peels and sums, side by side on the bunny at 64x64.
     pub peel_orders: Vec<PeelOrderRun>,
-    /// Issue 16's speed targets, as ratios measured in this run.
+    /// The project's speed targets on llvmpipe, as ratios measured in this run.
     pub targets: SpeedTargets,
     /// Where the time goes, per pass: one bunny at 64x64, and buoyancy steps.
     pub profile_bunny_64: Vec<ProfileRow>,
@@ -51,7 +51,8 @@ pub struct PeelOrderRun {
     pub peel_target_sets: usize,
 }
 
-/// Issue 16's targets: ratios of one run, renderer named in the results.
+/// The project's speed targets on llvmpipe: ratios of one run, renderer named in the
+/// results.
 #[derive(Clone, Debug, Serialize)]
 pub struct SpeedTargets {
     /// `mass bunny --resolution 64`: GPU wall clock over Mirtich's analytic time.
@@ -253,7 +254,7 @@ fn profile_bunny(ctx: &Context, bunny: &Mesh) -> anyhow::Result<Vec<ProfileRow>>
     Ok(profile::finish(ctx).map(|t| t.rows).unwrap_or_default())
 }
 
-/// Issue 16's ratios: the bunny at 64x64 against Mirtich (from the Fig. 5 rows), and the
+/// The speed targets' ratios: the bunny at 64x64 against Mirtich (from the Fig. 5 rows), and the
 /// first steps of the 50-body scene (drop and plunge included) with each solver.
 fn speed_targets(
     opts: &BenchOptions,

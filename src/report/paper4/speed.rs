@@ -1,11 +1,13 @@
-//! How fast, and where the time goes (issue 16): the speed targets as ratios of this run,
+//! How fast, and where the time goes: the speed targets as ratios of this run (what the code
+//! aims at on llvmpipe, where most users run it),
 //! the two orders of peels and sums, and per-pass profiles.
 
 use super::bench::Paper4Results;
 use crate::gl::profile::ProfileRow;
 use crate::report::Table;
 
-/// Issue 16's targets, each a ratio measured in this run.
+/// The project's speed targets on llvmpipe (a fixed cost per pass must not swamp the
+/// papers' work), each a ratio measured in this run.
 pub fn targets(results: &Paper4Results) -> Table {
     let t = &results.targets;
     let met = |ok: bool| if ok { "met" } else { "not met" }.to_string();
