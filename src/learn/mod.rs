@@ -14,6 +14,14 @@
 //!
 //! A lesson is a [`Lesson`]; [`all`] lists them in teaching order.
 
+pub mod compute_reduction;
+pub mod count_and_mask;
+pub mod depth_peeling;
+pub mod guide;
+mod kit;
+pub mod readback_and_upload;
+pub mod render_to_vertex_buffer;
+
 use crate::gl::Context;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -160,7 +168,13 @@ pub trait Lesson {
 
 /// Every lesson, in teaching order.
 pub fn all() -> Vec<&'static dyn Lesson> {
-    vec![]
+    vec![
+        &count_and_mask::CountAndMask,
+        &depth_peeling::DepthPeeling,
+        &readback_and_upload::ReadbackAndUpload,
+        &render_to_vertex_buffer::RenderToVertexBuffer,
+        &compute_reduction::ComputeReduction,
+    ]
 }
 
 /// The lesson `id` (or its number), or an error listing the ids.

@@ -3,7 +3,7 @@
 
 use super::{Report, Section, Table};
 
-fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -98,7 +98,8 @@ fn section(s: &Section) -> String {
     out
 }
 
-const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
+pub(crate) const STYLE: &str =
+    "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
 color:#222}table{border-collapse:collapse;margin:1em 0;font-size:90%}caption{text-align:left;\
 font-weight:bold;padding:.3em 0}td,th{border:1px solid #bbb;padding:.25em .5em;text-align:right}\
 th{background:#eee}td:first-child{text-align:left}img{max-width:100%;border:1px solid #ddd}\
