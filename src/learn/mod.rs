@@ -14,6 +14,14 @@
 //!
 //! A lesson is a [`Lesson`]; [`all`] lists them in teaching order.
 
+pub mod compute_reduction;
+pub mod count_and_mask;
+pub mod depth_peeling;
+pub mod guide;
+mod kit;
+pub mod readback_and_upload;
+pub mod render_to_vertex_buffer;
+
 use crate::gl::Context;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -381,6 +389,11 @@ pub fn all() -> Vec<&'static dyn Lesson> {
         &reduction::Reduction,
         &several_outputs::SeveralOutputs,
         &scatter_and_blend::ScatterAndBlend,
+        &count_and_mask::CountAndMask,
+        &depth_peeling::DepthPeeling,
+        &readback_and_upload::ReadbackAndUpload,
+        &render_to_vertex_buffer::RenderToVertexBuffer,
+        &compute_reduction::ComputeReduction,
     ]
 }
 

@@ -3,7 +3,7 @@
 
 use super::{Report, Section, Table};
 
-fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -205,7 +205,7 @@ fn section(s: &Section) -> String {
     out
 }
 
-const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
+pub(crate) const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
 color:#222}div.table{overflow-x:auto;max-width:100%;margin:1em 0}table{border-collapse:collapse;\
 font-size:90%}caption{text-align:left;font-weight:bold;padding:.3em 0}td,th{border:1px solid \
 #bbb;padding:.25em .5em;text-align:left;vertical-align:top}td.num,th.num{text-align:right;\

@@ -8,7 +8,7 @@
 //! ([`bench_command`]) and `reproduce` both go through [`run_section`].
 
 pub mod blocks;
-mod html;
+pub(crate) mod html;
 pub mod lecture3;
 pub mod paper1;
 pub mod paper2;

@@ -1,0 +1,15 @@
+#version 330 core
+// Lesson 6, an `if` removed by the depth test (lecture 3's tip, as in
+// src/lecture3/depth_mask.rs): this cheap pass writes the condition into the depth buffer.
+// The work pass is then drawn at depth 0.5 with the test LESS, so it runs only where this
+// pass left 1.0 (far: open) and never where it left 0.0 (near: closed).
+
+uniform sampler2D u_values;
+uniform float u_threshold; // the work runs where the value is above it
+
+void main() {
+    float value = texelFetch(u_values, ivec2(gl_FragCoord.xy), 0).r;
+    // EXERCISE: close the pixels whose value is at or below u_threshold. As written every
+    // pixel is left open, so the work pass runs everywhere.
+    gl_FragDepth = 1.0;
+}

@@ -1,0 +1,173 @@
+//! Lesson 10, the bridge to CUDA: the reduction of the fragment pipeline (ping-pong passes,
+//! 2x2 blocks per pass: lesson 3, and the GL layer's [`crate::gl::reduce`]) written as a
+//! compute shader with work-group shared memory and barriers, sum and maximum at once. Both
+//! are checked against the CPU, side by side, with the passes each needs.
+//!
+//! On a context without OpenGL 4.3 (softpipe is 3.3) the compute shader cannot run: the
+//! lesson runs and checks the fragment reduction it starts from, sets `compute` to the
+//! reason, and has no compute check at all. `passed` then says that every check that ran
+//! passed, and the checks listed are the fragment ones: nothing compute is counted as
+//! checked. Its exercise (a compute shader) is refused there with that reason.
+
+use super::kit;
+use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
+use crate::gl::reduce::{passes_for, ReduceOp, Reducer};
+use crate::gl::{Barrier, Buffer, BufferUsage, ComputeProgram, Context, Texture, TextureFormat};
+use crate::shader;
+
+/// The array: 100 x 100 values (not a power of two: the edges are part of the lesson).
+const WIDTH: u32 = 100;
+const HEIGHT: u32 = 100;
+/// Values a work group reduces per pass (as in `reduce.comp`).
+const PER_GROUP: u32 = 256;
+/// fp32 sums of values in [0, 1): the longest chain of additions is under 100 (a block of a
+/// fragment pass, a tree of 8 levels per compute pass), each off by at most 2^-24 of the
+/// running sum: relative error under 100 * 6e-8 = 6e-6, so 1e-5. The maximum is exact.
+const SUM_TOLERANCE: f64 = 1e-5;
+
+static INFO: LessonInfo = LessonInfo {
+    id: "compute-reduction",
+    number: 10,
+    title: "The same reduction as a compute shader with shared memory (the bridge to CUDA)",
+    idea: "A fragment pass can only write its own pixel, so a reduction takes a pass per \
+           level, 2x2 (or a few more) values per output, with a texture between passes. A \
+           compute shader's work group shares fast on-chip memory and can wait at a barrier: \
+           256 values are folded to one inside the group, in a tree of halving strides, and \
+           one pass shrinks the data 256-fold. This is how CUDA reductions are written; the \
+           tree and the passes are the same idea as the ping-pong.",
+    paper_steps: &[
+        PaperStep {
+            paper: "Paper 4, section 3.3",
+            step: "the integrals as sums by buffer reduction (the fragment formulation)",
+            file: "src/mass/reduce.rs",
+        },
+        PaperStep {
+            paper: "Paper 4, then and now",
+            step: "the same sums in work-group shared memory",
+            file: "src/gl/reduce_shared.rs",
+        },
+    ],
+    shaders: &[
+        "glsl/gl/reduce.frag",
+        "glsl/learn/compute-reduction/reduce.comp",
+    ],
+    exercises: &[Exercise {
+        number: 1,
+        task: "Write the step of the tree: fold the partner `stride` places up onto this \
+               invocation's value (needs OpenGL 4.3).",
+        shader: "glsl/learn/compute-reduction/reduce.comp",
+        hint: "Inside `if (local < stride)`: s_partial[local] = combine(s_partial[local], \
+               s_partial[local + stride]); the barrier after it makes the result visible to \
+               the next step.",
+    }],
+};
+
+pub struct ComputeReduction;
+
+impl Lesson for ComputeReduction {
+    fn info(&self) -> &'static LessonInfo {
+        &INFO
+    }
+
+    fn run(&self, ctx: &Context, opts: &LessonOptions) -> anyhow::Result<LessonRun> {
+        kit::exercise_asked(&INFO, opts)?;
+        if opts.exercise.is_some() {
+            ctx.require_compute("exercise 1 of compute-reduction (a compute shader)")?;
+        }
+        let mut run = LessonRun::new(&INFO, ctx);
+        let values = kit::values((WIDTH * HEIGHT) as usize, 10);
+        let cpu_sum: f64 = values.iter().map(|&v| v as f64).sum();
+        let cpu_max = values.iter().copied().fold(f32::MIN, f32::max);
+
+        // The fragment reduction it starts from.
+        let texture = Texture::from_f32(ctx, WIDTH, HEIGHT, TextureFormat::R32F, &values)?;
+        let reducer = Reducer::new(ctx, WIDTH, HEIGHT)?;
+        let sum = reducer.reduce(&texture, ReduceOp::Sum)?[0];
+        let max = reducer.reduce(&texture, ReduceOp::Max)?[0];
+        let picture = kit::picture(
+            opts,
+            "values",
+            &texture,
+            crate::gl::dump::DumpRange::Fixed(0.0, 1.0),
+        )?;
+        kit::pass(
+            &mut run,
+            "fragment ping-pong",
+            "glsl/gl/reduce.frag",
+            &format!(
+                "{} passes of 2x2 blocks, a texture between passes",
+                passes_for(WIDTH, HEIGHT)
+            ),
+            picture,
+        );
+        run.check(
+            "fragment reduction: sum, relative to the CPU's (fp64) sum (1e-5)",
+            relative(sum as f64, cpu_sum),
+            SUM_TOLERANCE,
+        );
+        run.check(
+            "fragment reduction: maximum (exact)",
+            (max as f64 - cpu_max as f64).abs(),
+            0.0,
+        );
+
+        run.compute = Some(match kit::compute_missing(ctx, "the compute reduction") {
+            Some(why) => why,
+            None => {
+                let (sum, max, passes) = reduce_shared(ctx, &values)?;
+                kit::pass(
+                    &mut run,
+                    "compute, shared memory",
+                    "glsl/learn/compute-reduction/reduce.comp",
+                    &format!("{passes} passes of {PER_GROUP} values per work group"),
+                    None,
+                );
+                run.check(
+                    "compute: sum, relative to the CPU's (1e-5)",
+                    relative(sum as f64, cpu_sum),
+                    SUM_TOLERANCE,
+                );
+                run.check(
+                    "compute: maximum (exact)",
+                    (max as f64 - cpu_max as f64).abs(),
+                    0.0,
+                );
+                run.notes.push((
+                    "passes: fragment 2x2 / compute shared memory".into(),
+                    format!("{} / {passes}", passes_for(WIDTH, HEIGHT)),
+                ));
+                "ran: the tree in shared memory, 256 values per work group and pass".into()
+            }
+        });
+        Ok(kit::finish(run, &INFO, opts))
+    }
+}
+
+fn relative(gpu: f64, cpu: f64) -> f64 {
+    (gpu - cpu).abs() / cpu.abs().max(f64::MIN_POSITIVE)
+}
+
+/// Reduce on the GPU in passes until one (sum, max) is left; and the number of passes.
+fn reduce_shared(ctx: &Context, values: &[f32]) -> anyhow::Result<(f32, f32, u32)> {
+    let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute-reduction/reduce.comp")])?;
+    let pairs: Vec<[f32; 2]> = values.iter().map(|&v| [v, v]).collect();
+    let mut input = Buffer::from_slice(ctx, &pairs, BufferUsage::Static)?;
+    let mut count = values.len() as u32;
+    let mut passes = 0;
+    while count > 1 || passes == 0 {
+        let groups = count.div_ceil(PER_GROUP);
+        let output = Buffer::new(ctx, groups as usize * 8, BufferUsage::GpuCopy)?;
+        program
+            .dispatch("shared-memory reduction")
+            .storage(0, &input)
+            .storage(1, &output)
+            .uniform("u_count", count)
+            .run([groups, 1, 1])?;
+        crate::gl::memory_barrier(ctx, &[Barrier::Storage, Barrier::BufferUpdate]);
+        input = output;
+        count = groups;
+        passes += 1;
+    }
+    let result: Vec<[f32; 2]> = input.read()?;
+    Ok((result[0][0], result[0][1], passes))
+}

@@ -1,0 +1,655 @@
+//! The offline guide: an HTML page per lesson, made by running every lesson of [`super::all`]
+//! on the context given (its pictures are the lessons' own buffers and its numbers their
+//! checks, so it cannot drift from the code), then the reading order from the lessons into
+//! the papers with what to run and read for each, and a glossary of the papers' terms that
+//! every page links to where it uses them. No scripts, no external files.
+
+use super::{LessonOptions, LessonRun};
+use crate::gl::Context;
+use crate::report::html::{escape, STYLE};
+use anyhow::{bail, Context as _};
+use std::path::{Path, PathBuf};
+
+/// The file that marks a folder as one this guide wrote (so it may be rewritten).
+const MARKER: &str = ".classic-gpgpu-guide";
+
+/// What was written: every page, and each lesson's verdict.
+#[derive(Debug)]
+pub struct GuideWritten {
+    pub pages: Vec<PathBuf>,
+    /// (lesson id, passed; false also when the lesson could not run).
+    pub lessons: Vec<(String, bool)>,
+}
+
+/// Run every lesson on `ctx` and write the guide into `dir` (made if missing). A folder that
+/// holds anything and was not made by this function is refused unless `force`.
+pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<GuideWritten> {
+    check_folder(dir, force)?;
+    crate::files::write_bytes(
+        &dir.join(MARKER),
+        b"written by classic-gpgpu learn --guide\n",
+    )?;
+    let lessons = super::all();
+    let mut runs = Vec::new();
+    for lesson in &lessons {
+        let info = lesson.info();
+        let opts = LessonOptions {
+            png_dir: Some(dir.join("pictures").join(info.id)),
+            exercise: None,
+        };
+        runs.push(lesson.run(ctx, &opts).map_err(|e| format!("{e:#}")));
+    }
+    let mut pages = Vec::new();
+    let mut write = |name: &str, html: String| -> anyhow::Result<()> {
+        let path = dir.join(name);
+        crate::files::write_bytes(&path, html.as_bytes())?;
+        pages.push(path);
+        Ok(())
+    };
+    write("index.html", index_page(ctx, &lessons, &runs))?;
+    for (k, lesson) in lessons.iter().enumerate() {
+        let neighbours = (
+            k.checked_sub(1).map(|p| lessons[p].info()),
+            lessons.get(k + 1).map(|n| n.info()),
+        );
+        write(
+            &lesson_file(lesson.info().id),
+            lesson_page(lesson.info(), &runs[k], neighbours),
+        )?;
+    }
+    write("reading.html", reading_page())?;
+    write("glossary.html", glossary_page())?;
+    let verdicts = lessons
+        .iter()
+        .zip(&runs)
+        .map(|(l, r)| (l.info().id.to_string(), matches!(r, Ok(run) if run.passed)))
+        .collect();
+    Ok(GuideWritten {
+        pages,
+        lessons: verdicts,
+    })
+}
+
+/// Refuse a non-empty folder the guide did not make, unless `force`.
+fn check_folder(dir: &Path, force: bool) -> anyhow::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        bail!("--guide {} is a file; give a folder", dir.display());
+    }
+    if !dir.is_dir() || force || dir.join(MARKER).is_file() {
+        return Ok(());
+    }
+    let mut entries =
+        std::fs::read_dir(dir).with_context(|| format!("reading the folder {}", dir.display()))?;
+    if entries.next().is_some() {
+        bail!(
+            "--guide {} is a folder that holds files and was not written by the guide; give an \
+             empty or new folder, or --force to write into it anyway",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+fn lesson_file(id: &str) -> String {
+    format!("lesson-{id}.html")
+}
+
+fn page(title: &str, body: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}\
+         {GUIDE_STYLE}</style></head><body>\n<nav><a href=\"index.html\">Lessons</a> \
+         <a href=\"reading.html\">Reading order</a> <a href=\"glossary.html\">Glossary</a></nav>\n\
+         {body}</body></html>\n",
+        escape(title)
+    )
+}
+
+const GUIDE_STYLE: &str = "nav a{margin-right:1.5em}.flow{display:flex;flex-wrap:wrap;\
+align-items:center;gap:.4em;margin:.6em 0}.box{border:1px solid #99a;border-radius:4px;\
+padding:.4em .6em;background:#f4f6fb;max-width:16em;font-size:90%}.box img{width:96px;\
+image-rendering:pixelated;display:block;margin-top:.3em}.arrow{font-size:140%;color:#667}\
+.pass{color:#070}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}";
+
+fn verdict(run: &Result<LessonRun, String>) -> String {
+    match run {
+        Ok(r) if r.passed => "<span class=\"pass\">passed</span>".into(),
+        Ok(_) => "<span class=\"fail\">FAILED</span>".into(),
+        Err(_) => "<span class=\"fail\">did not run</span>".into(),
+    }
+}
+
+fn index_page(
+    ctx: &Context,
+    lessons: &[&'static dyn super::Lesson],
+    runs: &[Result<LessonRun, String>],
+) -> String {
+    let mut body = String::from(
+        "<h1>Learn classic GPGPU</h1>\n<p>Lessons from \"a texture is an array\" to the \
+         building blocks the papers are made of. Each is a small GPGPU program checked against \
+         the CPU; every picture and number below comes from running it for this guide.</p>\n",
+    );
+    body.push_str(&format!(
+        "<p>Renderer: <b>{}</b>.</p>\n<table><tr><th>lesson</th><th>title</th><th>checks</th>\
+         <th>largest error</th><th>compute</th></tr>\n",
+        escape(&ctx.info().renderer_line())
+    ));
+    for (lesson, run) in lessons.iter().zip(runs) {
+        let info = lesson.info();
+        let (error, compute) = match run {
+            Ok(r) => (
+                format!("{:.3e}", r.max_error),
+                r.compute.clone().unwrap_or_default(),
+            ),
+            Err(_) => (String::new(), String::new()),
+        };
+        body.push_str(&format!(
+            "<tr><td>{}</td><td><a href=\"{}\">{}</a></td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+            info.number,
+            lesson_file(info.id),
+            escape(info.title),
+            verdict(run),
+            error,
+            escape(&compute)
+        ));
+    }
+    body.push_str(
+        "</table>\n<p>Then: the <a href=\"reading.html\">reading order</a> from the lessons \
+         into the papers, and the <a href=\"glossary.html\">glossary</a>.</p>\n",
+    );
+    page("Learn classic GPGPU", &body)
+}
+
+fn lesson_page(
+    info: &super::LessonInfo,
+    run: &Result<LessonRun, String>,
+    (previous, next): (Option<&super::LessonInfo>, Option<&super::LessonInfo>),
+) -> String {
+    let mut body = format!(
+        "<h1>Lesson {}: {}</h1>\n<p>{}</p>\n",
+        info.number,
+        escape(info.title),
+        escape(info.idea)
+    );
+    match run {
+        Err(e) => body.push_str(&format!(
+            "<p class=\"note\">This lesson did not run here: {}</p>\n",
+            escape(e)
+        )),
+        Ok(run) => body.push_str(&run_sections(info, run)),
+    }
+    body.push_str("<h2>Where the papers use it</h2>\n<ul>\n");
+    for step in info.paper_steps {
+        body.push_str(&format!(
+            "<li>{}: {} (<code>{}</code>)</li>\n",
+            escape(step.paper),
+            escape(step.step),
+            escape(step.file)
+        ));
+    }
+    body.push_str("</ul>\n<h2>The code to read</h2>\n<ul>\n");
+    let file = format!("src/learn/{}.rs", info.id.replace('-', "_"));
+    body.push_str(&format!(
+        "<li><code>{}</code>: the passes and the CPU reference</li>\n",
+        escape(&file)
+    ));
+    for shader in info.shaders {
+        body.push_str(&format!("<li><code>{}</code></li>\n", escape(shader)));
+    }
+    body.push_str("</ul>\n");
+    body.push_str(&exercises(info));
+    body.push_str(&terms_used(&format!("{} {}", info.idea, info.title)));
+    body.push_str("<p>");
+    if let Some(p) = previous {
+        body.push_str(&format!(
+            "<a href=\"{}\">&larr; lesson {}</a> ",
+            lesson_file(p.id),
+            p.number
+        ));
+    }
+    match next {
+        Some(n) => body.push_str(&format!(
+            "<a href=\"{}\">lesson {} &rarr;</a>",
+            lesson_file(n.id),
+            n.number
+        )),
+        None => body.push_str("<a href=\"reading.html\">into the papers &rarr;</a>"),
+    }
+    body.push_str("</p>\n");
+    page(&format!("Lesson {}: {}", info.number, info.title), &body)
+}
+
+/// The passes as a diagram, the checks, the notes and the compute counterpart of a run.
+fn run_sections(info: &super::LessonInfo, run: &LessonRun) -> String {
+    let mut out = format!(
+        "<p>Run for this guide on {}: {}.</p>\n<h2>The passes</h2>\n",
+        escape(&run.renderer),
+        verdict(&Ok(run.clone()))
+    );
+    for pass in &run.passes {
+        out.push_str("<div class=\"flow\">");
+        out.push_str(&format!(
+            "<div class=\"box\"><b>{}</b><br>{}</div>",
+            escape(&pass.name),
+            escape(&pass.what)
+        ));
+        if !pass.shader.is_empty() {
+            out.push_str(&format!(
+                "<span class=\"arrow\">&rarr;</span><div class=\"box\"><code>{}</code></div>",
+                escape(&pass.shader)
+            ));
+        }
+        if let Some(picture) = &pass.picture {
+            let src = format!("pictures/{}/{}", info.id, picture);
+            out.push_str(&format!(
+                "<span class=\"arrow\">&rarr;</span><div class=\"box\">buffer<img src=\"{}\" \
+                 alt=\"{}\"></div>",
+                escape(&src),
+                escape(&pass.name)
+            ));
+        }
+        out.push_str("</div>\n");
+    }
+    out.push_str(
+        "<h2>The checks against the CPU</h2>\n<table><tr><th>check</th><th>error</th>\
+         <th>tolerance</th><th>verdict</th></tr>\n",
+    );
+    for c in &run.checks {
+        out.push_str(&format!(
+            "<tr><td>{}</td><td>{:.3e}</td><td>{:.1e}</td><td>{}</td></tr>\n",
+            escape(&c.what),
+            c.max_error,
+            c.tolerance,
+            if c.passed {
+                "<span class=\"pass\">ok</span>"
+            } else {
+                "<span class=\"fail\">failed</span>"
+            }
+        ));
+    }
+    out.push_str("</table>\n");
+    if !run.notes.is_empty() {
+        out.push_str("<h2>Measured, not checked</h2>\n<table>\n");
+        for (name, value) in &run.notes {
+            out.push_str(&format!(
+                "<tr><td>{}</td><td>{}</td></tr>\n",
+                escape(name),
+                escape(value)
+            ));
+        }
+        out.push_str("</table>\n");
+    }
+    if let Some(compute) = &run.compute {
+        out.push_str(&format!(
+            "<h2>The compute counterpart</h2>\n<p>{}</p>\n",
+            escape(compute)
+        ));
+    }
+    out
+}
+
+fn exercises(info: &super::LessonInfo) -> String {
+    if info.exercises.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from("<h2>Exercises</h2>\n");
+    for e in info.exercises {
+        out.push_str(&format!(
+            "<p><b>{}.</b> {} The file to edit: <code>{}</code>. Get the templates and run \
+             yours:</p>\n<pre>classic-gpgpu glsl export DIR --exercises\n# edit DIR/{}, then\n\
+             classic-gpgpu learn {} --exercise {} --glsl-dir DIR</pre>\n<p>Without \
+             <code>--glsl-dir</code> the shipped solution runs. When the check fails the \
+             hint is shown.</p>\n",
+            e.number,
+            escape(e.task),
+            escape(e.shader),
+            escape(e.shader),
+            info.id,
+            e.number
+        ));
+    }
+    out
+}
+
+/// "Terms used here", each linked to its glossary entry: the glossary terms found in `text`.
+fn terms_used(text: &str) -> String {
+    let found: Vec<String> = GLOSSARY
+        .iter()
+        .filter(|t| t.cues.iter().any(|cue| contains_word(text, cue)))
+        .map(|t| {
+            format!(
+                "<a href=\"glossary.html#{}\">{}</a>",
+                t.anchor,
+                escape(t.term)
+            )
+        })
+        .collect();
+    if found.is_empty() {
+        return String::new();
+    }
+    format!("<p>Terms used here: {}.</p>\n", found.join(", "))
+}
+
+fn contains_word(text: &str, word: &str) -> bool {
+    let lower = text.to_lowercase();
+    let word = word.to_lowercase();
+    lower.match_indices(&word).any(|(at, _)| {
+        let before = lower[..at].chars().next_back();
+        let after = lower[at + word.len()..].chars().next();
+        !before.is_some_and(char::is_alphanumeric) && !after.is_some_and(char::is_alphanumeric)
+    })
+}
+
+/// A step of the reading order: what it is, what to run, what to read.
+struct Reading {
+    title: &'static str,
+    what: &'static str,
+    run: &'static [&'static str],
+    read: &'static [&'static str],
+}
+
+const READING: &[Reading] = &[
+    Reading {
+        title: "The lessons",
+        what: "In order, from lesson 0. Each ends by naming the paper step that uses its idea.",
+        run: &[
+            "classic-gpgpu learn --list",
+            "classic-gpgpu learn 0 --png lesson0/",
+        ],
+        read: &["src/learn/", "glsl/learn/"],
+    },
+    Reading {
+        title: "Lecture 3's texture tricks",
+        what: "The image pyramid (a max quadtree built by passes), a function stored in a \
+               texture, random numbers generated into one, an if removed by the depth buffer, \
+               a histogram by blending: the lessons' building blocks used once each.",
+        run: &[
+            "classic-gpgpu lecture3 pyramid",
+            "classic-gpgpu lecture3 function",
+            "classic-gpgpu lecture3 random",
+            "classic-gpgpu lecture3 depth-mask",
+            "classic-gpgpu lecture3 histogram",
+        ],
+        read: &[
+            "src/lecture3/pyramid.rs",
+            "src/lecture3/function_texture.rs",
+            "src/lecture3/random_texture.rs",
+            "src/lecture3/depth_mask.rs",
+            "src/lecture3/blend_histogram.rs",
+        ],
+    },
+    Reading {
+        title: "Paper 3: a neural network as render passes",
+        what: "The simplest paper: a matrix product is a quad whose pixels take inner \
+               products, the sigmoid a second pass (or a function texture).",
+        run: &[
+            "classic-gpgpu mlp detect assets/mlp/text.png --out mask.png",
+            "classic-gpgpu mlp-bench",
+        ],
+        read: &[
+            "src/mlp/matmul.rs",
+            "src/mlp/activation.rs",
+            "src/mlp/network.rs",
+        ],
+    },
+    Reading {
+        title: "Paper 4: mass properties by depth peeling",
+        what: "Depth peeling (lesson 7) finds every layer of a body, MRT writes three \
+               integrands per layer, a reduction (lessons 3 and 10) sums them.",
+        run: &[
+            "classic-gpgpu mass knot --json",
+            "classic-gpgpu buoyancy --steps 300 --png-every 50 frames/",
+        ],
+        read: &[
+            "src/mass/peel.rs",
+            "src/mass/integrands.rs",
+            "src/mass/reduce.rs",
+            "src/mass/peel_end.rs",
+        ],
+    },
+    Reading {
+        title: "Paper 2: a crowd skinned in a pixel shader",
+        what: "Pass 1 skins one vertex per texel, render-to-vertex-buffer (lesson 9) makes it \
+               the VBO of pass 2; LOD and culling keep the crowd large.",
+        run: &[
+            "classic-gpgpu crowd --characters 1024 --png crowd.png",
+            "classic-gpgpu crowd-bench",
+        ],
+        read: &[
+            "src/crowd/pass1_skinning.rs",
+            "src/crowd/render_to_vbo.rs",
+            "src/crowd/pass2_draw.rs",
+            "src/crowd/lod.rs",
+        ],
+    },
+    Reading {
+        title: "Paper 1: collision detection with streaming AABBs",
+        what: "Everything at once: AABB streams in textures, the overlap test as a quad with a \
+               stencil mask of the virtual pairs, an occlusion query counting the CAPs \
+               (lesson 6), the hierarchical readback of P0 through P1-P3 (lesson 8), then the \
+               exact triangle tests.",
+        run: &[
+            "classic-gpgpu collide-scene interlocking-tori --frames 20",
+            "classic-gpgpu collide-bench",
+        ],
+        read: &[
+            "src/collide/stream_setup.rs",
+            "src/collide/streaming_test.rs",
+            "src/collide/reduction.rs",
+            "src/collide/reduction_gpu.rs",
+            "src/collide/tri_test.rs",
+        ],
+    },
+    Reading {
+        title: "Lecture 3's displacement and light hierarchy",
+        what: "Pyramidal displacement mapping traces each pixel through the max pyramid; the \
+               indirect light is gathered by a quadtree search of a light hierarchy.",
+        run: &[
+            "classic-gpgpu lecture3 displace --height assets/lecture3/height.png --png pdm.png",
+            "classic-gpgpu lecture3 light --png light.png",
+        ],
+        read: &[
+            "src/lecture3/displacement/",
+            "src/lecture3/light_hierarchy/",
+        ],
+    },
+    Reading {
+        title: "Then and now",
+        what: "Each paper's kernels in their 2007 formulation beside the compute-shader one \
+               (OpenGL 4.3), measured in one run; lesson 10 is the small version of this.",
+        run: &[
+            "classic-gpgpu collide-scene merging-tori --formulation compute --json",
+            "classic-gpgpu reproduce --quick --out report",
+        ],
+        read: &[
+            "src/report/then_and_now.rs",
+            "src/collide/compute_overlap.rs",
+            "src/gl/reduce_shared.rs",
+        ],
+    },
+];
+
+fn reading_page() -> String {
+    let mut body = String::from(
+        "<h1>Reading order: from the lessons into the papers</h1>\n<p>Each step: what it \
+         adds, the commands to run (each checks itself against the CPU and says so), and the \
+         files to read.</p>\n<ol>\n",
+    );
+    let mut all_text = String::new();
+    for step in READING {
+        all_text.push_str(step.what);
+        all_text.push(' ');
+        body.push_str(&format!(
+            "<li><h2>{}</h2>\n<p>{}</p>\n<pre>",
+            escape(step.title),
+            escape(step.what)
+        ));
+        body.push_str(&escape(&step.run.join("\n")));
+        body.push_str("</pre>\n<p>Read: ");
+        let files: Vec<String> = step
+            .read
+            .iter()
+            .map(|f| format!("<code>{}</code>", escape(f)))
+            .collect();
+        body.push_str(&files.join(", "));
+        body.push_str("</p></li>\n");
+    }
+    body.push_str("</ol>\n");
+    body.push_str(&terms_used(&all_text));
+    page("Reading order", &body)
+}
+
+/// A glossary entry: the term, its anchor, the words that show a page uses it, and what it
+/// means.
+struct Term {
+    term: &'static str,
+    anchor: &'static str,
+    cues: &'static [&'static str],
+    meaning: &'static str,
+}
+
+const GLOSSARY: &[Term] = &[
+    Term {
+        term: "CAP",
+        anchor: "cap",
+        cues: &["CAP", "CAPs", "colliding pairs"],
+        meaning: "Colliding AABB pair (paper 1): two leaf boxes, one from each model, whose \
+                  boxes overlap; the pixel of the overlap pass that holds 1 in P0.",
+    },
+    Term {
+        term: "PCTP",
+        anchor: "pctp",
+        cues: &["PCTP"],
+        meaning: "Potentially colliding triangle pair (paper 1): the triangles under a CAP, \
+                  which the exact triangle test then confirms or rejects.",
+    },
+    Term {
+        term: "CTP",
+        anchor: "ctp",
+        cues: &["CTP", "exact triangle"],
+        meaning: "Colliding triangle pair (paper 1): a PCTP whose triangles really intersect; \
+                  the answer of the collision query.",
+    },
+    Term {
+        term: "PAP",
+        anchor: "pap",
+        cues: &["PAP", "virtual pairs", "virtual nodes"],
+        meaning: "A pair involving a virtual node (paper 1): a slot of the power-of-two stream \
+                  that holds no real box. The stencil mask keeps the overlap test off these.",
+    },
+    Term {
+        term: "eta",
+        anchor: "eta",
+        cues: &["eta"],
+        meaning: "The share of P0's pixels that are set (paper 1, section 5.3.2): below 0.095% \
+                  the hierarchical readback is cheaper, above it the reduced one.",
+    },
+    Term {
+        term: "P0-P3",
+        anchor: "p0-p3",
+        cues: &["P0", "P1", "P1-P3", "hierarchical readback"],
+        meaning: "Paper 1's readback levels: P0 is the overlap pass's target, one pixel per pair \
+                  of boxes; each texel of P1, P2, P3 encodes which texels of a 4x4 block one \
+                  level down are set, so the CPU reads P3 and descends only into set blocks.",
+    },
+    Term {
+        term: "peel",
+        anchor: "peel",
+        cues: &["peel", "peels", "peeling", "layer", "layers"],
+        meaning: "One pass of depth peeling: draw again, keeping only fragments behind the depth \
+                  the previous pass kept; the depth test then keeps the next layer. Paper 4 \
+                  finds a body's surface layers so.",
+    },
+    Term {
+        term: "LOD",
+        anchor: "lod",
+        cues: &["LOD", "levels of detail"],
+        meaning: "Level of detail (paper 2): the same character as meshes of fewer polygons, \
+                  chosen by distance so a large crowd costs less.",
+    },
+    Term {
+        term: "ping-pong",
+        anchor: "ping-pong",
+        cues: &["ping-pong", "reduction", "reduces"],
+        meaning: "Two textures used in turn: each pass reads one and writes the other, since a \
+                  pass cannot read the texture it writes. Reductions and iterated stencils are \
+                  built this way.",
+    },
+    Term {
+        term: "fan-in",
+        anchor: "fan-in",
+        cues: &["fan-in", "2x2", "256-fold"],
+        meaning: "How many inputs one output of a reduction pass combines: 2x2 in the classic \
+                  pass, wider blocks for fewer passes, a whole work group in shared memory.",
+    },
+    Term {
+        term: "MRT",
+        anchor: "mrt",
+        cues: &["MRT", "render targets", "three integrands"],
+        meaning: "Multiple render targets: one fragment shader writing several colour \
+                  attachments in one pass (paper 4's integrands, paper 2's positions and \
+                  normals).",
+    },
+    Term {
+        term: "PBO",
+        anchor: "pbo",
+        cues: &[
+            "PBO",
+            "pixel buffer",
+            "pixel pack buffer",
+            "pixel unpack buffer",
+        ],
+        meaning: "Pixel buffer object: a GL buffer that pixel transfers read from (unpack) or \
+                  write into (pack), so an upload or readback is queued instead of making the \
+                  CPU wait, and a readback can stay on the GPU as a vertex buffer.",
+    },
+    Term {
+        term: "VBO",
+        anchor: "vbo",
+        cues: &["VBO", "vertex buffer"],
+        meaning: "Vertex buffer object: the GL buffer a draw reads its vertex attributes from.",
+    },
+    Term {
+        term: "occlusion query",
+        anchor: "occlusion-query",
+        cues: &["occlusion query", "query"],
+        meaning: "Counts the samples that pass every test in a stretch of draw calls; one \
+                  number read back instead of a buffer.",
+    },
+    Term {
+        term: "stencil mask",
+        anchor: "stencil-mask",
+        cues: &["stencil"],
+        meaning: "Values in the stencil buffer that a later pass tests, so it runs only on the \
+                  pixels a first pass marked.",
+    },
+    Term {
+        term: "transform feedback",
+        anchor: "transform-feedback",
+        cues: &["transform feedback"],
+        meaning: "Captures the vertex shader's outputs into a buffer (OpenGL 3.0), the later \
+                  way to compute vertices on the GPU.",
+    },
+    Term {
+        term: "shared memory",
+        anchor: "shared-memory",
+        cues: &["shared memory", "work group", "compute shader"],
+        meaning: "On-chip memory a compute work group shares, with barriers between steps: \
+                  what CUDA calls shared memory, and what the fragment pipeline never had.",
+    },
+];
+
+fn glossary_page() -> String {
+    let mut body = String::from(
+        "<h1>Glossary</h1>\n<p>The papers' terms, as this project uses them.</p>\n<dl>\n",
+    );
+    for t in GLOSSARY {
+        body.push_str(&format!(
+            "<dt id=\"{}\"><b>{}</b></dt><dd>{}</dd>\n",
+            t.anchor,
+            escape(t.term),
+            escape(t.meaning)
+        ));
+    }
+    body.push_str("</dl>\n");
+    page("Glossary", &body)
+}
