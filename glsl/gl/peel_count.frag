@@ -1,4 +1,7 @@
 #version 330 core
+// Building block: depth peeling (glsl/gl/peel.glsl), counting the layers per pixel (paper 4, the
+// mass and buoyancy views, the selftest).
+// Compiled after: glsl/gl/peel.glsl
 // Marks the pixels a peeled layer covers (to count layers per pixel).
 
 out vec4 o_covered;

@@ -1,4 +1,6 @@
 #version 330 core
+// Building block: ping-pong reduction, 2x2 per pass (paper 4 section 3.3, lecture 3's pyramids,
+// the selftest).
 // One pass of a ping-pong reduction: each output texel combines the 2x2 block of input
 // texels it covers, so n texels take ceil(log2 n) passes. Texels past the input's edge (odd
 // sizes) contribute the operation's identity.
