@@ -1,6 +1,6 @@
 #version 330 core
-// Building block: depth peeling (glsl/gl/peel.glsl), counting the layers per pixel (paper 4, the
-// mass and buoyancy views, the selftest).
+// Building block: depth peeling (glsl/gl/peel.glsl, paper 4 section 3.2), counting the layers
+// per pixel (the selftest's check of peeling).
 // Compiled after: glsl/gl/peel.glsl
 // Marks the pixels a peeled layer covers (to count layers per pixel).
 
