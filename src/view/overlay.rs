@@ -43,6 +43,38 @@ pub fn draw_text(canvas: &Canvas, lines: &[String], corner: Corner) -> Result<()
     draw_image(canvas, &image, width, height, (x, y))
 }
 
+/// How many characters of text fit across a canvas `width` pixels wide (for wrapping).
+pub fn columns(width: u32) -> usize {
+    let scale = if width >= 640 { 2 } else { 1 };
+    (width.saturating_sub(2 * MARGIN) / (8 * scale)).max(1) as usize
+}
+
+/// `text` cut into lines of at most `columns` characters, at spaces where it can be.
+pub fn wrap(text: &str, columns: usize) -> Vec<String> {
+    let columns = columns.max(1);
+    let mut lines = Vec::new();
+    for paragraph in text.lines() {
+        let mut line = String::new();
+        for word in paragraph.split(' ') {
+            let mut word: Vec<char> = word.chars().collect();
+            let used = line.chars().count();
+            if used > 0 && used + 1 + word.len() > columns {
+                lines.push(std::mem::take(&mut line));
+            } else if used > 0 {
+                line.push(' ');
+            }
+            while line.chars().count() + word.len() > columns {
+                let room = columns - line.chars().count();
+                line.extend(word.drain(..room));
+                lines.push(std::mem::take(&mut line));
+            }
+            line.extend(word);
+        }
+        lines.push(line);
+    }
+    lines
+}
+
 /// Blend an RGBA image (rows from the bottom) over `canvas` with its bottom-left pixel at `at`.
 pub fn draw_image(
     canvas: &Canvas,
@@ -107,4 +139,26 @@ fn text_image(lines: &[String], scale: u32, width: u32, height: u32) -> Vec<u8> 
         .flatten()
         .copied()
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrap;
+
+    #[test]
+    fn wrapped_lines_fit_and_keep_every_character() {
+        let text =
+            "glsl/gl/reduce.frag:6: error: syntax error, unexpected ';' averyveryverylongword";
+        for columns in [1, 7, 20, 200] {
+            let lines = wrap(text, columns);
+            assert!(
+                lines.iter().all(|l| l.chars().count() <= columns),
+                "{lines:?}"
+            );
+            let joined: String = lines.concat().split_whitespace().collect();
+            let want: String = text.split_whitespace().collect();
+            assert_eq!(joined, want);
+        }
+        assert_eq!(wrap("a b c", 3), ["a b", "c"]);
+    }
 }
