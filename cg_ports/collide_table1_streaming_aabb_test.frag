@@ -1,3 +1,5 @@
+// Paper 1 (Zhang & Kim 2007), section 5.2 "Streaming AABB Overlap Tests", step 2 "Elementary AABB
+// Overlap Test" (Table I).
 // Port of Zhang & Kim 2007 (IEEE TVCG 13(2)), Table I: "Elementary AABB overlap test in Cg"
 // (streamingAABBTest), line for line in GLSL 330. Cg's TEXCOORD0 / TEXCOORD1 inputs are the
 // varyings uvA / uvB, tex1D is texture() on a sampler1D, and the COLOR output is `color`.

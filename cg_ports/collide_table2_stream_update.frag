@@ -1,3 +1,5 @@
+// Paper 1 (Zhang & Kim 2007), section 6 "Stream Update": the min/max update of the AABB streams
+// (Table II).
 // Port of Zhang & Kim 2007 (IEEE TVCG 13(2)), Table II: "Stream update using a min/max
 // operation in Cg". Our copy of the paper keeps the table's caption and Sec. 6's account of
 // it, not the Cg lines themselves, so this port follows that account step by step: the

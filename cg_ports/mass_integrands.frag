@@ -1,3 +1,5 @@
+// Paper 4 (Kim, Kim, Ko & Terzopoulos 2006), section 3.1 "Shader implementation": the printed
+// fragment shader.
 // Port of the fragment shader listed in section 3.1 of Kim, Kim, Ko & Terzopoulos,
 // "Fast GPU computation of the mass properties of a general shape and its application to
 // buoyancy simulation", The Visual Computer 22(8), 2006: the integrands of eq. 4 and 6.

@@ -21,6 +21,10 @@ struct Cli {
     /// Print one JSON object instead of text.
     #[arg(long, global = true)]
     json: bool,
+    /// Load each shader from DIR/<its path> where DIR has it (e.g. after `glsl export DIR`),
+    /// the compiled-in copy otherwise; `view` reloads them when they are saved.
+    #[arg(long, global = true, value_name = "DIR")]
+    glsl_dir: Option<std::path::PathBuf>,
     #[command(subcommand)]
     command: Command,
 }
@@ -68,6 +72,9 @@ enum Command {
     /// Watch a technique live in a window, its intermediate buffers one key away (or draw the
     /// same frame headless with --headless).
     View(cli::view::ViewArgs),
+    /// The shader files: list them, or export them to edit and run with --glsl-dir.
+    #[command(subcommand)]
+    Glsl(cli::glsl::GlslCommand),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -81,6 +88,8 @@ fn renderer_parser() -> impl clap::builder::TypedValueParser<Value = Renderer> {
 pub struct Global {
     pub renderer: Option<Renderer>,
     pub json: bool,
+    /// `--glsl-dir`: set on every context made for a command.
+    pub glsl_dir: Option<std::path::PathBuf>,
 }
 
 impl Global {
@@ -90,7 +99,9 @@ impl Global {
             Some(r) => gl::Context::new(r),
             None => gl::Context::from_env(),
         };
-        ctx.context("creating the OpenGL context")
+        let ctx = ctx.context("creating the OpenGL context")?;
+        ctx.set_glsl_dir(self.glsl_dir.clone());
+        Ok(ctx)
     }
 
     /// A `*-bench` command: section `P`, figures in `--out` (default `default_out`).
@@ -124,9 +135,14 @@ fn quiet_on_broken_pipe() {
 fn main() -> ExitCode {
     quiet_on_broken_pipe();
     let cli = Cli::parse();
+    if let Err(e) = check_glsl_dir(cli.glsl_dir.as_deref()) {
+        eprintln!("error: {e:#}");
+        return ExitCode::FAILURE;
+    }
     let global = Global {
         renderer: cli.renderer,
         json: cli.json,
+        glsl_dir: cli.glsl_dir,
     };
     let json = global.json;
     let result = match cli.command {
@@ -160,7 +176,8 @@ fn main() -> ExitCode {
         Command::Selftest(a) => global
             .context()
             .and_then(|ctx| cli::selftest::run(&a, &ctx, json)),
-        Command::View(a) => cli::view::run(&a, || global.context()),
+        Command::View(a) => cli::view::run(&a, global.glsl_dir.clone(), || global.context()),
+        Command::Glsl(c) => cli::glsl::run(&c, json),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -168,6 +185,38 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// `--glsl-dir DIR` must name an existing folder (a typo would otherwise run every compiled-in
+/// shader without a word).
+fn check_glsl_dir(dir: Option<&std::path::Path>) -> anyhow::Result<()> {
+    match dir {
+        Some(dir) if !dir.is_dir() => anyhow::bail!(
+            "--glsl-dir {}: {}; give the folder that `classic-gpgpu glsl export` wrote",
+            dir.display(),
+            if dir.exists() {
+                "is a file, not a folder"
+            } else {
+                "no such folder"
+            }
+        ),
+        Some(dir) => {
+            let has_any = classic_gpgpu::gl::shaders::ALL
+                .iter()
+                .any(|s| dir.join(s.name).is_file());
+            if !has_any {
+                eprintln!(
+                    "note: --glsl-dir {} has none of the shader files (they are read from \
+                     {}/glsl/... and {}/cg_ports/...), so every shader is the compiled-in one",
+                    dir.display(),
+                    dir.display(),
+                    dir.display()
+                );
+            }
+            Ok(())
+        }
+        None => Ok(()),
     }
 }
 

@@ -399,3 +399,50 @@ fn the_probe_draws_the_same_readout_in_the_window_and_headless() {
         2,
     );
 }
+
+/// `--glsl-dir` reaches the window's context: with the section 3.1 listing's first output
+/// doubled in DIR, the window's frame (volume text included) must match the headless one made
+/// with the same DIR, which differs from the frame made without it.
+#[test]
+fn the_window_reads_shaders_from_glsl_dir() {
+    let dir = scratch("glsl-dir");
+    let listing = "cg_ports/mass_integrands.frag";
+    let source = classic_gpgpu::gl::shaders::find(listing).unwrap().source;
+    assert!(source.contains("FragData[0] = c * p;"));
+    let path = dir.join(listing);
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    std::fs::write(
+        &path,
+        source.replace("FragData[0] = c * p;", "FragData[0] = 2.0 * c * p;"),
+    )
+    .unwrap();
+    let dir_arg = dir.to_str().unwrap();
+    let demo = ["mass", "cube", "--resolution", "16"];
+    let mut with_dir = demo.to_vec();
+    with_dir.extend(["--glsl-dir", dir_arg]);
+    window_matches_headless("mass-glsl-dir", &with_dir, 2);
+
+    let headless = |extra: &[&str], name: &str| {
+        let png = scratch(name);
+        let mut args = demo.to_vec();
+        args.extend(extra);
+        args.extend([
+            "--frames",
+            "2",
+            "--headless",
+            "--screenshot",
+            png.to_str().unwrap(),
+        ]);
+        let out = viewer(&args, None);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        image::open(&png).unwrap().to_rgba8()
+    };
+    let plain = headless(&[], "mass-plain.png");
+    let doubled = headless(&["--glsl-dir", dir_arg], "mass-doubled.png");
+    assert_ne!(plain, doubled, "the doubled volume shows in the frame");
+    std::fs::remove_dir_all(dir).ok();
+}

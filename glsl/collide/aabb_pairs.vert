@@ -1,4 +1,5 @@
 #version 330 core
+// Paper 1 (Zhang & Kim 2007), section 5.2 "Streaming AABB Overlap Tests", step 1 "Stream Pairing".
 // The rectangle of all AABB pairs of one tile (Sec. 5.2, Fig. 5): row i is slot i of S^X,
 // column j slot j of S^Y. uvA runs up the rows and is the same in every column, so the 1D
 // textures of X texture the rectangle periodically in the vertical direction; uvB runs along

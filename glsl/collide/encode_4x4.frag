@@ -1,4 +1,5 @@
 #version 330 core
+// Paper 1 (Zhang & Kim 2007), section 5.3.1 "Hierarchical Readback": encoding P_i into P_(i+1).
 // Hierarchical readback, encoding (Sec. 5.3.1): texel (x, y) of P_{i+1} holds the mask of
 // the non-zero texels of the 4x4 block at (4x, 4y) of P_i, bit 4b + a for texel (4x+a, 4y+b).
 // 16 bits is an exact integer in a float, so the mask survives the float render target.

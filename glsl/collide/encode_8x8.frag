@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 1 (Zhang & Kim 2007), section 5.3.1 "Hierarchical Readback", the reduced readback:
+// encoding P0 into P1'.
 // Reduced readback, encoding (Sec. 5.3.1): texel (x, y) of P1' holds the 64 bits of the 8x8
 // block at (8x, 8y) of P0, 16 per channel: channel c has rows 2c and 2c+1 of the block, bit
 // 8 (b - 2c) + a for texel (8x+a, 8y+b). Each channel stays an exact integer in a float.

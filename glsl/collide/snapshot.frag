@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 1 (Zhang & Kim 2007), Fig. 1 and Fig. 6(a): the snapshots of the colliding models
+// (shading).
 // Flat shading from the screen-space derivatives of the position (no normals needed);
 // lines (u_lit = 0) keep their colour.
 

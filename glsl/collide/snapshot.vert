@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 1 (Zhang & Kim 2007), Fig. 1 and Fig. 6(a): the snapshots of the colliding models (the
+// view).
 // Fig. 1 / Fig. 6(a) snapshot: the two models and the boxes of their colliding AABB pairs,
 // seen from an oblique orthographic view. One colour per vertex.
 

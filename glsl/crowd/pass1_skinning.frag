@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 2 (Kang & Han 2006), section 2 "Pixel Shader-Based Skinning", pass 1: skinning into a
+// render-target texture.
 // Pass 1 of Kang & Han 2006 (section 2, Fig. 1-2): linear blend skinning in a pixel shader.
 // The render target holds n characters x m vertices: a column is a character, a row a
 // vertex index, so every fragment of a row fetches the same vertex texels (cached after

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 2 (Kang & Han 2006), section 2 "Pixel Shader-Based Skinning", pass 2: drawing from the
+// vertex buffer pass 1 filled.
 // Pass 2 of Kang & Han 2006: draw a character from the vertex buffer that pass 1 filled
 // (render-to-VBO). The vertices are already skinned and in world coordinates.
 

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 2 (Kang & Han 2006), section 3 "Implementation and Result": the shading both skinning
+// methods share.
 // Shading shared by both skinning methods (and the impostor capture), so that they render
 // the same image: one directional light plus ambient, two-sided.
 

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 2 (Kang & Han 2006), section 3 "Implementation and Result", LOD: the sprites of the far
+// field.
 // An impostor texel: the captured character where alpha is set, nothing elsewhere.
 
 in vec2 v_uv;

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 2 (Kang & Han 2006), section 3 "Implementation and Result", LOD: the sprites of the far
+// field.
 // Sprites for the far field (Kang & Han 2006, section 3 LOD; the tutorial's "hundreds of
 // thousands with sprite LOD"): a quad standing upright at each character, turned towards
 // the eye about the vertical axis, showing the atlas tile of the nearest captured view

@@ -1,4 +1,7 @@
 #version 330 core
+// Paper 2 (Kang & Han 2006), section 3 "Implementation and Result", Table 1 "VS": the vertex-
+// shader skinning it is compared with.
+// Compiled after: #define BONES 24, #define BATCH 2
 // The baseline Kang & Han 2006 compare with (Table 1, "VS"): linear blend skinning in the
 // vertex shader with the bone matrices in uniforms (constant registers). The uniform space
 // holds BATCH characters' matrices at a time (BATCH and BONES are defined by the program

@@ -1,4 +1,5 @@
 #version 330 core
+// Building block: the rectangle of every full-target pass (papers 1-4 and lecture 3).
 // A pixel-exact rectangle without vertex buffers: four corners of a triangle strip made
 // from gl_VertexID. A fragment is produced exactly for the pixels whose centres lie inside
 // [x0, x1) x [y0, y1), the GPGPU "one fragment per output element".

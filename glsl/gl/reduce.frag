@@ -1,4 +1,7 @@
 #version 330 core
+// Building block: ping-pong reduction, 2x2 per pass, the shape of paper 4's summation (section
+// 3.3, whose three-target copy is glsl/mass/reduce_sum.frag) and of lecture 3's pyramids; run
+// by the selftest and the building-blocks bench.
 // One pass of a ping-pong reduction: each output texel combines the 2x2 block of input
 // texels it covers, so n texels take ceil(log2 n) passes. Texels past the input's edge (odd
 // sizes) contribute the operation's identity.

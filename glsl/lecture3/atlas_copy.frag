@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006): the
+// pyramid atlas, one level copied into its place.
 // Copies one mipmap level of a pyramid into its place in the pyramid atlas (the viewport is
 // that place). The level is the same for the whole pass.
 

@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): building the hierarchy, one level by clustering four nodes.
 // One level of the light hierarchy from the level below: each node clusters its four
 // children. Flux and VPL count add; position and normal are the children's averages weighted
 // by flux (the normal is left unnormalised: its length shrinks as the children disagree);

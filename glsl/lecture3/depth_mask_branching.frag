@@ -1,3 +1,5 @@
+// Lecture 3, debugging tip "remove `if` with the depth buffer": the version with the `if`.
+// Compiled after: glsl/lecture3/depth_mask_common.glsl
 // The branching shader: every pixel runs it and tests its mask value; the expensive sum runs
 // only where the test passes, 0 elsewhere. (Fragment stage: depth_mask_common.glsl, then
 // this file.)

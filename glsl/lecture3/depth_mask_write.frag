@@ -1,4 +1,5 @@
 #version 330 core
+// Lecture 3, debugging tip "remove `if` with the depth buffer": pass 1, the mask into depth.
 // The cheap first pass of the depth-masked version: the mask test, once per pixel, written
 // into the depth buffer: depth 0 where the pixel is active, 1 where it is not. Nothing else.
 

@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006): the
+// box the height field is traced in.
 // The box the height field is laid on, without vertex buffers: 12 triangles made from
 // gl_VertexID, counter-clockwise seen from outside, so that culling back faces leaves one
 // fragment per pixel (the box is convex). Each fragment then traces its own pixel's ray.

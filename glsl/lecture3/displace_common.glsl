@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006):
+// what both ray tracers share.
 // What the displacement tracers share: the pixel's ray in grid space, the box it enters,
 // the bilinear patches of the height map, and the outputs (hit, statistics, shaded colour,
 // depth). Grid space: x, y in patches (patch (i, j) spans [i, i+1] x [j, j+1]), z the height

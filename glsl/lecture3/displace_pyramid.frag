@@ -1,3 +1,6 @@
+// Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006): the
+// ray traced through the max pyramid.
+// Compiled after: glsl/lecture3/displace_common.glsl
 // Pyramidal displacement mapping [Oh, Ki & Lee, VRST 2006; reconstructed from the
 // abstract]: the pixel's ray is traced through the max pyramid of the patch bounds, top
 // down. A node whose highest point the ray stays above while it crosses the node is skipped

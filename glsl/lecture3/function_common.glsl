@@ -1,4 +1,5 @@
 #version 330 core
+// Lecture 3, "storing a function in a texture": what the exact and the lookup passes share.
 // A function in a texture: what the exact and the lookup passes share. Pixel p evaluates
 // samples s = p K .. p K + K - 1 of `u_total` (K = u_per_pixel), at x_s = lo + (hi - lo)
 // (s + 0.5) / total; with total a power of two below 2^23 every x_s is exact in fp32, so the

@@ -1,3 +1,5 @@
+// Lecture 3, "storing a function in a texture": the function computed in the shader.
+// Compiled after: glsl/lecture3/function_common.glsl
 // The function computed in the shader, K times per pixel. (Fragment stage:
 // function_common.glsl, then this file.)
 

@@ -1,3 +1,5 @@
+// Lecture 3, "storing a function in a texture": the function read from the texture.
+// Compiled after: glsl/lecture3/function_common.glsl
 // The function looked up in a 1D texture with linear filtering, K times per pixel. Texel i
 // holds f(lo + i (hi - lo) / (n - 1)); x maps to the coordinate (0.5 + t (n - 1)) / n,
 // t = (x - lo) / (hi - lo), so that the table's end points are hit exactly and the filter

@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): the receivers, one per pixel.
 // The receivers: what the camera sees, one surface point per pixel (position, normal,
 // albedo); w = 1 marks covered pixels.
 

@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, debugging tip "simplify code with alpha blending": the histogram without blending,
+// for comparison.
 // The histogram without blending, for comparison: each bin's pixel reads every value and
 // adds those that fall in it (bins x values reads, and a loop the blending version does not
 // need). llvmpipe ends a shader's loops after 65535 iterations in all, so the caller keeps

@@ -1,4 +1,5 @@
 #version 330 core
+// Lecture 3, debugging tip "simplify code with alpha blending": one point per value into its bin.
 // Histogram by additive blending: one point per value, from a vertex buffer of values (and
 // weights: 1 for a count). The point lands on the pixel of its bin in a bins x 1 target;
 // values outside [lo, hi) are sent outside the clip volume. The fragment shader writes the

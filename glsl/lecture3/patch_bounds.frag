@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006):
+// level 0 of the pyramid, the bounds of each bilinear patch.
 // Level 0 of the displacement map's pyramid: for each bilinear patch, the extreme of its
 // four corner samples (a bilinear patch takes its extremes at its corners). Texels past the
 // last patch (the padding to a power of two) get the operation's identity.

@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006): the
+// image pyramid, one level from the level below.
 // One level of a max (or min) image pyramid from the level below: each node keeps the
 // extreme of its four children. The texture's readable levels are narrowed to the level
 // below, so texelFetch level 0 reads it. A side that is already 1 repeats its one child.

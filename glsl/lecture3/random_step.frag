@@ -1,4 +1,5 @@
 #version 330 core
+// Lecture 3, "generating random numbers into a texture": one step of every texel's generator.
 // Random numbers into a texture: each texel holds the state of its own generator (four
 // 32-bit words in an RGBA32UI texel) and one pass advances every generator by one step,
 // reading the state texture and writing the other (ping-pong), with the number drawn written

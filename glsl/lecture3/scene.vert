@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): the scene, seen from the light or the camera.
 // The room of the light-hierarchy scene, seen from the spot light or from the camera.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): what the brute-force and the hierarchical gathers share.
 // What the light gathers share: the receiver from the G-buffer, the light hierarchy as three
 // atlases (one texelFetch per node of any level), and the irradiance a VPL or a cluster of
 // VPLs gives a receiver (light.rs has the same formula on the CPU).

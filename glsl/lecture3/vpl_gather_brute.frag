@@ -1,3 +1,6 @@
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): the brute-force gather it is compared with.
+// Compiled after: glsl/lecture3/vpl_common.glsl
 // The brute-force gather the hierarchy is compared with: every VPL of level 0 summed.
 // (The fragment stage is vpl_common.glsl followed by this file.)
 

@@ -1,3 +1,6 @@
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): the hierarchical search (tree traversal) of the lights.
+// Compiled after: glsl/lecture3/vpl_common.glsl
 // Hierarchical search of the light hierarchy [Ki & Oh 2008, reconstructed from the
 // abstract]: a quadtree traversal from the root; a cluster is used as one light when it is
 // small as seen from the receiver (radius < theta x distance, a solid-angle criterion), else

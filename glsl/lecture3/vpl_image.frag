@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): virtual point lights stored in images.
 // Virtual point lights into images: the scene seen from the spot light (a reflective shadow
 // map); every texel is a VPL at the surface it sees, with the flux that surface reflects:
 // albedo x intensity x the texel's solid angle, dw = (2t/N)^2 / (1 + |ndc|^2 t^2)^(3/2) for a

@@ -1,4 +1,6 @@
 #version 330 core
+// Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
+// hierarchy): the picture, direct and gathered indirect light.
 // The picture: direct light from the spot (shadowed by its depth image, the same image that
 // holds the VPLs) plus the gathered indirect light, both reflected by the receiver's albedo,
 // tone mapped (clamped, gamma 2.2).

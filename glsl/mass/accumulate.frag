@@ -14,6 +14,7 @@ layout(location = 2) out vec4 o_sum2;
 
 void main()
 {
+    // Only pixels this peel reached; their three targets are added by the blend.
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     if (texelFetch(u_peel_depth, pixel, 0).r >= 1.0) discard;
     o_sum0 = texelFetch(u_peel0, pixel, 0);

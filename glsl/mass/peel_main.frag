@@ -1,6 +1,7 @@
 // Depth peeling [paper 4, section 3.2] around the integrands of section 3.1, with the
 // fluid-surface test of section 5.2. Compiled after cg_ports/mass_integrands.frag and the
 // GL layer's peel snippet (glsl/gl/peel.glsl: peel_discard() against T_d(k-1)).
+// Compiled after: glsl/mass/peel_prelude.frag, cg_ports/mass_integrands.frag, glsl/gl/peel.glsl
 #undef main
 
 // T_dw: depth of the fluid surface (cleared to 0, "no water", for whole bodies).

@@ -12,6 +12,7 @@ layout(location = 0) out vec4 o_sum0;
 layout(location = 1) out vec4 o_sum1;
 layout(location = 2) out vec4 o_sum2;
 
+// The sum of the block whose lower-left texel is `corner`, texels outside the input skipped.
 vec4 block_sum(sampler2D source, ivec2 corner)
 {
     vec4 s = vec4(0.0);
@@ -26,7 +27,9 @@ vec4 block_sum(sampler2D source, ivec2 corner)
 
 void main()
 {
+    // Output texel (x, y) covers input texels fan_in (x, y) .. fan_in (x, y) + fan_in - 1.
     ivec2 corner = u_fan_in * ivec2(gl_FragCoord.xy);
+    // The three integrand targets, reduced in the same pass (one per render target).
     o_sum0 = block_sum(u_source0, corner);
     o_sum1 = block_sum(u_source1, corner);
     o_sum2 = block_sum(u_source2, corner);

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 4 (Kim, Kim, Ko & Terzopoulos 2006), section 5.3 "Simulation example" (Fig. 9): the bodies
+// in the frames.
 // Frames of the buoyancy scene [paper 4, Fig. 9]: a body, flat-shaded by its face normals.
 layout(location = 0) in vec3 a_position;     // body frame
 layout(location = 1) in vec3 a_face_normal;  // body frame

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 4 (Kim, Kim, Ko & Terzopoulos 2006), section 5.3 "Simulation example" (Fig. 9): the still
+// water.
 // The still water of the buoyancy frames: one large quad at z = u_water_level.
 uniform mat4 u_view_projection;
 uniform float u_water_level;

@@ -1,4 +1,5 @@
 #version 330 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 3: the bias and sigmoid pass.
 // Oh & Jung 2004, section 3, eq. 3: "the pixel shader adds two textures and performs a
 // sigmoid operation": r_ij = 1 / (1 + e^-(m_ij + b_i)). An identity layer skips the sigmoid.
 

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 3: the rectangle of the bias and
+// sigmoid pass.
 // Oh & Jung 2004, section 3: the full-screen rectangle of the bias + sigmoid pass. The
 // coordinate into texture W x X follows the position ("the upper left vertex has the texture
 // coordinate (0,0) ... the upper right vertex (1,0)"); the bias is the same along a row, so

@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 2: the inner product each pixel of a
+// product pass takes.
 // Oh & Jung 2004, section 3, eq. 2: the inner product W_i . X_j that every pixel (i, j) of the
 // matrix-product passes takes, stepping along row i of texture W and column j of texture X with
 // nearest-texel lookups, summed in order k = k_begin .. k_end - 1 onto `sum`. Shared by

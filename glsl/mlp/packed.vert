@@ -1,4 +1,5 @@
 #version 330 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", the packed variant (ours): its rectangle.
 // The rectangle of the packed passes (glsl/mlp/packed_product.frag): it covers the L/4 x M/4
 // output, and each pixel receives its texel position (j', i') = (input-vector block, output
 // block row).

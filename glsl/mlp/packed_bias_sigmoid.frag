@@ -1,4 +1,5 @@
 #version 330 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 3 on the packed variant (ours).
 // Eq. 3 on the packed layout (glsl/mlp/packed_product.frag): four products per texel in four
 // render targets, the bias four per texel along the rows.
 

@@ -1,4 +1,5 @@
 #version 330 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 2 on the packed variant (ours).
 // The packed variant of the matrix product (not in the paper; its faster sibling): four
 // values per RGBA texel and a 4 x 4 block of outputs per fragment, written to four render
 // targets. Per step of four inputs it makes eight texture lookups for 64 multiply-adds,

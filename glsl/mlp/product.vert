@@ -1,4 +1,6 @@
 #version 330 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", Fig. 1: the rectangle of the matrix
+// product.
 // Oh & Jung 2004, section 3 and Fig. 1 (Moravanszky's method): the rectangle that covers the
 // output texture W x X. Each vertex carries two texture coordinates, the row of texture W and
 // the column of texture X that meet at its corner ("the upper left vertex will have the

@@ -1,4 +1,6 @@
 #version 430 core
+// Test of a building block: stream compaction with an atomic counter (the compute formulation of
+// paper 1's readback).
 // Stream compaction with an atomic counter: every invocation whose value passes the test
 // takes the next free slot of the output and writes its index there.
 

@@ -1,4 +1,5 @@
 #version 330 core
+// Test of a building block: texelFetch from a mipmap level (lecture 3's pyramids).
 // Reads texel (x, y) of mipmap level u_level with texelFetch (an image pyramid's lookups).
 uniform sampler2D u_texture;
 uniform int u_level;

@@ -1,4 +1,5 @@
 #version 330 core
+// Test of a building block: a pyramid level from the one below (lecture 3's pyramids).
 // One level of a test pyramid: each texel is the sum of the 2x2 texels below it plus 1000,
 // read with texelFetch from the texture's base level (the level below, by its level range).
 uniform sampler2D u_below;

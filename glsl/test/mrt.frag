@@ -1,4 +1,5 @@
 #version 330 core
+// Test of a building block: several render targets in one pass (paper 4's integrands).
 // Three render targets written in one pass, each a different function of the pixel.
 layout(location = 0) out vec4 o_first;
 layout(location = 1) out vec4 o_second;

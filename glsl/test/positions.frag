@@ -1,4 +1,5 @@
 #version 330 core
+// Test of a building block: render to a vertex buffer through a PBO (paper 2's pass 1).
 // Writes, for texel i, the clip-space position of a point: the pixel centre of texel i of
 // a w x h grid mapped into a (2w) x (2h) target, doubled. Read into a vertex buffer, these
 // positions light exactly the pixels (2x+1, 2y+1).

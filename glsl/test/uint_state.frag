@@ -1,4 +1,5 @@
 #version 330 core
+// Test of a building block: integer textures (lecture 3's random numbers).
 // An integer pass: each texel of an RGBA32UI texture becomes its xor with its own position
 // and a rotation of its words.
 uniform usampler2D u_state;

@@ -179,9 +179,11 @@ fn known_scene(scene: Option<&str>) -> anyhow::Result<String> {
     }
 }
 
-/// Run `view`; `context` makes the headless context when `--headless` asks for one.
+/// Run `view`; `context` makes the headless context when `--headless` asks for one, and the
+/// window's context reads shaders from `glsl_dir` (`--glsl-dir`) and reloads them when saved.
 pub fn run(
     args: &ViewArgs,
+    glsl_dir: Option<PathBuf>,
     context: impl FnOnce() -> anyhow::Result<Context>,
 ) -> anyhow::Result<()> {
     let spec = args.demo.spec()?;
@@ -233,6 +235,7 @@ pub fn run(
             paused: args.paused,
             view,
             keys: args.keys.clone(),
+            glsl_dir,
         },
     )
     .with_context(|| format!("view {}", spec.name()))

@@ -38,6 +38,7 @@ mod program;
 pub mod query;
 pub mod reduce;
 pub mod reduce_shared;
+pub mod shaders;
 mod storage;
 mod texture;
 mod uniforms;

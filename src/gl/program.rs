@@ -196,6 +196,31 @@ impl Program {
         Ok(program)
     }
 
+    /// Compile the concatenation of `parts` as one `stage`, without linking it into a program:
+    /// whether a file (with what comes before it in its stage) compiles on this context. A
+    /// file of a 4.3 stage (compute) on an older context is [`Context::require_compute`]'s
+    /// error.
+    pub fn check_compiles(
+        ctx: &Context,
+        stage: super::shaders::Stage,
+        parts: &[ShaderSource],
+    ) -> Result<(), GlError> {
+        use super::shaders::Stage;
+        let (kind, name) = match stage {
+            Stage::Vertex => (glow::VERTEX_SHADER, "vertex"),
+            Stage::Fragment => (glow::FRAGMENT_SHADER, "fragment"),
+            Stage::Geometry => (glow::GEOMETRY_SHADER, "geometry"),
+            Stage::Compute => {
+                let names: Vec<&str> = parts.iter().map(|p| p.name).collect();
+                ctx.require_compute(&format!("the compute shader {}", names.join(", ")))?;
+                (glow::COMPUTE_SHADER, "compute")
+            }
+        };
+        let shader = compile(ctx, kind, name, parts)?;
+        unsafe { ctx.gl().delete_shader(shader) };
+        Ok(())
+    }
+
     /// Whatever the driver reports active counts as declared too (a declaration made by a
     /// macro, which the parser does not expand); members of uniform blocks do not.
     fn add_active_uniforms(&mut self) {

@@ -14,6 +14,7 @@
 pub mod canvas;
 pub mod demos;
 pub mod inset;
+pub mod live;
 pub mod overlay;
 pub mod window;
 

@@ -71,6 +71,12 @@ pub fn fit(lines: &[String], width: u32, height: u32) -> (u32, Vec<String>) {
     (scale, wrapped)
 }
 
+/// How many characters of text fit across a canvas `width` pixels wide (for wrapping).
+pub fn columns(width: u32) -> usize {
+    let scale = if width >= 640 { 2 } else { 1 };
+    (width.saturating_sub(2 * MARGIN) / (8 * scale)).max(1) as usize
+}
+
 /// Blend an RGBA image (rows from the bottom) over `canvas` with its bottom-left pixel at `at`.
 pub fn draw_image(
     canvas: &Canvas,
@@ -135,4 +141,26 @@ fn text_image(lines: &[String], scale: u32, width: u32, height: u32) -> Vec<u8> 
         .flatten()
         .copied()
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrap;
+
+    #[test]
+    fn wrapped_lines_fit_and_keep_every_character() {
+        let text =
+            "glsl/gl/reduce.frag:6: error: syntax error, unexpected ';' averyveryverylongword";
+        for columns in [1, 7, 20, 200] {
+            let lines = wrap(text, columns);
+            assert!(
+                lines.iter().all(|l| l.chars().count() <= columns),
+                "{lines:?}"
+            );
+            let joined: String = lines.concat().split_whitespace().collect();
+            let want: String = text.split_whitespace().collect();
+            assert_eq!(joined, want);
+        }
+        assert_eq!(wrap("a b c", 3), ["a b", "c"]);
+    }
 }

@@ -2,7 +2,8 @@
 //! into the canvas and copies the canvas to the window; keys and the mouse change the
 //! [`ViewState`]; the title shows the frame time and the demo's per-pass timings.
 
-use super::{draw_frame, write_png, Canvas, Demo, DemoSpec, ViewState};
+use super::live::{LiveDemo, POLL_INTERVAL};
+use super::{write_png, Canvas, DemoSpec, ViewState};
 use crate::gl::GlWindow;
 use anyhow::{anyhow, Context as _};
 use std::path::{Path, PathBuf};
@@ -29,6 +30,8 @@ pub struct WindowOptions {
     pub view: ViewState,
     /// The demo's own keys pressed before the first frame.
     pub keys: String,
+    /// `--glsl-dir`: shaders read from this folder, and reloaded when saved there.
+    pub glsl_dir: Option<PathBuf>,
 }
 
 /// Open the window and run `spec` until Esc, or for `options.frames` frames. Without a
@@ -75,17 +78,18 @@ struct App<'a> {
 /// A window with its demo.
 struct Running {
     // Dropped in this order: the demo's and the canvas' GL objects before the window.
-    demo: Box<dyn Demo>,
+    demo: LiveDemo,
     canvas: Canvas,
     window: GlWindow,
     view: ViewState,
-    frame: usize,
     paused: bool,
     step_once: bool,
     redraw: bool,
     drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     frame_ms: f64,
+    /// When the shader files were last looked at (`--glsl-dir`).
+    polled: Instant,
 }
 
 impl App<'_> {
@@ -107,21 +111,21 @@ impl App<'_> {
         let ctx = window.context().clone();
         let info = ctx.info();
         eprintln!("window: {} ({})", info.renderer_line(), info.why);
-        let mut demo = self.spec.build(&ctx, size)?;
-        super::press_keys(demo.as_mut(), &self.options.keys)?;
+        ctx.set_glsl_dir(self.options.glsl_dir.clone());
+        let demo = LiveDemo::new(self.spec, &ctx, size, &self.options.keys)?;
         let canvas = Canvas::new(&ctx, size.0, size.1)?;
         Ok(Running {
             demo,
             canvas,
             window,
             view: self.options.view,
-            frame: 0,
             paused: self.options.paused,
             step_once: false,
             redraw: true,
             drag: None,
             cursor: (0.0, 0.0),
             frame_ms: 0.0,
+            polled: Instant::now(),
         })
     }
 
@@ -135,6 +139,13 @@ impl App<'_> {
         let Some(r) = self.running.as_mut() else {
             return Ok(());
         };
+        if r.polled.elapsed() >= POLL_INTERVAL {
+            r.polled = Instant::now();
+            let ctx = r.window.context().clone();
+            if r.demo.poll(&ctx).is_some() {
+                r.redraw = true;
+            }
+        }
         let advance = !r.paused || r.step_once;
         if !advance && !r.redraw {
             return Ok(());
@@ -142,13 +153,12 @@ impl App<'_> {
         let started = Instant::now();
         if advance {
             r.demo.step()?;
-            r.frame += 1;
             r.step_once = false;
         }
-        draw_frame(r.demo.as_mut(), &r.canvas, &r.view, r.frame)?;
+        r.demo.draw(&r.canvas, &r.view)?;
         r.window.present(r.canvas.target())?;
         r.redraw = false;
-        if self.options.frames == Some(r.frame) {
+        if self.options.frames == Some(r.demo.steps()) {
             if let Some(path) = &self.options.screenshot {
                 let size = (r.canvas.width(), r.canvas.height());
                 let pixels = r.window.read_pixels(size.0, size.1)?;
@@ -165,9 +175,9 @@ impl App<'_> {
         r.window.window().set_title(&format!(
             "classic-gpgpu view {} | frame {} {state} | {:.1} ms/frame | {}",
             self.spec.name(),
-            r.frame,
+            r.demo.steps(),
             r.frame_ms,
-            r.demo.timings()
+            r.demo.demo().timings()
         ));
         Ok(())
     }
@@ -183,14 +193,14 @@ impl App<'_> {
             Key::Character(c) if c.as_str() == " " => r.paused = !r.paused,
             Key::Named(NamedKey::ArrowRight) => r.step_once = true,
             Key::Named(NamedKey::Tab) => {
-                r.view.shown = (r.view.shown + 1) % r.demo.buffers().len().max(1);
+                r.view.shown = (r.view.shown + 1) % r.demo.demo().buffers().len().max(1);
             }
             Key::Character(c) if c.as_str() == "h" => r.view.help = !r.view.help,
             Key::Character(c) if c.as_str() == "s" => {
                 let path = free_path(&format!(
                     "classic-gpgpu-{}-frame{}",
                     self.spec.name().replace(' ', "-"),
-                    r.frame
+                    r.demo.steps()
                 ));
                 let pixels = r.canvas.pixels()?;
                 write_png(&pixels, (r.canvas.width(), r.canvas.height()), &path)?;
@@ -302,7 +312,11 @@ impl ApplicationHandler for App<'_> {
             return;
         }
         let idle = self.running.as_ref().is_none_or(|r| r.paused && !r.redraw);
-        event_loop.set_control_flow(if idle {
+        let watching = self.running.as_ref().filter(|r| r.demo.watching());
+        event_loop.set_control_flow(if let (true, Some(r)) = (idle, watching) {
+            // Paused, but the shader files are still looked at.
+            ControlFlow::WaitUntil(r.polled + POLL_INTERVAL)
+        } else if idle {
             ControlFlow::Wait
         } else {
             ControlFlow::Poll

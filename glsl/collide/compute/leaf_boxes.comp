@@ -1,4 +1,6 @@
 #version 430 core
+// Paper 1 (Zhang & Kim 2007), section 6 "Stream Update", as a compute pass (the then-and-now
+// formulation).
 // Stream update as a compute pass: one invocation per real leaf takes the min and max of its
 // own vertices, gathered through the leaf's vertex list (no vertex texture column, no virtual
 // slots, no render target).

@@ -1,4 +1,6 @@
 #version 430 core
+// Paper 1 (Zhang & Kim 2007), section 5.2 step 2 "Elementary AABB Overlap Test" and 5.3 "Stream
+// Reduction", as one compute pass (then and now).
 // The AABB overlap test over all leaf pairs, with stream compaction: invocation (i, j) tests
 // leaf i of X against leaf j of Y and, when the boxes overlap, takes the next slot of the
 // pair list from an atomic counter and writes (i, j) there. The list comes back as it is:

@@ -1,4 +1,6 @@
 #version 430 core
+// Paper 2 (Kang & Han 2006), section 2 "Pixel Shader-Based Skinning", the skinning pass as a
+// compute shader (then and now).
 // Linear blend skinning as a compute pass: invocation (v, c) skins vertex v of character c
 // and writes it straight into the storage buffer that the drawing pass reads as its vertex
 // data. The formula is pass 1's (glsl/crowd/pass1_skinning.frag); what is gone is the

@@ -1,4 +1,6 @@
 #version 430 core
+// Building block: reduction in work-group shared memory, the compute formulation of
+// glsl/gl/reduce.frag (paper 4's compute path; the bridge to lecture 5).
 // One pass of a reduction in work-group shared memory: each group of 256 invocations loads
 // 512 values of one segment (two each), combines them in a tree of halving strides in shared
 // memory, and writes one partial result. Segment y's n values give ceil(n / 512) partials;

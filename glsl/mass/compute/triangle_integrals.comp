@@ -1,4 +1,6 @@
 #version 430 core
+// Paper 4 (Kim, Kim, Ko & Terzopoulos 2006), section 2.1 "Computing mass properties with volume
+// integrals", per triangle as a compute pass (then and now).
 // The divergence-theorem sum written directly: one invocation per triangle (a, b, c) adds the
 // signed tetrahedron (origin, a, b, c), whose integrals of 1, x, y, z, x², y², z², xy, yz, zx
 // have closed forms. The sum over a closed surface is the solid's integrals, whatever the

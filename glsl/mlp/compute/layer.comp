@@ -1,4 +1,6 @@
 #version 430 core
+// Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 2 and 3 in one compute pass (then and
+// now).
 // One layer R = activation(X W' + B) as a tiled matrix product in shared memory: each
 // 16 x 16 work group computes a 16 x 16 block of R (16 input vectors by 16 output nodes).
 // Stepping along the N inputs 16 at a time, the group loads one tile of X and one of W into

@@ -1,0 +1,234 @@
+//! Shaders edited while the viewer runs (`view <demo> --glsl-dir DIR`): the window polls the
+//! modification times of the shader files in DIR about twice a second ([`ShaderWatch`]); when
+//! one changes, [`LiveDemo::reload`] builds the demo again from its [`DemoSpec`] on the same
+//! context (which reads DIR), presses the same keys (`--keys`, then those pressed since, each at its step) and replays
+//! as many steps as the running one has taken. If any of that fails, the running demo is kept and the overlay shows why: the
+//! file and line, and the driver's first message. Nothing here knows about windows, so the
+//! headless tests drive it the same way the window does.
+
+use super::{draw_frame, overlay, press_keys, Canvas, Demo, DemoSpec, ViewState};
+use crate::gl::{shaders, Context, GlError};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, SystemTime};
+
+/// How often the window looks at the files.
+pub const POLL_INTERVAL: Duration = Duration::from_millis(500);
+
+/// A file's modification time and length, or `None` when DIR does not have it.
+type Stamp = Option<(SystemTime, u64)>;
+
+/// The stamps of every project shader file under a folder; [`ShaderWatch::poll`] says which
+/// changed (written, made, removed) since the last poll.
+pub struct ShaderWatch {
+    dir: PathBuf,
+    stamps: Vec<Stamp>,
+}
+
+impl ShaderWatch {
+    pub fn new(dir: &Path) -> ShaderWatch {
+        ShaderWatch {
+            dir: dir.to_path_buf(),
+            stamps: stamps(dir),
+        }
+    }
+
+    /// The shader files (repository paths) whose stamp changed since the last poll.
+    pub fn poll(&mut self) -> Vec<&'static str> {
+        let now = stamps(&self.dir);
+        let changed = shaders::ALL
+            .iter()
+            .zip(self.stamps.iter().zip(&now))
+            .filter(|(_, (before, after))| before != after)
+            .map(|(s, _)| s.name)
+            .collect();
+        self.stamps = now;
+        changed
+    }
+}
+
+fn stamps(dir: &Path) -> Vec<Stamp> {
+    shaders::ALL
+        .iter()
+        .map(|s| {
+            let meta = std::fs::metadata(dir.join(s.name)).ok()?;
+            Some((meta.modified().ok()?, meta.len()))
+        })
+        .collect()
+}
+
+/// A demo that can be rebuilt from its spec when its shaders change, keeping the last good one.
+pub struct LiveDemo {
+    spec: DemoSpec,
+    size: (u32, u32),
+    keys: String,
+    /// The demo's keys pressed since (at which step, which key), replayed in that order.
+    pressed: Vec<(usize, String)>,
+    demo: Box<dyn Demo>,
+    steps: usize,
+    /// Why the last reload failed (cleared by one that works).
+    error: Option<String>,
+    watch: Option<ShaderWatch>,
+}
+
+impl LiveDemo {
+    /// Build `spec` on `ctx`, press `keys`; with a `--glsl-dir` on `ctx`, watch its files.
+    pub fn new(
+        spec: &DemoSpec,
+        ctx: &Context,
+        size: (u32, u32),
+        keys: &str,
+    ) -> anyhow::Result<LiveDemo> {
+        let watch = ctx.glsl_dir().map(|dir| ShaderWatch::new(&dir));
+        let demo = build(spec, ctx, size, keys, &[], 0)?;
+        Ok(LiveDemo {
+            spec: spec.clone(),
+            size,
+            keys: keys.to_string(),
+            pressed: Vec::new(),
+            demo,
+            steps: 0,
+            error: None,
+            watch,
+        })
+    }
+
+    pub fn demo(&mut self) -> &mut dyn Demo {
+        self.demo.as_mut()
+    }
+
+    /// Steps taken (the frame number).
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    pub fn step(&mut self) -> anyhow::Result<()> {
+        self.demo.step()?;
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// A key of the demo's own pressed in the window (remembered for reloads); whether the
+    /// demo used it.
+    pub fn key(&mut self, key: &str) -> anyhow::Result<bool> {
+        let used = self.demo.key(key)?;
+        if used {
+            self.pressed.push((self.steps, key.to_string()));
+        }
+        Ok(used)
+    }
+
+    /// Whether shader files are watched (a `--glsl-dir` was set).
+    pub fn watching(&self) -> bool {
+        self.watch.is_some()
+    }
+
+    /// Why the last reload failed, as drawn in the overlay; `None` after one that worked.
+    pub fn error(&self) -> Option<&str> {
+        self.error.as_deref()
+    }
+
+    /// Look at the files (the window calls this every [`POLL_INTERVAL`]); reload when one
+    /// changed. `Some(worked)` when a reload ran.
+    pub fn poll(&mut self, ctx: &Context) -> Option<bool> {
+        let changed = self.watch.as_mut()?.poll();
+        if changed.is_empty() {
+            return None;
+        }
+        eprintln!("shader files changed: {}; reloading", changed.join(", "));
+        Some(self.reload(ctx))
+    }
+
+    /// Build the demo again on `ctx` (its shaders read afresh), press the keys and replay the
+    /// steps taken. On success it replaces the running demo; on failure the running demo stays
+    /// and [`LiveDemo::error`] says why. Whether it worked.
+    pub fn reload(&mut self, ctx: &Context) -> bool {
+        match build(
+            &self.spec,
+            ctx,
+            self.size,
+            &self.keys,
+            &self.pressed,
+            self.steps,
+        ) {
+            Ok(demo) => {
+                self.demo = demo;
+                self.error = None;
+                true
+            }
+            Err(e) => {
+                let message = describe(&e);
+                eprintln!("reload failed, the last good demo keeps running:\n{e:#}");
+                self.error = Some(message);
+                false
+            }
+        }
+    }
+
+    /// Draw the frame (as [`draw_frame`]) and, after a failed reload, its error at the bottom,
+    /// wrapped to the canvas' width.
+    pub fn draw(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
+        draw_frame(self.demo.as_mut(), canvas, view, self.steps)?;
+        if let Some(error) = &self.error {
+            let columns = overlay::columns(canvas.width());
+            let mut lines = vec!["reload failed; still running the last good shaders:".to_string()];
+            lines.extend(crate::gl::picture::wrap(error, columns));
+            overlay::draw_text(canvas, &lines, overlay::Corner::BottomLeft)?;
+        }
+        Ok(())
+    }
+}
+
+fn build(
+    spec: &DemoSpec,
+    ctx: &Context,
+    size: (u32, u32),
+    keys: &str,
+    pressed: &[(usize, String)],
+    steps: usize,
+) -> anyhow::Result<Box<dyn Demo>> {
+    let mut demo = spec.build(ctx, size)?;
+    press_keys(demo.as_mut(), keys)?;
+    let mut pressed = pressed.iter().peekable();
+    for step in 0..=steps {
+        while let Some((_, key)) = pressed.next_if(|(at, _)| *at == step) {
+            demo.key(key)?;
+        }
+        if step < steps {
+            demo.step()?;
+        }
+    }
+    Ok(demo)
+}
+
+/// A failed reload in a few words: for a shader that does not compile, `file:line: ` and the
+/// driver's first message; otherwise the error's first line.
+pub fn describe(e: &anyhow::Error) -> String {
+    let shader = e.chain().find_map(|cause| match cause.downcast_ref() {
+        Some(GlError::Shader(s)) => Some(s),
+        _ => None,
+    });
+    match shader {
+        Some(s) => {
+            let place = match s.line {
+                Some(line) => format!("{}:{line}", s.file),
+                None => s.file.clone(),
+            };
+            let first = s
+                .log
+                .lines()
+                .map(str::trim)
+                .find(|l| !l.is_empty())
+                .unwrap_or("(the driver gave no message)");
+            let first = first
+                .strip_prefix(&format!("{place}:"))
+                .unwrap_or(first)
+                .trim();
+            format!("{place}: {first}")
+        }
+        None => format!("{e:#}")
+            .lines()
+            .next()
+            .unwrap_or_default()
+            .to_string(),
+    }
+}
