@@ -171,7 +171,9 @@ impl LiveDemo {
         if let Some(error) = &self.error {
             let columns = overlay::columns(canvas.width());
             let mut lines = vec!["reload failed; still running the last good shaders:".to_string()];
-            lines.extend(crate::gl::picture::wrap(error, columns));
+            for line in error.lines() {
+                lines.extend(crate::gl::picture::wrap(line, columns));
+            }
             overlay::draw_text(canvas, &lines, overlay::Corner::BottomLeft)?;
         }
         Ok(())

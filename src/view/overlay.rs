@@ -145,7 +145,7 @@ fn text_image(lines: &[String], scale: u32, width: u32, height: u32) -> Vec<u8> 
 
 #[cfg(test)]
 mod tests {
-    use super::wrap;
+    use crate::gl::picture::wrap;
 
     #[test]
     fn wrapped_lines_fit_and_keep_every_character() {
