@@ -68,6 +68,8 @@ enum Command {
     /// Watch a technique live in a window, its intermediate buffers one key away (or draw the
     /// same frame headless with --headless).
     View(cli::view::ViewArgs),
+    /// The lessons of the basic GPGPU approach, in order, each checked against the CPU.
+    Learn(cli::learn::LearnArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -161,6 +163,7 @@ fn main() -> ExitCode {
             .context()
             .and_then(|ctx| cli::selftest::run(&a, &ctx, json)),
         Command::View(a) => cli::view::run(&a, || global.context()),
+        Command::Learn(a) => cli::learn::run(&a, json, || global.context()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -336,3 +336,8 @@ fn mlp_detect_window_matches_headless() {
         1,
     );
 }
+
+#[test]
+fn learn_ping_pong_window_matches_headless() {
+    window_matches_headless("learn", &["learn", "ping-pong", "--buffer", "2"], 2);
+}

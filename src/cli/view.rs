@@ -83,6 +83,12 @@ pub enum DemoCommand {
     /// adjustable (keys + and -).
     #[command(subcommand)]
     Mlp(MlpDemo),
+    /// A lesson of `learn` live: each pass's buffer (Tab), the checks against the CPU, one
+    /// more iteration per step where the lesson iterates (ping-pong).
+    Learn {
+        /// The lesson's id or number (`classic-gpgpu learn --list`).
+        id: String,
+    },
 }
 
 #[derive(clap::Subcommand, Debug)]
@@ -130,6 +136,7 @@ impl DemoCommand {
             DemoCommand::Mlp(MlpDemo::Detect { image }) => DemoSpec::MlpDetect {
                 image: image.clone(),
             },
+            DemoCommand::Learn { id } => DemoSpec::Learn { id: id.clone() },
         }
     }
 }

@@ -311,7 +311,11 @@ pub fn chosen_exercise(
     match info.exercises.iter().find(|e| e.number == n) {
         Some(e) => Ok(Some(e)),
         None => {
-            let numbers: Vec<String> = info.exercises.iter().map(|e| e.number.to_string()).collect();
+            let numbers: Vec<String> = info
+                .exercises
+                .iter()
+                .map(|e| e.number.to_string())
+                .collect();
             anyhow::bail!(
                 "--exercise {n}: lesson {} has exercise{} {}",
                 info.id,
@@ -409,7 +413,10 @@ pub(crate) fn max_difference(a: &[f32], b: &[f32]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(&x, &y)| (x as f64 - y as f64).abs())
-        .fold(0.0, |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) })
+        .fold(
+            0.0,
+            |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+        )
 }
 
 /// `n` values drawn uniformly from `[lo, hi)` by a seeded generator: the same data each run.

@@ -256,5 +256,7 @@ fn jacobi_compute(
         max_difference(&gpu, cpu),
         TOLERANCE,
     );
-    Ok(format!("ran {JACOBI_COMPUTE}, checked against the same CPU iterate"))
+    Ok(format!(
+        "ran {JACOBI_COMPUTE}, checked against the same CPU iterate"
+    ))
 }

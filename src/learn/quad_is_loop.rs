@@ -97,7 +97,10 @@ fn saxpy(
     run.pass(
         "upload x and y",
         "",
-        &format!("two arrays of {} floats into {W}x{H} R32F textures", x.len()),
+        &format!(
+            "two arrays of {} floats into {W}x{H} R32F textures",
+            x.len()
+        ),
         Some(PassBuffer::floats(W, H, 1, x.to_vec())),
     );
     let out = Texture::new_2d(ctx, W, H, TextureFormat::R32F)?;
@@ -191,5 +194,7 @@ fn saxpy_compute(
         max_difference(&gpu, cpu),
         SAXPY_TOLERANCE,
     );
-    Ok(format!("ran {SAXPY_COMPUTE}, checked against the same CPU loop"))
+    Ok(format!(
+        "ran {SAXPY_COMPUTE}, checked against the same CPU loop"
+    ))
 }

@@ -75,14 +75,24 @@ impl Lesson for Reduction {
         run.pass(
             "upload",
             "",
-            &format!("{} values in [0, 1) into a {W}x{H} RGBA32F texture, red = green = value", W * H),
+            &format!(
+                "{} values in [0, 1) into a {W}x{H} RGBA32F texture, red = green = value",
+                W * H
+            ),
             Some(PassBuffer::floats(W, H, 1, values.clone())),
         );
         let two = Program::rect(ctx, &[shader!("glsl/learn/reduce_2x2.frag")])?;
         let wide = Program::rect(ctx, &[shader!("glsl/learn/reduce_wide.frag")])?;
         for (program, fan, shader) in [(&two, 2, REDUCE_2X2), (&wide, WIDE, REDUCE_WIDE)] {
             let (gpu_sum, gpu_max, sizes) = ladder(ctx, &mut run, &input, program, fan, shader)?;
-            check_results(&mut run, &format!("{fan}x{fan}"), (gpu_sum, gpu_max), (sum, max), &values, sizes.len() as u32 * (fan * fan - 1));
+            check_results(
+                &mut run,
+                &format!("{fan}x{fan}"),
+                (gpu_sum, gpu_max),
+                (sum, max),
+                &values,
+                sizes.len() as u32 * (fan * fan - 1),
+            );
             let ladder: Vec<String> = std::iter::once((W, H))
                 .chain(sizes.iter().copied())
                 .map(|(w, h)| format!("{w}x{h}"))
@@ -191,5 +201,7 @@ fn compute(
     );
     // Each pass is a tree of 9 additions (2 per invocation, then 8 halvings).
     check_results(run, "compute", (sum, max), expected, values, passes * 9);
-    Ok(format!("ran {REDUCE_COMPUTE}, checked against the same CPU sum and maximum"))
+    Ok(format!(
+        "ran {REDUCE_COMPUTE}, checked against the same CPU sum and maximum"
+    ))
 }

@@ -71,7 +71,10 @@ impl Lesson for ScatterAndBlend {
         run.pass(
             "upload",
             "",
-            &format!("{} values in [0, 1) into a {W}x{H} R32F texture", values.len()),
+            &format!(
+                "{} values in [0, 1) into a {W}x{H} R32F texture",
+                values.len()
+            ),
             Some(PassBuffer::floats(W, H, 1, values.clone())),
         );
         let program = Program::new(
@@ -178,5 +181,7 @@ fn compute(
         max_difference(&counts, cpu),
         0.0,
     );
-    Ok(format!("ran {HISTOGRAM_COMPUTE}, checked against the same CPU histogram"))
+    Ok(format!(
+        "ran {HISTOGRAM_COMPUTE}, checked against the same CPU histogram"
+    ))
 }

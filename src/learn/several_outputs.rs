@@ -192,5 +192,7 @@ fn compute(
         max_difference(&gpu0, first).max(max_difference(&gpu1, second)),
         TOLERANCE,
     );
-    Ok(format!("ran {INTEGRANDS_COMPUTE}, checked against the same CPU integrands"))
+    Ok(format!(
+        "ran {INTEGRANDS_COMPUTE}, checked against the same CPU integrands"
+    ))
 }

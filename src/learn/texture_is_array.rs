@@ -184,12 +184,25 @@ fn formats(
 fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], back: &[f32]) {
     match format {
         TextureFormat::Rgba8 => {
-            // In steps of 1/255: GL lets the conversion round either way within one step.
+            // In whole steps of 1/255: GL lets the conversion round either way within one.
             let cpu: Vec<f32> = values.iter().map(|&x| round_unorm8(x)).collect();
+            let steps: Vec<f64> = back
+                .iter()
+                .zip(&cpu)
+                .map(|(&b, &c)| ((b as f64 - c as f64) * 255.0).abs().round())
+                .collect();
             run.check(
                 "RGBA8 read back = the CPU's rounding to 1/255 steps (error in steps)",
-                max_difference(back, &cpu) * 255.0,
+                largest(&steps),
                 1.0,
+            );
+            run.note(
+                "RGBA8 rounding",
+                format!(
+                    "{} of {} values came back one step from the nearest (the CPU's rounding)",
+                    steps.iter().filter(|&&s| s > 0.0).count(),
+                    values.len()
+                ),
             );
             let inside: Vec<(f32, f32)> = values
                 .iter()
@@ -213,17 +226,32 @@ fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], ba
             );
         }
         TextureFormat::R16F => {
-            // In steps of a half float at each value: GL lets the conversion round to nearest
-            // or toward zero, at most one step apart.
-            let steps = values
+            // In whole steps of a half float at each value: GL lets the conversion round to
+            // nearest or toward zero, at most one step apart.
+            let steps: Vec<f64> = values
                 .iter()
                 .zip(back)
-                .map(|(&x, &b)| (round_half(x) as f64 - b as f64).abs() / half_step(x) as f64)
-                .fold(0.0, |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) });
+                .map(|(&x, &b)| ((round_half(x) as f64 - b as f64) / half_step(x) as f64).abs())
+                .map(|s| s.round())
+                .collect();
             run.check(
                 "R16F read back = the CPU's rounding to half floats (error in half-float steps)",
-                steps,
+                largest(&steps),
                 1.0,
+            );
+            run.note(
+                "R16F rounding",
+                format!(
+                    "{} of {} values came back one step from the nearest half float (the \
+                     CPU's rounding, ties to even): this renderer rounds {}",
+                    steps.iter().filter(|&&s| s > 0.0).count(),
+                    values.len(),
+                    if toward_zero(values, back) {
+                        "toward zero"
+                    } else {
+                        "to nearest"
+                    }
+                ),
             );
             let relative = values
                 .iter()
@@ -247,9 +275,28 @@ fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], ba
                 max_difference(back, values),
                 0.0,
             );
-            run.note("R32F keeps", "every value, bit for bit (24 significant bits)");
+            run.note(
+                "R32F keeps",
+                "every value, bit for bit (24 significant bits)",
+            );
         }
     }
+}
+
+/// The largest of `steps`, infinite if one is NaN (a value that did not come back finite).
+fn largest(steps: &[f64]) -> f64 {
+    steps.iter().fold(
+        0.0,
+        |m: f64, &d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+    )
+}
+
+/// Whether every value came back as its half float rounded toward zero.
+fn toward_zero(values: &[f32], back: &[f32]) -> bool {
+    values.iter().zip(back).all(|(&x, &b)| {
+        let step = half_step(x);
+        b == (x / step).trunc() * step
+    })
 }
 
 /// Sample a row of `ROW` texels with linear filtering at each texel's centre and at its left
@@ -261,7 +308,10 @@ fn texel_centres(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
     input.set_filter(Filter::Linear);
     let sample = Program::rect(ctx, &[shader!("glsl/learn/texel_sample.frag")])?;
     let scale = row.iter().fold(0f32, |m, v| m.max(v.abs())) as f64;
-    for (offset, name) in [(0.5f32, "sample at (i + 0.5) / N"), (0.0, "sample at i / N")] {
+    for (offset, name) in [
+        (0.5f32, "sample at (i + 0.5) / N"),
+        (0.0, "sample at i / N"),
+    ] {
         let target = Texture::new_2d(ctx, ROW, 1, TextureFormat::R32F)?;
         let fb = Framebuffer::new(ctx, name, &[&target], None)?;
         fb.pass(&sample, name)?
@@ -337,7 +387,9 @@ fn compute(
         max_difference(&back, values),
         0.0,
     );
-    Ok(format!("ran {READ_COMPUTE}, checked against the same values"))
+    Ok(format!(
+        "ran {READ_COMPUTE}, checked against the same values"
+    ))
 }
 
 #[cfg(test)]

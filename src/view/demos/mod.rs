@@ -4,6 +4,7 @@
 mod buoyancy;
 mod collide;
 mod crowd;
+mod learn;
 mod mass;
 mod mlp;
 mod peels;
@@ -27,6 +28,8 @@ pub enum DemoSpec {
     Crowd { characters: usize },
     /// Paper 3: text detection on an image.
     MlpDetect { image: std::path::PathBuf },
+    /// A lesson of `learn`: its passes' buffers, its checks.
+    Learn { id: String },
 }
 
 impl DemoSpec {
@@ -38,6 +41,7 @@ impl DemoSpec {
             DemoSpec::Buoyancy { .. } => "buoyancy".to_string(),
             DemoSpec::Crowd { .. } => "crowd".to_string(),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
+            DemoSpec::Learn { id } => format!("learn {id}"),
         }
     }
 
@@ -59,6 +63,7 @@ impl DemoSpec {
             }
             DemoSpec::Crowd { characters } => format!("crowd --characters {characters}"),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
+            DemoSpec::Learn { id } => format!("learn {id}"),
         }
     }
 
@@ -85,6 +90,7 @@ impl DemoSpec {
                     image.display()
                 )
             }
+            DemoSpec::Learn { id } => format!("classic-gpgpu learn {id} --png DIR"),
         };
         format!(
             "`classic-gpgpu view {} --headless --screenshot frame.png` (or `{paper}`)",
@@ -108,6 +114,7 @@ impl DemoSpec {
                 Box::new(crowd::CrowdDemo::new(ctx, *characters, size)?)
             }
             DemoSpec::MlpDetect { image } => Box::new(mlp::MlpDemo::new(ctx, image)?),
+            DemoSpec::Learn { id } => Box::new(learn::LearnDemo::new(ctx, id)?),
         })
     }
 }
