@@ -75,6 +75,8 @@ enum Command {
     /// The shader files: list them, or export them to edit and run with --glsl-dir.
     #[command(subcommand)]
     Glsl(cli::glsl::GlslCommand),
+    /// The lessons of the basic GPGPU approach, in order, each checked against the CPU.
+    Learn(cli::learn::LearnArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -178,6 +180,7 @@ fn main() -> ExitCode {
             .and_then(|ctx| cli::selftest::run(&a, &ctx, json)),
         Command::View(a) => cli::view::run(&a, global.glsl_dir.clone(), || global.context()),
         Command::Glsl(c) => cli::glsl::run(&c, json),
+        Command::Learn(a) => cli::learn::run(&a, json, || global.context()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

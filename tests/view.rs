@@ -446,3 +446,8 @@ fn the_window_reads_shaders_from_glsl_dir() {
     assert_ne!(plain, doubled, "the doubled volume shows in the frame");
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn learn_ping_pong_window_matches_headless() {
+    window_matches_headless("learn", &["learn", "ping-pong", "--buffer", "2"], 2);
+}

@@ -5,6 +5,7 @@
 pub mod collide;
 pub mod crowd;
 pub mod glsl;
+pub mod learn;
 pub mod lecture3;
 pub mod limits;
 pub mod mass;

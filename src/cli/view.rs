@@ -108,6 +108,12 @@ pub enum DemoCommand {
         #[arg(value_enum)]
         technique: Lecture3Technique,
     },
+    /// A lesson of `learn` live: each pass's buffer (Tab), the checks against the CPU, one
+    /// more iteration per step where the lesson iterates (ping-pong).
+    Learn {
+        /// The lesson's id or number (`classic-gpgpu learn --list`).
+        id: String,
+    },
 }
 
 #[derive(clap::Subcommand, Debug)]
@@ -158,6 +164,7 @@ impl DemoCommand {
             DemoCommand::Lecture3 { technique } => DemoSpec::Lecture3 {
                 technique: *technique,
             },
+            DemoCommand::Learn { id } => DemoSpec::Learn { id: id.clone() },
         })
     }
 }

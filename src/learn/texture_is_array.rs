@@ -184,12 +184,25 @@ fn formats(
 fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], back: &[f32]) {
     match format {
         TextureFormat::Rgba8 => {
-            // In steps of 1/255: GL lets the conversion round either way within one step.
+            // In whole steps of 1/255: GL lets the conversion round either way within one.
             let cpu: Vec<f32> = values.iter().map(|&x| round_unorm8(x)).collect();
+            let steps: Vec<f64> = back
+                .iter()
+                .zip(&cpu)
+                .map(|(&b, &c)| ((b as f64 - c as f64) * 255.0).abs().round())
+                .collect();
             run.check(
                 "RGBA8 read back = the CPU's rounding to 1/255 steps (error in steps)",
-                max_difference(back, &cpu) * 255.0,
+                largest(&steps),
                 1.0,
+            );
+            run.note(
+                "RGBA8 rounding",
+                format!(
+                    "{} of {} values came back one step from the nearest (the CPU's rounding)",
+                    steps.iter().filter(|&&s| s > 0.0).count(),
+                    values.len()
+                ),
             );
             let inside: Vec<(f32, f32)> = values
                 .iter()
@@ -213,20 +226,32 @@ fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], ba
             );
         }
         TextureFormat::R16F => {
-            // In steps of a half float at each value: GL lets the conversion round to nearest
-            // or toward zero, at most one step apart.
-            let steps = values
+            // In whole steps of a half float at each value: GL lets the conversion round to
+            // nearest or toward zero, at most one step apart.
+            let steps: Vec<f64> = values
                 .iter()
                 .zip(back)
-                .map(|(&x, &b)| (round_half(x) as f64 - b as f64).abs() / half_step(x) as f64)
-                .fold(
-                    0.0,
-                    |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
-                );
+                .map(|(&x, &b)| ((round_half(x) as f64 - b as f64) / half_step(x) as f64).abs())
+                .map(|s| s.round())
+                .collect();
             run.check(
                 "R16F read back = the CPU's rounding to half floats (error in half-float steps)",
-                steps,
+                largest(&steps),
                 1.0,
+            );
+            run.note(
+                "R16F rounding",
+                format!(
+                    "{} of {} values came back one step from the nearest half float (the \
+                     CPU's rounding, ties to even): this renderer rounds {}",
+                    steps.iter().filter(|&&s| s > 0.0).count(),
+                    values.len(),
+                    if toward_zero(values, back) {
+                        "toward zero"
+                    } else {
+                        "to nearest"
+                    }
+                ),
             );
             let relative = values
                 .iter()
@@ -256,6 +281,22 @@ fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], ba
             );
         }
     }
+}
+
+/// The largest of `steps`, infinite if one is NaN (a value that did not come back finite).
+fn largest(steps: &[f64]) -> f64 {
+    steps.iter().fold(
+        0.0,
+        |m: f64, &d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+    )
+}
+
+/// Whether every value came back as its half float rounded toward zero.
+fn toward_zero(values: &[f32], back: &[f32]) -> bool {
+    values.iter().zip(back).all(|(&x, &b)| {
+        let step = half_step(x);
+        b == (x / step).trunc() * step
+    })
 }
 
 /// Sample a row of `ROW` texels with linear filtering at each texel's centre and at its left

@@ -5,6 +5,7 @@ mod buoyancy;
 mod collide;
 mod crowd;
 pub mod lecture3;
+mod learn;
 mod mass;
 mod mlp;
 mod peels;
@@ -30,6 +31,8 @@ pub enum DemoSpec {
     MlpDetect { image: std::path::PathBuf },
     /// The tutorial's lecture 3: one technique.
     Lecture3 { technique: lecture3::Technique },
+    /// A lesson of `learn`: its passes' buffers, its checks.
+    Learn { id: String },
 }
 
 impl DemoSpec {
@@ -42,6 +45,7 @@ impl DemoSpec {
             DemoSpec::Crowd { .. } => "crowd".to_string(),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
             DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
+            DemoSpec::Learn { id } => format!("learn {id}"),
         }
     }
 
@@ -64,6 +68,7 @@ impl DemoSpec {
             DemoSpec::Crowd { characters } => format!("crowd --characters {characters}"),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
             DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
+            DemoSpec::Learn { id } => format!("learn {id}"),
         }
     }
 
@@ -93,6 +98,7 @@ impl DemoSpec {
             DemoSpec::Lecture3 { technique } => {
                 format!("classic-gpgpu lecture3 {}", technique.name())
             }
+            DemoSpec::Learn { id } => format!("classic-gpgpu learn {id} --png DIR"),
         };
         format!(
             "`classic-gpgpu view {} --headless --screenshot frame.png` (or `{paper}`)",
@@ -117,6 +123,7 @@ impl DemoSpec {
             }
             DemoSpec::MlpDetect { image } => Box::new(mlp::MlpDemo::new(ctx, image)?),
             DemoSpec::Lecture3 { technique } => technique.build(ctx)?,
+            DemoSpec::Learn { id } => Box::new(learn::LearnDemo::new(ctx, id)?),
         })
     }
 }

@@ -1,0 +1,141 @@
+//! `learn`: the lessons of the basic approach (`classic_gpgpu::learn`). `learn --list` shows
+//! them in order; `learn <id>` runs one, says what each pass does, checks it against the CPU,
+//! writes each pass's buffer with `--png DIR`, and exits non-zero (with the exercise's hint)
+//! when a check fails.
+
+use anyhow::Context as _;
+use classic_gpgpu::files;
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::learn::{self, LessonOptions, LessonRun};
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct LearnArgs {
+    /// The lesson to run: its id (e.g. texture-is-array) or its number.
+    #[arg(required_unless_present = "list")]
+    pub id: Option<String>,
+    /// List the lessons: id, number, title, the paper steps, the shader files, the exercises.
+    #[arg(long, conflicts_with = "id")]
+    pub list: bool,
+    /// Write each pass's buffer into this folder as PNG (and .npy for float buffers).
+    #[arg(long, value_name = "DIR")]
+    pub png: Option<PathBuf>,
+    /// Run with exercise N's shader: the learner's file where the shader folder has it, else
+    /// the shipped solution.
+    #[arg(long, value_name = "N")]
+    pub exercise: Option<u32>,
+    /// Replace pictures that already exist in the --png folder.
+    #[arg(long)]
+    pub force: bool,
+}
+
+pub fn run(
+    args: &LearnArgs,
+    json: bool,
+    context: impl FnOnce() -> anyhow::Result<Context>,
+) -> anyhow::Result<()> {
+    if args.list {
+        return list(json);
+    }
+    let id = args
+        .id
+        .as_deref()
+        .context("name a lesson, or pass --list")?;
+    let lesson = learn::find(id)?;
+    if let Some(dir) = &args.png {
+        if dir.exists() && !dir.is_dir() {
+            anyhow::bail!("--png {}: exists and is not a folder", dir.display());
+        }
+    }
+    let ctx = context()?;
+    let opts = LessonOptions {
+        png_dir: None,
+        exercise: args.exercise,
+    };
+    let mut run = lesson.run(&ctx, &opts)?;
+    if let Some(dir) = &args.png {
+        // Every picture is checked before the first is written: nothing is half-replaced.
+        for file in run.picture_files(dir) {
+            files::check_output("--png", &file, &[], args.force, &["png", "npy"])?;
+        }
+        run.write_pictures(dir)?;
+    }
+    if json {
+        println!("{}", serde_json::to_string_pretty(&run)?);
+    } else {
+        print_run(&run, args.png.as_ref());
+    }
+    if run.passed {
+        return Ok(());
+    }
+    let failed = run.checks.iter().filter(|c| !c.passed).count();
+    let mut message = format!(
+        "lesson {}: {failed} of {} checks failed",
+        run.id,
+        run.checks.len()
+    );
+    if let Some(hint) = &run.hint {
+        message.push_str(&format!("\nhint: {hint}"));
+    }
+    anyhow::bail!(message)
+}
+
+/// `learn --list`.
+fn list(json: bool) -> anyhow::Result<()> {
+    let infos: Vec<_> = learn::all().iter().map(|l| l.info()).collect();
+    if json {
+        println!("{}", serde_json::to_string_pretty(&infos)?);
+        return Ok(());
+    }
+    for info in infos {
+        println!("{:>2}  {:<20} {}", info.number, info.id, info.title);
+        for step in info.paper_steps {
+            println!(
+                "      paper step  {}: {} ({})",
+                step.paper, step.step, step.file
+            );
+        }
+        println!("      shaders     {}", info.shaders.join(", "));
+        for e in info.exercises {
+            println!("      exercise {}  {} [{}]", e.number, e.task, e.shader);
+        }
+    }
+    Ok(())
+}
+
+/// The run as text: each pass, each check, the notes, the compute counterpart.
+fn print_run(run: &LessonRun, png: Option<&PathBuf>) {
+    println!("lesson {}: {} ({})", run.id, run.title, run.renderer);
+    for (k, pass) in run.passes.iter().enumerate() {
+        let shader = if pass.shader.is_empty() {
+            String::new()
+        } else {
+            format!(" [{}]", pass.shader)
+        };
+        println!("  pass {k}: {}{shader}", pass.name);
+        println!("          {}", pass.what);
+        if let (Some(dir), Some(picture)) = (png, &pass.picture) {
+            println!("          wrote {}", dir.join(picture).display());
+        }
+    }
+    for check in &run.checks {
+        println!(
+            "  {} {}: error {:.3e} (tolerance {:.3e})",
+            if check.passed { "ok  " } else { "FAIL" },
+            check.what,
+            check.max_error,
+            check.tolerance
+        );
+    }
+    for (name, value) in &run.notes {
+        println!("  note {name}: {value}");
+    }
+    if let Some(compute) = &run.compute {
+        println!("  compute counterpart: {compute}");
+    }
+    println!(
+        "{}: largest error {:.3e}",
+        if run.passed { "passed" } else { "FAILED" },
+        run.max_error
+    );
+}

@@ -1,0 +1,135 @@
+//! A lesson live (`view learn <id>`): the buffer of each pass that wrote one (Tab cycles them),
+//! the pass and the checks against the CPU in the overlay, and for a lesson that iterates
+//! (ping-pong) one more iteration per step.
+
+use crate::gl::{Context, Rect};
+use crate::learn::{self, Lesson, LessonOptions, LessonRun};
+use crate::view::{inset, Canvas, Demo, ViewState};
+
+pub struct LearnDemo {
+    ctx: Context,
+    lesson: &'static dyn Lesson,
+    run: LessonRun,
+    /// Iterations of the last run (lessons that iterate).
+    iterations: u32,
+    /// The buffer the last frame showed, for the overlay.
+    shown: usize,
+}
+
+impl LearnDemo {
+    pub fn new(ctx: &Context, id: &str) -> anyhow::Result<Self> {
+        let lesson = learn::find(id)?;
+        let iterations = 1;
+        let run = Self::run_lesson(ctx, lesson, iterations)?;
+        Ok(LearnDemo {
+            ctx: ctx.clone(),
+            lesson,
+            run,
+            iterations,
+            shown: 0,
+        })
+    }
+
+    fn run_lesson(
+        ctx: &Context,
+        lesson: &'static dyn Lesson,
+        iterations: u32,
+    ) -> anyhow::Result<LessonRun> {
+        let opts = LessonOptions::default();
+        if lesson.iterates() {
+            lesson.run_iterations(ctx, &opts, iterations)
+        } else {
+            lesson.run(ctx, &opts)
+        }
+    }
+}
+
+impl Demo for LearnDemo {
+    /// One more iteration of a lesson that iterates; the others ran once and stay.
+    fn step(&mut self) -> anyhow::Result<()> {
+        if self.lesson.iterates() {
+            self.iterations += 1;
+            self.run = Self::run_lesson(&self.ctx, self.lesson, self.iterations)?;
+        }
+        Ok(())
+    }
+
+    fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
+        canvas.clear([0.1, 0.1, 0.12, 1.0])?;
+        let buffers = &self.run.buffers;
+        if buffers.is_empty() {
+            return Ok(());
+        }
+        self.shown = view.shown % buffers.len();
+        let b = &buffers[self.shown];
+        inset::draw_rgba(
+            canvas,
+            &b.rgba(),
+            (b.width, b.height),
+            Rect::sized(canvas.width(), canvas.height()),
+            "",
+        )?;
+        Ok(())
+    }
+
+    fn buffers(&self) -> Vec<String> {
+        self.run
+            .buffers
+            .iter()
+            .map(|b| self.run.passes[b.pass].name.clone())
+            .collect()
+    }
+
+    fn overlay(&self) -> Vec<String> {
+        let r = &self.run;
+        let info = self.lesson.info();
+        let mut lines = vec![format!("lesson {}: {} ({})", info.number, r.title, r.id)];
+        if self.lesson.iterates() {
+            lines.push(format!("{} iterations [right: one more]", self.iterations));
+        }
+        if let Some(b) = r.buffers.get(self.shown) {
+            let pass = &r.passes[b.pass];
+            let shader = if pass.shader.is_empty() {
+                String::new()
+            } else {
+                format!(" [{}]", pass.shader)
+            };
+            lines.push(format!("pass {}: {}{shader}", b.pass, pass.name));
+            lines.extend(wrap(&pass.what, 90));
+        }
+        let passed = r.checks.iter().filter(|c| c.passed).count();
+        lines.push(format!(
+            "checks against the CPU: {passed} of {} passed, largest error {:.2e}",
+            r.checks.len(),
+            r.max_error
+        ));
+        for c in r.checks.iter().filter(|c| !c.passed) {
+            lines.push(format!(
+                "FAIL {}: {:.2e} > {:.2e}",
+                c.what, c.max_error, c.tolerance
+            ));
+        }
+        lines
+    }
+
+    fn timings(&self) -> String {
+        format!("lesson {} on {}", self.run.id, self.run.renderer)
+    }
+}
+
+/// `text` in lines of at most `width` characters, broken at spaces.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in text.split_whitespace() {
+        let last = lines.last_mut().expect("one line");
+        if !last.is_empty() && last.len() + 1 + word.len() > width {
+            lines.push(word.to_string());
+        } else {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(word);
+        }
+    }
+    lines
+}
