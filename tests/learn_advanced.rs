@@ -94,7 +94,7 @@ fn solutions_pass_and_templates_fail() {
             assert!(template_text.contains("// EXERCISE:"), "{template}");
             if !ctx.has_compute() && exercise.shader.ends_with(".comp") {
                 ctx.set_glsl_dir(None);
-                let err = lesson.run(&ctx, &opts).err().expect("an error without 4.3");
+                let err = lesson.run(&ctx, &opts).expect_err("an error without 4.3");
                 assert!(err.to_string().contains("4.3"), "{err}");
                 println!("{id} exercise {}: needs 4.3 here", exercise.number);
                 continue;
@@ -132,7 +132,6 @@ fn guide_links(dir: &Path) -> Vec<(PathBuf, String)> {
         }
         let html = std::fs::read_to_string(&page).unwrap();
         let dom = tl::parse(&html, tl::ParserOptions::default()).unwrap();
-        let parser = dom.parser();
         for node in dom.nodes() {
             let Some(tag) = node.as_tag() else { continue };
             for attribute in ["href", "src"] {
@@ -141,7 +140,6 @@ fn guide_links(dir: &Path) -> Vec<(PathBuf, String)> {
                 }
             }
         }
-        let _ = parser;
     }
     links
 }

@@ -108,7 +108,7 @@ const GUIDE_STYLE: &str = "nav a{margin-right:1.5em}.flow{display:flex;flex-wrap
 align-items:center;gap:.4em;margin:.6em 0}.box{border:1px solid #99a;border-radius:4px;\
 padding:.4em .6em;background:#f4f6fb;max-width:16em;font-size:90%}.box img{width:96px;\
 image-rendering:pixelated;display:block;margin-top:.3em}.arrow{font-size:140%;color:#667}\
-.pass{color:#070}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}";
+.pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}";
 
 fn verdict(run: &Result<LessonRun, String>) -> String {
     match run {

@@ -5,7 +5,7 @@
 
 uniform sampler2D u_values; // the array, one float per texel
 uniform float u_threshold;  // count the values strictly above it
-out vec4 o_color;
+out vec4 o_colour;
 
 void main() {
     // Read this pixel's element: texel centre, no filtering.
@@ -15,5 +15,5 @@ void main() {
         discard;
     }
     // What is written does not matter to the count; white shows where it counted.
-    o_color = vec4(1.0);
+    o_colour = vec4(1.0);
 }
