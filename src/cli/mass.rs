@@ -203,7 +203,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
 /// otherwise print as 39 digits).
 fn number(v: f64) -> String {
     if v == 0.0 || (1e-3..1e7).contains(&v.abs()) {
-        format!("{v:.6}")
+        classic_gpgpu::gl::picture::fixed(v, 6)
     } else {
         format!("{v:.6e}")
     }
@@ -330,12 +330,12 @@ impl MassOutput<'_> {
             self.renderer
         );
         s += &format!(
-            "framing         {n}x{n} pixels of {:.4e}, window centred on ({:.4}, {:.4}), half-width {:.4}, depth {:.4} +- {:.4}\n",
+            "framing         {n}x{n} pixels of {:.4e}, window centred on ({}, {}), half-width {:.4}, depth {} +- {:.4}\n",
             f.pixel_size(),
-            c.x,
-            c.y,
+            classic_gpgpu::gl::picture::fixed(c.x, 4),
+            classic_gpgpu::gl::picture::fixed(c.y, 4),
             f.half_width,
-            c.z,
+            classic_gpgpu::gl::picture::fixed(c.z, 4),
             f.half_depth,
             n = f.resolution
         );

@@ -247,9 +247,9 @@ pub fn picture(panels: &[Panel], (width, height): (u32, u32)) -> (RgbaImage, Vec
     let columns = best.map_or(1, |(_, c)| c);
     let rows = n.div_ceil(columns);
     let (cw, ch) = (width / columns, height / rows);
-    for (k, panel) in panels.iter().enumerate() {
+    for k in 0..panels.len() {
         let (col, row) = (k as u32 % columns, k as u32 / columns);
-        let placement = draw_panel(&mut image, panel, (col * cw, row * ch), (cw, ch), glyph);
+        let placement = draw_panel(&mut image, panels, k, (col * cw, row * ch), (cw, ch), glyph);
         placements.push(placement);
     }
     (image, placements)
@@ -276,20 +276,33 @@ fn image_area(panels: &[Panel], cw: u32, ch: u32, glyph: u32) -> (u32, u32) {
     )
 }
 
+/// Draw panel `k` of `panels` in its cell; the titles of all panels take the same rows, so
+/// that the images of a row of panels line up.
 fn draw_panel(
     image: &mut RgbaImage,
-    panel: &Panel,
+    panels: &[Panel],
+    k: usize,
     (x0, y0): (u32, u32),
     (cw, ch): (u32, u32),
     glyph: u32,
 ) -> Placement {
-    let lines = title_lines(panel, cw, glyph);
-    let mut y = y0 + MARGIN;
-    for line in &lines {
-        draw_text(image, x0 + MARGIN, y, line, glyph);
-        y += glyph + 2;
+    let panel = &panels[k];
+    let rows = panels
+        .iter()
+        .map(|p| title_lines(p, cw, glyph).len() as u32)
+        .max()
+        .unwrap_or(1);
+    for (i, line) in title_lines(panel, cw, glyph).iter().enumerate() {
+        draw_text(
+            image,
+            x0 + MARGIN,
+            y0 + MARGIN + i as u32 * (glyph + 2),
+            line,
+            glyph,
+        );
     }
-    let (aw, ah) = image_area(std::slice::from_ref(panel), cw, ch, glyph);
+    let y = y0 + MARGIN + rows * (glyph + 2);
+    let (aw, ah) = image_area(panels, cw, ch, glyph);
     let (sx, sy) = stretch(
         aw as f64 / panel.width as f64,
         ah as f64 / panel.height as f64,

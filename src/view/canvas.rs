@@ -12,6 +12,8 @@ pub struct Canvas {
     overlay: Program,
     /// The buffers drawn into this frame and where, for the texel probe (cleared each frame).
     probed: RefCell<Vec<Probed>>,
+    /// The height of the overlay text at the top of this frame (pixels).
+    text_height: std::cell::Cell<u32>,
 }
 
 impl Canvas {
@@ -22,7 +24,19 @@ impl Canvas {
             target: Framebuffer::new(ctx, "viewer canvas", &[&colour], Some(&depth))?,
             overlay: Program::rect(ctx, &[shader!("glsl/view/overlay.frag")])?,
             probed: RefCell::new(Vec::new()),
+            text_height: std::cell::Cell::new(0),
         })
+    }
+
+    /// Set the height of the overlay text of this frame.
+    pub fn set_text_height(&self, height: u32) {
+        self.text_height.set(height);
+    }
+
+    /// The canvas below the overlay text: where a demo draws a buffer filling the frame.
+    pub fn below_text(&self) -> Rect {
+        let top = (self.text_height.get() + 4).min(self.height());
+        Rect::sized(self.width(), self.height() - top)
     }
 
     /// Forget the buffers of the last frame (a new frame starts).

@@ -6,7 +6,7 @@
 
 use super::{overlay, Canvas};
 use crate::gl::dump::{self, DumpRange};
-use crate::gl::picture::{self, fixed, number, Panel, Placement};
+use crate::gl::picture::{self, number, Panel, Placement};
 use crate::gl::{GlError, Rect, Texture};
 
 /// A panel drawn into the frame, for the probe: where its texels are (canvas pixels, top-left
@@ -25,8 +25,9 @@ impl Probed {
         let (tx, ty) = self.placement.texel(x, y)?;
         let i = (ty * self.placement.texels.0 + tx) as usize;
         let gpu = *self.values.get(i)?;
+        let name = self.name.split(':').next().unwrap_or_default();
         let mut lines = vec![
-            format!("{} texel ({tx}, {ty})", self.name),
+            format!("{name} texel ({tx}, {ty})"),
             format!("GPU {}", probe_number(gpu)),
         ];
         if let Some(cpu) = self.reference.as_ref().and_then(|r| r.get(i)) {
@@ -36,15 +37,18 @@ impl Probed {
     }
 }
 
-/// A probed value in full: integers as integers, others with 7 significant digits (fp32's).
+/// A probed value in full: the shortest decimal that reads back as the same f32 (so the
+/// probe tells any two values apart), "0" for both zeros, exponent form when very small or
+/// large.
 fn probe_number(v: f32) -> String {
-    if v.is_finite() && v == v.trunc() && v.abs() < 1e7 {
-        fixed(v as f64, 0)
-    } else if v.is_finite() && (1e-3..1e6).contains(&v.abs()) {
-        let decimals = (6 - v.abs().log10().floor() as i32).clamp(0, 9) as usize;
-        fixed(v as f64, decimals)
-    } else {
+    if v == 0.0 {
+        "0".into()
+    } else if !v.is_finite() {
         number(v as f64)
+    } else if (1e-4..1e7).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
     }
 }
 

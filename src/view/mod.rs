@@ -98,15 +98,25 @@ pub fn draw_frame(
     frame: usize,
 ) -> anyhow::Result<Vec<String>> {
     canvas.clear_probed();
+    let text = |demo: &dyn Demo| {
+        let buffers = demo.buffers();
+        let shown = buffers
+            .get(view.shown % buffers.len().max(1))
+            .cloned()
+            .unwrap_or_default();
+        let mut lines = vec![format!("frame {frame}  [tab] {shown}  [h] help")];
+        lines.extend(demo.overlay());
+        lines
+    };
+    // The demo draws its buffers below the text (measured before, drawn after it).
+    let before = text(demo);
+    canvas.set_text_height(overlay::text_height(
+        &before,
+        canvas.width(),
+        canvas.height(),
+    ));
     demo.render(canvas, view)?;
-    let buffers = demo.buffers();
-    let shown = buffers
-        .get(view.shown % buffers.len().max(1))
-        .cloned()
-        .unwrap_or_default();
-    let mut lines = vec![format!("frame {frame}  [tab] {shown}  [h] help")];
-    lines.extend(demo.overlay());
-    overlay::draw_text(canvas, &lines, overlay::Corner::TopLeft)?;
+    overlay::draw_text(canvas, &text(demo), overlay::Corner::TopLeft)?;
     if view.help {
         let mut help = vec!["keys".to_string()];
         for (key, what) in COMMON_KEYS.iter().chain(demo.keys().iter()) {

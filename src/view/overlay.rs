@@ -51,24 +51,33 @@ pub fn draw_text(canvas: &Canvas, lines: &[String], corner: Corner) -> Result<()
     draw_image(canvas, &image, width, height, (x, y))
 }
 
+/// The height in pixels of `lines` drawn by [`draw_text`] on a `width x height` canvas.
+pub fn text_height(lines: &[String], width: u32, height: u32) -> u32 {
+    let (scale, fitted) = fit(lines, width, height);
+    (fitted.len() as u32 * 10 * scale + 2 * MARGIN).min(height)
+}
+
 /// The glyph scale and the lines as they fit a `width x height` canvas: doubled glyphs where
 /// the canvas is wide enough for them and they fit, else single ones; lines longer than the
 /// canvas wrapped; lines past its height left out.
 pub fn fit(lines: &[String], width: u32, height: u32) -> (u32, Vec<String>) {
-    let longest = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0) as u32;
-    let fits = |scale: u32| {
-        longest * 8 * scale + 2 * MARGIN <= width
-            && lines.len() as u32 * 10 * scale + 2 * MARGIN <= height
+    let wrapped = |scale: u32| -> Vec<String> {
+        let columns = (width.saturating_sub(2 * MARGIN) / (8 * scale)).max(1) as usize;
+        lines
+            .iter()
+            .flat_map(|l| crate::gl::picture::wrap(l, columns))
+            .collect()
     };
-    let scale = if width >= 640 && fits(2) { 2 } else { 1 };
-    let columns = (width.saturating_sub(2 * MARGIN) / (8 * scale)).max(1) as usize;
+    // Doubled glyphs where the canvas is wide and the wrapped text takes at most half of it.
+    let doubled = wrapped(2);
+    let (scale, mut out) = if width >= 640 && doubled.len() as u32 * 20 + 2 * MARGIN <= height / 2 {
+        (2, doubled)
+    } else {
+        (1, wrapped(1))
+    };
     let rows = (height.saturating_sub(2 * MARGIN) / (10 * scale)).max(1) as usize;
-    let mut wrapped: Vec<String> = lines
-        .iter()
-        .flat_map(|l| crate::gl::picture::wrap(l, columns))
-        .collect();
-    wrapped.truncate(rows);
-    (scale, wrapped)
+    out.truncate(rows);
+    (scale, out)
 }
 
 /// How many characters of text fit across a canvas `width` pixels wide (for wrapping).

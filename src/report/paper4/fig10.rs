@@ -17,8 +17,10 @@ pub fn figures(results: &Paper4Results) -> Vec<Figure> {
         figures.push(Figure {
             file: format!("{DIR}/peel{k}_target0.png"),
             caption: format!(
-                "Fig. 10: bunny below the water, peel {k}, target 0 (rx, ry, rz, V integrands), \
-                 128x128"
+                "Fig. 10: bunny below the water, peel {k} of {}, target 0 at 128x128: one panel \
+                 per integrand (rx, ry, rz, V), each on one scale for all the peels (its key \
+                 below it; zero dark grey, positive red to yellow, negative blue to cyan)",
+                results.fig10_peels
             ),
         });
     }

@@ -193,8 +193,8 @@ impl CollideDemo {
         overlay::draw_image(canvas, &pixels, rect.w, rect.h, (rect.x, rect.y))?;
         overlay::draw_text(
             canvas,
-            &["CAPs zoomed: X boxes orange, Y yellow".into()],
-            overlay::Corner::At(rect.x, rect.y),
+            &["CAPs, zoomed".into()],
+            overlay::Corner::Probe(rect.x, rect.y + rect.h),
         )?;
         Ok(())
     }
@@ -224,9 +224,7 @@ impl Demo for CollideDemo {
             let mut pictures = self.pictures(false)?;
             if view.shown - 1 < pictures.len() {
                 let shown = pictures.swap_remove(view.shown - 1);
-                // Below the overlay text (three lines).
-                let text = if canvas.width() >= 640 { 80 } else { 44 };
-                let rect = Rect::sized(canvas.width(), canvas.height().saturating_sub(text));
+                let rect = canvas.below_text();
                 inset::draw_picture(canvas, vec![shown], rect)?;
             }
             return Ok(());
@@ -265,12 +263,15 @@ impl Demo for CollideDemo {
     }
 
     fn overlay(&self) -> Vec<String> {
-        let mut lines = vec![format!(
-            "{}: {} + {} triangles",
-            self.scene.label,
-            self.models.0.triangles.len(),
-            self.models.1.triangles.len()
-        )];
+        let mut lines = vec![
+            format!(
+                "{}: {} + {} triangles",
+                self.scene.label,
+                self.models.0.triangles.len(),
+                self.models.1.triangles.len()
+            ),
+            "colliding triangles red; boxes of the CAPs: X orange, Y yellow".into(),
+        ];
         if let Some(r) = &self.result {
             let scheme = r.scheme.map_or("none (no CAP)".to_string(), |s| {
                 format!("{s:?}").to_lowercase()

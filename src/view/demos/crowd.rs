@@ -90,8 +90,7 @@ impl Demo for CrowdDemo {
                 let names = channels(true);
                 let names: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
                 let panels = inset::texture_panels(t, &names, DumpRange::Auto)?;
-                let text = if canvas.width() >= 640 { 80 } else { 44 };
-                let rect = Rect::sized(canvas.width(), canvas.height().saturating_sub(text));
+                let rect = canvas.below_text();
                 inset::draw_picture(canvas, panels.into_iter().map(Into::into).collect(), rect)?;
             }
             (1, None) => {

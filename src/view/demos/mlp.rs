@@ -104,9 +104,7 @@ impl Demo for MlpDemo {
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
         canvas.clear([0.1, 0.1, 0.12, 1.0])?;
         let shown = view.shown % 3;
-        // Below the overlay text (two lines in doubled or single glyphs).
-        let text = if canvas.width() >= 640 { 60 } else { 32 };
-        let rect = crate::gl::Rect::sized(canvas.width(), canvas.height().saturating_sub(text));
+        let rect = canvas.below_text();
         // Rows from the bottom, as the probe and the pictures count them.
         let (w, h) = self.image.dimensions();
         let from_bottom = |v: &[f32]| -> Vec<f32> {

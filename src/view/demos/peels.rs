@@ -2,7 +2,6 @@
 //! peel's integrand target, cycled with `l` (layer), `t` (target) and `c` (the channel of the
 //! strip). Every channel is on one scale for all the peels of the step, as `gl::dump` says.
 
-use crate::gl::Rect;
 use crate::mass::integrands::CHANNELS;
 use crate::mass::peel::CapturedPeel;
 use crate::view::inset::{self, Shown};
@@ -63,9 +62,7 @@ impl PeelChoice {
                 peels[layer].panel(target, c, &title, scale).into()
             })
             .collect();
-        // Below the overlay text (its three lines in doubled or single glyphs).
-        let text = if canvas.width() >= 640 { 80 } else { 44 };
-        let rect = Rect::sized(canvas.width(), canvas.height().saturating_sub(text));
+        let rect = canvas.below_text();
         inset::draw_picture(canvas, shown, rect)?;
         Ok(())
     }

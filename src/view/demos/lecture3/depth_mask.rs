@@ -1,7 +1,7 @@
 //! Technique 6: the expensive shader run only where the mask is active, by the depth test: the
 //! mask, and the picture against the CPU's.
 
-use super::{below_text, to_f32};
+use super::to_f32;
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::depth_mask::{self, cpu_picture, DepthMask, MaskShape};
@@ -83,7 +83,7 @@ impl Demo for DepthMaskDemo {
             }
             .into()
         };
-        inset::draw_picture(canvas, vec![shown], below_text(canvas, 3))?;
+        inset::draw_picture(canvas, vec![shown], canvas.below_text())?;
         Ok(())
     }
 

@@ -2,7 +2,6 @@
 //! each pixel's distance to its hit against the exact CPU tracer, the traversal's steps, and
 //! the bound pyramid against the CPU's.
 
-use super::below_text;
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::displacement::bounds::cpu_bound_pyramid;
@@ -101,7 +100,7 @@ impl Demo for DisplaceDemo {
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
         canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-        let area = below_text(canvas, 3);
+        let area = canvas.below_text();
         if self.frame == 0 {
             return Ok(());
         }

@@ -2,7 +2,7 @@
 //! function, and a pass summing looked-up values per pixel against the CPU's sums of the
 //! table's exact interpolation.
 
-use super::{below_text, to_f32};
+use super::to_f32;
 use crate::gl::picture::{fixed, Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::function_texture::{
@@ -91,7 +91,7 @@ impl Demo for FunctionDemo {
                 reference: Some(self.cpu_sums.clone()),
             }
         };
-        inset::draw_picture(canvas, vec![shown], below_text(canvas, 3))?;
+        inset::draw_picture(canvas, vec![shown], canvas.below_text())?;
         Ok(())
     }
 

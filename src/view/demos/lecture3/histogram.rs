@@ -1,7 +1,6 @@
 //! Technique 7: a histogram by additive blending, one point per value: the values, and the
 //! bins against the CPU's counts.
 
-use super::below_text;
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::blend_histogram::{cpu_histogram, Bins, Histogram, Method, Values};
@@ -67,7 +66,7 @@ impl Demo for HistogramDemo {
             }
             .into()
         };
-        inset::draw_picture(canvas, vec![shown], below_text(canvas, 3))?;
+        inset::draw_picture(canvas, vec![shown], canvas.below_text())?;
         Ok(())
     }
 

@@ -3,7 +3,6 @@
 //! brute-force sum over every VPL, and the nodes each pixel visited. Keys + and - change the
 //! criterion theta.
 
-use super::below_text;
 use crate::gl::picture::{fixed, Panel, Scale};
 use crate::gl::{Context, Rect};
 use crate::lecture3::light_hierarchy::gather::MIN_DISTANCE;
@@ -76,7 +75,7 @@ impl Demo for LightDemo {
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
         canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-        let area = below_text(canvas, 3);
+        let area = canvas.below_text();
         let channel = |c: usize| -> Vec<f32> { self.gathered.iter().map(|g| g[c]).collect() };
         let brute = |c: usize| -> Vec<f32> { self.brute.iter().map(|b| b[c]).collect() };
         match view.shown % 3 {

@@ -11,8 +11,7 @@ mod pyramid;
 mod random;
 
 use crate::gl::Context;
-use crate::gl::Rect;
-use crate::view::{Canvas, Demo};
+use crate::view::Demo;
 
 /// The seven techniques, named as `classic-gpgpu lecture3` names them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -59,13 +58,6 @@ impl Technique {
             Technique::Histogram => Box::new(histogram::HistogramDemo::new(ctx)?),
         })
     }
-}
-
-/// The canvas below `lines` lines of overlay text, where a demo draws its buffer.
-fn below_text(canvas: &Canvas, lines: u32) -> Rect {
-    let line = if canvas.width() >= 640 { 20 } else { 10 };
-    let text = lines * line + 12;
-    Rect::sized(canvas.width(), canvas.height().saturating_sub(text))
 }
 
 /// Values in f64 as the f32 the probe compares with.

@@ -1,7 +1,6 @@
 //! Technique 1: the max and min pyramids of the shipped height map, every level on one scale,
 //! each texel probed against the CPU pyramid.
 
-use super::below_text;
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
@@ -63,7 +62,7 @@ impl Demo for PyramidDemo {
                 reference: Some(c.values.clone()),
             })
             .collect();
-        inset::draw_picture(canvas, shown, below_text(canvas, 3))?;
+        inset::draw_picture(canvas, shown, canvas.below_text())?;
         Ok(())
     }
 

@@ -1,7 +1,6 @@
 //! Technique 5: a generator per texel advanced by one ping-pong pass per frame, the numbers of
 //! the last step probed against the CPU generators run as many steps.
 
-use super::below_text;
 use crate::gl::picture::{fixed, Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::random_texture::{HybridTaus, RandomTexture};
@@ -61,7 +60,7 @@ impl Demo for RandomDemo {
             probe_values: None,
             reference: Some(self.cpu_values.clone()),
         };
-        inset::draw_picture(canvas, vec![shown], below_text(canvas, 3))?;
+        inset::draw_picture(canvas, vec![shown], canvas.below_text())?;
         Ok(())
     }
 
