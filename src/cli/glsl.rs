@@ -60,12 +60,18 @@ fn list(json: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The first line of a file's header comment, without the `//`.
+/// The first sentence of a file's header comment (up to the first line ending in a full
+/// stop), without the `//`.
 fn header(source: &str) -> String {
-    shaders::header_lines(source)
-        .next()
-        .map(|l| l.trim_start_matches('/').trim().to_string())
-        .unwrap_or_default()
+    let mut sentence = Vec::new();
+    for line in shaders::header_lines(source).filter(|l| !l.starts_with(shaders::COMPILED_AFTER)) {
+        let line = line.trim_start_matches('/').trim();
+        sentence.push(line);
+        if line.ends_with('.') {
+            break;
+        }
+    }
+    sentence.join(" ")
 }
 
 fn export(dir: &std::path::Path, exercises: bool, force: bool, json: bool) -> anyhow::Result<()> {

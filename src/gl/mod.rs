@@ -74,7 +74,8 @@ pub enum GlError {
     #[error("framebuffer {name} is incomplete: {status}")]
     Incomplete { name: String, status: &'static str },
     /// A shader failed to compile: file, line, driver log and the source around it.
-    #[error("{0}")]
+    /// (Transparent, so that a chain of causes does not print the message twice.)
+    #[error(transparent)]
     Shader(#[from] ShaderError),
     /// A uniform set by a name the program's files do not declare.
     #[error("program ({files}): uniform {uniform} {problem}")]
