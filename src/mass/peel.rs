@@ -206,7 +206,7 @@ pub fn write_peel_pictures(dir: &Path, peels: &[CapturedPeel]) -> Result<(), GlE
                 })
                 .collect();
             let side = 2 * peel.width.clamp(64, 160) + 24;
-            let size = (side * panels.len() as u32, side + 96);
+            let size = (side * panels.len() as u32, side + 60);
             let path: PathBuf = dir.join(format!("peel{}_target{target}.png", k + 1));
             dump::picture_png(&panels, size, &path)?;
             // The exact values beside the picture (the layout of `gl::npy`).

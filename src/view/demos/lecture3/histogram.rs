@@ -44,7 +44,7 @@ impl Demo for HistogramDemo {
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
         canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-        let shown = if view.shown % 2 == 0 {
+        let shown = if view.shown.is_multiple_of(2) {
             Shown {
                 panel: Panel {
                     title: format!("the {BINS} bins over [0, 1): texel = count (blended points)"),
