@@ -159,7 +159,7 @@ fn page_ids(page: &Path) -> Vec<String> {
 fn the_guide_builds_and_every_link_and_picture_resolves() {
     let ctx = common::context();
     let dir = temp_dir("guide").join("guide");
-    let written = learn::guide::write_guide(&ctx, &dir, false).unwrap();
+    let written = classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
     assert!(written.lessons.len() >= LESSONS.len());
     for id in LESSONS {
         assert!(written.lessons.iter().any(|(l, ok)| l == id && *ok), "{id}");
@@ -196,16 +196,16 @@ fn the_guide_builds_and_every_link_and_picture_resolves() {
 
     // Written again into its own folder: fine. A folder of someone else's: refused, unless
     // forced, and nothing in it lost.
-    learn::guide::write_guide(&ctx, &dir, false).unwrap();
+    classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
     let theirs = temp_dir("guide-theirs");
     std::fs::write(theirs.join("notes.txt"), "mine").unwrap();
-    let err = learn::guide::write_guide(&ctx, &theirs, false).unwrap_err();
+    let err = classic_gpgpu::report::guide::write_guide(&ctx, &theirs, false).unwrap_err();
     assert!(err.to_string().contains("--force"), "{err}");
     assert_eq!(
         std::fs::read_to_string(theirs.join("notes.txt")).unwrap(),
         "mine"
     );
-    learn::guide::write_guide(&ctx, &theirs, true).unwrap();
+    classic_gpgpu::report::guide::write_guide(&ctx, &theirs, true).unwrap();
     assert_eq!(
         std::fs::read_to_string(theirs.join("notes.txt")).unwrap(),
         "mine"
@@ -232,7 +232,7 @@ fn the_guide_renders_in_headless_chromium() {
     let ctx = common::context();
     let root = temp_dir("guide-chromium");
     let dir = root.join("guide");
-    let written = learn::guide::write_guide(&ctx, &dir, false).unwrap();
+    let written = classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
     let checker = root.join("check.html");
     std::fs::write(&checker, CHECKER).unwrap();
     for page in &written.pages {

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 pub struct LearnArgs {
     /// The lesson to run: its id (e.g. texture-is-array) or its number.
-    #[arg(required_unless_present = "list")]
+    #[arg(required_unless_present_any = ["list", "guide"])]
     pub id: Option<String>,
     /// List the lessons: id, number, title, the paper steps, the shader files, the exercises.
     #[arg(long, conflicts_with = "id")]
@@ -24,7 +24,13 @@ pub struct LearnArgs {
     /// the shipped solution.
     #[arg(long, value_name = "N")]
     pub exercise: Option<u32>,
-    /// Replace pictures that already exist in the --png folder.
+    /// Write the offline HTML guide into this folder: every lesson run on this renderer, one
+    /// page each with its passes, pictures and checks, the reading order into the papers, and
+    /// a glossary.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["id", "list", "png", "exercise"])]
+    pub guide: Option<PathBuf>,
+    /// Replace pictures that already exist in the --png folder (with --guide: write into a
+    /// folder the guide did not make).
     #[arg(long)]
     pub force: bool,
 }
@@ -36,6 +42,9 @@ pub fn run(
 ) -> anyhow::Result<()> {
     if args.list {
         return list(json);
+    }
+    if let Some(dir) = &args.guide {
+        return guide(dir, args.force, json, context()?);
     }
     let id = args
         .id
@@ -138,4 +147,43 @@ fn print_run(run: &LessonRun, png: Option<&PathBuf>) {
         if run.passed { "passed" } else { "FAILED" },
         run.max_error
     );
+}
+
+/// `learn --guide DIR`: run every lesson and write the guide; fails when a lesson failed.
+fn guide(dir: &std::path::Path, force: bool, json: bool, ctx: Context) -> anyhow::Result<()> {
+    let written = classic_gpgpu::report::guide::write_guide(&ctx, dir, force)?;
+    let failed: Vec<&str> = written
+        .lessons
+        .iter()
+        .filter(|(_, passed)| !passed)
+        .map(|(id, _)| id.as_str())
+        .collect();
+    if json {
+        let lessons: Vec<serde_json::Value> = written
+            .lessons
+            .iter()
+            .map(|(id, passed)| serde_json::json!({ "id": id, "passed": passed }))
+            .collect();
+        println!(
+            "{}",
+            serde_json::json!({
+                "guide": dir.join("index.html"),
+                "pages": written.pages.len(),
+                "lessons": lessons,
+            })
+        );
+    } else {
+        println!(
+            "wrote the guide: {} pages under {}; open {}",
+            written.pages.len(),
+            dir.display(),
+            dir.join("index.html").display()
+        );
+    }
+    anyhow::ensure!(
+        failed.is_empty(),
+        "the guide was written, but these lessons failed on this renderer: {}",
+        failed.join(", ")
+    );
+    Ok(())
 }

@@ -17,7 +17,6 @@
 pub mod compute_reduction;
 pub mod count_and_mask;
 pub mod depth_peeling;
-pub mod guide;
 mod kit;
 pub mod readback_and_upload;
 pub mod render_to_vertex_buffer;

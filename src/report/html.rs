@@ -205,7 +205,8 @@ fn section(s: &Section) -> String {
     out
 }
 
-pub(crate) const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
+pub(crate) const STYLE: &str =
+    "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
 color:#222}div.table{overflow-x:auto;max-width:100%;margin:1em 0}table{border-collapse:collapse;\
 font-size:90%}caption{text-align:left;font-weight:bold;padding:.3em 0}td,th{border:1px solid \
 #bbb;padding:.25em .5em;text-align:left;vertical-align:top}td.num,th.num{text-align:right;\

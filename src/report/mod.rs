@@ -8,7 +8,8 @@
 //! ([`bench_command`]) and `reproduce` both go through [`run_section`].
 
 pub mod blocks;
-pub(crate) mod html;
+pub mod guide;
+mod html;
 pub mod lecture3;
 pub mod paper1;
 pub mod paper2;

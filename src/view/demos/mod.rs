@@ -4,8 +4,8 @@
 mod buoyancy;
 mod collide;
 mod crowd;
-pub mod lecture3;
 mod learn;
+pub mod lecture3;
 mod mass;
 mod mlp;
 mod peels;

@@ -1,12 +1,12 @@
-//! The offline guide: an HTML page per lesson, made by running every lesson of [`super::all`]
+//! The offline guide: an HTML page per lesson, made by running every lesson of [`crate::learn::all`]
 //! on the context given (its pictures are the lessons' own buffers and its numbers their
 //! checks, so it cannot drift from the code), then the reading order from the lessons into
 //! the papers with what to run and read for each, and a glossary of the papers' terms that
 //! every page links to where it uses them. No scripts, no external files.
 
-use super::{LessonOptions, LessonRun};
+use super::html::{escape, STYLE};
 use crate::gl::Context;
-use crate::report::html::{escape, STYLE};
+use crate::learn::{LessonOptions, LessonRun};
 use anyhow::{bail, Context as _};
 use std::path::{Path, PathBuf};
 
@@ -29,7 +29,7 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
         &dir.join(MARKER),
         b"written by classic-gpgpu learn --guide\n",
     )?;
-    let lessons = super::all();
+    let lessons = crate::learn::all();
     let mut runs = Vec::new();
     for lesson in &lessons {
         let info = lesson.info();
@@ -120,7 +120,7 @@ fn verdict(run: &Result<LessonRun, String>) -> String {
 
 fn index_page(
     ctx: &Context,
-    lessons: &[&'static dyn super::Lesson],
+    lessons: &[&'static dyn crate::learn::Lesson],
     runs: &[Result<LessonRun, String>],
 ) -> String {
     let mut body = String::from(
@@ -160,9 +160,12 @@ fn index_page(
 }
 
 fn lesson_page(
-    info: &super::LessonInfo,
+    info: &crate::learn::LessonInfo,
     run: &Result<LessonRun, String>,
-    (previous, next): (Option<&super::LessonInfo>, Option<&super::LessonInfo>),
+    (previous, next): (
+        Option<&crate::learn::LessonInfo>,
+        Option<&crate::learn::LessonInfo>,
+    ),
 ) -> String {
     let mut body = format!(
         "<h1>Lesson {}: {}</h1>\n<p>{}</p>\n",
@@ -219,7 +222,7 @@ fn lesson_page(
 }
 
 /// The passes as a diagram, the checks, the notes and the compute counterpart of a run.
-fn run_sections(info: &super::LessonInfo, run: &LessonRun) -> String {
+fn run_sections(info: &crate::learn::LessonInfo, run: &LessonRun) -> String {
     let mut out = format!(
         "<p>Run for this guide on {}: {}.</p>\n<h2>The passes</h2>\n",
         escape(&run.renderer),
@@ -287,7 +290,7 @@ fn run_sections(info: &super::LessonInfo, run: &LessonRun) -> String {
     out
 }
 
-fn exercises(info: &super::LessonInfo) -> String {
+fn exercises(info: &crate::learn::LessonInfo) -> String {
     if info.exercises.is_empty() {
         return String::new();
     }
