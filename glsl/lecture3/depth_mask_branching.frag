@@ -1,3 +1,4 @@
+#version 330 core
 // The branching shader: every pixel runs it and tests its mask value; the expensive sum runs
 // only where the test passes, 0 elsewhere. (Fragment stage: depth_mask_common.glsl, then
 // this file.)

@@ -1,3 +1,4 @@
+#version 330 core
 // The second pass of the depth-masked version: the expensive sum with no `if`. It is drawn at
 // depth 0.5 with the depth test GREATER, so only active pixels (depth 0) pass; since the
 // shader writes no depth and never discards, the test can run before it (early depth test),

@@ -30,7 +30,7 @@ void main() {
         above = t;
     }
     if (hit < 0.0) discard;
-    bool wall = hit == box.x;
+    bool wall = hit == box.x && enters_through_side(r);
     if (!wall) {
         for (int i = 0; i < u_binary_steps; ++i) {
             float mid = 0.5 * (above + hit);
