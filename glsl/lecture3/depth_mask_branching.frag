@@ -1,3 +1,4 @@
+#version 330 core
 // Lecture 3, debugging tip "remove `if` with the depth buffer": the version with the `if`.
 // Compiled after: glsl/lecture3/depth_mask_common.glsl
 // The branching shader: every pixel runs it and tests its mask value; the expensive sum runs

@@ -1,3 +1,4 @@
+#version 330 core
 // Lecture 3, debugging tip "remove `if` with the depth buffer": pass 2, the sum without `if`.
 // Compiled after: glsl/lecture3/depth_mask_common.glsl
 // The second pass of the depth-masked version: the expensive sum with no `if`. It is drawn at

@@ -17,7 +17,8 @@ uniform sampler2D u_heights;   // the height map, one sample per texel
 uniform mat4 u_view_projection;
 
 layout(location = 0) out vec4 o_hit;    // grid x, y, z and the ray parameter
-layout(location = 1) out vec4 o_stats;  // iterations, kind (1 surface, 2 wall, -1 unfinished)
+layout(location = 1) out vec4 o_stats;  // iterations, kind (1 surface, 2 wall, -1 unfinished),
+                                        // the shown normal's x and y (world)
 layout(location = 2) out vec4 o_colour; // shaded
 
 const float BIG = 1e30;
@@ -50,6 +51,19 @@ vec2 box_interval(Ray r) {
         t1 = min(t1, max(a, b));
     }
     return vec2(t0, t1);
+}
+
+// Whether the ray enters the box through one of its four sides (x or y planes), from outside,
+// rather than through its top or bottom (exact.rs). A hit at the entry of such a ray is the
+// box's wall; a ray entering through the top where the surface is at the top hits the surface.
+bool enters_through_side(Ray r) {
+    vec3 hi = vec3(vec2(u_patches), 1.0);
+    vec3 near_t = vec3(-BIG);
+    for (int k = 0; k < 3; ++k) {
+        if (r.d[k] != 0.0) near_t[k] = min((0.0 - r.o[k]) / r.d[k], (hi[k] - r.o[k]) / r.d[k]);
+    }
+    float side = max(near_t.x, near_t.y);
+    return side > 0.0 && side >= near_t.z;
 }
 
 // The corner heights of patch `cell`: (h00, h10, h01, h11).
@@ -105,7 +119,6 @@ float patch_first_hit(vec4 h, vec3 start, vec3 step, float len) {
 void write_hit(Ray r, float tau, bool wall, float iterations) {
     vec3 g = r.o + tau * r.d;
     o_hit = vec4(g, tau);
-    o_stats = vec4(iterations, wall ? 2.0 : 1.0, 0.0, 0.0);
     vec3 n;
     if (wall) {
         // The box side the ray came through: the one it is closest to.
@@ -124,6 +137,9 @@ void write_hit(Ray r, float tau, bool wall, float iterations) {
         vec2 slope = vec2(dhds, dhdt) * u_world_to_grid.xy / u_world_to_grid.z;
         n = normalize(vec3(-slope, 1.0));
     }
+    // The normal goes out beside the kind: a wall's has z = 0, a surface's z > 0, so x and y
+    // determine it.
+    o_stats = vec4(iterations, wall ? 2.0 : 1.0, n.xy);
     ivec2 square = ivec2(floor(g.xy / 8.0));
     vec3 albedo = ((square.x + square.y) & 1) == 0 ? vec3(0.85, 0.75, 0.6) : vec3(0.55, 0.6, 0.75);
     vec3 light = normalize(vec3(0.4, 0.3, 0.85));

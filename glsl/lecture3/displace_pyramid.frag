@@ -59,7 +59,11 @@ void main() {
             float u = patch_first_hit(corners(cell), vec3(q.xy - vec2(cell), q.z), r.d,
                                       max(t_exit - t, 0.0));
             if (u >= 0.0) {
-                write_hit(r, t + u, in_entry_cell && u == 0.0, float(it + 1));
+                // A wall only where the ray is under the surface where it enters the box
+                // through a side: not where it was moved down to a node's bound plane and a
+                // flat patch at that very height starts there (u = 0 as well).
+                bool wall = in_entry_cell && t == box.x && u == 0.0 && enters_through_side(r);
+                write_hit(r, t + u, wall, float(it + 1));
                 return;
             }
             skip = true;

@@ -38,7 +38,7 @@ void main() {
     if (hit < 0.0) discard;
     // A hit at the entry is the box's wall; otherwise the binary search halves the last
     // step, keeping `above` over the surface and `hit` under it.
-    bool wall = hit == box.x;
+    bool wall = hit == box.x && enters_through_side(r);
     if (!wall) {
         for (int i = 0; i < u_binary_steps; ++i) {
             float mid = 0.5 * (above + hit);

@@ -5,6 +5,7 @@
 //! [`classic_gpgpu::report::bench_command`].
 
 use anyhow::{bail, Context as _};
+use classic_gpgpu::files;
 use classic_gpgpu::gl::dump::{texture_png, DumpRange};
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::lecture3::blend_histogram::{self, Bins};
@@ -13,10 +14,13 @@ use classic_gpgpu::lecture3::displacement::compare::ReferenceImage;
 use classic_gpgpu::lecture3::displacement::{exact, Camera, DisplacementRenderer, Method, Surface};
 use classic_gpgpu::lecture3::error::check_range;
 use classic_gpgpu::lecture3::function_texture::{Function, FunctionPasses};
-use classic_gpgpu::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
+use classic_gpgpu::lecture3::height_map::{load_grey, HeightMap, SHIPPED_SIZE};
 use classic_gpgpu::lecture3::light_hierarchy::shade::Terms;
 use classic_gpgpu::lecture3::light_hierarchy::Gather;
-use classic_gpgpu::report::lecture3::{self as bench, images::pyramid_png};
+use classic_gpgpu::report::lecture3::{
+    self as bench,
+    images::{gpu_pyramids, pyramid_png},
+};
 use classic_gpgpu::report::timing::Runs;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -24,8 +28,8 @@ use std::path::{Path, PathBuf};
 /// The lecture-3 techniques.
 #[derive(clap::Subcommand, Debug)]
 pub enum Lecture3Command {
-    /// 1. The max and min image pyramids of a height map, drawn level by level on the GPU and
-    ///    compared with the CPU's.
+    /// 1. The max, min and mean image pyramids of a height map, drawn level by level on the
+    ///    GPU and compared with the CPU's.
     Pyramid(PyramidArgs),
     /// 2. Pyramidal displacement mapping: a height map on a box, traced per pixel through its
     ///    max pyramid (or by relief mapping), checked against an exact CPU ray tracer.
@@ -128,6 +132,11 @@ pub struct DisplaceArgs {
     /// Write frame k to DIR/frame_k.png (DIR is created; existing frames only with --force).
     #[arg(long, conflicts_with = "png")]
     out: Option<PathBuf>,
+    /// Write the first frame as the GPU read it back into DIR (created): hit.npy (height x
+    /// width x 4: grid x, y, z and the ray parameter), depth.npy (window depth, 1 where
+    /// nothing was hit) and kind.npy (0 nothing, 1 surface, 2 wall); rows from the bottom.
+    #[arg(long)]
+    npy: Option<PathBuf>,
     #[command(flatten)]
     output: Output,
 }
@@ -154,6 +163,10 @@ pub struct LightArgs {
     /// Show only the indirect light in --png.
     #[arg(long)]
     indirect_only: bool,
+    /// Write the gathered indirect irradiance (height x width x 3, RGB, rows from the bottom,
+    /// as the GPU read it back) to DIR/irradiance.npy (DIR is created).
+    #[arg(long)]
+    npy: Option<PathBuf>,
     #[command(flatten)]
     output: Output,
 }
@@ -188,6 +201,10 @@ pub struct RandomArgs {
     steps: usize,
     #[arg(long, default_value_t = 2007)]
     seed: u64,
+    /// Write the GPU's numbers, as read back, to this .npy file (steps x size x size, float32,
+    /// rows from the bottom).
+    #[arg(long)]
+    npy: Option<PathBuf>,
     #[command(flatten)]
     output: Output,
 }
@@ -293,7 +310,8 @@ fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let (map, name) = load_map(a.height.as_deref(), ctx)?;
     let row = bench::pyramid_row(ctx, &map, RUNS)?;
     if let Some(png) = &a.output.png {
-        pyramid_png(&map, png)?;
+        // The levels the GPU drew, read back: what is shown is what was computed.
+        pyramid_png(&gpu_pyramids(ctx, &map)?, (map.width(), map.height()), png)?;
     }
     if !row.equal_to_cpu {
         bail!("the GPU pyramid differs from the CPU pyramid (a bug: max and min are exact)");
@@ -305,11 +323,13 @@ fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
                 "pyramid": row, "png": a.output.png }),
         format!(
             "{name}: {}x{}, {} levels; GPU max and min pyramids equal to the CPU's bit for bit\n\
+             mean pyramid within {:.1e} of the CPU's f64 means\n\
              level passes {:.3} ms (GPU), CPU pyramid {:.3} ms: CPU / GPU {:.2} \
              (renderer: {renderer})",
             map.width(),
             map.height(),
             row.levels,
+            row.mean_max_error,
             row.gpu_ms,
             row.cpu_ms,
             row.cpu_ms / row.gpu_ms
@@ -344,6 +364,12 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             )?;
         }
     }
+    let npy_files = |dir: &Path| DISPLACE_NPY.map(|f| dir.join(f));
+    if let Some(dir) = &a.npy {
+        for path in npy_files(dir) {
+            files::check_output("--npy", &path, &inputs, a.output.force, &["npy"])?;
+        }
+    }
     let (map, name) = load_map(a.height.as_deref(), ctx)?;
     let renderer = DisplacementRenderer::new(ctx, Surface::new(map, a.depth)?)?;
     let method = match a.method {
@@ -368,15 +394,22 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let gpu_ms = bench::gpu_ms(ctx, RUNS, || Ok(renderer.render(&target, &first, method)?))?.median;
     let frame = renderer.read(&target)?;
     frame.check_finished()?;
+    let mut written = Vec::new();
+    if let Some(dir) = &a.npy {
+        let (w, h) = (a.size as usize, a.size as usize);
+        let [hit, depth, kind] = npy_files(dir);
+        files::write_npy(&hit, &[h, w, 4], frame.hits())?;
+        files::write_npy(&depth, &[h, w], &frame.depth)?;
+        files::write_npy(&kind, &[h, w], &frame.kinds())?;
+        written.extend([hit, depth, kind]);
+    }
     let check = if a.no_check {
         None
     } else {
         let cpu_ms = bench::wall_once_ms(|| exact::trace_image(renderer.surface(), &first, 0.0));
-        let (comparison, _) =
-            ReferenceImage::trace(renderer.surface(), &first).judge(&frame.pixels());
+        let (comparison, _) = ReferenceImage::trace(renderer.surface(), &first).judge(&frame);
         Some((cpu_ms, comparison))
     };
-    let mut written = Vec::new();
     for k in 0..a.frames {
         renderer.render(&target, &camera(k), method)?;
         renderer.read(&target)?.check_finished()?;
@@ -409,11 +442,15 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if let Some((cpu_ms, c)) = &check {
         text.push_str(&format!(
             "\nexact CPU tracer {cpu_ms:.1} ms (CPU / GPU {:.1}); of {} compared pixels: {} on \
-             the wrong surface, {} outside the tolerance, {} ill-conditioned",
+             the wrong surface, {} outside the tolerance, {} drawn as wall for surface or the \
+             reverse, {} with a wrong normal, {} with a wrong colour, {} ill-conditioned",
             cpu_ms / gpu_ms,
             c.compared,
             c.wrong_surface,
             c.outside_tolerance,
+            c.wrong_kind,
+            c.wrong_normal,
+            c.wrong_colour,
             c.ambiguous
         ));
     }
@@ -438,8 +475,29 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     check_size("--size", a.size)?;
     // The criterion is checked before anything runs.
     Gather::tree(a.theta)?;
+    let irradiance_npy = a.npy.as_ref().map(|dir| dir.join("irradiance.npy"));
+    if let Some(path) = &irradiance_npy {
+        files::check_output("--npy", path, &[], a.output.force, &["npy"])?;
+    }
+    let bar = progress(
+        json,
+        "lecture 3 light: VPLs, clusters, gathers (tree and brute force)",
+    );
     let (run, lighting, ()) =
         bench::light_run(ctx, a.vpls, a.size, a.size, &[a.theta], RUNS, |_| Ok(()))?;
+    bar.finish_and_clear();
+    let mut written = Vec::new();
+    if let Some(path) = &irradiance_npy {
+        // `light_run` left the gather of `a.theta` in the target.
+        let rgb: Vec<f32> = lighting
+            .gathers
+            .read()?
+            .iter()
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect();
+        files::write_npy(path, &[a.size as usize, a.size as usize, 3], &rgb)?;
+        written.push(path.clone());
+    }
     if let Some(png) = &a.output.png {
         // `light_run` left the gather of `a.theta` in the target.
         let terms = if a.indirect_only {
@@ -449,12 +507,13 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         };
         lighting.shade(terms, 1.5)?;
         texture_png(lighting.shade.target.color(0), png, DumpRange::Auto)?;
+        written.push(png.clone());
     }
     let row = &run.rows[0];
     let renderer = ctx.info().renderer_line();
     print(
         json,
-        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "light": run, "png": a.output.png }),
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "light": run, "png": a.output.png, "written": written }),
         format!(
             "{} VPLs, {} receivers; theta {}: {:.1} nodes per receiver, relative RMS error \
              {:.2e} against the brute force\nGPU: tree {:.2} ms, brute force {:.2} ms; CPU \
@@ -470,8 +529,27 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             run.brute_cpu_ms,
             run.brute_cpu_ms / row.gpu_ms,
             run.brute_cpu_ms / run.brute_gpu_ms
-        ),
+        ) + &wrote_lines(&written),
     )
+}
+
+/// The files of `.npy` output of `displace --npy DIR`.
+const DISPLACE_NPY: [&str; 3] = ["hit.npy", "depth.npy", "kind.npy"];
+
+/// One "wrote PATH" line per file, each after a line break.
+fn wrote_lines(written: &[PathBuf]) -> String {
+    written
+        .iter()
+        .map(|p| format!("\nwrote {}", p.display()))
+        .collect()
+}
+
+/// A spinner on stderr while a long step runs; hidden under --json (and off a terminal).
+fn progress(json: bool, message: &str) -> indicatif::ProgressBar {
+    let bar = classic_gpgpu::report::progress_bars(json).add(indicatif::ProgressBar::new_spinner());
+    bar.set_message(message.to_string());
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar
 }
 
 fn function(a: &FunctionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
@@ -508,8 +586,15 @@ fn function(a: &FunctionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
 
 fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     a.output.check(&[])?;
-    if !(1..=4096).contains(&a.size) || !(2..=1024).contains(&a.steps) {
-        bail!("--size must be 1 to 4096 generators a side and --steps 2 to 1024");
+    // Two generators a side at least: the neighbour correlation needs a pair in a row.
+    if !(2..=4096).contains(&a.size) || !(2..=1024).contains(&a.steps) {
+        bail!(
+            "--size must be 2 to 4096 generators a side (the neighbour correlation needs two in \
+             a row) and --steps 2 to 1024"
+        );
+    }
+    if let Some(npy) = &a.npy {
+        files::check_output("--npy", npy, &[], a.output.force, &["npy"])?;
     }
     let dir = std::env::temp_dir().join(format!("classic-gpgpu-random-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
@@ -530,6 +615,21 @@ fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if !run.bit_exact {
         bail!("the GPU generators differ from the CPU generator (a bug: integer arithmetic)");
     }
+    let mut written: Vec<PathBuf> = a.output.png.iter().cloned().collect();
+    if let Some(npy) = &a.npy {
+        let side = a.size as usize;
+        files::write_npy(npy, &[run.steps, side, side], &run.values)?;
+        written.push(npy.clone());
+    }
+    for value in [
+        run.chi_square,
+        run.serial_correlation,
+        run.neighbour_correlation,
+    ] {
+        if !value.is_finite() {
+            bail!("a statistic of the numbers is not finite ({value}): too few numbers to test");
+        }
+    }
     let renderer = ctx.info().renderer_line();
     print(
         json,
@@ -548,7 +648,7 @@ fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             run.gpu_ms_per_step,
             run.cpu_ms_per_step,
             run.cpu_ms_per_step / run.gpu_ms_per_step
-        ),
+        ) + &wrote_lines(&written),
     )
 }
 
@@ -588,13 +688,28 @@ fn depth_mask(a: &DepthMaskArgs, ctx: &Context, json: bool) -> anyhow::Result<()
         json,
         json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "depth_mask": row, "png": a.output.png }),
         format!(
-            "{} active of {} pixels; the expensive shader ran {} times behind the depth test, \
-             {} times when branching\nbranching {:.2} ms, depth-masked {:.2} ms: branching / \
-             masked {:.2}; max |GPU - CPU| {:.1e} (renderer: {renderer})",
+            "{} active of {} pixels; {} fragments passed the depth test behind the mask, {} \
+             when branching\nruns of the expensive shader behind the mask: {}\nbranching {:.2} \
+             ms, depth-masked {:.2} ms: branching / masked {:.2}; max |GPU - CPU| {:.1e} \
+             (renderer: {renderer})",
             row.active,
             a.size * a.size,
             row.masked_fragments,
             row.branching_fragments,
+            match (row.masked_runs, row.unmasked_runs) {
+                (Some(masked), Some(all)) =>
+                    format!(
+                        "{masked} for {} active pixels in {} 2x2 quads ({} without the mask), \
+                     counted by {}",
+                        row.active,
+                        row.active_quads,
+                        all,
+                        row.counted_by.describe()
+                    ) + &row.masked_invocations.map_or(String::new(), |n| {
+                        format!("; pipeline statistics: {n} invocations of the plain shader")
+                    }),
+                _ => row.counted_by.describe(),
+            },
             row.branching_ms,
             row.masked_ms,
             row.branching_ms / row.masked_ms,
@@ -605,10 +720,7 @@ fn depth_mask(a: &DepthMaskArgs, ctx: &Context, json: bool) -> anyhow::Result<()
 
 fn histogram(a: &HistogramArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let values = match &a.image {
-        Some(path) => {
-            let map = HeightMap::load(path, u32::MAX)?;
-            map.heights().to_vec()
-        }
+        Some(path) => load_grey(path, u32::MAX, "image")?.2,
         None => {
             if !(1..=blend_histogram::MAX_VALUES).contains(&a.values) {
                 bail!(
@@ -632,11 +744,12 @@ fn histogram(a: &HistogramArgs, ctx: &Context, json: bool) -> anyhow::Result<()>
     if !row.blend_equal || row.gather_equal == Some(false) {
         bail!("the GPU histogram differs from the CPU histogram (a bug: counts are exact)");
     }
-    let (cpu, outside) = blend_histogram::cpu_histogram(&values, None, &bins);
+    let (_, outside) = blend_histogram::cpu_histogram(&values, None, &bins);
     let renderer = ctx.info().renderer_line();
     print(
         json,
-        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "histogram": row, "counts": cpu,
+        // The counts the GPU blended, as read back (checked equal to the CPU's above).
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "histogram": row, "counts": row.counts,
                 "outside": outside }),
         format!(
             "{} values in {} bins over [0, {hi}) ({outside} outside): blended counts equal to \

@@ -56,7 +56,7 @@ pub use pass::{
     Blend, Compare, DepthTest, DrawState, Face, Pass, Primitive, StencilOp, StencilTest,
 };
 pub use program::{Program, ShaderError, ShaderSource};
-pub use query::{OcclusionQuery, TimerQuery};
+pub use query::{FragmentInvocationsQuery, OcclusionQuery, TimerQuery};
 pub use storage::AtomicCounters;
 pub use texture::{Filter, Texture, TextureFormat, Wrap};
 pub use window::GlWindow;

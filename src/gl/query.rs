@@ -1,5 +1,6 @@
 //! Occlusion queries (how many samples passed: paper 4's "until no fragment", CULLIDE's
-//! visibility test) and timer queries (the GPU time of a pass).
+//! visibility test), timer queries (the GPU time of a pass) and fragment shader invocation
+//! queries (how often a shader ran: pipeline statistics).
 
 use super::{Context, GlError};
 use glow::HasContext;
@@ -103,6 +104,48 @@ impl OcclusionQuery {
     /// Whether [`OcclusionQuery::samples`] would return without waiting.
     pub fn available(&self) -> bool {
         self.0.available()
+    }
+}
+
+/// Counts the fragment shader's invocations between `begin` and `end`: the pipeline
+/// statistics query of `GL_ARB_pipeline_statistics_query`, core in OpenGL 4.6. Unlike an
+/// occlusion query, which counts the samples that pass the depth test, it counts the shader's
+/// runs, whether the depth test came before them or after.
+pub struct FragmentInvocationsQuery(Query);
+
+/// The extension that brought pipeline statistics queries (before OpenGL 4.6).
+pub const PIPELINE_STATISTICS_EXTENSION: &str = "GL_ARB_pipeline_statistics_query";
+
+impl FragmentInvocationsQuery {
+    /// Whether `ctx` has pipeline statistics queries.
+    pub fn supported(ctx: &Context) -> bool {
+        ctx.info().gl_version >= (4, 6)
+            || ctx
+                .gl()
+                .supported_extensions()
+                .contains(PIPELINE_STATISTICS_EXTENSION)
+    }
+
+    /// A query; an error naming what is missing where the context has no pipeline statistics.
+    pub fn new(ctx: &Context) -> Result<FragmentInvocationsQuery, GlError> {
+        if !Self::supported(ctx) {
+            let info = ctx.info();
+            return Err(GlError::Context(format!(
+                "counting fragment shader invocations needs OpenGL 4.6 or                  {PIPELINE_STATISTICS_EXTENSION}, which this context (OpenGL {}.{}, {}) lacks",
+                info.gl_version.0, info.gl_version.1, info.renderer
+            )));
+        }
+        Query::new(ctx, glow::FRAGMENT_SHADER_INVOCATIONS).map(FragmentInvocationsQuery)
+    }
+    pub fn begin(&self) {
+        self.0.begin()
+    }
+    pub fn end(&self) {
+        self.0.end()
+    }
+    /// The number of fragment shader invocations counted (waits for the GPU).
+    pub fn invocations(&self) -> Result<u64, GlError> {
+        self.0.result("reading a fragment shader invocations query")
     }
 }
 

@@ -32,6 +32,18 @@ impl AtomicCounters {
         Ok(values)
     }
 
+    /// Binds the counters to atomic-counter binding `binding` for the draws that follow (a
+    /// fragment shader counting its runs); compute passes bind theirs through
+    /// [`super::Dispatch::counters`].
+    pub fn bind_for_draws(&self, binding: u32) -> Result<(), GlError> {
+        let ctx = self.buffer.context();
+        unsafe {
+            ctx.gl()
+                .bind_buffer_base(glow::ATOMIC_COUNTER_BUFFER, binding, Some(self.buffer.id()))
+        };
+        ctx.check("binding atomic counters")
+    }
+
     /// The buffer to bind ([`super::Dispatch::counters`]).
     pub fn buffer(&self) -> &Buffer {
         &self.buffer

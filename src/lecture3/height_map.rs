@@ -68,44 +68,8 @@ impl HeightMap {
     /// black = 0, white = 1. `max_side` is the largest side the renderer can hold
     /// (`GL_MAX_TEXTURE_SIZE`); a larger image is refused before it is decoded.
     pub fn load(path: &Path, max_side: u32) -> Result<Self, Error> {
-        let name = path.display().to_string();
-        let reader = image::ImageReader::open(path)
-            .map_err(|e| Error::input(&name, format!("cannot open the height map: {e}")))?
-            .with_guessed_format()
-            .map_err(|e| Error::input(&name, format!("cannot read the height map: {e}")))?;
-        if reader.format().is_none() {
-            return Err(Error::input(
-                &name,
-                "is not an image this program reads (a PNG height map is expected)",
-            ));
-        }
-        let (width, height) = reader
-            .into_dimensions()
-            .map_err(|e| Error::input(&name, format!("is not a readable image: {e}")))?;
-        if width > max_side || height > max_side {
-            return Err(Error::input(
-                &name,
-                format!(
-                    "a {width}x{height} height map does not fit this renderer: each side must be \
-                     at most GL_MAX_TEXTURE_SIZE = {max_side}"
-                ),
-            ));
-        }
-        let image = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| Error::input(&name, format!("cannot read the height map: {e}")))?
-            .decode()
-            .map_err(|e| Error::input(&name, format!("is not a readable image: {e}")))?
-            .to_luma32f();
-        // Image rows run from the top; GL rows from the bottom.
-        let heights = image
-            .as_raw()
-            .chunks_exact(width as usize)
-            .rev()
-            .flatten()
-            .map(|h| h.clamp(0.0, 1.0))
-            .collect();
-        HeightMap::new(&name, width, height, heights)
+        let (width, height, heights) = load_grey(path, max_side, "height map")?;
+        HeightMap::new(&path.display().to_string(), width, height, heights)
     }
 
     /// Writes the map as an 8-bit greyscale PNG (heights rounded to 1/255).
@@ -189,4 +153,48 @@ impl HeightMap {
     pub fn patches(&self) -> (u32, u32) {
         (self.width - 1, self.height - 1)
     }
+}
+
+/// The grey levels (0..1, rows from the bottom as GL stores them) of any image (PNG, 8 or 16
+/// bits; a colour image by its luminance), and its size; `what` names it in errors ("height
+/// map", "image"). A side over `max_side` is refused before the image is decoded.
+pub fn load_grey(path: &Path, max_side: u32, what: &str) -> Result<(u32, u32, Vec<f32>), Error> {
+    let name = path.display().to_string();
+    let reader = image::ImageReader::open(path)
+        .map_err(|e| Error::input(&name, format!("cannot open the {what}: {e}")))?
+        .with_guessed_format()
+        .map_err(|e| Error::input(&name, format!("cannot read the {what}: {e}")))?;
+    if reader.format().is_none() {
+        return Err(Error::input(
+            &name,
+            format!("is not an image this program reads (a PNG {what} is expected)"),
+        ));
+    }
+    let (width, height) = reader
+        .into_dimensions()
+        .map_err(|e| Error::input(&name, format!("is not a readable image: {e}")))?;
+    if width > max_side || height > max_side {
+        return Err(Error::input(
+            &name,
+            format!(
+                "a {width}x{height} {what} does not fit this renderer: each side must be at \
+                 most GL_MAX_TEXTURE_SIZE = {max_side}"
+            ),
+        ));
+    }
+    let image = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(|e| Error::input(&name, format!("cannot read the {what}: {e}")))?
+        .decode()
+        .map_err(|e| Error::input(&name, format!("is not a readable image: {e}")))?
+        .to_luma32f();
+    // Image rows run from the top; GL rows from the bottom.
+    let grey = image
+        .as_raw()
+        .chunks_exact(width as usize)
+        .rev()
+        .flatten()
+        .map(|h| h.clamp(0.0, 1.0))
+        .collect();
+    Ok((width, height, grey))
 }

@@ -11,7 +11,7 @@
 //! says which parts are.
 //!
 //! One module per technique, each with its CPU reference:
-//! 1. [`pyramid`]: a max/min quadtree image pyramid built by render passes
+//! 1. [`pyramid`]: a max/min (and mean) quadtree image pyramid built by render passes
 //!    ([`pyramid_atlas`]: the same pyramid in one image, for per-pixel levels);
 //! 2. [`displacement`]: pyramidal displacement mapping, against an exact CPU tracer and
 //!    relief mapping;
@@ -20,8 +20,8 @@
 //! 4. [`function_texture`]: a costly function in a 1D lookup texture, against computing it;
 //! 5. [`random_texture`]: a generator per texel advanced by ping-pong passes, bit-exact with
 //!    the CPU;
-//! 6. [`depth_mask`]: an `if` removed with the depth buffer (early depth test, counted by an
-//!    occlusion query);
+//! 6. [`depth_mask`]: an `if` removed with the depth buffer (early depth test; the expensive
+//!    shader's runs counted by a pipeline statistics query or an atomic counter);
 //! 7. [`blend_histogram`]: a histogram by additive blending of points, equal to the CPU's.
 //!
 //! The other two debugging tips live in the GL layer: drawing the intermediate data

@@ -10,6 +10,13 @@
 //! node). Max and min are exact in floating point, so the GPU pyramid equals the CPU pyramid
 //! bit for bit.
 //!
+//! The mean (averaging) pyramid, as image processing uses it, sits beside them: each node is
+//! the mean of the image pixels it covers. Padding covers none, so for sizes that are not
+//! powers of two each node weights its children by how many image pixels they cover (a node
+//! on the image's right edge of an odd-sized level averages fewer pixels); its level 0 is
+//! padded with 0, and a node that covers nothing is 0. Its GPU levels are the CPU's (f64, from
+//! the image) within fp32 rounding, not bit for bit.
+//!
 //! The lecture names the image pyramid and its use for displacement mapping (technique 2)
 //! without giving a construction; this is the standard mipmap-style construction, a
 //! reconstruction.
@@ -18,12 +25,14 @@ use crate::gl::{Context, Framebuffer, GlError, Program, Texture, TextureFormat};
 use crate::shader;
 use serde::Serialize;
 
-/// Which extreme the pyramid keeps.
+/// Which extreme the pyramid keeps (or, for `Mean`, the average instead).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Extreme {
     Max,
     Min,
+    /// The mean of the image pixels each node covers: an averaging pyramid, not an extreme.
+    Mean,
 }
 
 impl Extreme {
@@ -32,13 +41,16 @@ impl Extreme {
         match self {
             Extreme::Max => -f32::MAX,
             Extreme::Min => f32::MAX,
+            Extreme::Mean => 0.0,
         }
     }
 
+    /// Two values combined (for `Mean`, two values of equal weight).
     pub fn combine(self, a: f32, b: f32) -> f32 {
         match self {
             Extreme::Max => a.max(b),
             Extreme::Min => a.min(b),
+            Extreme::Mean => 0.5 * (a + b),
         }
     }
 
@@ -47,6 +59,7 @@ impl Extreme {
         match self {
             Extreme::Max => 0,
             Extreme::Min => 1,
+            Extreme::Mean => 2,
         }
     }
 }
@@ -76,15 +89,59 @@ pub fn level_count(width: u32, height: u32) -> u32 {
     w.max(h).trailing_zeros() + 1
 }
 
-/// The CPU pyramid: level 0 (the padded image) up to the 1 x 1 root.
+/// The CPU pyramid: level 0 (the padded image) up to the 1 x 1 root. A mean pyramid is
+/// computed from the image itself at every level (f64 means of the pixels each node covers,
+/// rounded to f32), not level from level.
 pub fn cpu_pyramid(width: u32, height: u32, values: &[f32], extreme: Extreme) -> Vec<Level> {
     assert_eq!(values.len(), (width * height) as usize, "image size");
+    if extreme == Extreme::Mean {
+        return cpu_mean_pyramid(width, height, values);
+    }
     let mut levels = vec![padded(width, height, values, extreme)];
     for _ in 1..level_count(width, height) {
         let next = next_level(levels.last().expect("level 0"), extreme);
         levels.push(next);
     }
     levels
+}
+
+/// The image pixels along one axis (of `pixels`) that node `node` covers when each node of its
+/// level spans `span` pixels.
+fn covered(node: u32, span: u32, pixels: u32) -> u32 {
+    pixels.saturating_sub(node * span).min(span)
+}
+
+/// Every level of the mean pyramid, each node the f64 mean of the image pixels it covers (0
+/// where it covers none).
+fn cpu_mean_pyramid(width: u32, height: u32, values: &[f32]) -> Vec<Level> {
+    let (pw, ph) = padded_size(width, height);
+    (0..level_count(width, height))
+        .map(|k| {
+            let (w, h) = ((pw >> k).max(1), (ph >> k).max(1));
+            let (sx, sy) = (pw / w, ph / h);
+            let mut out = Vec::with_capacity((w * h) as usize);
+            for y in 0..h {
+                for x in 0..w {
+                    let (nx, ny) = (covered(x, sx, width), covered(y, sy, height));
+                    let sum: f64 = (y * sy..y * sy + ny)
+                        .flat_map(|py| (x * sx..x * sx + nx).map(move |px| (px, py)))
+                        .map(|(px, py)| values[(py * width + px) as usize] as f64)
+                        .sum();
+                    let count = (nx * ny) as f64;
+                    out.push(if count > 0.0 {
+                        (sum / count) as f32
+                    } else {
+                        0.0
+                    });
+                }
+            }
+            Level {
+                width: w,
+                height: h,
+                values: out,
+            }
+        })
+        .collect()
 }
 
 fn padded(width: u32, height: u32, values: &[f32], extreme: Extreme) -> Level {
@@ -101,7 +158,9 @@ fn padded(width: u32, height: u32, values: &[f32], extreme: Extreme) -> Level {
     }
 }
 
-/// One level from the one below: each node the extreme of its (up to) four children.
+/// One level from the one below: each node the extreme of its (up to) four children. (For a
+/// mean pyramid this is the plain mean of the children, right only where every child covers
+/// as many image pixels: [`cpu_pyramid`] weights them.)
 pub fn next_level(below: &Level, extreme: Extreme) -> Level {
     let (w, h) = ((below.width / 2).max(1), (below.height / 2).max(1));
     let mut values = Vec::with_capacity((w * h) as usize);
@@ -130,9 +189,16 @@ pub struct Pyramid {
     pub texture: Texture,
     pub extreme: Extreme,
     targets: Vec<Framebuffer>,
+    /// The image's size before padding (a mean pyramid weights nodes by it).
+    image: (u32, u32),
 }
 
 impl Pyramid {
+    /// The image's size before padding.
+    pub fn image_size(&self) -> (u32, u32) {
+        self.image
+    }
+
     pub fn levels(&self) -> u32 {
         self.texture.levels()
     }
@@ -190,6 +256,7 @@ impl PyramidBuilder {
             texture,
             extreme,
             targets,
+            image: (width, height),
         })
     }
 
@@ -223,6 +290,8 @@ impl PyramidBuilder {
         let result = (1..texture.levels()).try_for_each(|level| {
             texture.set_level_range(level - 1, level - 1)?;
             let (below_w, below_h) = texture.level_size(level - 1);
+            let (pw, ph) = texture.level_size(0);
+            let (iw, ih) = pyramid.image;
             pyramid
                 .target(level)
                 .pass(&self.level_program, "pyramid level from the one below")?
@@ -232,6 +301,11 @@ impl PyramidBuilder {
                     glam::IVec2::new(below_w as i32, below_h as i32),
                 )
                 .uniform("u_op", pyramid.extreme.shader_op())
+                .uniform("u_image", glam::IVec2::new(iw as i32, ih as i32))
+                .uniform(
+                    "u_below_span",
+                    glam::IVec2::new((pw / below_w) as i32, (ph / below_h) as i32),
+                )
                 .draw_full()
         });
         texture.set_level_range(0, texture.levels() - 1)?;

@@ -50,6 +50,15 @@ impl BoundPyramidBuilder {
         patches: (u32, u32),
         extreme: Extreme,
     ) -> Result<Pyramid, GlError> {
+        let op = match extreme {
+            Extreme::Max => 0,
+            Extreme::Min => 1,
+            Extreme::Mean => {
+                return Err(GlError::Invalid(
+                    "a bound pyramid keeps maxima or minima of the patches, not means".into(),
+                ))
+            }
+        };
         let pyramid = self.pyramids.allocate(patches.0, patches.1, extreme)?;
         pyramid
             .target(0)
@@ -59,13 +68,7 @@ impl BoundPyramidBuilder {
                 "u_patches",
                 glam::IVec2::new(patches.0 as i32, patches.1 as i32),
             )
-            .uniform(
-                "u_op",
-                match extreme {
-                    Extreme::Max => 0,
-                    Extreme::Min => 1,
-                },
-            )
+            .uniform("u_op", op)
             .draw_full()?;
         self.pyramids.build_levels(&pyramid)?;
         Ok(pyramid)

@@ -10,11 +10,21 @@
 //!
 //! A pixel's hit is on the "wrong surface" when it hits where the exact tracer misses (or the
 //! reverse), or lands more than one patch away from the exact hit: relief mapping's artifact.
+//!
+//! What is drawn is judged too, on every pixel both hit (and not ill-conditioned): the kind
+//! (the surface, or the box's wall where the ray enters through a side below the surface)
+//! must be the exact tracer's; the normal the pixel is shaded with must be the field's normal
+//! at the GPU's hit or at the exact hit (within `NORMAL_TOL`; beside a patch edge, that of
+//! either patch, as the field's normal jumps there); and the colour must be the shading of
+//! that normal and the checkerboard's albedo there, within `COLOUR_TOL`
+//! ([`super::shading`]). Pixels where raising or lowering the field by `DELTA` changes the
+//! kind are ill-conditioned as well.
 
 use super::camera::Camera;
 use super::exact::{box_interval, trace, Hit};
+use super::shading;
 use super::surface::Surface;
-use super::tracer::Pixel;
+use super::tracer::{Frame, Pixel};
 use serde::Serialize;
 
 /// Height perturbation the tests allow: fp32 rounding of grid coordinates up to ~150 patches
@@ -23,6 +33,15 @@ use serde::Serialize;
 pub const DELTA: f64 = 1e-4;
 /// Ray-parameter slack (world units) for the rounding of the reported hit itself.
 pub const SLACK: f64 = 1e-4;
+/// How far (patches) from a patch or square edge a hit may show either side's normal or
+/// albedo: fp32 rounding of the grid position (~1e-5), with margin.
+pub const EDGE: f64 = 1e-3;
+/// The largest difference between the shown unit normal and the field's: fp32 evaluation of
+/// slopes up to ~10 (~1e-5), with margin.
+pub const NORMAL_TOL: f64 = 2e-3;
+/// The largest difference (per channel, in [0, 1]) between the shown colour and the shading
+/// of the shown normal: half a step of the 8-bit target, plus fp32 error.
+pub const COLOUR_TOL: f64 = 1.0 / 255.0;
 
 /// How a frame compares with the exact tracer.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -37,6 +56,12 @@ pub struct Comparison {
     pub outside_tolerance: usize,
     /// Pixels whose hit is on another surface than the exact one (or hits/misses wrongly).
     pub wrong_surface: usize,
+    /// Pixels that show the surface where the exact hit is on the box's wall, or the reverse.
+    pub wrong_kind: usize,
+    /// Pixels shaded with another normal than the field's (or the wall's) at the hit.
+    pub wrong_normal: usize,
+    /// Pixels whose colour is not the shading of their normal and albedo.
+    pub wrong_colour: usize,
     /// The largest |tau - exact tau| over the pixels both hit and judged, world units.
     pub max_tau_error: f64,
     /// Traversals that did not end.
@@ -52,9 +77,13 @@ struct Reference {
 
 impl Reference {
     fn ambiguous(&self) -> bool {
-        match (self.raised, self.lowered) {
-            (Some(r), Some(l)) => (r.grid.truncate() - l.grid.truncate()).length() > 1.0,
-            (None, None) => false,
+        match (self.raised, self.lowered, self.exact) {
+            (Some(r), Some(l), Some(e)) => {
+                (r.grid.truncate() - l.grid.truncate()).length() > 1.0
+                    || r.wall != e.wall
+                    || l.wall != e.wall
+            }
+            (None, None, None) => false,
             _ => true,
         }
     }
@@ -82,6 +111,52 @@ impl Reference {
     }
 }
 
+/// How the pixel's drawing departs from the exact hit's, if it does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Drawn {
+    Right,
+    WrongKind,
+    WrongNormal,
+    WrongColour,
+}
+
+/// The kind, normal and colour of a pixel that hit where the exact tracer hit `exact`
+/// (`rgb`: its shown colour).
+fn judge_drawing(surface: &Surface, exact: &Hit, pixel: &Pixel, rgb: [f64; 3]) -> Drawn {
+    let Pixel::Hit {
+        grid, wall, normal, ..
+    } = *pixel
+    else {
+        return Drawn::Right;
+    };
+    if wall != exact.wall {
+        return Drawn::WrongKind;
+    }
+    // The exact point's candidates reach as far as the GPU's hit is from it.
+    let reach = (grid - exact.grid).truncate().length() + EDGE;
+    let mut normals = if wall {
+        shading::wall_normals(surface, grid, EDGE)
+    } else {
+        shading::surface_normals(surface, grid, EDGE)
+    };
+    normals.extend(if wall {
+        shading::wall_normals(surface, exact.grid, reach)
+    } else {
+        shading::surface_normals(surface, exact.grid, reach)
+    });
+    if !normals.iter().any(|n| (*n - normal).length() <= NORMAL_TOL) {
+        return Drawn::WrongNormal;
+    }
+    let mut albedos = shading::albedos(grid, EDGE);
+    albedos.extend(shading::albedos(exact.grid, reach));
+    let shaded = |albedo| shading::shade(albedo, normal);
+    let close = |c: [f64; 3]| (0..3).all(|k| (c[k] - rgb[k]).abs() <= COLOUR_TOL);
+    if !albedos.into_iter().any(|a| close(shaded(a))) {
+        return Drawn::WrongColour;
+    }
+    Drawn::Right
+}
+
 /// What the comparison says of one pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -96,11 +171,16 @@ pub enum Verdict {
     OutsideTolerance,
     /// On another surface than the exact one, or a wrong hit / miss.
     WrongSurface,
+    /// At the exact hit, but drawn as a wall where the surface is hit (or the reverse).
+    WrongKind,
+    /// At the exact hit, but shaded with a wrong normal or colour.
+    WrongShading,
 }
 
 /// The exact tracer's answers for every pixel of a view, traced once and used to judge any
 /// number of frames of that view.
 pub struct ReferenceImage {
+    surface: Surface,
     /// `None` for pixels not compared (silhouette or outside the box).
     pixels: Vec<Option<Reference>>,
 }
@@ -141,17 +221,20 @@ impl ReferenceImage {
             }
         });
         ReferenceImage {
+            surface: surface.clone(),
             pixels: rows.into_iter().flatten().collect(),
         }
     }
 
-    /// Judges a frame of the same view.
-    pub fn judge(&self, pixels: &[Pixel]) -> (Comparison, Vec<Verdict>) {
+    /// Judges a frame of the same view: where each pixel's ray stops, and what it shows.
+    pub fn judge(&self, frame: &Frame) -> (Comparison, Vec<Verdict>) {
         let mut c = Comparison::default();
+        let pixels = frame.pixels();
         let verdicts = pixels
             .iter()
             .zip(&self.pixels)
-            .map(|(pixel, reference)| {
+            .enumerate()
+            .map(|(i, (pixel, reference))| {
                 if *pixel == Pixel::Unfinished {
                     c.unfinished += 1;
                 }
@@ -171,10 +254,22 @@ impl ReferenceImage {
                 if let (Pixel::Hit { tau, .. }, Some(e)) = (*pixel, reference.exact) {
                     c.max_tau_error = c.max_tau_error.max((tau - e.tau).abs());
                 }
-                match (wrong, within) {
-                    (true, _) => Verdict::WrongSurface,
-                    (false, false) => Verdict::OutsideTolerance,
-                    (false, true) => Verdict::Exact,
+                let drawn = match (wrong, reference.exact) {
+                    (false, Some(exact)) => {
+                        let (x, y) = (i as u32 % frame.width, i as u32 / frame.width);
+                        judge_drawing(&self.surface, &exact, pixel, frame.rgb(x, y))
+                    }
+                    _ => Drawn::Right,
+                };
+                c.wrong_kind += (drawn == Drawn::WrongKind) as usize;
+                c.wrong_normal += (drawn == Drawn::WrongNormal) as usize;
+                c.wrong_colour += (drawn == Drawn::WrongColour) as usize;
+                match (wrong, drawn, within) {
+                    (true, _, _) => Verdict::WrongSurface,
+                    (false, Drawn::WrongKind, _) => Verdict::WrongKind,
+                    (false, Drawn::WrongNormal | Drawn::WrongColour, _) => Verdict::WrongShading,
+                    (false, Drawn::Right, false) => Verdict::OutsideTolerance,
+                    (false, Drawn::Right, true) => Verdict::Exact,
                 }
             })
             .collect();
@@ -199,7 +294,7 @@ fn reference(surface: &Surface, camera: &Camera, x: u32, y: u32) -> Option<Refer
     }
 }
 
-/// Compares `pixels` (a frame of `camera`, row by row from the bottom) with the exact tracer.
-pub fn compare(surface: &Surface, camera: &Camera, pixels: &[Pixel]) -> Comparison {
-    ReferenceImage::trace(surface, camera).judge(pixels).0
+/// Compares `frame` (of `camera`) with the exact tracer.
+pub fn compare(surface: &Surface, camera: &Camera, frame: &Frame) -> Comparison {
+    ReferenceImage::trace(surface, camera).judge(frame).0
 }

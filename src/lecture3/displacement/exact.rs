@@ -19,7 +19,9 @@ pub struct Hit {
     pub tau: f64,
     /// The hit in grid space (x, y in patches, z the height).
     pub grid: DVec3,
-    /// The ray entered the box through a side below the surface: it hit the box's wall.
+    /// The ray entered the box through one of its four sides, below the surface: it hit the
+    /// box's wall. (A ray that enters through the top, at a point where the surface is at the
+    /// top, hits the surface there, not a wall.)
     pub wall: bool,
 }
 
@@ -39,6 +41,21 @@ pub fn box_interval(o: DVec3, d: DVec3, wp: f64, hp: f64) -> Option<(f64, f64)> 
         t1 = t1.min(a.max(b));
     }
     (t0 <= t1).then_some((t0, t1))
+}
+
+/// Whether the ray `o + tau d` (grid space) enters the box `[0, wp] x [0, hp] x [0, 1]`
+/// through one of its four sides (x or y planes) rather than its top or bottom, from
+/// outside (tau > 0). Where it enters along an edge of the top, it counts as a side.
+pub fn enters_through_side(o: DVec3, d: DVec3, wp: f64, hp: f64) -> bool {
+    let near = |o: f64, d: f64, hi: f64| {
+        if d == 0.0 {
+            f64::NEG_INFINITY
+        } else {
+            ((0.0 - o) / d).min((hi - o) / d)
+        }
+    };
+    let side = near(o.x, d.x, wp).max(near(o.y, d.y, hp));
+    side > 0.0 && side >= near(o.z, d.z, 1.0)
 }
 
 /// The ray from `eye` along unit `dir` (world), traced through the height field raised by
@@ -62,6 +79,7 @@ pub fn trace(surface: &Surface, eye: DVec3, dir: DVec3, offset: f64) -> Option<H
         }
     };
     let mut first = true;
+    let through_side = enters_through_side(o, d, wp as f64, hp as f64);
     loop {
         let (tx, ty) = (exit(i, o.x, d.x), exit(j, o.y, d.y));
         let t_exit = tx.min(ty).min(t_out);
@@ -76,7 +94,7 @@ pub fn trace(surface: &Surface, eye: DVec3, dir: DVec3, offset: f64) -> Option<H
             return Some(Hit {
                 tau,
                 grid: o + tau * d,
-                wall: first && u == 0.0,
+                wall: first && u == 0.0 && through_side,
             });
         }
         if t_exit >= t_out {

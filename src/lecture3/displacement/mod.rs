@@ -14,14 +14,16 @@
 //! Steps, one file each: [`surface`] (the box and grid space), [`camera`] (the orbiting
 //! camera and pixel rays), [`bounds`] (the bound pyramid), [`patch`] (the finest step),
 //! [`tracer`] (the GPU pass: pyramid traversal or relief mapping's linear + binary search),
-//! [`exact`] (the CPU reference: an exact f64 tracer of the same field), [`compare`] (a GPU
-//! frame against it, with the tolerance stated).
+//! [`exact`] (the CPU reference: an exact f64 tracer of the same field), [`shading`] (what a
+//! hit shows: surface or wall, normal, colour), [`compare`] (a GPU frame against it, with the
+//! tolerance stated).
 
 pub mod bounds;
 pub mod camera;
 pub mod compare;
 pub mod exact;
 pub mod patch;
+pub mod shading;
 pub mod surface;
 pub mod tracer;
 

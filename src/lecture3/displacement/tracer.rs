@@ -75,6 +75,8 @@ pub enum Pixel {
         /// Distance from the eye.
         tau: f64,
         wall: bool,
+        /// The normal the pixel is shaded with (world; a wall's is horizontal).
+        normal: DVec3,
         iterations: u32,
     },
     /// The traversal ran out of iterations (a bug if it ever happens).
@@ -103,12 +105,38 @@ impl Frame {
         if stats[1] == 0.0 {
             return Pixel::Miss;
         }
+        let wall = stats[1] == 2.0;
+        let (nx, ny) = (stats[2] as f64, stats[3] as f64);
+        let nz = if wall {
+            0.0
+        } else {
+            (1.0 - nx * nx - ny * ny).max(0.0).sqrt()
+        };
         Pixel::Hit {
             grid: DVec3::new(hit[0] as f64, hit[1] as f64, hit[2] as f64),
             tau: hit[3] as f64,
-            wall: stats[1] == 2.0,
+            wall,
+            normal: DVec3::new(nx, ny, nz),
             iterations: stats[0] as u32,
         }
+    }
+
+    /// The hit target as read back: per pixel grid x, y, z and the ray parameter (0, 0, 0, -1
+    /// for an unfinished traversal, zeros where nothing was hit), rows from the bottom.
+    pub fn hits(&self) -> &[f32] {
+        &self.hit
+    }
+
+    /// What each pixel shows, as the shader wrote it: 0 nothing, 1 the surface, 2 the box's
+    /// wall, -1 an unfinished traversal; rows from the bottom.
+    pub fn kinds(&self) -> Vec<f32> {
+        self.stats.chunks_exact(4).map(|s| s[1]).collect()
+    }
+
+    /// The shown colour of pixel (px, py), RGB in [0, 1].
+    pub fn rgb(&self, px: u32, py: u32) -> [f64; 3] {
+        let i = 4 * (py * self.width + px) as usize;
+        [0, 1, 2].map(|k| self.colour[i + k] as f64 / 255.0)
     }
 
     /// Every pixel, row by row from the bottom.

@@ -120,7 +120,11 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         .iter()
         .map(|&s| pyramid_row(ctx, &HeightMap::generated(s), runs))
         .collect::<anyhow::Result<_>>()?;
-    images::pyramid_png(&map, &opts.out_dir.join(images::PYRAMID_PNG))?;
+    images::pyramid_png(
+        &images::gpu_pyramids(ctx, &map)?,
+        (map.width(), map.height()),
+        &opts.out_dir.join(images::PYRAMID_PNG),
+    )?;
     bar.finish_and_clear();
 
     let bar = stage("pyramidal displacement mapping");
@@ -186,11 +190,22 @@ pub fn pyramid_row(ctx: &Context, map: &HeightMap, runs: Runs) -> anyhow::Result
         }
     }
     let levels = crate::lecture3::pyramid::level_count(w, h);
+    let mean_gpu = builder
+        .from_image(w, h, map.heights(), Extreme::Mean)?
+        .read_levels()?;
+    let mean_cpu = cpu_pyramid(w, h, map.heights(), Extreme::Mean);
+    let mean_max_error = mean_gpu
+        .iter()
+        .zip(&mean_cpu)
+        .flat_map(|(g, c)| g.values.iter().zip(&c.values))
+        .map(|(&g, &c)| (g as f64 - c as f64).abs())
+        .fold(0.0, f64::max);
     let cpu = wall_ms(runs, || cpu_pyramid(w, h, map.heights(), Extreme::Max));
     Ok(PyramidRow {
         size: w.max(h),
         levels,
         equal_to_cpu: equal,
+        mean_max_error,
         gpu_ms: gpu.median,
         gpu_spread: gpu,
         cpu_ms: cpu.median,
@@ -282,7 +297,7 @@ pub fn artifact_row(
         renderer.render(&target, &camera, method)?;
         let frame = renderer.read(&target)?;
         frame.check_finished()?;
-        let (comparison, verdicts) = reference.judge(&frame.pixels());
+        let (comparison, verdicts) = reference.judge(&frame);
         row.methods.push(MethodComparison {
             method: method.name(),
             comparison,
@@ -557,9 +572,11 @@ pub fn random(
     let mut cpu: Vec<HybridTaus> = (0..n as u64).map(|i| HybridTaus::seeded(seed, i)).collect();
     let mut streams = vec![Vec::with_capacity(steps); n];
     let mut bit_exact = true;
+    let mut raw = Vec::with_capacity(n * steps);
     for _ in 0..steps {
         gpu.step()?;
         let values = gpu.values()?;
+        raw.extend_from_slice(&values);
         for ((s, g), v) in streams.iter_mut().zip(&mut cpu).zip(&values) {
             bit_exact &= g.next_f32().to_bits() == v.to_bits();
             s.push(*v);
@@ -598,6 +615,7 @@ pub fn random(
     Ok(RandomRun {
         side,
         steps,
+        values: raw,
         bit_exact,
         gpu_ms_per_step: gpu_step.median,
         gpu_spread: gpu_step,
@@ -700,10 +718,24 @@ pub fn depth_mask_row(
         Ok(())
     })?;
     max_error = max_error.max(error(passes.read()?));
+    // The shader's runs, counted: every pixel without the mask (the counter counts runs),
+    // then behind it (last, so that the target keeps the depth-masked picture).
+    let masked_invocations = passes.count_invocations(fraction, iterations, true)?;
+    let unmasked_runs = passes.count_runs(fraction, iterations, false)?;
+    let masked_runs = passes.count_runs(fraction, iterations, true)?;
+    if masked_runs.is_some() {
+        max_error = max_error.max(error(passes.read()?));
+    }
     Ok(DepthMaskRow {
         mask: shape,
         fraction,
         active,
+        pixels: side as u64 * side as u64,
+        active_quads: depth_mask::active_quads(mask, side, side, fraction),
+        masked_runs,
+        unmasked_runs,
+        masked_invocations,
+        counted_by: passes.run_counter(),
         masked_fragments,
         branching_fragments,
         branching_ms: branching.median,
@@ -747,7 +779,8 @@ pub fn histogram_row(
     let blend = gpu_ms_warm(ctx, runs, || {
         Ok(histogram.draw(&data, blend_histogram::Method::Blend)?)
     })?;
-    let blend_equal = equal(&histogram)?;
+    let counts = histogram.read()?;
+    let blend_equal = counts.iter().map(|&c| c as f64).eq(cpu.iter().copied());
     let (gather, gather_equal) = if with_gather {
         let spread = gpu_ms_warm(ctx, runs, || {
             Ok(histogram.draw(&data, blend_histogram::Method::Gather)?)
@@ -760,6 +793,7 @@ pub fn histogram_row(
     Ok(HistogramRow {
         values: values.len(),
         bins: bins.bins,
+        counts,
         blend_equal,
         gather_equal,
         blend_ms: blend.median,

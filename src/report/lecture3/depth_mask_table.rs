@@ -19,14 +19,24 @@ pub fn table(results: &Lecture3Results) -> Table {
     Table {
         caption: format!(
             "6. An if removed with the depth buffer: {0}x{0} pixels, {1} sines per active pixel, \
-             on {2}; fragments counted by an occlusion query",
-            d.side, d.iterations, results.renderer
+             on {2}; shader runs counted by {3}; fragments passing the depth test counted by an \
+             occlusion query",
+            d.side,
+            d.iterations,
+            results.renderer,
+            d.rows
+                .first()
+                .map_or_else(|| "nothing".into(), |r| r.counted_by.describe())
         ),
         header: [
             "mask",
             "active",
             "pixels active (CPU)",
-            "fragments, depth-masked",
+            "2x2 quads active (CPU)",
+            "shader runs, depth-masked",
+            "shader runs, unmasked",
+            "invocations by pipeline statistics, depth-masked",
+            "fragments passing, depth-masked",
             "fragments, branching",
             "branching (ms)",
             "depth-masked (ms)",
@@ -43,6 +53,13 @@ pub fn table(results: &Lecture3Results) -> Table {
                     shape_name(r.mask).into(),
                     format!("{:.0}%", 100.0 * r.fraction),
                     r.active.to_string(),
+                    r.active_quads.to_string(),
+                    r.masked_runs
+                        .map_or_else(|| "not counted".into(), |n| n.to_string()),
+                    r.unmasked_runs
+                        .map_or_else(|| "not counted".into(), |n| n.to_string()),
+                    r.masked_invocations
+                        .map_or_else(|| "no query".into(), |n| n.to_string()),
                     r.masked_fragments.to_string(),
                     r.branching_fragments.to_string(),
                     format!("{:.2}", r.branching_ms),

@@ -20,11 +20,13 @@ pub fn table(results: &Lecture3Results) -> Table {
     ];
     header.extend(methods.iter().map(|m| format!("{m}: wrong surface")));
     header.push("pyramid: outside tolerance".into());
+    header.push("pyramid: wall / surface, normal, colour wrong".into());
     Table {
         caption: format!(
             "2. Hits on the wrong surface against the exact CPU tracer, {0}x{0} pixels, map {1} \
              ({2}x{3}), azimuth 225 degrees; tolerance: the exact hits of the map raised and \
-             lowered by 1e-4",
+             lowered by 1e-4; what each pixel shows (surface or wall, normal, colour) judged \
+             against the exact hit's too",
             d.image, d.map, d.map_size.0, d.map_size.1
         ),
         header,
@@ -44,6 +46,10 @@ pub fn table(results: &Lecture3Results) -> Table {
                         .map(|m| m.comparison.wrong_surface.to_string()),
                 );
                 row.push(first.outside_tolerance.to_string());
+                row.push(format!(
+                    "{} / {} / {}",
+                    first.wrong_kind, first.wrong_normal, first.wrong_colour
+                ));
                 row
             })
             .collect(),
@@ -93,7 +99,8 @@ pub fn figures(opts: &BenchOptions, results: &Lecture3Results) -> anyhow::Result
         Figure {
             file: GRAZING_PNG.into(),
             caption: "2. At 8 degrees: each method's frame (top) and its verdicts (bottom): \
-                      grey exact, red wrong surface, orange outside tolerance, blue \
+                      grey exact, red wrong surface, orange outside tolerance, magenta wall \
+                      drawn for surface (or the reverse), green wrong normal or colour, blue \
                       ill-conditioned"
                 .into(),
         },

@@ -77,7 +77,9 @@ pub fn rows() -> Vec<Fidelity> {
             "lecture 3, debugging tips",
             "src/lecture3/depth_mask.rs, glsl/lecture3/depth_mask_*.frag",
             "the expensive function and masks are ours; the early depth test is left to the \
-             driver (no GL 4.2 early_fragment_tests)",
+             driver (the counting variant for contexts without pipeline statistics asks for it \
+             with GL 4.2 early_fragment_tests, as a shader with a side effect must); the \
+             shader's runs are counted by pipeline statistics at 2x2-quad granularity",
         ),
         Fidelity::new(
             "simplifying code with alpha blending",

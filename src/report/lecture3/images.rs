@@ -3,11 +3,12 @@
 //! exact tracer, the indirect lighting, the random numbers, the depth-masked picture.
 
 use crate::gl::dump::{map_floats, DumpRange};
+use crate::gl::Context;
 use crate::lecture3::displacement::compare::Verdict;
 use crate::lecture3::displacement::{Camera, DisplacementRenderer, Method};
 use crate::lecture3::light_hierarchy::shade::Terms;
 use crate::lecture3::light_hierarchy::IndirectLighting;
-use crate::lecture3::pyramid::{cpu_pyramid, Extreme};
+use crate::lecture3::pyramid::{Extreme, Level, PyramidBuilder};
 use crate::lecture3::pyramid_atlas::atlas_layout;
 use crate::lecture3::HeightMap;
 use crate::report::BenchOptions;
@@ -94,22 +95,23 @@ impl Rgba {
     }
 }
 
-/// The max and min pyramids of `map`, each laid out as its atlas (level 0, the levels above
-/// in a column to its right), heights 0..1 as grey, padding magenta.
-pub fn pyramid_png(map: &HeightMap, path: &Path) -> anyhow::Result<()> {
-    let (w, h) = (map.width(), map.height());
-    let pictures: Vec<Rgba> = [Extreme::Max, Extreme::Min]
+/// Pyramids of one `image`-sized picture (as read back from the GPU), each laid out as its
+/// atlas (level 0, the levels above in a column to its right), side by side: values 0..1 as
+/// grey, nodes that cover no image pixel (padding) magenta.
+pub fn pyramid_png(pyramids: &[Vec<Level>], image: (u32, u32), path: &Path) -> anyhow::Result<()> {
+    let pictures: Vec<Rgba> = pyramids
         .iter()
-        .map(|&extreme| {
-            let levels = cpu_pyramid(w, h, map.heights(), extreme);
+        .map(|levels| {
             let sizes: Vec<_> = levels.iter().map(|l| (l.width, l.height)).collect();
             let ((aw, ah), offsets) = atlas_layout(&sizes);
+            let (pw, ph) = sizes.first().copied().unwrap_or((1, 1));
             let mut out = Rgba::new(aw, ah);
             for (level, &(ox, oy)) in levels.iter().zip(&offsets) {
+                let (sx, sy) = (pw / level.width, ph / level.height);
                 let bytes = map_floats(&level.values, 1, DumpRange::Fixed(0.0, 1.0));
                 for (i, p) in bytes.chunks_exact(4).enumerate() {
                     let (x, y) = (i as u32 % level.width, i as u32 / level.width);
-                    let padding = level.values[i] == extreme.identity();
+                    let padding = x * sx >= image.0 || y * sy >= image.1;
                     let pixel = if padding {
                         [255, 0, 255, 255]
                     } else {
@@ -124,6 +126,23 @@ pub fn pyramid_png(map: &HeightMap, path: &Path) -> anyhow::Result<()> {
     Rgba::row(&pictures, 4).save(path)
 }
 
+/// The pyramids [`pyramid_png`] draws: max, min and mean of `map`, drawn on the GPU and read
+/// back.
+pub fn gpu_pyramids(ctx: &Context, map: &HeightMap) -> anyhow::Result<Vec<Vec<Level>>> {
+    let builder = PyramidBuilder::new(ctx)?;
+    PYRAMID_KINDS
+        .iter()
+        .map(|&extreme| {
+            Ok(builder
+                .from_image(map.width(), map.height(), map.heights(), extreme)?
+                .read_levels()?)
+        })
+        .collect()
+}
+
+/// The pyramids of the picture, left to right.
+pub const PYRAMID_KINDS: [Extreme; 3] = [Extreme::Max, Extreme::Min, Extreme::Mean];
+
 /// A frame of one method and its verdicts against the exact tracer.
 pub struct JudgedFrame {
     pub method: String,
@@ -133,7 +152,8 @@ pub struct JudgedFrame {
 }
 
 /// The verdicts as colours: exact hits grey, wrong surface red, outside tolerance orange,
-/// ill-conditioned blue, not compared black.
+/// ill-conditioned blue, wall drawn for surface (or the reverse) magenta, wrong normal or
+/// colour green, not compared black.
 fn verdict_picture(frame: &JudgedFrame, side: u32) -> Rgba {
     let mut out = Rgba::new(side, side);
     for (i, v) in frame.verdicts.iter().enumerate() {
@@ -145,6 +165,8 @@ fn verdict_picture(frame: &JudgedFrame, side: u32) -> Rgba {
             Verdict::WrongSurface => [230, 30, 30, 255],
             Verdict::OutsideTolerance => [255, 160, 0, 255],
             Verdict::Ambiguous => [40, 90, 255, 255],
+            Verdict::WrongKind => [200, 0, 200, 255],
+            Verdict::WrongShading => [0, 190, 120, 255],
         };
         out.put(i as u32 % side, i as u32 / side, pixel);
     }

@@ -78,7 +78,7 @@ impl Paper for Lecture3 {
 fn summary(r: &Lecture3Results) -> String {
     format!(
         "The seven techniques of lecture 3 beyond paper 3's network, each run on the GPU and \
-         checked against its CPU reference in the same run: (1) a max/min image pyramid, (2) \
+         checked against its CPU reference in the same run: (1) max, min and mean image pyramids, (2) \
          pyramidal displacement mapping (Oh, Ki & Lee, VRST 2006) against an exact f64 ray \
          tracer of the same bilinear height field and against relief mapping's linear + binary \
          search, (3) a light hierarchy of virtual point lights searched as a quadtree in the \

@@ -1,6 +1,6 @@
 //! Everything the lecture-3 section measures, typed (written as the section's `results`).
 
-use crate::lecture3::depth_mask::MaskShape;
+use crate::lecture3::depth_mask::{MaskShape, RunCounter};
 use crate::lecture3::displacement::compare::Comparison;
 use crate::report::timing::Spread;
 use serde::Serialize;
@@ -35,6 +35,8 @@ pub struct PyramidRow {
     pub levels: u32,
     /// Every level of the GPU max and min pyramids equal to the CPU's, bit for bit.
     pub equal_to_cpu: bool,
+    /// The mean pyramid: largest |GPU - CPU| over its levels (the map spans 0..1).
+    pub mean_max_error: f64,
     /// Median GPU time of the level passes, level 0 uploaded beforehand.
     pub gpu_ms: f64,
     pub gpu_spread: Spread,
@@ -163,6 +165,10 @@ pub struct FunctionSpeedRow {
 pub struct RandomRun {
     pub side: u32,
     pub steps: usize,
+    /// The GPU's numbers of every checked step, as read back: step by step, each `side x side`
+    /// row by row from the bottom (not in the report's results).
+    #[serde(skip)]
+    pub values: Vec<f32>,
     /// States and numbers equal to the CPU generator's after every step.
     pub bit_exact: bool,
     pub gpu_ms_per_step: f64,
@@ -192,7 +198,21 @@ pub struct DepthMaskRow {
     pub fraction: f32,
     /// Active pixels by the CPU.
     pub active: u64,
-    /// Fragments the expensive shader ran (occlusion query), depth-masked version.
+    /// Pixels in all.
+    pub pixels: u64,
+    /// 2x2 quads holding an active pixel (the count is judged at this granularity).
+    pub active_quads: u64,
+    /// Runs of the expensive shader behind the depth mask, counted (`None`: not countable
+    /// on this context, see `counted_by`).
+    pub masked_runs: Option<u64>,
+    /// Runs of the same shader with the depth test passing every pixel (the counter's check).
+    pub unmasked_runs: Option<u64>,
+    /// What counted the runs.
+    pub counted_by: RunCounter,
+    /// The plain shader's invocations behind the mask by the driver's pipeline statistics,
+    /// where it has them (llvmpipe counts fragments its early depth test drops).
+    pub masked_invocations: Option<u64>,
+    /// Fragments that passed the depth test (occlusion query), depth-masked version.
     pub masked_fragments: u64,
     /// Fragments of the branching shader (every pixel).
     pub branching_fragments: u64,
@@ -210,6 +230,9 @@ pub struct DepthMaskRow {
 pub struct HistogramRow {
     pub values: usize,
     pub bins: u32,
+    /// The blended counts, as read back from the GPU (not in the report's results).
+    #[serde(skip)]
+    pub counts: Vec<f32>,
     /// Blended counts equal to the CPU's.
     pub blend_equal: bool,
     /// Gathered counts equal to the CPU's (when run).
