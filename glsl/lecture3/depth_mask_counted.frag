@@ -1,4 +1,6 @@
 #version 420 core
+// Lecture 3, debugging tip "remove `if` with the depth buffer": the masked pass counting its own
+// runs (the prelude: version, early depth test, the counter).
 // The depth-masked expensive shader, counting its own runs with an atomic counter (OpenGL
 // 4.2), for contexts without pipeline statistics queries. A shader with a side effect may not
 // have its depth test moved before it silently, so the early test the masked pass relies on is
