@@ -89,6 +89,11 @@ impl Lesson for PingPong {
             max_difference(&gpu, &cpu),
             TOLERANCE,
         );
+        run.check(
+            "the boundary kept its values (exact)",
+            max_difference(&boundary(&gpu, N), &boundary(&start, N)),
+            0.0,
+        );
         in_place(ctx, &mut run, &start, &gpu, steps)?;
         run.compute = Some(match no_compute(ctx) {
             Some(why) => why,
@@ -111,6 +116,18 @@ pub fn initial_grid(n: u32) -> Vec<f32> {
     let mut grid = vec![0f32; n * n];
     grid[(n - 1) * n..].fill(1.0);
     grid
+}
+
+/// The values on the grid's edge, row by row.
+fn boundary(grid: &[f32], n: u32) -> Vec<f32> {
+    let n = n as usize;
+    (0..n * n)
+        .filter(|k| {
+            let (x, y) = (k % n, k / n);
+            x == 0 || y == 0 || x == n - 1 || y == n - 1
+        })
+        .map(|k| grid[k])
+        .collect()
 }
 
 /// `steps` Jacobi steps on the CPU, in the shader's order of additions.

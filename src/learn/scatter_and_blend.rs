@@ -113,6 +113,12 @@ impl Lesson for ScatterAndBlend {
                     max_difference(&gpu, &cpu),
                     0.0,
                 );
+                let total: f64 = gpu.iter().map(|&c| c as f64).sum();
+                run.check(
+                    "every point landed in a bin: the counts add up to the values (exact)",
+                    (total - values.len() as f64).abs(),
+                    0.0,
+                );
                 blended = gpu;
             } else {
                 run.pass(
