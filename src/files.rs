@@ -3,10 +3,10 @@
 //! - [`check_output`] runs before any work: an input is never overwritten (not even with
 //!   `--force`), an existing file only with `--force`, a folder is not a file, and the name's
 //!   extension must be the format that will be written;
-//! - [`write`] writes to a temporary file in the same folder, flushes and syncs it, checks every
+//! - [`write()`] writes to a temporary file in the same folder, flushes and syncs it, checks every
 //!   error, and only then renames it into place: a full disk or a kill leaves the old file as it
 //!   was (and at worst a `.NAME.tmp-PID` beside it), never an empty or truncated one;
-//! - [`write_png`] and [`write_npy`] encode in memory first and write through [`write`].
+//! - [`write_png`] and [`write_npy`] encode in memory first and write through [`write()`].
 
 use anyhow::{bail, Context as _};
 use std::io::Write;
@@ -93,7 +93,7 @@ pub fn write(
     Ok(())
 }
 
-/// `bytes` written to `path` through [`write`].
+/// `bytes` written to `path` through [`write()`].
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     write(path, |w| w.write_all(bytes))
 }
@@ -135,7 +135,7 @@ pub fn encode_png(rgba: &[u8], width: u32, height: u32) -> anyhow::Result<Vec<u8
     Ok(png)
 }
 
-/// Any image (`image`'s buffers: luma, RGB, RGBA) written to `path` as PNG through [`write`].
+/// Any image (`image`'s buffers: luma, RGB, RGBA) written to `path` as PNG through [`write()`].
 pub fn write_image(path: &Path, image: &image::DynamicImage) -> anyhow::Result<()> {
     let mut png = std::io::Cursor::new(Vec::new());
     image

@@ -279,7 +279,7 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
     if !json {
         println!(
             "{}",
-            summary.line(&scene.name, scene.triangles, &ctx.info().renderer_line())
+            summary.line(scene.name, scene.triangles, &ctx.info().renderer_line())
         );
     }
     if json {

@@ -233,7 +233,7 @@ impl Config {
     }
 }
 
-/// Runs a warm-up (see [`warm_up`]), `frames` wall-clock-timed frames and one frame with
+/// Runs a warm-up (see `warm_up`), `frames` wall-clock-timed frames and one frame with
 /// per-stage timing. The crowd walks `dt` seconds per frame.
 pub fn run(
     ctx: &Context,
@@ -281,7 +281,7 @@ pub fn step_crowd(scenes: &mut [Scene], sources: &[Option<usize>], i: usize, dt:
 
 /// Measures several configurations side by side: frame by frame in turn, each on its own
 /// copy of the scene, so that whatever else the machine is doing slows them alike. Each
-/// gets a warm-up ([`warm_up`]), `frames` timed frames (median reported) and one frame
+/// gets a warm-up (`warm_up`), `frames` timed frames (median reported) and one frame
 /// with per-stage timing. Copies of one crowd are stepped once per round ([`step_crowd`]).
 ///
 /// `shown(i, target)` is called right after configuration `i`'s per-stage frame, while

@@ -13,9 +13,11 @@
 use super::{GlError, Texture, TextureFormat};
 use std::path::Path;
 
-/// The shape `[height, width, channels]` and values (rows from the bottom) of a float
-/// texture, or `None` for a byte or integer format.
-pub fn texture_floats(texture: &Texture) -> Result<Option<([usize; 3], Vec<f32>)>, GlError> {
+/// A float texture's shape `[height, width, channels]` and values (rows from the bottom).
+pub type Floats = ([usize; 3], Vec<f32>);
+
+/// The shape and values of a float texture, or `None` for a byte or integer format.
+pub fn texture_floats(texture: &Texture) -> Result<Option<Floats>, GlError> {
     let (width, height) = (texture.width() as usize, texture.height() as usize);
     let (channels, values) = match texture.format() {
         TextureFormat::Rgba32F

@@ -4,7 +4,7 @@
 //!
 //! The integrands are evaluated about the framing centre rather than the world origin:
 //! `sgn(n_z) z` then changes sign inside the body and the fp32 sums lose less to
-//! cancellation; [`crate::mass::VolumeIntegrals::translated`] moves the result back.
+//! cancellation; [`crate::mass::VolumeIntegrals::about`] moves the result back.
 
 use crate::mesh::Mesh;
 use glam::camera::rh::proj::opengl;

@@ -27,7 +27,7 @@ pub const REDUCTION_PASS: &str = "mass: sum reduction";
 const MAX_FAN_IN_LOG2: u32 = 3;
 
 /// The side of the blocks each pass sums, to reduce a side of `2^bits` texels: as few
-/// passes as [`MAX_FAN_IN_LOG2`] allows, the bits shared evenly (32: 8 then 4; 64: 8 then
+/// passes as `MAX_FAN_IN_LOG2` allows, the bits shared evenly (32: 8 then 4; 64: 8 then
 /// 8), and at least one pass.
 pub fn fan_ins(bits: u32) -> Vec<u32> {
     let passes = bits.div_ceil(MAX_FAN_IN_LOG2).max(1);

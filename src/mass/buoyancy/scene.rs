@@ -73,7 +73,7 @@ const TEAPOT_PROFILE: [[[f64; 2]; 4]; 7] = [
     [[1.5, 0.15], [1.5, 0.075], [1.425, 0.0], [0.0, 0.0]],
 ];
 
-/// A closed teapot: [`TEAPOT_PROFILE`] sampled `per_segment` times per segment and turned
+/// A closed teapot: `TEAPOT_PROFILE` sampled `per_segment` times per segment and turned
 /// about z in `around` steps; the poles at the knob and the bottom centre are single
 /// vertices, so the surface has no hole. Triangles face outward.
 pub fn closed_teapot(around: usize, per_segment: usize) -> Mesh {

@@ -83,7 +83,7 @@ pub struct ObjectRun {
     /// Median wall clock of Mirtich's method (ms).
     pub analytic_ms: f64,
     pub resolutions: Vec<ResolutionRow>,
-    /// Where the GPU wall time meets the analytic time (see [`break_even`]).
+    /// Where the GPU wall time meets the analytic time (see `break_even`).
     pub break_even: String,
 }
 
@@ -143,7 +143,7 @@ pub struct BuoyancyRun {
     pub max_peels: usize,
     pub mean_peels: f64,
     pub cpu_solver_steps_per_second: f64,
-    /// Steps per second of each of [`RATE_PARTS`] consecutive parts of the timed steps: the
+    /// Steps per second of each of `RATE_PARTS` (3) consecutive parts of the timed steps: the
     /// runs the interactive-rate claim is judged on.
     pub rate_runs: Spread,
     /// The machine's load when the timed steps ended.
