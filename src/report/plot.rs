@@ -94,9 +94,9 @@ impl Plot {
             root.present()
                 .with_context(|| format!("drawing {}", path.display()))?;
         }
-        image::save_buffer(path, &pixels, SIZE.0, SIZE.1, image::ColorType::Rgb8)
-            .with_context(|| format!("writing {}", path.display()))?;
-        Ok(())
+        let image = image::RgbImage::from_raw(SIZE.0, SIZE.1, pixels)
+            .context("the plot's pixel buffer has the wrong size")?;
+        crate::files::write_image(path, &image.into())
     }
 
     fn usable(&self, x: f64, y: f64) -> bool {

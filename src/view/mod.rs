@@ -83,6 +83,26 @@ pub const COMMON_KEYS: [(&str, &str); 8] = [
     ("esc", "quit"),
 ];
 
+/// Refuses a first buffer (`--buffer`) that the demo does not have, naming those it has.
+pub fn check_shown(demo: &dyn Demo, view: &ViewState) -> anyhow::Result<()> {
+    let buffers = demo.buffers();
+    if view.shown >= buffers.len() {
+        anyhow::bail!(
+            "--buffer {}: this demo has {} buffers, 0 to {}: {}",
+            view.shown,
+            buffers.len(),
+            buffers.len().saturating_sub(1),
+            buffers
+                .iter()
+                .enumerate()
+                .map(|(i, b)| format!("{i} {b}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    Ok(())
+}
+
 /// Draw frame `frames` of `demo` (after that many steps) on `canvas`, with the overlay text
 /// and, if `view.help`, the help, as the window shows it.
 pub fn draw_frame(
@@ -141,6 +161,7 @@ pub fn headless(
     keys: &str,
 ) -> anyhow::Result<Vec<u8>> {
     let mut demo = spec.build(ctx, (width, height))?;
+    check_shown(demo.as_ref(), view)?;
     press_keys(demo.as_mut(), keys)?;
     for _ in 0..frames {
         demo.step()?;

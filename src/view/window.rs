@@ -48,8 +48,10 @@ pub fn run(spec: &DemoSpec, options: WindowOptions) -> anyhow::Result<()> {
              work without one"
         ));
     }
-    let event_loop = EventLoop::new()
-        .map_err(|e| anyhow!("no display ({e}); the headless command {hint} does the same work"))?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        let e = without_source_path(&e.to_string());
+        anyhow!("no display ({e}); the headless command {hint} does the same work")
+    })?;
     let mut app = App {
         spec,
         options,
@@ -98,7 +100,8 @@ impl App<'_> {
         let window =
             GlWindow::new(event_loop, attributes, self.options.frames.is_none()).map_err(|e| {
                 anyhow!(
-                    "{e}; the headless command {} does the same work",
+                    "{}; the headless command {} does the same work",
+                    without_source_path(&e.to_string()),
                     self.spec.headless_hint()
                 )
             })?;
@@ -108,6 +111,7 @@ impl App<'_> {
         let info = ctx.info();
         eprintln!("window: {} ({})", info.renderer_line(), info.why);
         let mut demo = self.spec.build(&ctx, size)?;
+        super::check_shown(demo.as_ref(), &self.options.view)?;
         super::press_keys(demo.as_mut(), &self.options.keys)?;
         let canvas = Canvas::new(&ctx, size.0, size.1)?;
         Ok(Running {
@@ -315,4 +319,33 @@ pub fn check_output(path: &Path, force: bool) -> anyhow::Result<()> {
         .context("--screenshot");
     }
     Ok(())
+}
+
+/// `text` without the source location winit puts in its OS errors ("os error at
+/// /home/.cargo/registry/.../x11/mod.rs:123: "), which says nothing to a user.
+pub fn without_source_path(text: &str) -> String {
+    let Some(start) = text.find("os error at ") else {
+        return text.to_string();
+    };
+    let rest = &text[start + "os error at ".len()..];
+    let Some(rs) = rest.find(".rs:") else {
+        return text.to_string();
+    };
+    let after = rest[rs + ".rs:".len()..].trim_start_matches(|c: char| c.is_ascii_digit());
+    let after = after.strip_prefix(':').unwrap_or(after).trim_start();
+    format!("{}{after}", &text[..start])
+}
+
+#[cfg(test)]
+mod source_path_tests {
+    #[test]
+    fn the_source_location_of_an_os_error_is_dropped() {
+        let text = "os error at /root/.cargo/registry/src/index.crates.io-1/winit-0.30.12/src/\
+                    platform_impl/linux/mod.rs:765: failed to open display :99";
+        assert_eq!(
+            super::without_source_path(text),
+            "failed to open display :99"
+        );
+        assert_eq!(super::without_source_path("no display"), "no display");
+    }
 }
