@@ -12,6 +12,21 @@ use anyhow::{bail, Context as _};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// An error and its causes on one line, as `{:#}` writes them, but without a cause that only
+/// repeats what the line already says (some libraries' errors print their source too).
+pub fn error_text(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let cause = cause.to_string();
+        if text.is_empty() {
+            text = cause;
+        } else if !text.contains(&cause) {
+            text = format!("{text}: {cause}");
+        }
+    }
+    text
+}
+
 /// Refuses `out` before anything is computed or touched: over one of `inputs` (ever), over an
 /// existing file without `force`, over a folder, or with an extension other than one of
 /// `extensions` (lower case, without the dot; empty accepts any). `what` names the option
@@ -57,12 +72,38 @@ pub fn check_output(
     Ok(())
 }
 
+/// Refuses `dir` as a folder to write files into when it exists and is not a folder (checked
+/// before any work, like [`check_output`]); the files in it are written through [`write`].
+pub fn check_folder(what: &str, dir: &Path) -> anyhow::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        bail!(
+            "{what} {} is a file; give a folder to write the files into",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
 /// Whether two paths name one existing file (through links, `.`/`..`, or hard links).
 pub fn same_file(a: &Path, b: &Path) -> bool {
     match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-        (Ok(a), Ok(b)) => a == b,
+        (Ok(a), Ok(b)) => a == b || same_inode(&a, &b),
         _ => false,
     }
+}
+
+#[cfg(unix)]
+fn same_inode(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(a), Ok(b)) => (a.dev(), a.ino()) == (b.dev(), b.ino()),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_inode(_: &Path, _: &Path) -> bool {
+    false
 }
 
 /// Writes `path` whole or not at all: `contents` writes into a temporary file beside it, which
@@ -232,6 +273,41 @@ mod tests {
         assert!(err(&other, false, &["png"]).contains("pass --force"));
         check_output("--out", &other, &[&input], true, &["png"]).unwrap();
         check_output("--out", &dir.join("new.PNG"), &[&input], false, &["png"]).unwrap();
+    }
+
+    #[test]
+    fn a_cause_that_repeats_the_message_is_said_once() {
+        let repeated = anyhow::anyhow!("Invalid PNG signature.")
+            .context("Invalid PNG signature.")
+            .context("cannot read the image a.png");
+        assert_eq!(
+            error_text(&repeated),
+            "cannot read the image a.png: Invalid PNG signature."
+        );
+        let distinct = anyhow::anyhow!("disk full").context("writing a.png");
+        assert_eq!(error_text(&distinct), "writing a.png: disk full");
+    }
+
+    #[test]
+    fn a_file_is_not_a_folder_to_write_into() {
+        let dir = scratch("folder");
+        let file = dir.join("f");
+        std::fs::write(&file, "x").unwrap();
+        let err = check_folder("--dump", &file).unwrap_err().to_string();
+        assert!(err.contains("--dump") && err.contains("is a file"), "{err}");
+        check_folder("--dump", &dir).unwrap();
+        check_folder("--dump", &dir.join("new")).unwrap();
+    }
+
+    #[test]
+    fn a_hard_link_to_an_input_is_the_input() {
+        let dir = scratch("link");
+        let input = dir.join("in.png");
+        std::fs::write(&input, "x").unwrap();
+        let link = dir.join("link.png");
+        std::fs::hard_link(&input, &link).unwrap();
+        assert!(same_file(&link, &input));
+        assert!(!same_file(&dir.join("other.png"), &input));
     }
 
     #[test]

@@ -185,7 +185,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", classic_gpgpu::files::error_text(&e));
             ExitCode::FAILURE
         }
     }

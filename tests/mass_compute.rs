@@ -134,3 +134,48 @@ fn inverted_and_non_finite_bodies() {
     let err = mass.integrate(&[&mesh, &bad]).unwrap_err().to_string();
     assert!(err.contains("body 1: vertex 7 is not finite"), "{err}");
 }
+
+#[test]
+fn a_mesh_past_the_work_group_limit_is_split_into_several_dispatches() {
+    let (ctx, compute) = compute_context();
+    if !compute {
+        return;
+    }
+    ctx.set_checks(true);
+    // 4096 triangles are 64 work groups of 64; with at most 10 groups a dispatch, 7 dispatches
+    // (the split a 10M-triangle mesh needs against the 65,535 limit). The reduction after it
+    // takes 8 groups of 512, within the limit.
+    let mesh = tilted_torus();
+    assert_eq!(mesh.triangles.len(), 4096);
+    let mass = ComputeMass::new(&ctx).unwrap();
+    let whole = mass.integrate(&[&mesh]).unwrap();
+    ctx.set_work_group_limit(Some(10));
+    let split = mass.integrate(&[&mesh]);
+    ctx.set_work_group_limit(None);
+    let split = split.unwrap();
+    let cpu = tetrahedron_sum(&mesh, split.integrals[0].origin);
+    assert_integrals_close("split vs CPU", &split.integrals[0], &cpu, 1e-5);
+    assert_integrals_close(
+        "split vs whole",
+        &split.integrals[0],
+        &whole.integrals[0],
+        1e-6,
+    );
+    // The limit is real: one dispatch over every triangle is refused under it.
+    ctx.set_work_group_limit(Some(10));
+    let program = classic_gpgpu::gl::ComputeProgram::new(
+        &ctx,
+        &[classic_gpgpu::shader!(
+            "glsl/mass/compute/triangle_integrals.comp"
+        )],
+    )
+    .unwrap();
+    let refused = program
+        .dispatch("one dispatch")
+        .uniform("u_first", 0u32)
+        .run_over(mesh.triangles.len() as u32)
+        .unwrap_err()
+        .to_string();
+    ctx.set_work_group_limit(None);
+    assert!(refused.contains("allows 10"), "{refused}");
+}

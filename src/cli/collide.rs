@@ -2,12 +2,12 @@
 //! Table III, frame by frame). `collide-bench` is `report::paper1`'s section, run through
 //! `report::bench_command`.
 
-use anyhow::Context as _;
+use anyhow::{bail, Context as _};
 use clap::builder::TypedValueParser as _;
 use classic_gpgpu::collide::compute_pipeline::ComputeCollider;
 use classic_gpgpu::collide::pipeline::{FrameResult, Options, StreamingCollider};
 use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
-use classic_gpgpu::collide::scenes::{Scene, SCENES};
+use classic_gpgpu::collide::scenes::Scene;
 use classic_gpgpu::collide::snapshot::{dump_buffers, frame_png};
 use classic_gpgpu::collide::stream_setup::auto_leaf_size_for_pair;
 use classic_gpgpu::collide::tri_test::Predicate;
@@ -24,9 +24,10 @@ pub struct PipelineArgs {
     #[arg(long)]
     pub leaf_size: Option<usize>,
     /// Stream reduction scheme; `auto` calibrates all three on this renderer and picks by eta,
-    /// `paper-switch` is the paper's: hierarchical below eta = 0.095%, reduced from it.
-    #[arg(long, default_value_t = ReadbackMode::Auto, value_parser = readback_parser())]
-    pub readback: ReadbackMode,
+    /// `paper-switch` is the paper's: hierarchical below eta = 0.095%, reduced from it
+    /// [default: auto].
+    #[arg(long, value_parser = readback_parser())]
+    pub readback: Option<ReadbackMode>,
     /// How triangle pairs are decided: `exact` orientation predicates (the default: every
     /// pair brute force with exact arithmetic finds, at any scale), or `moller`, the paper's
     /// floating-point test (Möller 1997), which can miss or invent contacts where triangles
@@ -58,17 +59,54 @@ fn readback_parser() -> impl clap::builder::TypedValueParser<Value = ReadbackMod
 impl PipelineArgs {
     /// The pipeline options for models `x` and `y` on `ctx`'s renderer.
     pub fn options(&self, ctx: &Context, x: &Mesh, y: &Mesh) -> anyhow::Result<Options> {
+        if self.formulation == super::Formulation::Compute {
+            let classic_only = [
+                self.readback.map(|r| format!("--readback {}", r.name())),
+                self.max_tile.map(|t| format!("--max-tile {t}")),
+            ];
+            if let Some(option) = classic_only.into_iter().flatten().next() {
+                bail!(
+                    "{option}: the compute formulation has no stream textures to read back or \
+                     tile (its pairs come from an atomic-counter list); drop it, or use \
+                     --formulation classic"
+                );
+            }
+        }
+        if self.predicate == Predicate::Moller {
+            if let Some(warning) = moller_scale_warning(x, y) {
+                eprintln!("warning: {warning}");
+            }
+        }
         let leaf_size = match self.leaf_size {
             Some(n) => n,
             None => auto_leaf_size_for_pair(x, y, ctx.info().is_software())?,
         };
         Ok(Options {
             leaf_size,
-            readback: self.readback,
+            readback: self.readback.unwrap_or(ReadbackMode::Auto),
             predicate: self.predicate,
             max_tile: self.max_tile,
         })
     }
+}
+
+/// Möller's floating-point test decides touching and near-touching pairs by the sign of
+/// products of coordinates: far from unit scale those signs are rounding noise (1e25 models
+/// gave hundreds of invented pairs). Said when the models reach that far.
+fn moller_scale_warning(x: &Mesh, y: &Mesh) -> Option<String> {
+    let largest = x
+        .positions
+        .iter()
+        .chain(&y.positions)
+        .map(|p| p.abs().max_element())
+        .fold(0.0f32, f32::max);
+    (largest >= 1e6).then(|| {
+        format!(
+            "--predicate moller: the models' coordinates reach {largest:.1e}, far from unit \
+             scale, where the floating-point test invents or misses contacts; --predicate exact \
+             decides every pair exactly at any scale"
+        )
+    })
 }
 
 /// Every intersecting triangle pair between two meshes (OBJ files).
@@ -99,6 +137,9 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
             .with_context(|| format!("model {}", p.display()))?;
         Ok(mesh)
     };
+    if let Some(dir) = &args.dump {
+        classic_gpgpu::files::check_folder("--dump", dir)?;
+    }
     let (x, y) = (load(&args.a)?, load(&args.b)?);
     let options = args.pipeline.options(ctx, &x, &y)?;
     if args.pipeline.formulation == super::Formulation::Compute {
@@ -247,8 +288,8 @@ pub struct SceneArgs {
 /// `collide-scene`: a deforming scene frame by frame; `json` prints one object.
 pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     check_scene_counts(args)?;
-    let scene = Scene::build(&args.scene, args.triangles)
-        .with_context(|| format!("scenes: {}", SCENES.join(", ")))?;
+    // The error names the scene and lists the scenes.
+    let scene = Scene::build(&args.scene, args.triangles)?;
     let options = args.pipeline.options(ctx, &scene.x.rest, &scene.y.rest)?;
     let (rest_x, rest_y) = (&scene.x.rest, &scene.y.rest);
     let mut collider = match args.pipeline.formulation {

@@ -25,9 +25,10 @@ pub struct CrowdArgs {
     /// How many characters (n).
     #[arg(long, default_value_t = 256)]
     pub characters: usize,
-    /// Skinning in a pixel shader + render-to-VBO (the paper) or in the vertex shader.
-    #[arg(long, value_enum, default_value = "two-pass")]
-    pub method: MethodArg,
+    /// Skinning in a pixel shader + render-to-VBO (the paper) or in the vertex shader
+    /// [default: two-pass] (classic formulation only).
+    #[arg(long, value_enum)]
+    pub method: Option<MethodArg>,
     /// The paper's three LOD meshes and view-frustum culling (Fig. 4-5); without it every
     /// character is skinned at full detail, as in Table 1.
     #[arg(long)]
@@ -42,9 +43,12 @@ pub struct CrowdArgs {
     /// Image size, WxH.
     #[arg(long, default_value = "800x600", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Write the last frame here as PNG.
+    /// Write the last frame here as PNG (an existing file only with --force).
     #[arg(long)]
     pub png: Option<PathBuf>,
+    /// Replace the --png file if it exists.
+    #[arg(long, requires = "png")]
+    pub force: bool,
     /// Characters per draw call of the vertex-shader method (default: as many as the
     /// uniforms hold; 1 is how the paper's hardware generation ran it).
     #[arg(long)]
@@ -120,6 +124,9 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 /// Runs `crowd`.
 pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    if let Some(png) = &args.png {
+        classic_gpgpu::files::check_output("--png", png, &[], args.force, &["png"])?;
+    }
     super::limits::check_count(
         "--characters",
         args.characters as u64,
@@ -141,7 +148,10 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if w > max_w || h > max_h {
         bail!("--size {w}x{h} exceeds this renderer's largest viewport {max_w}x{max_h}");
     }
-    let (kind, method) = (ModelKind::from(args.model), Method::from(args.method));
+    let (kind, method) = (
+        ModelKind::from(args.model),
+        Method::from(args.method.unwrap_or(MethodArg::TwoPass)),
+    );
     let model = CharacterModel::build(kind).context("building the character model")?;
     if args.formulation == super::Formulation::Compute {
         return run_compute(args, ctx, model, json);
@@ -212,6 +222,14 @@ fn run_compute(
     model: CharacterModel,
     json: bool,
 ) -> anyhow::Result<()> {
+    if let Some(method) = args.method {
+        bail!(
+            "--method {}: the compute formulation has one method of its own (compute skinning \
+             into a storage buffer); --method chooses between the classic formulation's two",
+            clap::ValueEnum::to_possible_value(&method)
+                .map_or_else(String::new, |v| v.get_name().to_string())
+        );
+    }
     if args.sprites || args.vs_batch.is_some() || args.skin_batch.is_some() {
         bail!(
             "--sprites, --vs-batch and --skin-batch belong to the classic formulation; the \

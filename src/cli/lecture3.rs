@@ -71,21 +71,7 @@ impl Output {
 }
 
 fn check_output(out: &Path, inputs: &[&Path], force: bool) -> anyhow::Result<()> {
-    let same = |a: &Path, b: &Path| match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if let Some(input) = inputs.iter().find(|i| same(out, i)) {
-        bail!(
-            "{} is the input {}; an input is never overwritten (not even with --force)",
-            out.display(),
-            input.display()
-        );
-    }
-    if out.exists() && !force {
-        bail!("{} exists; pass --force to replace it", out.display());
-    }
-    Ok(())
+    classic_gpgpu::files::check_output("the PNG", out, inputs, force, &["png"])
 }
 
 #[derive(clap::Args, Debug)]
@@ -607,7 +593,9 @@ fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     };
     let run = bench::random(&opts, a.size, a.steps, a.seed, RUNS);
     if let (Ok(_), Some(png)) = (&run, &a.output.png) {
-        std::fs::copy(dir.join(bench::images::RANDOM_PNG), png)
+        std::fs::read(dir.join(bench::images::RANDOM_PNG))
+            .map_err(anyhow::Error::from)
+            .and_then(|bytes| classic_gpgpu::files::write_bytes(png, &bytes))
             .with_context(|| format!("writing {}", png.display()))?;
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -111,6 +111,9 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
     if args.below.is_some_and(|z| !z.is_finite()) {
         bail!("--below: must be a finite height");
     }
+    if let Some(dir) = &args.dump {
+        classic_gpgpu::files::check_folder("--dump", dir)?;
+    }
     let mesh = models::load(&args.model).map_err(anyhow::Error::msg)?;
     let report = surface::check(&mesh);
     Framing::fit(&mesh, args.resolution)
@@ -153,14 +156,38 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
 
     let got = MassProperties::from_integrals(&result.integrals, args.density);
     let want = MassProperties::from_integrals(&exact, args.density);
+    let finite = |p: &MassProperties| {
+        [p.volume, p.mass].iter().all(|v| v.is_finite())
+            && p.center_of_mass.is_finite()
+            && p.inertia.is_finite()
+    };
+    if !finite(&got) || !finite(&want) {
+        bail!(
+            "--density {:e}: model '{}' (volume {:e}) has a mass or inertia beyond the largest \
+             number a double holds at this density; give a smaller --density",
+            args.density,
+            args.model,
+            want.volume
+        );
+    }
     let mut warnings = Vec::new();
     if result.truncated {
         warnings.push(truncation_warning(result.settings.max_peels));
     }
     if !report.is_closed() {
         warnings.push(format!(
-            "the mesh is open ({} open edges, {} inconsistent): the GPU result assumes the holes are small; the analytic result is unreliable",
-            report.open_edges, report.inconsistent_edges
+            "the mesh is not a closed surface ({}): the GPU result assumes the holes are small; the analytic result is unreliable",
+            report.problems()
+        ));
+    }
+    let overlaps = classic_gpgpu::mass::pieces::overlapping_pieces(&mesh, 10);
+    if let Some(&(a, b)) = overlaps.first() {
+        warnings.push(format!(
+            "pieces {a} and {b} of the mesh overlap ({} overlapping pairs found): every result \
+             here (GPU and analytic alike, as eq. 4 sums what each piece bounds) is the sum of \
+             the pieces, with the space they share counted twice, not the solid they make \
+             together; merge the pieces into one closed surface for that",
+            overlaps.len()
         ));
     }
     if args.below.is_some() && want.volume == 0.0 {
@@ -180,6 +207,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         vertices: mesh.positions.len(),
         triangles: mesh.triangles.len(),
         closed: report.is_closed(),
+        overlapping_pieces: overlaps,
         renderer: ctx.info().renderer_line(),
         density: args.density,
         below: args.below,
@@ -252,6 +280,8 @@ struct MassOutput<'a> {
     vertices: usize,
     triangles: usize,
     closed: bool,
+    /// Pairs of pieces that overlap (their shared volume is summed twice analytically).
+    overlapping_pieces: Vec<(usize, usize)>,
     renderer: String,
     density: f64,
     below: Option<f64>,
@@ -300,7 +330,13 @@ impl MassOutput<'_> {
                 "center_of_mass": self.want.center_of_mass.to_array(),
                 "inertia": self.want.inertia_rows(),
                 "principal_moments": self.want.principal_moments().to_array(),
-                "reliable": self.closed,
+                "reliable": self.closed && self.overlapping_pieces.is_empty(),
+                "computes": if self.overlapping_pieces.is_empty() {
+                    "the solid's integrals"
+                } else {
+                    "the sum of the pieces' integrals: overlapping space counted once per piece"
+                },
+                "overlapping_pieces": self.overlapping_pieces,
             },
             "framing": {
                 "center": f.center.to_array(),
@@ -452,6 +488,7 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
                 format!("--png-every {}: K must be a positive whole number", v[0])
             })?;
             let dir = PathBuf::from(&v[1]);
+            classic_gpgpu::files::check_folder("--png-every", &dir)?;
             std::fs::create_dir_all(&dir)
                 .with_context(|| format!("--png-every: creating {}", dir.display()))?;
             Some((k, dir))

@@ -73,9 +73,7 @@ pub fn run(command: &MeshCommand, json: bool) -> anyhow::Result<()> {
             out,
             force,
         } => {
-            if out.exists() && !force {
-                bail!("{} exists; pass --force to replace it", out.display());
-            }
+            classic_gpgpu::files::check_output("--out", out, &[], *force, &["obj"])?;
             if let Some(n) = *triangles {
                 // Refining holds the mesh and its edge map: about 128 bytes a triangle.
                 super::limits::check_count(

@@ -2,6 +2,7 @@
 //! [`classic_gpgpu::report::bench_command`].
 
 use anyhow::{bail, Context as _};
+use classic_gpgpu::files;
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::mlp::chain::{Formulation, GpuMlp, GpuNetwork, StepTimes};
 use classic_gpgpu::mlp::compute::ComputeMlp;
@@ -292,45 +293,6 @@ fn read_grey(path: &Path, what: &str) -> anyhow::Result<image::GrayImage> {
         .to_luma8())
 }
 
-/// Refuses to write `out` over one of `inputs` (ever), or over an existing file without
-/// `force`; checked before any work is done.
-fn check_output(out: &Path, inputs: &[&Path], force: bool) -> anyhow::Result<()> {
-    if let Some(input) = inputs.iter().find(|input| same_file(out, input)) {
-        bail!(
-            "--out {} is the input {}; an input is never overwritten (not even with --force), \
-             so write the result to another file",
-            out.display(),
-            input.display()
-        );
-    }
-    if out.exists() && !force {
-        bail!("--out {} exists; pass --force to replace it", out.display());
-    }
-    Ok(())
-}
-
-/// Whether two paths name one existing file (through links, `.`/`..`, or hard links).
-fn same_file(a: &Path, b: &Path) -> bool {
-    let (Ok(a), Ok(b)) = (std::fs::canonicalize(a), std::fs::canonicalize(b)) else {
-        return false;
-    };
-    a == b || same_inode(&a, &b)
-}
-
-#[cfg(unix)]
-fn same_inode(a: &Path, b: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    match (std::fs::metadata(a), std::fs::metadata(b)) {
-        (Ok(a), Ok(b)) => (a.dev(), a.ino()) == (b.dev(), b.ino()),
-        _ => false,
-    }
-}
-
-#[cfg(not(unix))]
-fn same_inode(_: &Path, _: &Path) -> bool {
-    false
-}
-
 /// Outputs (L x M) of a batch, where it ran, its step times, tiles and passes.
 struct Evaluated {
     outputs: ndarray::Array2<f32>,
@@ -480,7 +442,7 @@ fn detect(
     if let Some(out) = &args.out {
         let mut inputs = vec![args.image.as_path()];
         inputs.extend(args.network.as_deref());
-        check_output(out, &inputs, args.force)?;
+        files::check_output("--out", out, &inputs, args.force, &["png"])?;
     }
     let net = match &args.network {
         Some(path) => read_network(path)?,
@@ -533,7 +495,7 @@ fn detect(
     let mask = mask_image(&outputs, image.width(), image.height(), args.threshold);
     let text_pixels = outputs.iter().filter(|&&v| v > args.threshold).count();
     if let Some(out) = &args.out {
-        mask.save(out)
+        files::write_image(out, &mask.into())
             .with_context(|| format!("cannot write the mask {}", out.display()))?;
     }
     let fraction = text_pixels as f64 / outputs.len() as f64;
@@ -634,7 +596,7 @@ fn pair_data(pairs: &[PathBuf], config: &TrainConfig) -> anyhow::Result<Training
 
 fn train_detector(args: TrainArgs, json: bool) -> anyhow::Result<()> {
     let inputs: Vec<&Path> = args.pair.iter().map(PathBuf::as_path).collect();
-    check_output(&args.out, &inputs, args.force)?;
+    files::check_output("--out", &args.out, &inputs, args.force, &[])?;
     let own = !args.pair.is_empty();
     let defaults = TrainConfig::default();
     let config = TrainConfig {
@@ -666,7 +628,7 @@ fn train_detector(args: TrainArgs, json: bool) -> anyhow::Result<()> {
     )
     .outputs;
     let quality = evaluate(outputs.column(0), &data.held_out.labels, THRESHOLD);
-    std::fs::write(&args.out, trained.network.to_json() + "\n")
+    files::write_bytes(&args.out, (trained.network.to_json() + "\n").as_bytes())
         .with_context(|| format!("cannot write {}", args.out.display()))?;
     let report = json!({
         "config": config,

@@ -23,9 +23,20 @@ pub struct SelftestArgs {
 /// Runs `selftest`.
 pub fn run(args: &SelftestArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if let Some(path) = &args.junit {
-        if path.is_dir() {
-            bail!("--junit {}: is a directory, not a file", path.display());
-        }
+        classic_gpgpu::files::check_output("--junit", path, &[], true, &[])?;
+    }
+    let known = |o: &str| {
+        selftest::checks()
+            .iter()
+            .any(|c| c.name.contains(o) || c.group == o)
+    };
+    if let Some(unknown) = args.only.iter().find(|o| !known(o)) {
+        let names: Vec<_> = selftest::checks().iter().map(|c| c.name).collect();
+        bail!(
+            "--only {unknown}: no check matches it; the checks are {} (groups gl, paper1-4, \
+             lecture3)",
+            names.join(", ")
+        );
     }
     let checks: Vec<_> = selftest::checks()
         .into_iter()
@@ -47,7 +58,7 @@ pub fn run(args: &SelftestArgs, ctx: &Context, json: bool) -> anyhow::Result<()>
     }
     let results = selftest::run(ctx, &checks);
     if let Some(path) = &args.junit {
-        std::fs::write(path, selftest::to_junit(&results))
+        classic_gpgpu::files::write_bytes(path, selftest::to_junit(&results).as_bytes())
             .with_context(|| format!("writing the JUnit report {}", path.display()))?;
     }
     if json {

@@ -141,6 +141,15 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 impl DemoCommand {
+    /// The files the demo reads, which a screenshot must never replace.
+    fn inputs(&self) -> Vec<&std::path::Path> {
+        match self {
+            DemoCommand::Mass { model, .. } => vec![std::path::Path::new(model)],
+            DemoCommand::Mlp(MlpDemo::Detect { image }) => vec![image.as_path()],
+            _ => vec![],
+        }
+    }
+
     fn spec(&self) -> anyhow::Result<DemoSpec> {
         Ok(match self {
             DemoCommand::CollideScene { scene, triangles } => DemoSpec::CollideScene {
@@ -195,7 +204,13 @@ pub fn run(
 ) -> anyhow::Result<()> {
     let spec = args.demo.spec()?;
     if let Some(path) = &args.screenshot {
-        window::check_output(path, args.force)?;
+        classic_gpgpu::files::check_output(
+            "--screenshot",
+            path,
+            &args.demo.inputs(),
+            args.force,
+            &["png"],
+        )?;
     }
     let view = ViewState {
         shown: args.buffer,

@@ -180,10 +180,8 @@ impl Dispatch<'_> {
         let ctx = &self.compute.ctx;
         let gl = ctx.gl();
         for (axis, &count) in groups.iter().enumerate() {
-            let max = unsafe {
-                gl.get_parameter_indexed_i32(glow::MAX_COMPUTE_WORK_GROUP_COUNT, axis as u32)
-            };
-            if count as i64 > max as i64 {
+            let max = ctx.max_work_groups(axis as u32);
+            if count > max {
                 return Err(GlError::Limit(format!(
                     "dispatch {} asks for {count} work groups along axis {axis}; this renderer \
                      allows {max}",
@@ -215,6 +213,23 @@ impl Dispatch<'_> {
     pub fn run_over(&mut self, items: u32) -> Result<(), GlError> {
         let groups = items.div_ceil(self.compute.local_size[0]);
         self.run([groups, 1, 1])
+    }
+
+    /// [`Self::run_over`] for any number of items: split into as many dispatches as the
+    /// renderer's work-group limit needs, each told its first item through the uniform
+    /// `first_item` (the shader's item is `first_item + gl_GlobalInvocationID.x`).
+    pub fn run_over_in_chunks(&mut self, items: u32, first_item: &str) -> Result<(), GlError> {
+        let local = self.compute.local_size[0].max(1);
+        let most = self.compute.ctx.max_work_groups(0).max(1) as u64 * local as u64;
+        let mut first = 0u32;
+        loop {
+            let count = (items - first).min(most.min(u32::MAX as u64) as u32);
+            self.uniform(first_item, first).run_over(count)?;
+            first += count;
+            if first >= items {
+                return Ok(());
+            }
+        }
     }
 }
 

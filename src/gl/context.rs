@@ -159,6 +159,8 @@ pub(super) struct Inner {
     pub(super) gl: glow::Context,
     info: ContextInfo,
     checks: Cell<bool>,
+    /// A lower limit on work groups per dispatch axis (a test hook), if set.
+    work_group_limit: Cell<Option<u32>>,
     /// The empty vertex array that attribute-less draws (rectangles) bind.
     pub(super) empty_vao: glow::VertexArray,
     pub(super) extra: ExtraEntryPoints,
@@ -353,6 +355,7 @@ impl Context {
                 gl,
                 info,
                 checks: Cell::new(checks),
+                work_group_limit: Cell::new(None),
                 empty_vao,
                 extra,
                 profile: std::cell::RefCell::new(None),
@@ -403,6 +406,26 @@ impl Context {
     /// Turn the per-pass checks on (tests) or off (timed benchmark loops).
     pub fn set_checks(&self, on: bool) {
         self.inner.checks.set(on);
+    }
+
+    /// Test hook: compute dispatches may use at most `limit` work groups along each axis
+    /// (when below the renderer's own limit), so that code which splits dispatches larger than
+    /// the limit is tested on small inputs. `None` restores the renderer's limit.
+    pub fn set_work_group_limit(&self, limit: Option<u32>) {
+        self.inner.work_group_limit.set(limit);
+    }
+
+    /// The most work groups one dispatch may have along `axis` (0, 1, 2).
+    pub fn max_work_groups(&self, axis: u32) -> u32 {
+        let renderer = unsafe {
+            self.gl()
+                .get_parameter_indexed_i32(glow::MAX_COMPUTE_WORK_GROUP_COUNT, axis)
+        }
+        .max(0) as u32;
+        self.inner
+            .work_group_limit
+            .get()
+            .map_or(renderer, |limit| limit.min(renderer))
     }
 
     /// Load shaders from `dir` where it has them: a program built from `glsl/x.frag` reads

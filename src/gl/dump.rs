@@ -107,8 +107,8 @@ pub fn rgba_png(rgba: &[u8], (width, height): (u32, u32), path: &Path) -> Result
         .flatten()
         .copied()
         .collect();
-    image::save_buffer(path, &flipped, width, height, image::ColorType::Rgba8)
-        .map_err(|e| io_error(path, e))
+    crate::files::write_png(path, &flipped, width, height)
+        .map_err(|e| io_error(path, format!("{e:#}")))
 }
 
 fn io_error(path: &Path, e: impl std::fmt::Display) -> GlError {

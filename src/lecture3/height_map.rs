@@ -82,8 +82,12 @@ impl HeightMap {
             .flatten()
             .map(|h| (h * 255.0).round() as u8)
             .collect();
-        image::save_buffer(path, &bytes, self.width, self.height, image::ColorType::L8)
-            .map_err(|e| Error::input(name, format!("cannot write the PNG: {e}")))
+        let image =
+            image::GrayImage::from_raw(self.width, self.height, bytes).ok_or_else(|| {
+                Error::input(name.clone(), "the map's size does not match its heights")
+            })?;
+        crate::files::write_image(path, &image.into())
+            .map_err(|e| Error::input(name, format!("cannot write the PNG: {e:#}")))
     }
 
     /// The map this project ships, made by code: four quadrants that test a height-field

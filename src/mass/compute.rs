@@ -105,7 +105,7 @@ impl ComputeMass {
                 .storage(0, &input)
                 .storage(1, &terms)
                 .uniform("u_triangles", slots as u32)
-                .run_over(slots as u32)?;
+                .run_over_in_chunks(slots as u32, "u_first")?;
             memory_barrier(&self.ctx, &[Barrier::Storage]);
             self.reducer.reduce_segments(
                 &terms,

@@ -104,7 +104,7 @@ impl GpuMass {
             return Err(GlError::Invalid(format!(
                 "the body covers no pixel centre of the {n}x{n} frame (pixels {s:.3e} wide): \
                  it is thinner than a pixel across (x extent {x:.3e}, y extent {y:.3e}), so \
-                 the image-based method cannot see it; a higher resolution may",
+                 the image-based method cannot see it; a higher --resolution may resolve it",
                 n = self.resolution,
                 s = framing.pixel_size(),
                 x = framing_extent(mesh).x,

@@ -46,6 +46,7 @@ pub mod integrands;
 pub mod models;
 pub mod peel;
 pub mod peel_end;
+pub mod pieces;
 pub mod reduce;
 pub mod surface;
 

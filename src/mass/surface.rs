@@ -16,12 +16,35 @@ pub struct SurfaceReport {
     pub inconsistent_edges: usize,
     /// Triangles of zero area.
     pub degenerate_triangles: usize,
+    /// Triangles whose three corners another triangle already has (duplicated faces).
+    pub duplicate_triangles: usize,
 }
 
 impl SurfaceReport {
     /// Closed and consistently oriented: the divergence theorem applies.
     pub fn is_closed(&self) -> bool {
         self.open_edges == 0 && self.inconsistent_edges == 0
+    }
+
+    /// What keeps the surface from being closed, in words (empty when it is closed).
+    pub fn problems(&self) -> String {
+        let mut parts = Vec::new();
+        if self.open_edges > 0 {
+            parts.push(format!("{} open edges", self.open_edges));
+        }
+        if self.inconsistent_edges > 0 {
+            parts.push(format!(
+                "{} edges used in the same direction by two faces",
+                self.inconsistent_edges
+            ));
+        }
+        if self.duplicate_triangles > 0 {
+            parts.push(format!(
+                "{} faces that repeat another face's corners",
+                self.duplicate_triangles
+            ));
+        }
+        parts.join(", ")
     }
 }
 
@@ -31,7 +54,13 @@ pub fn check(mesh: &Mesh) -> SurfaceReport {
     let ids = weld_by_position(mesh);
     let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
     let mut report = SurfaceReport::default();
+    let mut faces = std::collections::HashSet::new();
     for (t, tri) in mesh.triangles.iter().enumerate() {
+        let mut corners = tri.map(|v| ids[v as usize]);
+        corners.sort_unstable();
+        if !faces.insert(corners) {
+            report.duplicate_triangles += 1;
+        }
         let [a, b, c] = mesh.triangle(t);
         if (b - a).cross(c - a).length_squared() == 0.0 {
             report.degenerate_triangles += 1;

@@ -187,9 +187,11 @@ fn vertex_position(args: &[&str]) -> Vec3 {
 /// the same f32), one `f` line per triangle, 1-based.
 pub fn write_obj(mesh: &Mesh, path: impl AsRef<Path>) -> Result<(), MeshError> {
     let path = path.as_ref();
-    std::fs::write(path, to_obj_string(mesh, "")).map_err(|io| MeshError::Write {
-        path: path.to_owned(),
-        io,
+    crate::files::write_bytes(path, to_obj_string(mesh, "").as_bytes()).map_err(|e| {
+        MeshError::Write {
+            path: path.to_owned(),
+            io: std::io::Error::other(format!("{e:#}")),
+        }
     })
 }
 

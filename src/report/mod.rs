@@ -18,6 +18,7 @@ pub mod paper4;
 pub mod plot;
 pub mod profile;
 pub mod published;
+pub mod report_folder;
 pub mod reproduce;
 pub mod selftest;
 pub mod then_and_now;

@@ -1,7 +1,9 @@
 //! `classic-gpgpu reproduce`: every paper's benchmark, one report. The report is written into
 //! a staging folder beside the target and swapped in only when every section succeeded, so a
-//! failed run never leaves a half-written report where a good one was.
+//! failed run never leaves a half-written report where a good one was. The report folder is
+//! only ever the program's own ([`super::report_folder`]).
 
+use super::report_folder::{self, Owned};
 use super::{html, run_section, BenchOptions, Paper, Report, Section};
 use crate::gl;
 use anyhow::{bail, Context as _};
@@ -61,7 +63,8 @@ pub struct ReproduceArgs {
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
     /// With --only, replace a report that cannot be merged with (another renderer or other
-    /// sizes) by one holding just the sections run now.
+    /// sizes) by one holding just the sections run now. Also: write the report into a folder
+    /// that holds other files (they are never removed).
     #[arg(long)]
     pub force: bool,
     /// Time every repeated measurement exactly this many times [default: 3, and up to 5
@@ -78,18 +81,27 @@ pub fn reproduce(
 ) -> anyhow::Result<Report> {
     let all = stages();
     let chosen = chosen_stages(&all, &args.only)?;
-    check_out(&args.out)?;
+    report_folder::check_out(&args.out, args.force)?;
+    let _lock = report_folder::Lock::take(&args.out)?;
+    report_folder::recover(&args.out)?;
+    // Checked again under the lock: a recovered report is a folder too.
+    report_folder::check_out(&args.out, args.force)?;
     let kept = kept_sections(ctx, args, &chosen)?;
-    remove_stale_staging(&args.out);
     let staging = staging_dir(&args.out)?;
-    let result = run_stages(ctx, args, &chosen, &staging, progress).and_then(|mut report| {
-        merge_kept(&mut report, kept, &all, &args.out, &staging)?;
-        write_report(&report, &staging)?;
-        Ok(report)
-    });
+    let mut owned = Owned::default();
+    let result =
+        run_stages(ctx, args, &chosen, &staging, progress, &mut owned).and_then(|mut report| {
+            merge_kept(&mut report, kept, &all, &args.out, &staging, &mut owned)?;
+            write_report(&report, &staging)?;
+            owned.add("-", "results.json");
+            owned.add("-", "index.html");
+            // Last: a staging folder with its marker holds a finished report.
+            owned.write(&staging)?;
+            Ok(report)
+        });
     match result {
         Ok(report) => {
-            swap_in(&staging, &args.out)?;
+            report_folder::install(&staging, &args.out, &owned)?;
             Ok(report)
         }
         Err(e) => {
@@ -117,31 +129,6 @@ fn chosen_stages<'a>(all: &'a [Stage], only: &[String]) -> anyhow::Result<Vec<&'
         .iter()
         .filter(|s| only.is_empty() || only.iter().any(|o| o == s.id))
         .collect())
-}
-
-/// Refuse, before any work, an `--out` that is a file or a folder that is not a report.
-fn check_out(out: &Path) -> anyhow::Result<()> {
-    if !out.exists() {
-        return Ok(());
-    }
-    if !out.is_dir() {
-        bail!(
-            "--out {}: exists and is not a folder; choose another --out",
-            out.display()
-        );
-    }
-    let empty = std::fs::read_dir(out)
-        .with_context(|| format!("--out {}: cannot read the folder", out.display()))?
-        .next()
-        .is_none();
-    if !empty && !out.join("results.json").is_file() {
-        bail!(
-            "--out {}: exists and is not a classic-gpgpu report (no results.json); choose \
-             another --out",
-            out.display()
-        );
-    }
-    Ok(())
 }
 
 /// With `--only`, the sections of the report already in `--out` that this run keeps: all
@@ -216,24 +203,26 @@ fn kept_sections(
         .collect())
 }
 
-/// Add the kept sections to the new report in report order, and copy their figures from
-/// the old report into the staging folder.
+/// Add the kept sections to the new report in report order, and copy every file they wrote
+/// (as the old report's marker lists them; a report without one: their figures) from the old
+/// report into the staging folder.
 fn merge_kept(
     report: &mut Report,
     kept: Vec<Section>,
     all: &[Stage],
     out: &Path,
     staging: &Path,
+    owned: &mut Owned,
 ) -> anyhow::Result<()> {
+    let old = Owned::read(out)?.unwrap_or_else(|| Owned::from_results(out));
     for section in &kept {
-        for figure in &section.figures {
-            let (from, to) = (out.join(&figure.file), staging.join(&figure.file));
-            if let Some(parent) = to.parent() {
-                std::fs::create_dir_all(parent)?;
-            }
-            std::fs::copy(&from, &to).with_context(|| {
-                format!("keeping section {}: copying {}", section.id, from.display())
+        for file in old.files_of(&section.id) {
+            let (from, to) = (out.join(file), staging.join(file));
+            let bytes = std::fs::read(&from).with_context(|| {
+                format!("keeping section {}: reading {}", section.id, from.display())
             })?;
+            crate::files::write_bytes(&to, &bytes)?;
+            owned.add(&section.id, file);
         }
     }
     report.sections.extend(kept);
@@ -242,45 +231,13 @@ fn merge_kept(
     Ok(())
 }
 
-/// Staging folders (and moved-aside old reports) of runs that were killed: `.NAME.staging-PID`
-/// beside `out` whose process is gone.
-fn remove_stale_staging(out: &Path) {
-    let (Some(parent), Some(name)) = (out.parent(), out.file_name()) else {
-        return;
-    };
-    let parent = if parent.as_os_str().is_empty() {
-        Path::new(".")
-    } else {
-        parent
-    };
-    if !Path::new("/proc/self").exists() {
-        return; // no way to tell a live process from a dead one
-    }
-    let prefix = format!(".{}.staging-", name.to_string_lossy());
-    let Ok(entries) = std::fs::read_dir(parent) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let file_name = entry.file_name().to_string_lossy().into_owned();
-        let Some(rest) = file_name.strip_prefix(&prefix) else {
-            continue;
-        };
-        let pid = rest.split('.').next().unwrap_or("");
-        let alive = pid.parse::<u32>().is_ok_and(|pid| {
-            pid == std::process::id() || Path::new(&format!("/proc/{pid}")).exists()
-        });
-        if !alive {
-            std::fs::remove_dir_all(entry.path()).ok();
-        }
-    }
-}
-
 fn run_stages(
     ctx: &gl::Context,
     args: &ReproduceArgs,
     stages: &[&Stage],
     staging: &Path,
     progress: MultiProgress,
+    owned: &mut Owned,
 ) -> anyhow::Result<Report> {
     let start = Instant::now();
     let overall = progress.add(ProgressBar::new(stages.len() as u64));
@@ -308,7 +265,13 @@ fn run_stages(
                 stage.id
             );
         }
+        let before = report_folder::list_files(staging)?;
         let section = (stage.run)(&opts).with_context(|| format!("section {}", stage.id))?;
+        for file in report_folder::list_files(staging)? {
+            if before.binary_search(&file).is_err() {
+                owned.add(stage.id, &file);
+            }
+        }
         for figure in &section.figures {
             if !staging.join(&figure.file).is_file() {
                 bail!(
@@ -334,46 +297,21 @@ fn run_stages(
 }
 
 fn write_report(report: &Report, staging: &Path) -> anyhow::Result<()> {
-    std::fs::write(
-        staging.join("results.json"),
-        serde_json::to_string_pretty(report)?,
-    )
-    .context("writing results.json")?;
-    std::fs::write(staging.join("index.html"), html::page(report)).context("writing index.html")
+    crate::files::write_bytes(
+        &staging.join("results.json"),
+        serde_json::to_string_pretty(report)?.as_bytes(),
+    )?;
+    crate::files::write_bytes(&staging.join("index.html"), html::page(report).as_bytes())
 }
 
 /// A fresh staging folder beside `out` (same file system, so the swap is a rename).
 fn staging_dir(out: &Path) -> anyhow::Result<PathBuf> {
-    let parent = out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
-    let name = out
-        .file_name()
-        .context("--out needs a folder name")?
-        .to_string_lossy();
-    let staging = parent.join(format!(".{name}.staging-{}", std::process::id()));
+    let staging = report_folder::staging_of(out, std::process::id())?;
     if staging.exists() {
         std::fs::remove_dir_all(&staging)?;
     }
     std::fs::create_dir_all(&staging).with_context(|| format!("creating {}", staging.display()))?;
     Ok(staging)
-}
-
-/// Replace `out` by `staging`: the old report is moved aside first and removed last.
-fn swap_in(staging: &Path, out: &Path) -> anyhow::Result<()> {
-    let old = staging.with_extension("old");
-    if out.exists() {
-        check_out(out)?;
-        std::fs::rename(out, &old)
-            .with_context(|| format!("moving the old {} aside", out.display()))?;
-    }
-    std::fs::rename(staging, out).with_context(|| format!("writing {}", out.display()))?;
-    if old.exists() {
-        std::fs::remove_dir_all(&old).ok();
-    }
-    Ok(())
 }
 
 fn cpu_name() -> String {

@@ -88,6 +88,26 @@ pub const COMMON_KEYS: [(&str, &str); 9] = [
     ("esc", "quit"),
 ];
 
+/// Refuses a first buffer (`--buffer`) that the demo does not have, naming those it has.
+pub fn check_shown(demo: &dyn Demo, view: &ViewState) -> anyhow::Result<()> {
+    let buffers = demo.buffers();
+    if view.shown >= buffers.len() {
+        anyhow::bail!(
+            "--buffer {}: this demo has {} buffers, 0 to {}: {}",
+            view.shown,
+            buffers.len(),
+            buffers.len().saturating_sub(1),
+            buffers
+                .iter()
+                .enumerate()
+                .map(|(i, b)| format!("{i} {b}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    Ok(())
+}
+
 /// Draw frame `frames` of `demo` (after that many steps) on `canvas`, with the overlay text,
 /// the probe's readout when `view.probe` points somewhere and, if `view.help`, the help, as
 /// the window shows it. The probe's lines (empty without a probe).
@@ -177,6 +197,7 @@ pub fn headless_frame(
     keys: &str,
 ) -> anyhow::Result<(Vec<u8>, Vec<String>)> {
     let mut demo = spec.build(ctx, (width, height))?;
+    check_shown(demo.as_ref(), view)?;
     press_keys(demo.as_mut(), keys)?;
     for _ in 0..frames {
         demo.step()?;

@@ -51,8 +51,10 @@ pub fn run(spec: &DemoSpec, options: WindowOptions) -> anyhow::Result<()> {
              work without one"
         ));
     }
-    let event_loop = EventLoop::new()
-        .map_err(|e| anyhow!("no display ({e}); the headless command {hint} does the same work"))?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        let e = without_source_path(&e.to_string());
+        anyhow!("no display ({e}); the headless command {hint} does the same work")
+    })?;
     let mut app = App {
         spec,
         options,
@@ -102,7 +104,8 @@ impl App<'_> {
         let window =
             GlWindow::new(event_loop, attributes, self.options.frames.is_none()).map_err(|e| {
                 anyhow!(
-                    "{e}; the headless command {} does the same work",
+                    "{}; the headless command {} does the same work",
+                    without_source_path(&e.to_string()),
                     self.spec.headless_hint()
                 )
             })?;
@@ -112,7 +115,8 @@ impl App<'_> {
         let info = ctx.info();
         eprintln!("window: {} ({})", info.renderer_line(), info.why);
         ctx.set_glsl_dir(self.options.glsl_dir.clone());
-        let demo = LiveDemo::new(self.spec, &ctx, size, &self.options.keys)?;
+        let mut demo = LiveDemo::new(self.spec, &ctx, size, &self.options.keys)?;
+        super::check_shown(demo.demo(), &self.options.view)?;
         let canvas = Canvas::new(&ctx, size.0, size.1)?;
         Ok(Running {
             demo,
@@ -345,4 +349,33 @@ pub fn check_output(path: &Path, force: bool) -> anyhow::Result<()> {
         .context("--screenshot");
     }
     Ok(())
+}
+
+/// `text` without the source location winit puts in its OS errors ("os error at
+/// /home/.cargo/registry/.../x11/mod.rs:123: "), which says nothing to a user.
+pub fn without_source_path(text: &str) -> String {
+    let Some(start) = text.find("os error at ") else {
+        return text.to_string();
+    };
+    let rest = &text[start + "os error at ".len()..];
+    let Some(rs) = rest.find(".rs:") else {
+        return text.to_string();
+    };
+    let after = rest[rs + ".rs:".len()..].trim_start_matches(|c: char| c.is_ascii_digit());
+    let after = after.strip_prefix(':').unwrap_or(after).trim_start();
+    format!("{}{after}", &text[..start])
+}
+
+#[cfg(test)]
+mod source_path_tests {
+    #[test]
+    fn the_source_location_of_an_os_error_is_dropped() {
+        let text = "os error at /root/.cargo/registry/src/index.crates.io-1/winit-0.30.12/src/\
+                    platform_impl/linux/mod.rs:765: failed to open display :99";
+        assert_eq!(
+            super::without_source_path(text),
+            "failed to open display :99"
+        );
+        assert_eq!(super::without_source_path("no display"), "no display");
+    }
 }

@@ -15,9 +15,12 @@ layout(std430, binding = 0) readonly buffer Corners { vec4 b_corners[]; };
 layout(std430, binding = 1) writeonly buffer Terms { vec4 b_terms[]; };
 
 uniform uint u_triangles;
+// The first triangle of this dispatch: a large mesh takes several, each within the
+// renderer's limit on work groups.
+uniform uint u_first;
 
 void main() {
-    uint t = gl_GlobalInvocationID.x;
+    uint t = u_first + gl_GlobalInvocationID.x;
     if (t >= u_triangles) return;
     vec3 a = b_corners[3u * t].xyz;
     vec3 b = b_corners[3u * t + 1u].xyz;

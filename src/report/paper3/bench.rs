@@ -441,15 +441,14 @@ fn detection_of(
         "Fig. 2: {} outputs for {width} x {height} pixels",
         cpu.len()
     );
-    photo
-        .save(opts.out_dir.join(FIG2A_FILE))
+    crate::files::write_image(&opts.out_dir.join(FIG2A_FILE), &photo.clone().into())
         .with_context(|| format!("writing {FIG2A_FILE}"))?;
     let run_of = |method: Method| -> anyhow::Result<DetectionRun> {
         let (measurement, outputs) = outputs_of(method);
         let out = outputs.column(0).to_vec();
         if method == Method::GpuFaithful {
-            mask_image(&out, width, height, THRESHOLD)
-                .save(opts.out_dir.join(FIG2B_FILE))
+            let mask = mask_image(&out, width, height, THRESHOLD);
+            crate::files::write_image(&opts.out_dir.join(FIG2B_FILE), &mask.into())
                 .with_context(|| format!("writing {FIG2B_FILE}"))?;
         }
         Ok(detection_run(
@@ -489,8 +488,7 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
     let net = shipped_detector()?;
     let (width, height) = photo.dimensions();
     let cpu = classify_cpu(&net, photo, CpuProduct::Optimised, 1 << 18).outputs;
-    photo
-        .save(opts.out_dir.join(FIG2A_FILE))
+    crate::files::write_image(&opts.out_dir.join(FIG2A_FILE), &photo.clone().into())
         .with_context(|| format!("writing {FIG2A_FILE}"))?;
     let classify = |formulation: Formulation| -> anyhow::Result<DetectionRun> {
         let loaded = gpu.load(&net, formulation)?;
@@ -501,8 +499,8 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
             "text.png: the {formulation:?} GPU passes gave a non-finite output"
         );
         if formulation == Formulation::Faithful {
-            mask_image(&out, width, height, THRESHOLD)
-                .save(opts.out_dir.join(FIG2B_FILE))
+            let mask = mask_image(&out, width, height, THRESHOLD);
+            crate::files::write_image(&opts.out_dir.join(FIG2B_FILE), &mask.into())
                 .with_context(|| format!("writing {FIG2B_FILE}"))?;
         }
         Ok(detection_run(&out, &cpu, classified.times, 1))
