@@ -4,6 +4,7 @@
 
 pub mod collide;
 pub mod crowd;
+pub mod lecture1;
 pub mod lecture3;
 pub mod limits;
 pub mod mass;
