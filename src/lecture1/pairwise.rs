@@ -163,7 +163,7 @@ impl PairwiseTester {
                 let (count, ms) = time_gpu(&self.ctx, || {
                     self.draw_tile(
                         &target,
-                        (&tex_a, &tex_b),
+                        (&tex_a, tex_b),
                         IVec2::new(i0 as i32, j0 as i32),
                         self_test,
                     )
