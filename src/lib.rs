@@ -20,6 +20,7 @@ pub mod files;
 #[allow(unsafe_code)]
 pub mod gl;
 pub mod learn;
+pub mod lecture1;
 pub mod lecture3;
 pub mod mass;
 pub mod mesh;

@@ -59,6 +59,9 @@ enum Command {
     Mlp(cli::mlp::MlpArgs),
     /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
     MlpBench(BenchArgs<NoOptions>),
+    /// The tutorial's lecture 1: self-collision and pairwise triangle tests on the GPU.
+    #[command(subcommand)]
+    Lecture1(cli::lecture1::Lecture1Command),
     /// The tutorial's lecture 3: image pyramids, pyramidal displacement mapping, quadtree
     /// search of a light hierarchy, and the lecture's texture and debugging techniques.
     #[command(subcommand)]
@@ -169,6 +172,9 @@ fn main() -> ExitCode {
         Command::CrowdBench(a) => global.bench::<report::paper2::Paper2>(&a, "crowd-bench"),
         Command::Mlp(args) => cli::mlp::run(args, json, || global.context()),
         Command::MlpBench(a) => global.bench::<report::paper3::Paper3>(&a, "mlp-bench"),
+        Command::Lecture1(c) => global
+            .context()
+            .and_then(|ctx| cli::lecture1::run(&c, &ctx, json)),
         Command::Lecture3(c) => global
             .context()
             .and_then(|ctx| cli::lecture3::run(&c, &ctx, json)),

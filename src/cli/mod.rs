@@ -6,6 +6,7 @@ pub mod collide;
 pub mod crowd;
 pub mod glsl;
 pub mod learn;
+pub mod lecture1;
 pub mod lecture3;
 pub mod limits;
 pub mod mass;

@@ -1,0 +1,377 @@
+//! `classic-gpgpu lecture1 ...`: the tutorial's lecture 1 beyond paper 1 (`src/lecture1/`):
+//! self-collision with streaming AABBs, pairwise triangle tests with the triangles in
+//! textures, and a comparison of the two with brute force by triangle count.
+
+use anyhow::Context as _;
+use classic_gpgpu::collide::deform::{Deformation, Deforming, Pulsating, Wavy};
+use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
+use classic_gpgpu::collide::stream_setup::auto_leaf_size;
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::lecture1::knotted_tube::KnottedTube;
+use classic_gpgpu::lecture1::pairwise::{PairwiseTester, DEFAULT_TILE};
+use classic_gpgpu::lecture1::reference;
+use classic_gpgpu::lecture1::self_collision::{Options, SelfCollider};
+use classic_gpgpu::lecture1::weld::weld;
+use classic_gpgpu::mesh::{load_obj, Mesh};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The lecture-1 techniques.
+#[derive(clap::Subcommand, Debug)]
+pub enum Lecture1Command {
+    /// Self-collision of a deforming mesh with paper 1's streaming AABBs: per frame, every
+    /// pair of intersecting triangles that share no vertex.
+    SelfCollision(SelfCollisionArgs),
+    /// Pairwise triangle tests with the triangles in textures (a reconstruction of Choi, Kim
+    /// & Kim 2006): every intersecting pair between two models, or within one.
+    Pairwise(PairwiseArgs),
+    /// Pairwise tests, streaming AABBs and brute force on the swelling knot, by triangle
+    /// count (wall-clock times, measured side by side; the renderer named).
+    Compare(CompareArgs),
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DeformArg {
+    Wavy,
+    Pulsating,
+    None,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneArg {
+    /// A tube around a trefoil knot that swells until its strands press through each other.
+    KnottedTube,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct SelfCollisionArgs {
+    /// The model (OBJ); or leave it out and name a --scene.
+    pub model: Option<PathBuf>,
+    /// A generated scene that folds onto itself instead of a model (it moves by itself:
+    /// --deform does not apply).
+    #[arg(long, value_enum)]
+    pub scene: Option<SceneArg>,
+    /// Triangles of the generated scene.
+    #[arg(long, default_value_t = 2000)]
+    pub triangles: usize,
+    /// Paper 1's deformation of the model (section 7.2).
+    #[arg(long, value_enum, default_value_t = DeformArg::None)]
+    pub deform: DeformArg,
+    #[arg(long, default_value_t = 1)]
+    pub frames: usize,
+    /// Seconds of animation between frames.
+    #[arg(long, default_value_t = 0.1)]
+    pub dt: f32,
+    /// Most triangles per leaf (default: 32, doubled until the stream has at most 512 slots
+    /// on a software renderer, 4096 on a GPU).
+    #[arg(long)]
+    pub leaf_size: Option<usize>,
+    /// Check every frame against brute force with the same exact predicate (quadratic).
+    #[arg(long)]
+    pub check: bool,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct PairwiseArgs {
+    /// Model A (OBJ).
+    pub a: PathBuf,
+    /// Model B (OBJ); without it, A against itself (neighbours excluded).
+    pub b: Option<PathBuf>,
+    /// Largest tile side (triangle pairs per side of the pair texture).
+    #[arg(long, default_value_t = DEFAULT_TILE)]
+    pub tile: usize,
+    /// Check the pairs against brute force with the same exact predicate (quadratic).
+    #[arg(long)]
+    pub check: bool,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct CompareArgs {
+    /// Triangle counts of the swelling knot (at its thickest).
+    #[arg(long, value_delimiter = ',', default_values_t = [250, 500, 1000, 2000])]
+    pub triangles: Vec<usize>,
+}
+
+pub fn run(command: &Lecture1Command, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    match command {
+        Lecture1Command::SelfCollision(a) => self_collision(a, ctx, json),
+        Lecture1Command::Pairwise(a) => pairwise(a, ctx, json),
+        Lecture1Command::Compare(a) => compare(a, ctx, json),
+    }
+}
+
+fn load(path: &Path) -> anyhow::Result<Mesh> {
+    let mesh = load_obj(path).with_context(|| format!("reading model {}", path.display()))?;
+    classic_gpgpu::collide::stream_setup::validate_mesh(&mesh)
+        .with_context(|| format!("model {}", path.display()))?;
+    Ok(mesh)
+}
+
+/// A model's positions at time `t`, or the scene's.
+enum Motion {
+    Model(Deforming),
+    Tube(KnottedTube),
+}
+
+impl Motion {
+    fn mesh(&self) -> &Mesh {
+        match self {
+            Motion::Model(d) => &d.rest,
+            Motion::Tube(t) => &t.mesh,
+        }
+    }
+
+    fn positions(&self, t: f32) -> Vec<glam::Vec3> {
+        match self {
+            Motion::Model(d) => d.positions(t),
+            Motion::Tube(k) => k.positions(t),
+        }
+    }
+}
+
+fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    anyhow::ensure!(args.frames >= 1, "--frames must be at least 1");
+    anyhow::ensure!(args.dt.is_finite(), "--dt must be finite");
+    let motion = match (&args.model, args.scene) {
+        (Some(_), Some(_)) => anyhow::bail!("give a model or a --scene, not both"),
+        (None, None) => anyhow::bail!("give a model (OBJ) or a --scene"),
+        (None, Some(SceneArg::KnottedTube)) => {
+            anyhow::ensure!(
+                args.deform == DeformArg::None,
+                "the knotted tube moves by itself; --deform applies to a model"
+            );
+            anyhow::ensure!(args.triangles >= 100, "--triangles must be at least 100");
+            Motion::Tube(KnottedTube::with_triangles(args.triangles))
+        }
+        (Some(path), None) => {
+            // Welded before deforming, so that split copies of a vertex move as one.
+            let mesh = weld(&load(path)?);
+            let size = mesh.bounds().size().max_element().max(f32::MIN_POSITIVE);
+            let deformation = match args.deform {
+                DeformArg::Wavy => Deformation::Wavy(Wavy::for_size(size, 11)),
+                DeformArg::Pulsating => Deformation::Pulsating(Pulsating::for_size(size)),
+                DeformArg::None => Deformation::Rigid,
+            };
+            Motion::Model(Deforming::new(mesh, deformation))
+        }
+    };
+    let mesh = motion.mesh();
+    let leaf_size = match args.leaf_size {
+        Some(n) => n,
+        None => auto_leaf_size(
+            mesh,
+            classic_gpgpu::collide::stream_setup::max_slots(ctx.info().is_software()),
+        )?,
+    };
+    let options = Options {
+        leaf_size,
+        readback: ReadbackMode::PaperSwitch,
+        ..Options::default()
+    };
+    let mut collider = SelfCollider::new(ctx, mesh, options)?;
+    let mut frames = Vec::new();
+    for f in 0..args.frames {
+        let positions = motion.positions(f as f32 * args.dt);
+        let start = Instant::now();
+        let frame = collider.frame(&positions)?;
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        if args.check {
+            let expected = reference::self_pairs(&collider.mesh, &positions);
+            anyhow::ensure!(
+                expected == frame.pairs,
+                "frame {f}: streaming AABBs found {} pairs, brute force {}",
+                frame.pairs.len(),
+                expected.len()
+            );
+        }
+        frames.push((frame, ms));
+    }
+    let renderer = ctx.info().renderer_line();
+    if json {
+        let report = json!({
+            "renderer": renderer,
+            "triangles": mesh.triangles.len(),
+            "leaf_size": leaf_size,
+            "leaves": collider.stream.leaves.len(),
+            "checked": args.check,
+            "frames": frames.iter().enumerate().map(|(f, (r, ms))| json!({
+                "frame": f,
+                "pairs": r.pairs.iter().map(|&(i, j)| [i, j]).collect::<Vec<_>>(),
+                "caps": r.caps,
+                "pctps": r.pctps,
+                "tiles": r.tiles,
+                "wall_ms": ms,
+            })).collect::<Vec<_>>(),
+        });
+        println!("{}", serde_json::to_string(&report)?);
+        return Ok(());
+    }
+    println!("renderer: {renderer}");
+    println!(
+        "{} triangles, {} leaves of at most {leaf_size}",
+        mesh.triangles.len(),
+        collider.stream.leaves.len()
+    );
+    for (f, (r, ms)) in frames.iter().enumerate() {
+        println!(
+            "frame {f}: {} pairs ({} CAPs, {} triangle pairs tested, {ms:.1} ms wall){}",
+            r.pairs.len(),
+            r.caps,
+            r.pctps,
+            if args.check {
+                ", equal to brute force"
+            } else {
+                ""
+            }
+        );
+    }
+    Ok(())
+}
+
+fn pairwise(args: &PairwiseArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let a = load(&args.a)?;
+    let b = args.b.as_deref().map(load).transpose()?;
+    let tester = PairwiseTester::new(ctx, args.tile)?;
+    let start = Instant::now();
+    let result = tester.run(&a, b.as_ref())?;
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    if args.check {
+        let expected = match &b {
+            Some(b) => reference::pairs_between(&a, b),
+            None => reference::self_pairs(&weld(&a), &a.positions),
+        };
+        anyhow::ensure!(
+            expected == result.pairs,
+            "the pairwise test found {} pairs, brute force {}",
+            result.pairs.len(),
+            expected.len()
+        );
+    }
+    let renderer = ctx.info().renderer_line();
+    let counts = [
+        a.triangles.len(),
+        b.as_ref().map_or(0, |b| b.triangles.len()),
+    ];
+    if json {
+        let report = json!({
+            "renderer": renderer,
+            "triangles": if b.is_some() { counts.to_vec() } else { vec![counts[0]] },
+            "tile": tester.tile,
+            "tiles": result.tiles,
+            "candidates": result.candidates,
+            "readback_bytes": result.readback_bytes,
+            "checked": args.check,
+            "pairs": result.pairs.iter().map(|&(i, j)| [i, j]).collect::<Vec<_>>(),
+            "timings_ms": {"pair_passes_gpu": result.test_ms, "total_wall": ms},
+        });
+        println!("{}", serde_json::to_string(&report)?);
+        return Ok(());
+    }
+    println!("renderer: {renderer}");
+    println!(
+        "{} pairs ({} reported by the GPU, {} tile(s) of at most {}; {ms:.1} ms wall){}",
+        result.pairs.len(),
+        result.candidates,
+        result.tiles,
+        tester.tile,
+        if args.check {
+            ", equal to brute force"
+        } else {
+            ""
+        }
+    );
+    use std::io::Write as _;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    for (i, j) in &result.pairs {
+        writeln!(out, "{i} {j}")?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// Wall time of `f`, ms, with its result.
+fn timed<T>(f: impl FnOnce() -> anyhow::Result<T>) -> anyhow::Result<(T, f64)> {
+    let start = Instant::now();
+    let value = f()?;
+    Ok((value, start.elapsed().as_secs_f64() * 1e3))
+}
+
+fn compare(args: &CompareArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let tester = PairwiseTester::new(ctx, DEFAULT_TILE)?;
+    let mut rows = Vec::new();
+    for &n in &args.triangles {
+        anyhow::ensure!(n >= 100, "--triangles: {n} is fewer than 100");
+        let tube = KnottedTube::with_triangles(n);
+        let mut mesh = tube.mesh.clone();
+        mesh.positions =
+            tube.positions_at_radius(classic_gpgpu::lecture1::knotted_tube::RADIUS_RANGE.1);
+        let leaf_size = auto_leaf_size(
+            &mesh,
+            classic_gpgpu::collide::stream_setup::max_slots(ctx.info().is_software()),
+        )?;
+        let mut collider = SelfCollider::new(
+            ctx,
+            &mesh,
+            Options {
+                leaf_size,
+                ..Options::default()
+            },
+        )?;
+        // One untimed run of each GPU path first (shader compilation, first draws).
+        collider.frame(&mesh.positions)?;
+        tester.run(&mesh, None)?;
+        let (brute, brute_ms) =
+            timed(|| Ok(reference::self_pairs(&collider.mesh, &mesh.positions)))?;
+        let (streaming, streaming_ms) = timed(|| collider.frame(&mesh.positions))?;
+        let (pairwise, pairwise_ms) = timed(|| tester.run(&mesh, None))?;
+        anyhow::ensure!(
+            streaming.pairs == brute && pairwise.pairs == brute,
+            "{n} triangles: the methods disagree (brute force {}, streaming {}, pairwise {})",
+            brute.len(),
+            streaming.pairs.len(),
+            pairwise.pairs.len()
+        );
+        rows.push(json!({
+            "triangles": mesh.triangles.len(),
+            "pairs": brute.len(),
+            "brute_force_ms": brute_ms,
+            "streaming_aabb_ms": streaming_ms,
+            "pairwise_ms": pairwise_ms,
+            "pairwise_gpu_pass_ms": pairwise.test_ms,
+            "pairwise_candidates": pairwise.candidates,
+        }));
+    }
+    let renderer = ctx.info().renderer_line();
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    let load = load
+        .split_whitespace()
+        .next()
+        .unwrap_or("unknown")
+        .to_string();
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string(
+                &json!({"renderer": renderer, "load_average": load, "rows": rows})
+            )?
+        );
+        return Ok(());
+    }
+    println!("renderer: {renderer} (load average {load}); wall clock, ms, one run each");
+    println!(
+        "{:>9} {:>6} {:>12} {:>14} {:>10}",
+        "triangles", "pairs", "brute force", "streaming AABB", "pairwise"
+    );
+    for r in &rows {
+        println!(
+            "{:>9} {:>6} {:>12.1} {:>14.1} {:>10.1}",
+            r["triangles"],
+            r["pairs"],
+            r["brute_force_ms"].as_f64().unwrap_or(f64::NAN),
+            r["streaming_aabb_ms"].as_f64().unwrap_or(f64::NAN),
+            r["pairwise_ms"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+    Ok(())
+}

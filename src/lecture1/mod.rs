@@ -1,0 +1,23 @@
+//! The tutorial's lecture 1 (Young J. Kim, proximity computation on the GPU) beyond paper 1's
+//! streaming AABBs (module [`crate::collide`]): self-collision of a deforming mesh and
+//! pairwise triangle tests with the triangles in textures.
+//!
+//! Only the abstracts and introductions of the lecture's other sources are public
+//! (`lecture1-sources.md`), so these are reconstructions:
+//! - [`self_collision`]: paper 1's pipeline with one model against itself. That paper 1's
+//!   group did self-collision is confirmed; how is not: the diagonal-free self test and the
+//!   neighbour exclusion here are ours.
+//! - [`pairwise`]: Choi, Kim & Kim, "Rapid pairwise intersection tests using programmable
+//!   GPUs", The Visual Computer 22(2), 2006. Inferred from paper 1's description of its
+//!   reference 38 (triangles mapped into textures, a hierarchical readback); the layout of
+//!   the textures, the pair quad, its tiling and the fragment test are a reconstruction.
+//!
+//! Every GPU path is checked against [`reference`], brute force with paper 1's exact
+//! predicate. [`weld`] decides which triangles are neighbours; [`knotted_tube`] is a scene
+//! that folds onto itself. Shaders: `glsl/lecture1/`.
+
+pub mod knotted_tube;
+pub mod pairwise;
+pub mod reference;
+pub mod self_collision;
+pub mod weld;
