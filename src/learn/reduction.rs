@@ -111,6 +111,9 @@ impl Lesson for Reduction {
     }
 }
 
+/// A ladder's result: the sum, the maximum, and the size of each level drawn.
+type Ladder = (f32, f32, Vec<(u32, u32)>);
+
 /// The passes of one fan-in down to one texel: (sum, maximum, the size of each level drawn).
 fn ladder(
     ctx: &Context,
@@ -119,7 +122,7 @@ fn ladder(
     program: &Program,
     fan: u32,
     shader: &str,
-) -> anyhow::Result<(f32, f32, Vec<(u32, u32)>)> {
+) -> anyhow::Result<Ladder> {
     let mut level = input.clone();
     let mut sizes = Vec::new();
     while level.width() > 1 || level.height() > 1 {
