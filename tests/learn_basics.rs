@@ -375,3 +375,40 @@ fn view_learn_shows_each_pass_and_steps_the_iterations() {
         .to_string();
     assert!(err.contains("scatter-and-blend"), "{err}");
 }
+
+/// The learner's path through the binary: `glsl export DIR --exercises` writes the template in
+/// place of the solution, `learn <id> --exercise N --glsl-dir DIR` runs it and fails with the
+/// hint (exit non-zero); the same command without `--glsl-dir` runs the shipped solution.
+#[test]
+fn an_exported_template_fails_through_the_binary_and_the_solution_passes() {
+    let dir = scratch("cli_exercise");
+    let mine = dir.join("mine");
+    let export = classic_gpgpu(&["glsl", "export", mine.to_str().unwrap(), "--exercises"]);
+    assert!(
+        export.status.success(),
+        "{}",
+        String::from_utf8_lossy(&export.stderr)
+    );
+    let info = learn::find("reduction").unwrap().info();
+    let exercise = info.exercises[0];
+    assert!(mine.join(exercise.shader).is_file(), "{}", exercise.shader);
+    let number = exercise.number.to_string();
+    let attempt = classic_gpgpu(&[
+        "--glsl-dir",
+        mine.to_str().unwrap(),
+        "learn",
+        "reduction",
+        "--exercise",
+        &number,
+    ]);
+    let stderr = String::from_utf8_lossy(&attempt.stderr);
+    assert!(!attempt.status.success(), "the unfilled template passed");
+    assert!(stderr.contains(exercise.hint), "no hint in: {stderr}");
+    let solution = classic_gpgpu(&["learn", "reduction", "--exercise", &number]);
+    assert!(
+        solution.status.success(),
+        "{}",
+        String::from_utf8_lossy(&solution.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

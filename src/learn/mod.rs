@@ -366,17 +366,14 @@ fn file_stem(name: &str) -> String {
     stem.trim_end_matches('-').to_string()
 }
 
-/// The exercise templates of the lessons (`glsl/learn/exercises/X`), for `glsl export
-/// --exercises`.
+/// The exercise templates of the lessons (`glsl/learn/exercises/X`): every file the shader
+/// registry has there, so a new template needs no list.
 pub fn templates() -> Vec<crate::gl::ShaderSource<'static>> {
-    vec![
-        crate::shader!("glsl/learn/exercises/texel_sample.frag"),
-        crate::shader!("glsl/learn/exercises/saxpy.frag"),
-        crate::shader!("glsl/learn/exercises/jacobi.frag"),
-        crate::shader!("glsl/learn/exercises/reduce_wide.frag"),
-        crate::shader!("glsl/learn/exercises/integrands.frag"),
-        crate::shader!("glsl/learn/exercises/scatter_points.vert"),
-    ]
+    crate::gl::shaders::ALL
+        .iter()
+        .filter(|s| s.name.starts_with(crate::gl::shaders::EXERCISES))
+        .copied()
+        .collect()
 }
 
 /// Every lesson, in teaching order.
