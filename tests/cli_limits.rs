@@ -36,6 +36,9 @@ fn counts_beyond_memory_are_refused_before_allocating() {
     let dir = temp_dir("counts");
     let out = dir.join("net.json");
     let out = out.to_str().unwrap();
+    // Outputs are checked for their format first, so the mesh goes to an .obj name.
+    let obj = dir.join("torus.obj");
+    let obj = obj.to_str().unwrap();
     let max = "18446744073709551615";
     for (args, option) in [
         (vec!["crowd", "--characters", max], "--characters"),
@@ -66,7 +69,7 @@ fn counts_beyond_memory_are_refused_before_allocating() {
                 "--triangles",
                 max,
                 "--out",
-                out,
+                obj,
             ],
             "--triangles",
         ),

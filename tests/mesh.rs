@@ -772,7 +772,9 @@ fn obj_io_errors_say_read_or_write_and_give_the_os_message_once() {
     let missing = dir.join("missing.obj");
     let read = load_obj(&missing).unwrap_err().to_string();
     assert!(read.contains("cannot read"), "{read}");
-    let write = write_obj(&generate::cube(1.0), dir.join("no/such/folder/x.obj"))
+    // Missing folders are made, so the write fails where a file stands in for the folder.
+    std::fs::write(dir.join("a_file"), "not a folder").unwrap();
+    let write = write_obj(&generate::cube(1.0), dir.join("a_file/x.obj"))
         .unwrap_err()
         .to_string();
     assert!(write.contains("cannot write"), "{write}");
