@@ -375,7 +375,12 @@ fn the_atlas_holds_every_view_and_phase() {
 
 #[test]
 fn crowd_command_reports_json_and_rejects_bad_input() {
-    let png = std::env::temp_dir().join("classic_gpgpu_crowd_test.png");
+    // One name per process, gone first: an existing --png is now refused without --force.
+    let png = std::env::temp_dir().join(format!(
+        "classic_gpgpu_crowd_test_{}.png",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_file(&png);
     let out = classic_gpgpu(&[
         "crowd",
         "--model",
@@ -402,6 +407,22 @@ fn crowd_command_reports_json_and_rejects_bad_input() {
     assert_eq!(v["run"]["method"], "vertex-shader");
     assert!(v["run"]["fps"].as_f64().unwrap() > 0.0);
     assert!(png.exists());
+    let again = classic_gpgpu(&[
+        "crowd",
+        "--characters",
+        "8",
+        "--frames",
+        "1",
+        "--size",
+        "96x64",
+        "--png",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        !again.status.success() && String::from_utf8_lossy(&again.stderr).contains("--force"),
+        "an existing --png was replaced without --force"
+    );
+    let _ = std::fs::remove_file(&png);
     for (args, needle) in [
         (vec!["crowd", "--characters", "0"], "--characters"),
         (vec!["crowd", "--size", "640"], "WxH"),
