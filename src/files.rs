@@ -73,7 +73,7 @@ pub fn check_output(
 }
 
 /// Refuses `dir` as a folder to write files into when it exists and is not a folder (checked
-/// before any work, like [`check_output`]); the files in it are written through [`write`].
+/// before any work, like [`check_output`]); the files in it are written through [`write()`].
 pub fn check_folder(what: &str, dir: &Path) -> anyhow::Result<()> {
     if dir.exists() && !dir.is_dir() {
         bail!(

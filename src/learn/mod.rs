@@ -14,23 +14,23 @@
 //!
 //! A lesson is a [`Lesson`]; [`all`] lists them in teaching order.
 
-pub mod compute_reduction;
-pub mod count_and_mask;
-pub mod depth_peeling;
+// One file per lesson ([`all`] lists them in teaching order), and `kit`: what several share.
+mod compute_reduction;
+mod count_and_mask;
+mod depth_peeling;
 mod kit;
-pub mod readback_and_upload;
-pub mod render_to_vertex_buffer;
+mod ping_pong;
+mod quad_is_loop;
+mod readback_and_upload;
+mod reduction;
+mod render_to_vertex_buffer;
+mod scatter_and_blend;
+mod several_outputs;
+mod texture_is_array;
 
 use crate::gl::Context;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
-
-mod ping_pong;
-mod quad_is_loop;
-mod reduction;
-mod scatter_and_blend;
-mod several_outputs;
-mod texture_is_array;
 
 /// A paper step that uses the lesson's idea: where to read next.
 #[derive(Clone, Copy, Debug, Serialize)]

@@ -12,7 +12,7 @@
 //!   reference 38 (triangles mapped into textures, a hierarchical readback); the layout of
 //!   the textures, the pair quad, its tiling and the fragment test are a reconstruction.
 //!
-//! Every GPU path is checked against [`reference`], brute force with paper 1's exact
+//! Every GPU path is checked against [`mod@reference`], brute force with paper 1's exact
 //! predicate. [`weld`] decides which triangles are neighbours; [`knotted_tube`] is a scene
 //! that folds onto itself. Shaders: `glsl/lecture1/`.
 
