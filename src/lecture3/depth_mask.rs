@@ -337,6 +337,23 @@ impl DepthMask {
         Ok(self.query.samples()?)
     }
 
+    /// Checks the parameters, writes the mask, and gives the depth test of a counted draw:
+    /// behind the mask (`masked`: only active pixels pass) or passing every pixel.
+    fn prepare_count(
+        &self,
+        fraction: f32,
+        iterations: u32,
+        masked: bool,
+    ) -> Result<Compare, Error> {
+        check_parameters(fraction, iterations)?;
+        self.write_mask(fraction)?;
+        Ok(if masked {
+            Compare::Greater
+        } else {
+            Compare::Always
+        })
+    }
+
     /// The runs of the expensive shader, counted as [`DepthMask::run_counter`] says, behind
     /// the depth mask (`masked`) or with the depth test passing every pixel; `None` where the
     /// context cannot count them. The picture is the same as [`DepthMask::run_masked`]'s (or
@@ -347,13 +364,7 @@ impl DepthMask {
         iterations: u32,
         masked: bool,
     ) -> Result<Option<u64>, Error> {
-        check_parameters(fraction, iterations)?;
-        self.write_mask(fraction)?;
-        let test = if masked {
-            Compare::Greater
-        } else {
-            Compare::Always
-        };
+        let test = self.prepare_count(fraction, iterations, masked)?;
         if let Some((program, counters)) = &self.counting.atomic {
             counters.reset()?;
             counters.bind_for_draws(0)?;
@@ -371,13 +382,7 @@ impl DepthMask {
         iterations: u32,
         masked: bool,
     ) -> Result<Option<u64>, Error> {
-        check_parameters(fraction, iterations)?;
-        self.write_mask(fraction)?;
-        let test = if masked {
-            Compare::Greater
-        } else {
-            Compare::Always
-        };
+        let test = self.prepare_count(fraction, iterations, masked)?;
         self.invocations(iterations, test)
     }
 

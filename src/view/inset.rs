@@ -5,7 +5,7 @@
 //! canvas for the texel probe, with the CPU reference's values where the demo has one.
 
 use super::{overlay, Canvas};
-use crate::gl::dump::{self, DumpRange};
+use crate::gl::dump::DumpRange;
 use crate::gl::picture::{self, number, Panel, Placement};
 use crate::gl::{GlError, Rect, Texture};
 
@@ -123,25 +123,6 @@ pub fn texture_panels(
         .collect())
 }
 
-/// Draw `texture` scaled (nearest texel) into `rect` of `canvas`, with `label` under it.
-pub fn draw_texture(
-    canvas: &Canvas,
-    texture: &Texture,
-    range: DumpRange,
-    rect: Rect,
-    label: &str,
-) -> Result<(), GlError> {
-    let rgba = dump::to_rgba8(texture, range)?;
-    draw_rgba(
-        canvas,
-        &rgba,
-        (texture.width(), texture.height()),
-        rect,
-        label,
-    )?;
-    Ok(())
-}
-
 /// Draw an RGBA image (rows from the bottom) scaled into `rect` of `canvas`, framed in grey,
 /// keeping its aspect ratio, with `label` in its bottom-left corner. Where its pixels are
 /// (canvas pixels, top-left origin), for the probe.
@@ -209,18 +190,4 @@ pub fn strip_rect(canvas: &Canvas, count: usize) -> Rect {
     };
     let height = (cell + text).min(h / 2);
     Rect::new(w - width, 0, width, height)
-}
-
-/// `count` inset rectangles along the bottom of `canvas`, each at most a fifth of its width.
-pub fn strip(canvas: &Canvas, count: usize) -> Vec<Rect> {
-    let side = (canvas.width() / 5)
-        .min(canvas.height() / 3)
-        .min(if count == 0 {
-            0
-        } else {
-            canvas.width() / count as u32
-        });
-    (0..count as u32)
-        .map(|i| Rect::new(canvas.width() - (i + 1) * side, 0, side, side))
-        .collect()
 }

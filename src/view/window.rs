@@ -5,7 +5,7 @@
 use super::live::{LiveDemo, POLL_INTERVAL};
 use super::{write_png, Canvas, DemoSpec, ViewState};
 use crate::gl::GlWindow;
-use anyhow::{anyhow, Context as _};
+use anyhow::anyhow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use winit::application::ApplicationHandler;
@@ -337,18 +337,6 @@ fn free_path(stem: &str) -> PathBuf {
         n += 1;
     }
     path
-}
-
-/// For the CLI: refuse to overwrite `path` unless `force`.
-pub fn check_output(path: &Path, force: bool) -> anyhow::Result<()> {
-    if path.exists() && !force {
-        return Err(anyhow!(
-            "{} exists; pass --force to overwrite it",
-            path.display()
-        ))
-        .context("--screenshot");
-    }
-    Ok(())
 }
 
 /// `text` without the source location winit puts in its OS errors ("os error at
