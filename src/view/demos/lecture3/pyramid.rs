@@ -84,7 +84,7 @@ impl Demo for PyramidDemo {
                 match (extreme, error) {
                     (_, None) => format!("{extreme:?}: level sizes DIFFER from the CPU's"),
                     (Extreme::Mean, Some(e)) => format!("mean: within {e:.1e} of the CPU's"),
-                    (_, Some(e)) if e == 0.0 => format!("{extreme:?}: the CPU's bit for bit"),
+                    (_, Some(0.0)) => format!("{extreme:?}: the CPU's bit for bit"),
                     (_, Some(e)) => format!("{extreme:?}: DIFFERS from the CPU's by {e:.1e}"),
                 }
                 .to_lowercase()
