@@ -66,7 +66,7 @@ impl CastFrame {
         let (hit, stats) = (&self.hit[4 * i..4 * i + 4], &self.stats[4 * i..4 * i + 4]);
         match stats[1] {
             s if s < 0.0 => CastPixel::Unfinished,
-            s if s == 0.0 => CastPixel::Miss,
+            0.0 => CastPixel::Miss,
             _ => CastPixel::Hit {
                 voxel: IVec3::new(hit[0] as i32, hit[1] as i32, hit[2] as i32),
                 t: hit[3] as f64,

@@ -124,7 +124,7 @@ pub fn shape_points(count: usize, seed: u64) -> Vec<Vec3> {
 pub fn mesh_points(mesh: &Mesh, count: usize, seed: u64) -> Result<Vec<Vec3>, Error> {
     let areas = mesh.face_areas();
     let total: f64 = areas.iter().map(|&a| a as f64).sum();
-    if mesh.triangle_count() == 0 || !(total > 0.0) {
+    if mesh.triangle_count() == 0 || total.is_nan() || total <= 0.0 {
         return Err(Error::input(
             "the model",
             "has no triangle of positive area",
