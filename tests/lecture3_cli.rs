@@ -170,6 +170,14 @@ fn nan_and_out_of_range_parameters_are_named() {
         ),
         (&["lecture3", "function", "--texels", "1"][..], "--texels"),
         (&["lecture3", "histogram", "--bins", "0"][..], "--bins"),
+        (
+            &["lecture3", "octree", "--resolution", "33"][..],
+            "--resolution",
+        ),
+        (
+            &["lecture3", "displace", "--prefilter", "--method", "relief"][..],
+            "--prefilter",
+        ),
     ] {
         let err = fails(args);
         assert!(err.contains(name), "{args:?}: {err}");
@@ -216,4 +224,46 @@ fn outputs_are_not_overwritten() {
     ]);
     assert!(err.contains("never overwritten"), "{err}");
     assert_eq!(std::fs::read(&map).unwrap(), before);
+}
+
+#[test]
+fn prefiltered_displacement_and_the_octree_check_themselves_against_the_cpu() {
+    let v = json_of(&[
+        "lecture3",
+        "displace",
+        "--size",
+        "48",
+        "--distance",
+        "9",
+        "--prefilter",
+        "--json",
+    ]);
+    let c = &v["comparison"];
+    for k in [
+        "wrong_surface",
+        "outside_tolerance",
+        "wrong_kind",
+        "wrong_normal",
+        "wrong_colour",
+    ] {
+        assert_eq!(c[k], 0, "{k}: {v}");
+    }
+    let q = &v["prefilter_quality"];
+    assert!(q["prefiltered_error"].as_f64().unwrap().is_finite(), "{v}");
+    let v = json_of(&[
+        "lecture3",
+        "octree",
+        "--resolution",
+        "16",
+        "--points",
+        "2000",
+        "--size",
+        "32",
+        "--json",
+    ]);
+    for search in v["searches"].as_array().unwrap() {
+        let c = &search["comparison"];
+        assert_eq!(c["wrong_voxel"], 0, "{v}");
+        assert_eq!(c["cpu_octree_vs_flat"], 0, "{v}");
+    }
 }

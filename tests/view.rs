@@ -378,6 +378,11 @@ fn lecture3_depth_mask_window_matches_headless() {
 }
 
 #[test]
+fn lecture3_octree_window_matches_headless() {
+    lecture3_window_matches_headless("octree", 1, "2");
+}
+
+#[test]
 fn lecture3_histogram_window_matches_headless() {
     lecture3_window_matches_headless("histogram", 1, "0");
 }

@@ -113,13 +113,22 @@ float patch_first_hit(vec4 h, vec3 start, vec3 step, float len) {
     return best < BIG ? best : -1.0;
 }
 
-// Writes the hit at parameter tau: its grid position, statistics, a shaded colour (the
-// patch's normal, or the wall's, under one directional light, on a checkerboard of 8x8
-// patches) and its depth.
-void write_hit(Ray r, float tau, bool wall, float iterations) {
+// The world normal of a bilinear patch with corners h, `side` patches wide, at local (s, t).
+vec3 patch_normal(vec4 h, vec2 st, float side) {
+    float dhds = ((h.y - h.x) + (h.x - h.y - h.z + h.w) * st.y) / side;
+    float dhdt = ((h.z - h.x) + (h.x - h.y - h.z + h.w) * st.x) / side;
+    // World slopes: dz/dx = (dH/ds) (grid x per world x) / (grid z per world z).
+    vec2 slope = vec2(dhds, dhdt) * u_world_to_grid.xy / u_world_to_grid.z;
+    return normalize(vec3(-slope, 1.0));
+}
+
+// Writes the hit at parameter tau shown with `surface_n` where it is on the surface: its grid
+// position, statistics, a shaded colour (that normal, or the wall's, under one directional
+// light, on a checkerboard of 8x8 patches) and its depth.
+void write_shaded(Ray r, float tau, bool wall, float iterations, vec3 surface_n) {
     vec3 g = r.o + tau * r.d;
     o_hit = vec4(g, tau);
-    vec3 n;
+    vec3 n = surface_n;
     if (wall) {
         // The box side the ray came through: the one it is closest to.
         vec2 to_low = g.xy;
@@ -127,15 +136,6 @@ void write_hit(Ray r, float tau, bool wall, float iterations) {
         float m = min(min(to_low.x, to_low.y), min(to_high.x, to_high.y));
         n = m == to_low.x ? vec3(-1, 0, 0) : m == to_high.x ? vec3(1, 0, 0)
           : m == to_low.y ? vec3(0, -1, 0) : vec3(0, 1, 0);
-    } else {
-        ivec2 cell = clamp(ivec2(floor(g.xy)), ivec2(0), u_patches - 1);
-        vec2 st = g.xy - vec2(cell);
-        vec4 h = corners(cell);
-        float dhds = (h.y - h.x) + (h.x - h.y - h.z + h.w) * st.y;
-        float dhdt = (h.z - h.x) + (h.x - h.y - h.z + h.w) * st.x;
-        // World slopes: dz/dx = (dH/ds) (grid x per world x) / (grid z per world z).
-        vec2 slope = vec2(dhds, dhdt) * u_world_to_grid.xy / u_world_to_grid.z;
-        n = normalize(vec3(-slope, 1.0));
     }
     // The normal goes out beside the kind: a wall's has z = 0, a surface's z > 0, so x and y
     // determine it.
@@ -146,6 +146,13 @@ void write_hit(Ray r, float tau, bool wall, float iterations) {
     o_colour = vec4(albedo * (0.25 + 0.75 * max(dot(n, light), 0.0)), 1.0);
     vec4 clip = u_view_projection * vec4(g / u_world_to_grid, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
+}
+
+// Writes the hit at parameter tau on the map's own bilinear field (the patch under the hit).
+void write_hit(Ray r, float tau, bool wall, float iterations) {
+    vec3 g = r.o + tau * r.d;
+    ivec2 cell = clamp(ivec2(floor(g.xy)), ivec2(0), u_patches - 1);
+    write_shaded(r, tau, wall, iterations, patch_normal(corners(cell), g.xy - vec2(cell), 1.0));
 }
 
 // A traversal that ran out of iterations: a bug, reported, never a silent miss.

@@ -1,13 +1,15 @@
 // Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006): the
 // ray traced through the max pyramid.
-// Compiled after: glsl/lecture3/displace_common.glsl
+// Compiled after: glsl/lecture3/displace_common.glsl, glsl/lecture3/displace_prefilter.glsl
 // Pyramidal displacement mapping [Oh, Ki & Lee, VRST 2006; reconstructed from the
 // abstract]: the pixel's ray is traced through the max pyramid of the patch bounds, top
 // down. A node whose highest point the ray stays above while it crosses the node is skipped
 // whole; otherwise the ray advances to where it reaches the node's bound (never past a
 // surface) and descends. At level 0 the ray is intersected with the node's bilinear patch.
 // After leaving a node the traversal climbs one level, so empty space is crossed in large
-// steps. (The fragment stage is displace_common.glsl followed by this file.)
+// steps. With the prefilter on (displace_prefilter.glsl) the descent stops at the level of
+// the pixel's footprint and meets that level's prefiltered patch instead. (The fragment stage
+// is displace_common.glsl, then displace_prefilter.glsl, then this file.)
 
 uniform sampler2D u_bounds;   // max pyramid of the patch bounds, as an atlas
 uniform int u_level_x[16];    // where each level starts in the atlas
@@ -24,6 +26,7 @@ void main() {
     vec3 entry = r.o + t * r.d;
     ivec2 cell = clamp(ivec2(floor(entry.xy)), ivec2(0), u_patches - 1);
     int level = u_top;
+    int stop = stop_level(box.x, u_top); // 0 without the prefilter
     bool in_entry_cell = true;
     for (int it = 0; it < u_max_iterations; ++it) {
         ivec2 node = cell >> level;
@@ -53,17 +56,26 @@ void main() {
                 cell = moved;
             }
         }
-        if (!skip && level == 0) {
-            // The finest level: the ray against this bilinear patch.
+        if (!skip && level == stop) {
+            // The finest level (or the prefilter's): the ray against this node's bilinear
+            // patch, the map's own at level 0, the prefiltered one above.
+            float side = float(1 << level);
+            vec2 origin = vec2(node << level);
+            vec4 h = level == 0 ? corners(cell) : prefiltered_corners(node, level, bound);
             vec3 q = r.o + t * r.d;
-            float u = patch_first_hit(corners(cell), vec3(q.xy - vec2(cell), q.z), r.d,
-                                      max(t_exit - t, 0.0));
+            float u = patch_first_hit(h, vec3((q.xy - origin) / side, q.z),
+                                      vec3(r.d.xy / side, r.d.z), max(t_exit - t, 0.0));
             if (u >= 0.0) {
                 // A wall only where the ray is under the surface where it enters the box
                 // through a side: not where it was moved down to a node's bound plane and a
                 // flat patch at that very height starts there (u = 0 as well).
                 bool wall = in_entry_cell && t == box.x && u == 0.0 && enters_through_side(r);
-                write_hit(r, t + u, wall, float(it + 1));
+                if (level == 0) {
+                    write_hit(r, t + u, wall, float(it + 1));
+                } else {
+                    vec2 st = clamp((r.o.xy + (t + u) * r.d.xy - origin) / side, 0.0, 1.0);
+                    write_shaded(r, t + u, wall, float(it + 1), patch_normal(h, st, side));
+                }
                 return;
             }
             skip = true;

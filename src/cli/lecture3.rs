@@ -48,6 +48,43 @@ pub enum Lecture3Command {
     Histogram(HistogramArgs),
     /// Write the generated height map (the shipped assets/lecture3/height.png is --size 64).
     HeightMap(HeightMapArgs),
+    /// 8. An octree of a voxelized point set built in textures by reduction passes, and rays
+    ///    cast through it per pixel against a flat voxel walk and the CPU.
+    Octree(OctreeArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct OctreeArgs {
+    /// An OBJ model whose surface is sampled into points [default: random points on three
+    /// shapes].
+    model: Option<PathBuf>,
+    /// Points (random on three shapes, or sampled on the model's triangles).
+    #[arg(long, default_value_t = 20_000)]
+    points: usize,
+    /// Voxels per side of the leaf grid (a power of two, 2 to 128).
+    #[arg(long, default_value_t = 64)]
+    resolution: u32,
+    /// Image side, pixels.
+    #[arg(long, default_value_t = 128)]
+    size: u32,
+    /// The camera's distance from the cube's centre (the cube's side is 2).
+    #[arg(long, default_value_t = 3.5)]
+    distance: f32,
+    /// Camera azimuth, degrees.
+    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
+    azimuth: f32,
+    /// Camera elevation, degrees.
+    #[arg(long, default_value_t = 25.0, allow_negative_numbers = true)]
+    elevation: f32,
+    /// Time the octree cast against the flat walk (GPU time, repeated; the median kept).
+    #[arg(long)]
+    bench: bool,
+    /// Write the octree cast's hit.npy (height x width x 4: voxel i, j, l and the entry
+    /// parameter, -1 for a miss) and steps.npy into DIR (created); rows from the bottom.
+    #[arg(long)]
+    npy: Option<PathBuf>,
+    #[command(flatten)]
+    output: Output,
 }
 
 /// Where a PNG goes: never over an input, over an existing file only with --force.
@@ -106,6 +143,16 @@ pub struct DisplaceArgs {
     /// How each pixel finds its hit.
     #[arg(long, value_enum, default_value_t = MethodArg::Pyramid)]
     method: MethodArg,
+    /// The camera's distance from the box centre (the box's longer side is 2); far away each
+    /// pixel covers many patches.
+    #[arg(long, default_value_t = bench::DISTANCE)]
+    distance: f32,
+    /// The minification prefilter (pyramid method): stop at the level of the pixel's footprint
+    /// and meet the prefiltered surface there; the check then uses the CPU reference of the
+    /// same rule, and the frame's error against a 4x4-supersampled unfiltered image is printed
+    /// beside the unfiltered frame's.
+    #[arg(long)]
+    prefilter: bool,
     /// Relief mapping's linear steps.
     #[arg(long, default_value_t = 32)]
     linear_steps: u32,
@@ -255,6 +302,7 @@ pub fn run(cmd: &Lecture3Command, ctx: &Context, json: bool) -> anyhow::Result<(
         Lecture3Command::DepthMask(a) => depth_mask(a, ctx, json),
         Lecture3Command::Histogram(a) => histogram(a, ctx, json),
         Lecture3Command::HeightMap(a) => height_map(a, json),
+        Lecture3Command::Octree(a) => octree(a, ctx, json),
     }
 }
 
@@ -329,6 +377,10 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     check_size("--size", a.size)?;
     check_range("--azimuth", a.azimuth as f64, -3600.0, 3600.0)?;
     check_range("--elevation", a.elevation as f64, 0.1, 89.5)?;
+    check_range("--distance", a.distance as f64, 0.5, 1000.0)?;
+    if a.prefilter && a.method != MethodArg::Pyramid {
+        bail!("--prefilter: the prefilter is part of the pyramid traversal (--method pyramid)");
+    }
     if !(1..=360).contains(&a.frames) {
         bail!("--frames: {} frames; 1 to 360 are allowed", a.frames);
     }
@@ -359,6 +411,7 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let (map, name) = load_map(a.height.as_deref(), ctx)?;
     let renderer = DisplacementRenderer::new(ctx, Surface::new(map, a.depth)?)?;
     let method = match a.method {
+        MethodArg::Pyramid if a.prefilter => Method::Prefiltered,
         MethodArg::Pyramid => Method::Pyramid,
         MethodArg::Relief => Method::Relief {
             linear_steps: a.linear_steps,
@@ -369,7 +422,7 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let camera = |k: u32| {
         Camera::orbit(
             renderer.surface().centre(),
-            bench::DISTANCE,
+            a.distance,
             a.azimuth + 360.0 * k as f32 / a.frames as f32,
             a.elevation,
             a.size,
@@ -393,8 +446,18 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         None
     } else {
         let cpu_ms = bench::wall_once_ms(|| exact::trace_image(renderer.surface(), &first, 0.0));
-        let (comparison, _) = ReferenceImage::trace(renderer.surface(), &first).judge(&frame);
+        let reference = if a.prefilter {
+            ReferenceImage::trace_prefiltered(renderer.surface(), &first)
+        } else {
+            ReferenceImage::trace(renderer.surface(), &first)
+        };
+        let (comparison, _) = reference.judge(&frame);
         Some((cpu_ms, comparison))
+    };
+    let quality = if a.prefilter {
+        Some(bench::prefilter_quality(&renderer, &first, &frame)?)
+    } else {
+        None
     };
     for k in 0..a.frames {
         renderer.render(&target, &camera(k), method)?;
@@ -440,6 +503,17 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             c.ambiguous
         ));
     }
+    if let Some(q) = &quality {
+        text.push_str(&format!(
+            "\nagainst {0}x{0} unfiltered rays per pixel (RMS, RGB in 0..1): prefiltered {1:.4}, \
+             unfiltered {2:.4}; steps per hit pixel {3:.1} against {4:.1}",
+            q.samples,
+            q.prefiltered_error,
+            q.unfiltered_error,
+            q.prefiltered_steps,
+            q.unfiltered_steps
+        ));
+    }
     for p in &written {
         text.push_str(&format!("\nwrote {}", p.display()));
     }
@@ -447,6 +521,7 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         json,
         json!({
             "renderer": renderer_line, "gpu_timing": bench::gpu_timing(ctx), "map": name, "method": method, "size": a.size,
+            "distance": a.distance, "prefilter_quality": quality,
             "hit_pixels": hits, "gpu_ms": gpu_ms,
             "cpu_exact_ms": check.as_ref().map(|c| c.0),
             "cpu_over_gpu": check.as_ref().map(|c| c.0 / gpu_ms),
@@ -772,4 +847,160 @@ fn height_map(a: &HeightMapArgs, json: bool) -> anyhow::Result<()> {
         json!({ "size": a.size, "written": a.out }),
         format!("wrote {} ({}x{} samples)", a.out.display(), a.size, a.size),
     )
+}
+
+/// The files of `octree --npy DIR`.
+const OCTREE_NPY: [&str; 2] = ["hit.npy", "steps.npy"];
+
+fn octree(a: &OctreeArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    use classic_gpgpu::lecture3::octree::{cast, grid, levels, reference, OctreeCaster, Search};
+    let inputs: Vec<&Path> = a.model.iter().map(|p| p.as_path()).collect();
+    a.output.check(&inputs)?;
+    check_size("--size", a.size)?;
+    check_range("--distance", a.distance as f64, 0.1, 1000.0)?;
+    check_range("--elevation", a.elevation as f64, -89.5, 89.5)?;
+    check_range("--azimuth", a.azimuth as f64, -3600.0, 3600.0)?;
+    if !(1..=10_000_000).contains(&a.points) {
+        bail!("--points: {}; 1 to 10000000 are allowed", a.points);
+    }
+    let npy_files = |dir: &Path| OCTREE_NPY.map(|f| dir.join(f));
+    if let Some(dir) = &a.npy {
+        for path in npy_files(dir) {
+            files::check_output("--npy", &path, &inputs, a.output.force, &["npy"])?;
+        }
+    }
+    let (points, source) = match &a.model {
+        Some(path) => {
+            let mesh = classic_gpgpu::mesh::obj::load_obj(path)
+                .with_context(|| format!("{}: cannot load the model", path.display()))?;
+            (
+                grid::mesh_points(&mesh, a.points, 1)?,
+                format!("{} points on {}", a.points, path.display()),
+            )
+        }
+        None => (
+            grid::shape_points(a.points, 1),
+            format!(
+                "{} random points on a sphere, a torus and a cluster",
+                a.points
+            ),
+        ),
+    };
+    let voxels = grid::VoxelGrid::from_points(a.resolution, &points)?;
+    let caster = OctreeCaster::new(ctx, &voxels)?;
+    let gpu_levels = caster.levels.read()?;
+    let cpu_levels = levels::cpu_levels(&voxels);
+    if gpu_levels != cpu_levels {
+        bail!("the GPU octree levels differ from the CPU's (a bug: a max of 0/1 is exact)");
+    }
+    let camera = Camera::orbit(
+        cast::centre(),
+        a.distance,
+        a.azimuth,
+        a.elevation,
+        a.size,
+        a.size,
+    );
+    let target = caster.target(a.size, a.size)?;
+    let reference = reference::CastReference::trace(&cpu_levels, &camera);
+    let mut results = Vec::new();
+    let mut octree_frame = None;
+    for search in [Search::Octree, Search::Flat] {
+        caster.cast(&target, &camera, search)?;
+        let frame = caster.read(&target)?;
+        frame.check_finished()?;
+        let comparison = reference.judge(&frame);
+        let steps = frame.steps().iter().map(|&s| s as f64).sum::<f64>() / (a.size * a.size) as f64;
+        let ms = if a.bench {
+            Some(bench::gpu_ms(ctx, RUNS, || Ok(caster.cast(&target, &camera, search)?))?.median)
+        } else {
+            None
+        };
+        results.push(
+            json!({ "search": search, "steps_per_pixel": steps, "gpu_ms": ms,
+                             "comparison": comparison }),
+        );
+        if search == Search::Octree {
+            octree_frame = Some(frame);
+        }
+    }
+    let frame = octree_frame.expect("the octree cast ran");
+    let mut written = Vec::new();
+    if let Some(dir) = &a.npy {
+        let (w, h) = (a.size as usize, a.size as usize);
+        let [hit, steps] = npy_files(dir);
+        files::write_npy(&hit, &[h, w, 4], frame.hits())?;
+        files::write_npy(&steps, &[h, w], &frame.steps())?;
+        written.extend([hit, steps]);
+    }
+    if let Some(png) = &a.output.png {
+        // The octree cast's distance to the hit as grey (near bright), rows from the top.
+        let distances = frame.distances();
+        let far = distances
+            .iter()
+            .cloned()
+            .fold(0.0f32, f32::max)
+            .max(f32::MIN_POSITIVE);
+        let rgba: Vec<u8> = distances
+            .chunks_exact(a.size as usize)
+            .rev()
+            .flatten()
+            .flat_map(|&t| {
+                let g = if t > 0.0 {
+                    (255.0 * (1.2f32 - t / far).clamp(0.2, 1.0)) as u8
+                } else {
+                    0
+                };
+                [g, g, g, 255]
+            })
+            .collect();
+        files::write_png(png, &rgba, a.size, a.size)?;
+        written.push(png.clone());
+    }
+    let renderer_line = ctx.info().renderer_line();
+    let wrong: usize = results
+        .iter()
+        .map(|r| {
+            let c = &r["comparison"];
+            ["wrong_voxel", "wrong_t", "unfinished", "cpu_octree_vs_flat"]
+                .iter()
+                .map(|k| c[k].as_u64().unwrap_or(0) as usize)
+                .sum::<usize>()
+        })
+        .sum();
+    let mut text = format!(
+        "{source}: {}^3 voxels, {} occupied, {} levels (GPU levels equal to the CPU's)\n\
+         {}x{} rays: octree {:.1} steps per pixel, flat {:.1}; against the CPU: {} pixels \
+         differ, {} ill-conditioned (renderer: {renderer_line})",
+        a.resolution,
+        voxels.count(),
+        cpu_levels.len(),
+        a.size,
+        a.size,
+        results[0]["steps_per_pixel"].as_f64().unwrap_or(0.0),
+        results[1]["steps_per_pixel"].as_f64().unwrap_or(0.0),
+        wrong,
+        results[0]["comparison"]["ambiguous"].as_u64().unwrap_or(0),
+    );
+    if let (Some(o), Some(f)) = (results[0]["gpu_ms"].as_f64(), results[1]["gpu_ms"].as_f64()) {
+        text.push_str(&format!(
+            "\nGPU time ({}): octree {o:.3} ms, flat {f:.3} ms, flat / octree {:.2}",
+            bench::gpu_timing(ctx),
+            f / o
+        ));
+    }
+    text.push_str(&wrote_lines(&written));
+    print(
+        json,
+        json!({
+            "renderer": renderer_line, "gpu_timing": bench::gpu_timing(ctx), "source": source,
+            "resolution": a.resolution, "occupied": voxels.count(), "levels": cpu_levels.len(),
+            "size": a.size, "searches": results, "written": written,
+        }),
+        text,
+    )?;
+    if wrong > 0 {
+        bail!("{wrong} pixels of the GPU casts differ from the CPU's (see above)");
+    }
+    Ok(())
 }

@@ -27,8 +27,10 @@
 //! The other two debugging tips live in the GL layer: drawing the intermediate data
 //! ([`crate::gl::dump`], used for every picture of the report section) and coping with shader
 //! compile errors ([`crate::gl::Program`] names the file and line, with the source around it).
-//! Not built: octrees on the GPU, subsurface scattering and environment lighting (named by
-//! the programme and the light-hierarchy abstract).
+//! [`octree`]: an occupancy octree of a point set built by reduction passes and ray cast in
+//! the fragment shader, against a flat voxel walk and the CPU.
+//! Not built: subsurface scattering and environment lighting (named by the programme and the
+//! light-hierarchy abstract).
 //!
 //! Renderer notes found on the way (Mesa 22.3): softpipe takes `texelFetch`'s level of detail
 //! from the first pixel of each 2x2 quad (hence [`pyramid_atlas`]) and read row 0 for row 1 of
@@ -47,6 +49,7 @@ pub mod error;
 pub mod function_texture;
 pub mod height_map;
 pub mod light_hierarchy;
+pub mod octree;
 pub mod pyramid;
 pub mod pyramid_atlas;
 pub mod random_texture;

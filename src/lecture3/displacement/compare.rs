@@ -19,12 +19,18 @@
 //! that normal and the checkerboard's albedo there, within `COLOUR_TOL`
 //! ([`super::shading`]). Pixels where raising or lowering the field by `DELTA` changes the
 //! kind are ill-conditioned as well.
+//!
+//! A prefiltered frame ([`super::prefilter`]) is judged the same way against the exact tracer
+//! of the field its pixel's rule selects (the prefiltered field of the stop level, with its
+//! own normals); pixels whose stop level fp32 rounding could change are ill-conditioned.
 
 use super::camera::Camera;
 use super::exact::{box_interval, trace, Hit};
+use super::prefilter::{level_is_borderline, stop_level, LevelField, Prefilter};
 use super::shading;
 use super::surface::Surface;
 use super::tracer::{Frame, Pixel};
+use glam::DVec3;
 use serde::Serialize;
 
 /// Height perturbation the tests allow: fp32 rounding of grid coordinates up to ~150 patches
@@ -73,10 +79,17 @@ struct Reference {
     exact: Option<Hit>,
     raised: Option<Hit>,
     lowered: Option<Hit>,
+    /// The prefilter's stop level for this pixel (0 without the prefilter).
+    level: u32,
+    /// The stop level is at the edge of fp32 rounding.
+    level_borderline: bool,
 }
 
 impl Reference {
     fn ambiguous(&self) -> bool {
+        if self.level_borderline {
+            return true;
+        }
         match (self.raised, self.lowered, self.exact) {
             (Some(r), Some(l), Some(e)) => {
                 (r.grid.truncate() - l.grid.truncate()).length() > 1.0
@@ -122,7 +135,13 @@ enum Drawn {
 
 /// The kind, normal and colour of a pixel that hit where the exact tracer hit `exact`
 /// (`rgb`: its shown colour).
-fn judge_drawing(surface: &Surface, exact: &Hit, pixel: &Pixel, rgb: [f64; 3]) -> Drawn {
+fn judge_drawing(
+    surface: &Surface,
+    field: Option<&LevelField>,
+    exact: &Hit,
+    pixel: &Pixel,
+    rgb: [f64; 3],
+) -> Drawn {
     let Pixel::Hit {
         grid, wall, normal, ..
     } = *pixel
@@ -134,16 +153,13 @@ fn judge_drawing(surface: &Surface, exact: &Hit, pixel: &Pixel, rgb: [f64; 3]) -
     }
     // The exact point's candidates reach as far as the GPU's hit is from it.
     let reach = (grid - exact.grid).truncate().length() + EDGE;
-    let mut normals = if wall {
-        shading::wall_normals(surface, grid, EDGE)
-    } else {
-        shading::surface_normals(surface, grid, EDGE)
+    let normals_at = |g: DVec3, margin: f64| match (wall, field) {
+        (true, _) => shading::wall_normals(surface, g, margin),
+        (false, Some(field)) => field.surface_normals(surface, g, margin),
+        (false, None) => shading::surface_normals(surface, g, margin),
     };
-    normals.extend(if wall {
-        shading::wall_normals(surface, exact.grid, reach)
-    } else {
-        shading::surface_normals(surface, exact.grid, reach)
-    });
+    let mut normals = normals_at(grid, EDGE);
+    normals.extend(normals_at(exact.grid, reach));
     if !normals.iter().any(|n| (*n - normal).length() <= NORMAL_TOL) {
         return Drawn::WrongNormal;
     }
@@ -181,6 +197,8 @@ pub enum Verdict {
 /// number of frames of that view.
 pub struct ReferenceImage {
     surface: Surface,
+    /// The prefilter's rule and fields, for prefiltered frames.
+    prefilter: Option<Prefilter>,
     /// `None` for pixels not compared (silhouette or outside the box).
     pixels: Vec<Option<Reference>>,
 }
@@ -190,6 +208,21 @@ impl ReferenceImage {
     /// The rows are shared out among the machine's cores (every pixel traced on its own, as
     /// one thread would).
     pub fn trace(surface: &Surface, camera: &Camera) -> ReferenceImage {
+        ReferenceImage::trace_with(surface, camera, None)
+    }
+
+    /// The reference for prefiltered frames of `camera`: each pixel traced through the field
+    /// of its stop level.
+    pub fn trace_prefiltered(surface: &Surface, camera: &Camera) -> ReferenceImage {
+        ReferenceImage::trace_with(surface, camera, Some(Prefilter::new(surface, camera)))
+    }
+
+    fn trace_with(
+        surface: &Surface,
+        camera: &Camera,
+        prefilter: Option<Prefilter>,
+    ) -> ReferenceImage {
+        let rule = prefilter.as_ref();
         let (width, height) = (camera.width as usize, camera.height as usize);
         let threads = std::thread::available_parallelism()
             .map_or(1, |n| n.get())
@@ -203,7 +236,7 @@ impl ReferenceImage {
                             .step_by(threads)
                             .map(|y| {
                                 let row = (0..width)
-                                    .map(|x| reference(surface, camera, x as u32, y as u32))
+                                    .map(|x| reference(surface, camera, rule, x as u32, y as u32))
                                     .collect::<Vec<_>>();
                                 (y, row)
                             })
@@ -222,8 +255,19 @@ impl ReferenceImage {
         });
         ReferenceImage {
             surface: surface.clone(),
+            prefilter,
             pixels: rows.into_iter().flatten().collect(),
         }
+    }
+
+    /// The deepest stop level of the view's compared pixels (0 without the prefilter).
+    pub fn max_level(&self) -> u32 {
+        self.pixels
+            .iter()
+            .flatten()
+            .map(|r| r.level)
+            .max()
+            .unwrap_or(0)
     }
 
     /// Judges a frame of the same view: where each pixel's ray stops, and what it shows.
@@ -257,7 +301,12 @@ impl ReferenceImage {
                 let drawn = match (wrong, reference.exact) {
                     (false, Some(exact)) => {
                         let (x, y) = (i as u32 % frame.width, i as u32 / frame.width);
-                        judge_drawing(&self.surface, &exact, pixel, frame.rgb(x, y))
+                        let field = self
+                            .prefilter
+                            .as_ref()
+                            .filter(|_| reference.level > 0)
+                            .map(|p| &p.levels[reference.level as usize]);
+                        judge_drawing(&self.surface, field, &exact, pixel, frame.rgb(x, y))
                     }
                     _ => Drawn::Right,
                 };
@@ -277,19 +326,44 @@ impl ReferenceImage {
     }
 }
 
-/// The exact tracer's answers for pixel (x, y) of `camera`, `None` if not compared.
-fn reference(surface: &Surface, camera: &Camera, x: u32, y: u32) -> Option<Reference> {
+/// The exact tracer's answers for pixel (x, y) of `camera` (through the field of its stop
+/// level, with `prefilter`), `None` if not compared.
+fn reference(
+    surface: &Surface,
+    camera: &Camera,
+    prefilter: Option<&Prefilter>,
+    x: u32,
+    y: u32,
+) -> Option<Reference> {
     let eye = camera.eye.as_dvec3();
     let scale = surface.world_to_grid().as_dvec3();
     let (wp, hp) = surface.patches();
     let dir = camera.pixel_direction(x, y);
     // Silhouette pixels: rasterisation and the analytic box may disagree there.
     match box_interval(eye * scale, dir * scale, wp as f64, hp as f64) {
-        Some((t0, t1)) if t1 - t0 > SLACK => Some(Reference {
-            exact: trace(surface, eye, dir, 0.0),
-            raised: trace(surface, eye, dir, DELTA),
-            lowered: trace(surface, eye, dir, -DELTA),
-        }),
+        Some((t0, t1)) if t1 - t0 > SLACK => {
+            let (level, level_borderline) = prefilter.map_or((0, false), |p| {
+                let footprint = p.footprint_at(t0);
+                (
+                    stop_level(footprint, p.top),
+                    level_is_borderline(footprint, p.top),
+                )
+            });
+            let field = prefilter
+                .filter(|_| level > 0)
+                .map(|p| &p.levels[level as usize]);
+            let traced = |offset| match field {
+                Some(f) => f.trace(surface, eye, dir, offset),
+                None => trace(surface, eye, dir, offset),
+            };
+            Some(Reference {
+                exact: traced(0.0),
+                raised: traced(DELTA),
+                lowered: traced(-DELTA),
+                level,
+                level_borderline,
+            })
+        }
         _ => None,
     }
 }
@@ -297,4 +371,11 @@ fn reference(surface: &Surface, camera: &Camera, x: u32, y: u32) -> Option<Refer
 /// Compares `frame` (of `camera`) with the exact tracer.
 pub fn compare(surface: &Surface, camera: &Camera, frame: &Frame) -> Comparison {
     ReferenceImage::trace(surface, camera).judge(frame).0
+}
+
+/// Compares a prefiltered `frame` (of `camera`) with the CPU reference of the same rule.
+pub fn compare_prefiltered(surface: &Surface, camera: &Camera, frame: &Frame) -> Comparison {
+    ReferenceImage::trace_prefiltered(surface, camera)
+        .judge(frame)
+        .0
 }

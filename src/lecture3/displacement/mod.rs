@@ -9,7 +9,8 @@
 //! pyramid over patch bounds ([`bounds`]), the traversal rule (descend where the ray reaches
 //! a node's bound, climb one level after leaving a node, in `displace_pyramid.frag`), the
 //! closed-form patch intersection ([`patch`]), the box the map is laid on and its side walls
-//! ([`surface`]). Not reproduced: the paper's mipmap-like prefilter at minification.
+//! ([`surface`]), and the minification prefilter ([`prefilter`]: the footprint rule, the
+//! prefiltered surface from the mean pyramid).
 //!
 //! Steps, one file each: [`surface`] (the box and grid space), [`camera`] (the orbiting
 //! camera and pixel rays), [`bounds`] (the bound pyramid), [`patch`] (the finest step),
@@ -23,6 +24,7 @@ pub mod camera;
 pub mod compare;
 pub mod exact;
 pub mod patch;
+pub mod prefilter;
 pub mod shading;
 pub mod surface;
 pub mod tracer;

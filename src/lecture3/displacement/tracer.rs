@@ -23,6 +23,9 @@ use serde::Serialize;
 pub enum Method {
     /// Top-down traversal of the max pyramid, exact bilinear intersection at the finest level.
     Pyramid,
+    /// The same traversal with the minification prefilter: it stops at the level of the
+    /// pixel's footprint and meets the prefiltered surface there ([`super::prefilter`]).
+    Prefiltered,
     /// Relief mapping: equal linear steps along the ray, then binary search.
     Relief {
         linear_steps: u32,
@@ -40,6 +43,7 @@ impl Method {
     pub fn name(&self) -> String {
         match self {
             Method::Pyramid => "pyramid".into(),
+            Method::Prefiltered => "pyramid, prefiltered".into(),
             Method::Relief {
                 linear_steps,
                 binary_steps,
@@ -55,6 +59,8 @@ pub struct DisplacementRenderer {
     heights: Texture,
     bounds: Pyramid,
     bounds_atlas: PyramidAtlas,
+    /// The mean pyramid of the height samples (the prefilter's surfaces).
+    means_atlas: PyramidAtlas,
     pyramid_program: Program,
     relief_program: Program,
 }
@@ -177,6 +183,7 @@ impl DisplacementRenderer {
         let bounds =
             BoundPyramidBuilder::new(ctx)?.build(&heights, surface.patches(), Extreme::Max)?;
         let bounds_atlas = AtlasBuilder::new(ctx)?.atlas(&bounds.texture)?;
+        let means_atlas = super::prefilter::mean_atlas(ctx, map)?;
         let vertex = [shader!("glsl/lecture3/displace_box.vert")];
         let common = shader!("glsl/lecture3/displace_common.glsl");
         Ok(DisplacementRenderer {
@@ -184,7 +191,11 @@ impl DisplacementRenderer {
             pyramid_program: Program::new(
                 ctx,
                 &vertex,
-                &[common, shader!("glsl/lecture3/displace_pyramid.frag")],
+                &[
+                    common,
+                    shader!("glsl/lecture3/displace_prefilter.glsl"),
+                    shader!("glsl/lecture3/displace_pyramid.frag"),
+                ],
             )?,
             relief_program: Program::new(
                 ctx,
@@ -195,6 +206,7 @@ impl DisplacementRenderer {
             heights,
             bounds,
             bounds_atlas,
+            means_atlas,
         })
     }
 
@@ -255,14 +267,22 @@ impl DisplacementRenderer {
         fb.clear_colors([0.0; 4])?;
         fb.clear_depth_stencil(1.0, 0)?;
         let program = match method {
-            Method::Pyramid => &self.pyramid_program,
+            Method::Pyramid | Method::Prefiltered => &self.pyramid_program,
             Method::Relief { .. } => &self.relief_program,
         };
         let mut pass = fb.pass(program, "displacement mapping")?;
         self.set_frame_uniforms(&mut pass, camera);
         match method {
-            Method::Pyramid => pass
+            Method::Pyramid | Method::Prefiltered => pass
                 .texture("u_bounds", &self.bounds_atlas.texture)
+                .texture("u_means", &self.means_atlas.texture)
+                .uniform("u_mean_x", &self.means_atlas.offsets_x()[..])
+                .uniform("u_mean_y", &self.means_atlas.offsets_y()[..])
+                .uniform("u_prefilter", (method == Method::Prefiltered) as i32)
+                .uniform(
+                    "u_footprint",
+                    super::prefilter::footprint_per_unit(camera, &self.surface),
+                )
                 .uniform("u_level_x", &self.bounds_atlas.offsets_x()[..])
                 .uniform("u_level_y", &self.bounds_atlas.offsets_y()[..])
                 .uniform("u_top", self.bounds.levels() as i32 - 1)

@@ -128,6 +128,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     bar.finish_and_clear();
 
     let bar = stage("pyramidal displacement mapping");
+    let prefilter = super::prefilter::measure(opts, &map, runs)?;
     let displacement = displacement(opts, map, map_name, runs)?;
     bar.finish_and_clear();
     let bar = stage("light hierarchy");
@@ -141,6 +142,9 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     bar.finish_and_clear();
     let bar = stage("if removed with the depth buffer");
     let depth_mask = depth_mask(opts, quick, runs)?;
+    bar.finish_and_clear();
+    let bar = stage("octree on the GPU");
+    let octree = super::octree::measure(opts, runs)?;
     bar.finish_and_clear();
     let bar = stage("histogram by blending");
     let counts: &[usize] = if quick {
@@ -166,11 +170,13 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         runs: runs.in_words(),
         pyramid,
         displacement,
+        prefilter,
         light,
         function,
         random,
         depth_mask,
         histogram,
+        octree,
     })
 }
 

@@ -14,11 +14,15 @@ mod function_table;
 mod histogram_table;
 pub mod images;
 mod light;
+mod octree;
+mod prefilter;
 mod pyramid_table;
 mod random_table;
 mod results;
 
 pub use bench::*;
+pub use octree::OctreeRow;
+pub use prefilter::{prefilter_quality, PrefilterQuality, PrefilterRow};
 pub use results::*;
 
 use super::{BenchOptions, Paper, Section};
@@ -60,6 +64,8 @@ impl Paper for Lecture3 {
                 pyramid_table::table(results),
                 displacement_artifacts::table(results),
                 displacement_speed::table(results),
+                prefilter::table(results),
+                octree::table(results),
                 light::table(results),
                 function_table::error_table(results),
                 function_table::speed_table(results),

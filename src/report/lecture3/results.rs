@@ -21,6 +21,10 @@ pub struct Lecture3Results {
     pub runs: String,
     pub pyramid: Vec<PyramidRow>,
     pub displacement: DisplacementRun,
+    /// Technique 2's minification prefilter against the camera's distance.
+    pub prefilter: Vec<super::prefilter::PrefilterRow>,
+    /// Octrees on the GPU: the octree cast against the flat walk, per grid resolution.
+    pub octree: Vec<super::octree::OctreeRow>,
     pub light: LightRun,
     pub function: FunctionRun,
     pub random: RandomRun,

@@ -1,12 +1,14 @@
 //! Technique 2: pyramidal displacement mapping with the camera orbiting the box: the frame,
 //! each pixel's distance to its hit against the exact CPU tracer, the traversal's steps, and
-//! the bound pyramid against the CPU's.
+//! the bound pyramid against the CPU's. Keys: `p` switches the minification prefilter on and
+//! off (the exact tracer then follows the same rule), `+` / `-` move the camera nearer or
+//! farther.
 
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::displacement::bounds::cpu_bound_pyramid;
 use crate::lecture3::displacement::{
-    exact, Camera, DisplacementRenderer, FrameTarget, Method, Pixel, Surface,
+    exact, prefilter, Camera, DisplacementRenderer, FrameTarget, Method, Pixel, Surface,
 };
 use crate::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
 use crate::lecture3::pyramid::{Extreme, Level};
@@ -24,6 +26,10 @@ pub struct DisplaceDemo {
     iterations: Vec<f32>,
     bounds: Vec<Level>,
     cpu_bounds: Vec<Level>,
+    /// The minification prefilter on.
+    prefilter: bool,
+    /// The camera's distance from the box centre.
+    distance: f32,
 }
 
 /// Image side (pixels): small, the exact tracer runs every frame.
@@ -32,6 +38,9 @@ const SIDE: u32 = 96;
 const DEPTH: f32 = 0.3;
 const DISTANCE: f32 = 3.2;
 const ELEVATION: f32 = 30.0;
+/// The nearest and farthest camera (`+` and `-`).
+const MIN_DISTANCE: f32 = 1.5;
+const MAX_DISTANCE: f32 = 40.0;
 /// Degrees the camera turns per frame.
 const TURN: f32 = 6.0;
 
@@ -52,13 +61,15 @@ impl DisplaceDemo {
             iterations: Vec::new(),
             bounds,
             cpu_bounds,
+            prefilter: false,
+            distance: DISTANCE,
         })
     }
 
     fn camera(&self) -> Camera {
         Camera::orbit(
             self.renderer.surface().centre(),
-            DISTANCE,
+            self.distance,
             225.0 + TURN * self.frame as f32,
             ELEVATION,
             SIDE,
@@ -71,8 +82,12 @@ impl Demo for DisplaceDemo {
     fn step(&mut self) -> anyhow::Result<()> {
         self.frame += 1;
         let camera = self.camera();
-        self.renderer
-            .render(&self.target, &camera, Method::Pyramid)?;
+        let method = if self.prefilter {
+            Method::Prefiltered
+        } else {
+            Method::Pyramid
+        };
+        self.renderer.render(&self.target, &camera, method)?;
         let frame = self.renderer.read(&self.target)?;
         frame.check_finished()?;
         self.colour = frame.colour.clone();
@@ -91,7 +106,13 @@ impl Demo for DisplaceDemo {
                 _ => 0.0,
             })
             .collect();
-        self.exact_tau = exact::trace_image(self.renderer.surface(), &camera, 0.0)
+        let surface = self.renderer.surface();
+        let exact = if self.prefilter {
+            prefilter::trace_image(surface, &camera)
+        } else {
+            exact::trace_image(surface, &camera, 0.0)
+        };
+        self.exact_tau = exact
             .iter()
             .map(|h| h.as_ref().map_or(0.0, |h| h.tau as f32))
             .collect();
@@ -185,8 +206,11 @@ impl Demo for DisplaceDemo {
             .count();
         vec![
             format!(
-                "lecture 3, pyramidal displacement mapping: {SIDE}x{SIDE}, azimuth {} deg",
-                (225.0 + TURN * self.frame as f32) % 360.0
+                "lecture 3, pyramidal displacement mapping: {SIDE}x{SIDE}, azimuth {} deg, \
+                 distance {:.1}, prefilter {}",
+                (225.0 + TURN * self.frame as f32) % 360.0,
+                self.distance,
+                if self.prefilter { "on" } else { "off" }
             ),
             format!("{hits} pixels hit; hit or miss unlike the exact tracer: {missed}"),
         ]
@@ -194,5 +218,23 @@ impl Demo for DisplaceDemo {
 
     fn timings(&self) -> String {
         String::new()
+    }
+
+    fn keys(&self) -> Vec<(&'static str, &'static str)> {
+        vec![
+            ("p", "minification prefilter on / off"),
+            ("+", "camera nearer"),
+            ("-", "camera farther"),
+        ]
+    }
+
+    fn key(&mut self, key: &str) -> anyhow::Result<bool> {
+        match key {
+            "p" => self.prefilter = !self.prefilter,
+            "+" | "=" => self.distance = (self.distance / 1.5).max(MIN_DISTANCE),
+            "-" => self.distance = (self.distance * 1.5).min(MAX_DISTANCE),
+            _ => return Ok(false),
+        }
+        Ok(true)
     }
 }

@@ -7,6 +7,7 @@ mod displace;
 mod function;
 mod histogram;
 mod light;
+mod octree;
 mod pyramid;
 mod random;
 
@@ -30,6 +31,8 @@ pub enum Technique {
     DepthMask,
     /// 7. A histogram by additive blending of points.
     Histogram,
+    /// 8. Rays cast through the octree of a point set, against the flat walk.
+    Octree,
 }
 
 impl Technique {
@@ -43,6 +46,7 @@ impl Technique {
             Technique::Random => "random",
             Technique::DepthMask => "depth-mask",
             Technique::Histogram => "histogram",
+            Technique::Octree => "octree",
         }
     }
 
@@ -56,6 +60,7 @@ impl Technique {
             Technique::Random => Box::new(random::RandomDemo::new(ctx)?),
             Technique::DepthMask => Box::new(depth_mask::DepthMaskDemo::new(ctx)?),
             Technique::Histogram => Box::new(histogram::HistogramDemo::new(ctx)?),
+            Technique::Octree => Box::new(octree::OctreeDemo::new(ctx)?),
         })
     }
 }

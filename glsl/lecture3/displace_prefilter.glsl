@@ -1,0 +1,46 @@
+#version 330 core
+// Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006):
+// the minification prefilter (reconstructed; src/lecture3/displacement/prefilter.rs).
+// Compiled after: glsl/lecture3/displace_common.glsl
+// Where a pixel's footprint covers many patches the traversal stops at the level whose nodes
+// are no wider than the footprint and meets a prefiltered surface there: one bilinear patch
+// per node, its corners the mean of the height samples about each corner (four nodes of the
+// mean pyramid), clamped under the node's bound so that the max pyramid still bounds it.
+
+uniform int u_prefilter;      // 0: trace the finest patches; 1: stop at the footprint's level
+uniform float u_footprint;    // the pixel's footprint in patches per unit of ray parameter
+uniform sampler2D u_means;    // mean pyramid of the height samples, as an atlas
+uniform int u_mean_x[16];     // where each of its levels starts in the atlas
+uniform int u_mean_y[16];
+
+// The stop level of a ray entering the box at t_in: the coarsest level <= top whose nodes,
+// 2^L patches wide, are no wider than the footprint there.
+int stop_level(float t_in, int top) {
+    if (u_prefilter == 0) return 0;
+    float footprint = t_in * u_footprint;
+    int level = 0;
+    for (int k = 1; k <= top; ++k) {
+        if (float(1 << k) <= footprint) level = k;
+    }
+    return level;
+}
+
+// Mean pyramid node m of `level`, clamped to the nodes that cover height samples.
+float mean_node(ivec2 m, int level) {
+    ivec2 valid = (u_patches + (1 << level)) >> level; // ceil(samples / 2^level)
+    m = clamp(m, ivec2(0), valid - 1);
+    return texelFetch(u_means, ivec2(u_mean_x[level], u_mean_y[level]) + m, 0).r;
+}
+
+// The prefiltered height at node corner c of `level`: the mean of the four nodes touching it.
+float coarse_corner(ivec2 c, int level) {
+    return 0.25 * ((mean_node(c - ivec2(1, 1), level) + mean_node(c - ivec2(0, 1), level))
+                 + (mean_node(c - ivec2(1, 0), level) + mean_node(c, level)));
+}
+
+// The corners (h00, h10, h01, h11) of node `node`'s prefiltered patch, under its bound.
+vec4 prefiltered_corners(ivec2 node, int level, float bound) {
+    vec4 h = vec4(coarse_corner(node, level), coarse_corner(node + ivec2(1, 0), level),
+                  coarse_corner(node + ivec2(0, 1), level), coarse_corner(node + ivec2(1, 1), level));
+    return min(h, vec4(bound));
+}

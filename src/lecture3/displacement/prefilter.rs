@@ -1,0 +1,381 @@
+//! The minification prefilter of pyramidal displacement mapping: where a pixel covers many
+//! patches, the traversal stops at the pyramid level whose nodes are as wide as the pixel's
+//! footprint and intersects a prefiltered surface there instead of the finest bilinear patches.
+//! The VRST 2006 abstract names a "mipmap-like prefilter" at minification that improves
+//! quality and speed; its construction is not given, so what follows is our reconstruction.
+//!
+//! - Footprint: the pixel's ray cone. A pixel spans `2 tan(fov_y / 2) / height` radians, so at
+//!   ray parameter t it covers `t` times that (world units), `footprint(t)` patches. The rule
+//!   takes it where the ray enters the box (the smallest footprint along the ray's segment in
+//!   the box, so it never blurs more than the pixel covers), constant for the pixel.
+//! - Stop level: the coarsest level L (at most the top) whose nodes, `2^L` patches wide, are no
+//!   wider than the footprint: `2^L <= footprint(t_in)`; L = 0 (no prefilter) below 2 patches.
+//! - Prefiltered surface at level L: each node of level L carries one bilinear patch spanning
+//!   it. Its corner at grid point `(X, Y) = (c_x 2^L, c_y 2^L)` is the average of the four
+//!   level-L nodes of the mean pyramid of the height samples that touch it (nodes `c - 1` and
+//!   `c` on each axis, clamped to the nodes that cover samples): the mean of the samples in a
+//!   box of `2^(L+1)` samples a side about the corner. Each corner is then clamped to the
+//!   node's bound (the max pyramid), so the patch lies under its node's bound and the
+//!   traversal's skips stay safe for it.
+//! - Shading: the prefiltered surface's own normal at the hit (the normal of the node's
+//!   bilinear patch), and the same checkerboard and light as unfiltered hits.
+//!
+//! [`Prefilter`] is the CPU reference of the same rule, in f64: the level per pixel and an exact
+//! tracer of each level's prefiltered field; [`super::compare`] judges prefiltered GPU frames
+//! against it pixel by pixel. [`supersampled`] and [`image_error`] measure quality against the
+//! average of many unfiltered rays per pixel.
+
+use super::bounds::cpu_bound_pyramid;
+use super::camera::Camera;
+use super::exact::{box_interval, enters_through_side, Hit};
+use super::patch::{first_hit, Corners, Segment};
+use super::surface::Surface;
+use super::tracer::{DisplacementRenderer, Method};
+use crate::gl::{Context, GlError};
+use crate::lecture3::error::Error;
+use crate::lecture3::pyramid::{cpu_pyramid, Extreme, PyramidBuilder};
+use crate::lecture3::pyramid_atlas::{AtlasBuilder, PyramidAtlas};
+use crate::lecture3::HeightMap;
+use glam::DVec3;
+
+/// A pixel's footprint, in patches, per unit of ray parameter, as the shader's `u_footprint`
+/// gets it (f32): the pixel's angle times grid units per world unit (texels are square).
+pub fn footprint_per_unit(camera: &Camera, surface: &Surface) -> f32 {
+    2.0 * (0.5 * camera.fov_y).tan() / camera.height as f32 * surface.world_to_grid().x
+}
+
+/// The stop level for a footprint of `footprint` patches: the largest L <= `top` with
+/// `2^L <= footprint`.
+pub fn stop_level(footprint: f64, top: u32) -> u32 {
+    (1..=top)
+        .take_while(|&k| (1u64 << k) as f64 <= footprint)
+        .last()
+        .unwrap_or(0)
+}
+
+/// Whether fp32 rounding of the footprint could change the stop level (the footprint within a
+/// relative 1e-4 of a power of two): such pixels are not judged.
+pub fn level_is_borderline(footprint: f64, top: u32) -> bool {
+    (1..=top).any(|k| ((1u64 << k) as f64 / footprint - 1.0).abs() < 1e-4)
+}
+
+/// The prefiltered height field of one level on the CPU: one bilinear patch per node.
+#[derive(Clone, Debug)]
+pub struct LevelField {
+    pub level: u32,
+    /// Nodes along x and y (those covering patches).
+    pub nodes: (u32, u32),
+    /// The map's patches along x and y (nodes on the far edges are cut there).
+    patches: (u32, u32),
+    /// Corner heights per node, row by row from the bottom.
+    corners: Vec<Corners>,
+}
+
+impl LevelField {
+    /// Node width in patches.
+    pub fn side(&self) -> f64 {
+        (1u64 << self.level) as f64
+    }
+
+    /// Corners of node (i, j), raised by `offset`.
+    pub fn corners(&self, i: u32, j: u32, offset: f64) -> Corners {
+        self.corners[(j * self.nodes.0 + i) as usize].map(|h| h + offset)
+    }
+
+    /// The exact first hit of the ray from `eye` along unit `dir` (world) with this field
+    /// raised by `offset`: a walk over the level's nodes in order, each node's quadratic solved
+    /// ([`super::exact::trace`] over nodes instead of patches).
+    pub fn trace(&self, surface: &Surface, eye: DVec3, dir: DVec3, offset: f64) -> Option<Hit> {
+        let scale = surface.world_to_grid().as_dvec3();
+        let (o, d) = (eye * scale, dir * scale);
+        let (wp, hp) = (self.patches.0 as f64, self.patches.1 as f64);
+        let (t_in, t_out) = box_interval(o, d, wp, hp)?;
+        let side = self.side();
+        let start = o + t_in * d;
+        let node_of = |x: f64, n: u32| ((x / side).floor() as i64).clamp(0, n as i64 - 1);
+        let (mut i, mut j) = (
+            node_of(start.x, self.nodes.0),
+            node_of(start.y, self.nodes.1),
+        );
+        // Where the ray leaves node `n` along one axis (the last node ends at the map's edge).
+        let exit = |n: i64, o: f64, d: f64, edge: f64| {
+            let (lo, hi) = (n as f64 * side, ((n + 1) as f64 * side).min(edge));
+            if d > 0.0 {
+                (hi - o) / d
+            } else if d < 0.0 {
+                (lo - o) / d
+            } else {
+                f64::INFINITY
+            }
+        };
+        let through_side = enters_through_side(o, d, wp, hp);
+        let (mut t, mut first) = (t_in, true);
+        loop {
+            let (tx, ty) = (exit(i, o.x, d.x, wp), exit(j, o.y, d.y, hp));
+            let t_exit = tx.min(ty).min(t_out);
+            let p = o + t * d;
+            let segment = Segment {
+                start: [
+                    (p.x - i as f64 * side) / side,
+                    (p.y - j as f64 * side) / side,
+                    p.z,
+                ],
+                step: [d.x / side, d.y / side, d.z],
+                length: (t_exit - t).max(0.0),
+            };
+            if let Some(u) = first_hit(self.corners(i as u32, j as u32, offset), &segment) {
+                let tau = t + u;
+                return Some(Hit {
+                    tau,
+                    grid: o + tau * d,
+                    wall: first && u == 0.0 && through_side,
+                });
+            }
+            if t_exit >= t_out {
+                return None;
+            }
+            if tx <= ty {
+                i += d.x.signum() as i64;
+            } else {
+                j += d.y.signum() as i64;
+            }
+            if i < 0 || j < 0 || i >= self.nodes.0 as i64 || j >= self.nodes.1 as i64 {
+                return None;
+            }
+            t = t_exit;
+            first = false;
+        }
+    }
+
+    /// The world normal of node `node`'s patch at local `st` (node units).
+    pub fn normal(&self, surface: &Surface, node: (u32, u32), st: (f64, f64)) -> DVec3 {
+        let h = self.corners(node.0, node.1, 0.0);
+        let c = h[0] - h[1] - h[2] + h[3];
+        // Slopes per patch: the node's bilinear patch spans `side` patches.
+        let dhds = ((h[1] - h[0]) + c * st.1) / self.side();
+        let dhdt = ((h[2] - h[0]) + c * st.0) / self.side();
+        let scale = surface.world_to_grid().as_dvec3();
+        DVec3::new(-dhds * scale.x / scale.z, -dhdt * scale.y / scale.z, 1.0).normalize()
+    }
+
+    /// The normals a hit at grid `g` may show: its node's, and those of nodes within `margin`
+    /// patches (the field's normal jumps across node edges).
+    pub fn surface_normals(&self, surface: &Surface, g: DVec3, margin: f64) -> Vec<DVec3> {
+        let side = self.side();
+        let nodes = |x: f64, n: u32| {
+            let at = |x: f64| ((x / side).floor().max(0.0) as u32).min(n - 1);
+            at(x - margin)..=at(x + margin)
+        };
+        let mut normals = Vec::new();
+        for j in nodes(g.y, self.nodes.1) {
+            for i in nodes(g.x, self.nodes.0) {
+                let st = (
+                    ((g.x - i as f64 * side) / side).clamp(0.0, 1.0),
+                    ((g.y - j as f64 * side) / side).clamp(0.0, 1.0),
+                );
+                normals.push(self.normal(surface, (i, j), st));
+            }
+        }
+        normals
+    }
+}
+
+/// The CPU reference of the prefilter for one view: the footprint rule and every level's
+/// prefiltered field.
+#[derive(Clone, Debug)]
+pub struct Prefilter {
+    /// `footprint_per_unit` of the view.
+    pub footprint: f32,
+    /// The bound pyramid's top level.
+    pub top: u32,
+    /// Level L's prefiltered field at index L (index 0 is the map's own field).
+    pub levels: Vec<LevelField>,
+}
+
+impl Prefilter {
+    /// The rule for `camera` on `surface`.
+    pub fn new(surface: &Surface, camera: &Camera) -> Prefilter {
+        let levels = level_fields(&surface.map);
+        Prefilter {
+            footprint: footprint_per_unit(camera, surface),
+            top: levels.len() as u32 - 1,
+            levels,
+        }
+    }
+
+    /// The footprint (patches) of a ray entering the box at parameter `t_in`.
+    pub fn footprint_at(&self, t_in: f64) -> f64 {
+        t_in * self.footprint as f64
+    }
+}
+
+/// Every pixel of `camera`'s image traced by the rule (each through the field of its stop
+/// level), row by row from the bottom.
+pub fn trace_image(surface: &Surface, camera: &Camera) -> Vec<Option<Hit>> {
+    let rule = Prefilter::new(surface, camera);
+    let eye = camera.eye.as_dvec3();
+    let scale = surface.world_to_grid().as_dvec3();
+    let (wp, hp) = surface.patches();
+    (0..camera.height)
+        .flat_map(|py| (0..camera.width).map(move |px| (px, py)))
+        .map(|(px, py)| {
+            let dir = camera.pixel_direction(px, py);
+            let (t_in, _) = box_interval(eye * scale, dir * scale, wp as f64, hp as f64)?;
+            let level = stop_level(rule.footprint_at(t_in), rule.top);
+            rule.levels[level as usize].trace(surface, eye, dir, 0.0)
+        })
+        .collect()
+}
+
+/// Every level's prefiltered field, from the CPU bound pyramid and the CPU mean pyramid of the
+/// height samples (level 0: the map's own patches).
+pub fn level_fields(map: &HeightMap) -> Vec<LevelField> {
+    let bounds = cpu_bound_pyramid(map, Extreme::Max);
+    let means = cpu_pyramid(map.width(), map.height(), map.heights(), Extreme::Mean);
+    let patches = map.patches();
+    (0..bounds.len() as u32)
+        .map(|level| {
+            let side = 1u32 << level;
+            let nodes = (patches.0.div_ceil(side), patches.1.div_ceil(side));
+            // Mean nodes that cover samples at this level.
+            let valid = (map.width().div_ceil(side), map.height().div_ceil(side));
+            let mean = |x: i64, y: i64| {
+                let x = x.clamp(0, valid.0 as i64 - 1) as u32;
+                let y = y.clamp(0, valid.1 as i64 - 1) as u32;
+                means[level as usize].at(x, y) as f64
+            };
+            let corner = |cx: u32, cy: u32| {
+                if level == 0 {
+                    return map.at(cx, cy) as f64;
+                }
+                let (x, y) = (cx as i64, cy as i64);
+                0.25 * ((mean(x - 1, y - 1) + mean(x, y - 1)) + (mean(x - 1, y) + mean(x, y)))
+            };
+            let corners = (0..nodes.1)
+                .flat_map(|j| (0..nodes.0).map(move |i| (i, j)))
+                .map(|(i, j)| {
+                    let bound = bounds[level as usize].at(i, j) as f64;
+                    [
+                        corner(i, j),
+                        corner(i + 1, j),
+                        corner(i, j + 1),
+                        corner(i + 1, j + 1),
+                    ]
+                    .map(|h| h.min(bound))
+                })
+                .collect();
+            LevelField {
+                level,
+                nodes,
+                patches,
+                corners,
+            }
+        })
+        .collect()
+}
+
+/// The mean pyramid of the height samples as the traversal reads it (one atlas).
+pub fn mean_atlas(ctx: &Context, map: &HeightMap) -> Result<PyramidAtlas, GlError> {
+    let means = PyramidBuilder::new(ctx)?.from_image(
+        map.width(),
+        map.height(),
+        map.heights(),
+        Extreme::Mean,
+    )?;
+    AtlasBuilder::new(ctx)?.atlas(&means.texture)
+}
+
+/// The image of `camera` with `samples x samples` unfiltered rays per pixel, averaged (RGB in
+/// [0, 1], pixels where no ray hits count as black), rows from the bottom: the quality
+/// reference. The rays are the pixels of one frame `samples` times larger, whose pixel centres
+/// divide each pixel evenly.
+pub fn supersampled(
+    renderer: &DisplacementRenderer,
+    camera: &Camera,
+    samples: u32,
+) -> Result<Vec<[f32; 3]>, Error> {
+    let big = Camera {
+        width: camera.width * samples,
+        height: camera.height * samples,
+        ..*camera
+    };
+    let target = renderer.target(big.width, big.height)?;
+    renderer.render(&target, &big, Method::Pyramid)?;
+    let frame = renderer.read(&target)?;
+    frame.check_finished()?;
+    let (w, s) = (camera.width as usize, samples as usize);
+    let mut out = vec![[0f32; 3]; w * camera.height as usize];
+    for (i, px) in frame.colour.chunks_exact(4).enumerate() {
+        let (x, y) = (i % (w * s) / s, i / (w * s) / s);
+        for k in 0..3 {
+            out[y * w + x][k] += px[k] as f32 / 255.0 / (s * s) as f32;
+        }
+    }
+    Ok(out)
+}
+
+/// The root mean square difference (RGB in [0, 1]) between an RGBA8 frame and the
+/// supersampled reference, over the pixels where either shows something.
+pub fn image_error(colour: &[u8], reference: &[[f32; 3]]) -> f64 {
+    let (sum, count) = colour
+        .chunks_exact(4)
+        .zip(reference)
+        .filter(|(c, r)| c[3] > 0 || r.iter().any(|&v| v > 0.0))
+        .fold((0.0, 0usize), |(sum, n), (c, r)| {
+            let d: f64 = (0..3)
+                .map(|k| (c[k] as f64 / 255.0 - r[k] as f64).powi(2))
+                .sum();
+            (sum + d / 3.0, n + 1)
+        });
+    if count == 0 {
+        0.0
+    } else {
+        (sum / count as f64).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_stop_level_is_the_coarsest_node_no_wider_than_the_footprint() {
+        assert_eq!(stop_level(0.3, 5), 0);
+        assert_eq!(stop_level(1.99, 5), 0);
+        assert_eq!(stop_level(2.0, 5), 1);
+        assert_eq!(stop_level(7.9, 5), 2);
+        assert_eq!(stop_level(1e6, 5), 5);
+        assert!(level_is_borderline(4.0001, 5));
+        assert!(!level_is_borderline(5.0, 5));
+    }
+
+    #[test]
+    fn level_zero_is_the_map_and_coarse_patches_stay_under_their_bounds() {
+        let heights = (0..17 * 11)
+            .map(|i| ((i * 7919) % 101) as f32 / 100.0)
+            .collect();
+        let map = HeightMap::new("test", 17, 11, heights).unwrap();
+        let surface = Surface::new(map.clone(), 0.4).unwrap();
+        let levels = level_fields(&map);
+        let bounds = cpu_bound_pyramid(&map, Extreme::Max);
+        assert_eq!(levels[0].corners(3, 4, 0.0), surface.corners(3, 4, 0.0));
+        for (field, bound) in levels.iter().zip(&bounds) {
+            for j in 0..field.nodes.1 {
+                for i in 0..field.nodes.0 {
+                    let b = bound.at(i, j) as f64;
+                    assert!(field.corners(i, j, 0.0).iter().all(|&h| h <= b));
+                }
+            }
+        }
+        // Level 0's tracer is the exact tracer.
+        let eye = DVec3::new(-1.0, -0.7, 1.3);
+        for k in 0..40 {
+            let target = DVec3::new(0.05 * k as f64, 0.6, 0.1);
+            let dir = (target - eye).normalize();
+            assert_eq!(
+                levels[0].trace(&surface, eye, dir, 0.0),
+                super::super::exact::trace(&surface, eye, dir, 0.0)
+            );
+        }
+    }
+}

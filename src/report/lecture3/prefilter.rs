@@ -1,0 +1,194 @@
+//! Technique 2's minification prefilter (`crate::lecture3::displacement::prefilter`): as the
+//! camera moves away, each frame's error against a supersampled unfiltered image and its GPU
+//! time and traversal steps, with and without the prefilter, and the prefiltered frame judged
+//! pixel by pixel against the CPU reference of the same rule.
+
+use super::bench::{gpu_ms_warm, DEPTH};
+use super::results::Lecture3Results;
+use crate::lecture3::displacement::compare::{Comparison, ReferenceImage};
+use crate::lecture3::displacement::prefilter::{image_error, supersampled};
+use crate::lecture3::displacement::{Camera, DisplacementRenderer, Frame, Method, Pixel, Surface};
+use crate::lecture3::HeightMap;
+use crate::report::timing::{Runs, Spread};
+use crate::report::{BenchOptions, Table};
+use serde::Serialize;
+
+/// A prefiltered frame's quality beside the unfiltered frame of the same view.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct PrefilterQuality {
+    /// Rays per pixel along each side of the supersampled reference.
+    pub samples: u32,
+    /// RMS difference (RGB in 0..1) from the supersampled image, over the pixels either shows.
+    pub prefiltered_error: f64,
+    pub unfiltered_error: f64,
+    /// Mean traversal steps per hit pixel.
+    pub prefiltered_steps: f64,
+    pub unfiltered_steps: f64,
+}
+
+/// Rays per pixel side of the command's and the report's reference.
+pub const SUPERSAMPLES: u32 = 4;
+
+/// Mean traversal steps per hit pixel of a frame.
+pub fn mean_steps(frame: &Frame) -> f64 {
+    let steps: Vec<f64> = frame
+        .pixels()
+        .iter()
+        .filter_map(|p| match p {
+            Pixel::Hit { iterations, .. } => Some(*iterations as f64),
+            _ => None,
+        })
+        .collect();
+    steps.iter().sum::<f64>() / steps.len().max(1) as f64
+}
+
+/// `prefiltered` (a prefiltered frame of `camera`) and the unfiltered frame of the same view
+/// against a `SUPERSAMPLES`-squared unfiltered reference.
+pub fn prefilter_quality(
+    renderer: &DisplacementRenderer,
+    camera: &Camera,
+    prefiltered: &Frame,
+) -> anyhow::Result<PrefilterQuality> {
+    let reference = supersampled(renderer, camera, SUPERSAMPLES)?;
+    let target = renderer.target(camera.width, camera.height)?;
+    renderer.render(&target, camera, Method::Pyramid)?;
+    let unfiltered = renderer.read(&target)?;
+    unfiltered.check_finished()?;
+    Ok(PrefilterQuality {
+        samples: SUPERSAMPLES,
+        prefiltered_error: finite(image_error(&prefiltered.colour, &reference))?,
+        unfiltered_error: finite(image_error(&unfiltered.colour, &reference))?,
+        prefiltered_steps: mean_steps(prefiltered),
+        unfiltered_steps: mean_steps(&unfiltered),
+    })
+}
+
+fn finite(x: f64) -> anyhow::Result<f64> {
+    anyhow::ensure!(x.is_finite(), "an image error that is not a number: {x}");
+    Ok(x)
+}
+
+/// One camera distance.
+#[derive(Clone, Debug, Serialize)]
+pub struct PrefilterRow {
+    pub distance: f32,
+    /// The largest stop level of the view's pixels (0: the prefilter changes nothing).
+    pub max_level: u32,
+    pub quality: PrefilterQuality,
+    pub unfiltered_ms: f64,
+    pub unfiltered_spread: Spread,
+    pub prefiltered_ms: f64,
+    pub prefiltered_spread: Spread,
+    /// The prefiltered frame against the CPU reference of the same rule.
+    pub comparison: Comparison,
+}
+
+/// The camera distances of the sweep.
+pub fn distances(quick: bool) -> &'static [f32] {
+    if quick {
+        &[3.2, 12.8]
+    } else {
+        &[3.2, 6.4, 12.8, 25.6]
+    }
+}
+
+/// The sweep on `map` at elevation 35 degrees.
+pub fn measure(
+    opts: &BenchOptions,
+    map: &HeightMap,
+    runs: Runs,
+) -> anyhow::Result<Vec<PrefilterRow>> {
+    let ctx = opts.gl;
+    let image = if opts.quick { 64 } else { 128 };
+    let renderer = DisplacementRenderer::new(ctx, Surface::new(map.clone(), DEPTH)?)?;
+    let target = renderer.target(image, image)?;
+    distances(opts.quick)
+        .iter()
+        .map(|&distance| {
+            let camera = Camera::orbit(
+                renderer.surface().centre(),
+                distance,
+                225.0,
+                35.0,
+                image,
+                image,
+            );
+            renderer.render(&target, &camera, Method::Prefiltered)?;
+            let frame = renderer.read(&target)?;
+            frame.check_finished()?;
+            let reference = ReferenceImage::trace_prefiltered(renderer.surface(), &camera);
+            let (comparison, _) = reference.judge(&frame);
+            let quality = prefilter_quality(&renderer, &camera, &frame)?;
+            let time = |method| {
+                renderer.render(&target, &camera, method)?;
+                gpu_ms_warm(ctx, runs, || Ok(renderer.render(&target, &camera, method)?))
+            };
+            let unfiltered = time(Method::Pyramid)?;
+            let prefiltered = time(Method::Prefiltered)?;
+            Ok(PrefilterRow {
+                distance,
+                max_level: reference.max_level(),
+                quality,
+                unfiltered_ms: unfiltered.median,
+                unfiltered_spread: unfiltered,
+                prefiltered_ms: prefiltered.median,
+                prefiltered_spread: prefiltered,
+                comparison,
+            })
+        })
+        .collect()
+}
+
+pub fn table(results: &Lecture3Results) -> Table {
+    let d = &results.displacement;
+    let image = if results.quick { 64 } else { 128 };
+    Table {
+        caption: format!(
+            "2. The minification prefilter as the camera moves away: RMS difference (RGB in \
+             0..1) from {0}x{0} unfiltered rays per pixel averaged, frame time and steps per \
+             hit pixel, without and with the prefilter; {image}x{image} pixels, elevation 35 \
+             degrees, {1}; on {2}. The last column judges the prefiltered frame against the \
+             CPU reference of the same rule (pixels counted by what differs).",
+            SUPERSAMPLES, d.map, results.renderer
+        ),
+        header: [
+            "distance",
+            "deepest stop level",
+            "error, unfiltered",
+            "error, prefiltered",
+            "ms, unfiltered",
+            "ms, prefiltered",
+            "steps, unfiltered",
+            "steps, prefiltered",
+            "vs CPU: wrong surface / outside tolerance / kind / normal / colour",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: results
+            .prefilter
+            .iter()
+            .map(|r| {
+                let c = &r.comparison;
+                vec![
+                    format!("{:.1}", r.distance),
+                    r.max_level.to_string(),
+                    format!("{:.4}", r.quality.unfiltered_error),
+                    format!("{:.4}", r.quality.prefiltered_error),
+                    format!("{:.2}", r.unfiltered_ms),
+                    format!("{:.2}", r.prefiltered_ms),
+                    format!("{:.1}", r.quality.unfiltered_steps),
+                    format!("{:.1}", r.quality.prefiltered_steps),
+                    format!(
+                        "{} / {} / {} / {} / {} of {}",
+                        c.wrong_surface,
+                        c.outside_tolerance,
+                        c.wrong_kind,
+                        c.wrong_normal,
+                        c.wrong_colour,
+                        c.compared
+                    ),
+                ]
+            })
+            .collect(),
+    }
+}

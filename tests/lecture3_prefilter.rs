@@ -1,0 +1,167 @@
+//! Lecture 3, technique 2's minification prefilter: prefiltered GPU frames against the CPU
+//! reference of the same rule, pixel by pixel (where each ray stops, surface or wall, normal,
+//! colour), and its speed as a property: at a far camera it takes fewer steps, close up it
+//! changes nothing.
+//!
+//! Tolerance (`displacement::compare`): as for the unfiltered traversal, the GPU's hit lies
+//! between the CPU's exact hits of the selected field raised and lowered by DELTA = 1e-4 (the
+//! prefiltered corners are fp32 means of at most a few hundred samples, ~1e-6 from the CPU's
+//! f64 means); pixels whose stop level fp32 rounding could change are not judged.
+
+use classic_gpgpu::lecture3::displacement::compare::{compare_prefiltered, Comparison};
+use classic_gpgpu::lecture3::displacement::prefilter::{
+    image_error, stop_level, supersampled, Prefilter,
+};
+use classic_gpgpu::lecture3::displacement::{Camera, DisplacementRenderer, Method, Pixel, Surface};
+use classic_gpgpu::lecture3::HeightMap;
+use common::context;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+mod common;
+
+/// Random heights with a smooth swell, `side x side` samples.
+fn rough_map(side: u32, seed: u64) -> HeightMap {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let heights = (0..side * side)
+        .map(|i| {
+            let (x, y) = (
+                (i % side) as f32 / side as f32,
+                (i / side) as f32 / side as f32,
+            );
+            let swell = 0.3 + 0.2 * (6.0 * x).sin() * (5.0 * y).cos();
+            (swell + rng.gen_range(-0.25..0.25f32)).clamp(0.0, 1.0)
+        })
+        .collect();
+    HeightMap::new("rough test map", side, side, heights).unwrap()
+}
+
+fn camera(surface: &Surface, distance: f32, azimuth: f32, elevation: f32, size: u32) -> Camera {
+    Camera::orbit(surface.centre(), distance, azimuth, elevation, size, size)
+}
+
+fn render(renderer: &DisplacementRenderer, camera: &Camera, method: Method) -> (Vec<u8>, f64) {
+    let target = renderer.target(camera.width, camera.height).unwrap();
+    renderer.render(&target, camera, method).unwrap();
+    let frame = renderer.read(&target).unwrap();
+    frame.check_finished().unwrap();
+    let steps: Vec<f64> = frame
+        .pixels()
+        .iter()
+        .filter_map(|p| match p {
+            Pixel::Hit { iterations, .. } => Some(*iterations as f64),
+            _ => None,
+        })
+        .collect();
+    let mean_steps = steps.iter().sum::<f64>() / steps.len().max(1) as f64;
+    (frame.colour, mean_steps)
+}
+
+fn assert_exact(c: &Comparison, what: &str) {
+    assert_eq!(c.unfinished, 0, "{what}");
+    assert_eq!(c.outside_tolerance, 0, "{what}");
+    assert_eq!(c.wrong_surface, 0, "{what}");
+    assert_eq!(
+        c.wrong_kind, 0,
+        "surface drawn as wall or the reverse: {what}"
+    );
+    assert_eq!(c.wrong_normal, 0, "{what}");
+    assert_eq!(c.wrong_colour, 0, "{what}");
+    assert!(
+        c.ambiguous * 50 <= c.compared,
+        "too many ill-conditioned pixels: {what}"
+    );
+}
+
+/// How many compared pixels the rule sends above level 0.
+fn prefiltered_pixels(surface: &Surface, camera: &Camera) -> usize {
+    let rule = Prefilter::new(surface, camera);
+    let eye = camera.eye.as_dvec3();
+    let scale = surface.world_to_grid().as_dvec3();
+    let (wp, hp) = surface.patches();
+    (0..camera.height)
+        .flat_map(|y| (0..camera.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let d = camera.pixel_direction(x, y) * scale;
+            classic_gpgpu::lecture3::displacement::exact::box_interval(
+                eye * scale,
+                d,
+                wp as f64,
+                hp as f64,
+            )
+            .is_some_and(|(t0, _)| stop_level(rule.footprint_at(t0), rule.top) > 0)
+        })
+        .count()
+}
+
+#[test]
+fn prefiltered_frames_equal_the_cpu_reference_of_the_same_rule() {
+    let ctx = context();
+    for (map, depth) in [(rough_map(65, 1), 0.3), (rough_map(40, 2), 0.2)] {
+        let name = format!("{}x{} map", map.width(), map.height());
+        let renderer = DisplacementRenderer::new(&ctx, Surface::new(map, depth).unwrap()).unwrap();
+        let (mut compared, mut prefiltered) = (0, 0);
+        for (distance, azimuth, elevation) in [
+            (5.0, 30.0, 60.0),
+            (8.0, 200.0, 35.0),
+            (10.0, 120.0, 12.0),
+            (14.0, 300.0, 80.0),
+        ] {
+            let camera = camera(renderer.surface(), distance, azimuth, elevation, 48);
+            let target = renderer.target(48, 48).unwrap();
+            renderer
+                .render(&target, &camera, Method::Prefiltered)
+                .unwrap();
+            let frame = renderer.read(&target).unwrap();
+            let c = compare_prefiltered(renderer.surface(), &camera, &frame);
+            let what = format!("{name}, distance {distance}, elevation {elevation}: {c:?}");
+            assert!(c.compared > 40 && c.exact_hits > 30, "{what}");
+            assert_exact(&c, &what);
+            compared += c.compared;
+            prefiltered += prefiltered_pixels(renderer.surface(), &camera);
+        }
+        // The rule sent a good share of the pixels above level 0 (else this compared little that is new).
+        assert!(
+            prefiltered * 4 > compared,
+            "{name}: {prefiltered} of {compared}"
+        );
+    }
+}
+
+/// The prefilter's speed as a property: far away it stops the descent early, so a hit pixel
+/// takes fewer traversal steps; close up (every footprint under 2 patches) it changes nothing.
+/// Its image error against a supersampled frame is measured by the report and the command
+/// (`displace --prefilter`), not asserted: with the mean surface's own normal it was larger
+/// than the unfiltered frame's on every map and distance tried (see the report's table).
+#[test]
+fn far_away_the_prefilter_takes_fewer_steps_and_close_up_it_changes_nothing() {
+    let ctx = context();
+    let surface = Surface::new(rough_map(129, 3), 0.3).unwrap();
+    let renderer = DisplacementRenderer::new(&ctx, surface).unwrap();
+    let camera = camera(renderer.surface(), 7.0, 225.0, 40.0, 48);
+    assert!(prefiltered_pixels(renderer.surface(), &camera) > 200);
+    let (plain, plain_steps) = render(&renderer, &camera, Method::Pyramid);
+    let (filtered, filtered_steps) = render(&renderer, &camera, Method::Prefiltered);
+    assert_ne!(plain, filtered);
+    assert!(
+        filtered_steps < plain_steps,
+        "steps per hit pixel: prefiltered {filtered_steps}, unfiltered {plain_steps}"
+    );
+    // The supersampled reference and the error are finite and the reference is not the
+    // 1-ray image (its pixels average 64 rays).
+    let reference = supersampled(&renderer, &camera, 8).unwrap();
+    let error = image_error(&plain, &reference);
+    assert!(error.is_finite() && error > 0.0);
+    assert!(image_error(&plain, &supersampled(&renderer, &camera, 1).unwrap()) < 1e-6);
+    // Close up (every footprint under 2 patches) the two traversals draw the same image.
+    let near = camera_near(renderer.surface());
+    assert_eq!(prefiltered_pixels(renderer.surface(), &near), 0);
+    assert_eq!(
+        render(&renderer, &near, Method::Pyramid).0,
+        render(&renderer, &near, Method::Prefiltered).0
+    );
+}
+
+fn camera_near(surface: &Surface) -> Camera {
+    camera(surface, 1.2, 225.0, 50.0, 96)
+}
