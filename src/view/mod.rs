@@ -73,6 +73,9 @@ pub trait Demo {
     fn key(&mut self, _key: &str) -> anyhow::Result<bool> {
         Ok(false)
     }
+    /// The buffer `view.shown` picks, told before the overlay is measured, for a demo whose
+    /// overlay describes the buffer shown.
+    fn show(&mut self, _shown: usize) {}
 }
 
 /// The keys every demo has, for the help text.
@@ -129,6 +132,7 @@ pub fn draw_frame(
         lines
     };
     // The demo draws its buffers below the text (measured before, drawn after it).
+    demo.show(view.shown);
     let before = text(demo);
     canvas.set_text_height(overlay::text_height(
         &before,

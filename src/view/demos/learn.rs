@@ -126,6 +126,10 @@ impl Demo for LearnDemo {
     fn timings(&self) -> String {
         format!("lesson {} on {}", self.run.id, self.run.renderer)
     }
+
+    fn show(&mut self, shown: usize) {
+        self.shown = shown % self.run.buffers.len().max(1);
+    }
 }
 
 /// `text` in lines of at most `width` characters, broken at spaces.
