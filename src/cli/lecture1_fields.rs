@@ -290,7 +290,8 @@ pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow
             "resolution": swept.grid.n,
             "volume": s.volume,
             "euler_characteristic": s.euler_characteristic,
-            "closed": s.closed,
+            "watertight": s.watertight,
+            "non_manifold_edges": s.non_manifold_edges,
             "vertices": s.mesh.positions.len(),
             "triangles": s.mesh.triangles.len(),
             "poses": args.poses,
@@ -317,12 +318,17 @@ pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow
     }
     println!("renderer: {}", renderer(ctx));
     println!(
-        "swept volume at {}^3: volume {}, Euler characteristic {} ({}), {} triangles, \
-         written to {}",
+        "swept volume at {}^3: volume {}, Euler characteristic {} ({}, {} non-manifold \
+         edges), {} triangles, written to {}",
         swept.grid.n,
         s.volume,
         s.euler_characteristic,
-        if s.closed { "closed" } else { "not closed" },
+        if s.watertight {
+            "watertight"
+        } else {
+            "not watertight"
+        },
+        s.non_manifold_edges,
         s.mesh.triangles.len(),
         args.out.display()
     );

@@ -17,8 +17,11 @@ pub struct Surface {
     /// Enclosed volume (divergence theorem), mesh units cubed.
     pub volume: f64,
     pub euler_characteristic: i64,
-    /// Every edge shared by two oppositely oriented triangles.
-    pub closed: bool,
+    /// No edge used by one triangle only, none used twice the same way: the volume is
+    /// enclosed. Naive surface nets guarantee this, but not a manifold surface.
+    pub watertight: bool,
+    /// Edges used by four or more triangles (where surface nets pinch the surface).
+    pub non_manifold_edges: usize,
 }
 
 /// The zero level of `signed` (`[z][y][x]` on `grid`, negative inside).
@@ -56,7 +59,10 @@ pub fn extract(grid: &Grid, signed: &[f32]) -> anyhow::Result<Surface> {
     let closedness = mesh.closedness();
     Ok(Surface {
         euler_characteristic: closedness.euler_characteristic(),
-        closed: closedness.is_closed(),
+        watertight: closedness.faces > 0
+            && closedness.boundary_edges == 0
+            && closedness.misoriented_edges == 0,
+        non_manifold_edges: closedness.non_manifold_edges,
         mesh,
         volume,
     })
