@@ -302,3 +302,49 @@ fn swept_volume_command_reports_and_refuses() {
         "{err}"
     );
 }
+
+#[test]
+fn report_blocks_render() {
+    use classic_gpgpu::report::lecture1::{distance_field, swept_volume, Setting};
+    use classic_gpgpu::report::timing::Runs;
+    use classic_gpgpu::report::BenchOptions;
+    let ctx = context();
+    let dir = std::env::temp_dir().join(format!("lecture1-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let opts = BenchOptions {
+        gl: &ctx,
+        quick: true,
+        out_dir: dir.clone(),
+        progress: indicatif::MultiProgress::with_draw_target(
+            indicatif::ProgressDrawTarget::hidden(),
+        ),
+        runs: Some(1),
+    };
+    let setting = Setting {
+        opts: &opts,
+        runs: Runs::exactly(1),
+        renderer: ctx.info().renderer_line(),
+        software: ctx.info().is_software(),
+    };
+    let field = distance_field::block(&setting).unwrap();
+    let rows = field.results.as_array().unwrap();
+    assert!(rows
+        .iter()
+        .all(|r| r["max_error_voxels"].as_f64().unwrap() < 1e-3));
+    let swept = swept_volume::block(&setting).unwrap();
+    let errors: Vec<f64> = swept
+        .results
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["relative_error"].as_f64().unwrap())
+        .collect();
+    assert!(errors.last().unwrap() < &errors[0], "{errors:?}");
+    for block in [&field, &swept] {
+        assert_eq!(block.tables.len(), 1);
+        assert!(!block.tables[0].rows.is_empty());
+        for f in &block.figures {
+            assert!(dir.join(&f.file).exists(), "{}", f.file);
+        }
+    }
+}
