@@ -29,6 +29,26 @@ pub enum Lecture1Command {
     /// Pairwise tests, streaming AABBs and brute force on the swelling knot, by triangle
     /// count (wall-clock times, measured side by side; the renderer named).
     Compare(CompareArgs),
+    /// The 2D generalized Voronoi diagram of points, segments and triangles by rasterization
+    /// (Hoff et al. 1999, exact distances written as depth: a reconstruction): per pixel the
+    /// nearest site and its distance, checked against brute force. SITES.json:
+    /// {"sites": [{"point": [x, y]}, {"segment": [[x, y], [x, y]]}, {"triangle": [[x, y],
+    /// [x, y], [x, y]]}, ...], "domain": {"min": [x, y], "size": s}}; the domain (optional,
+    /// the square the pixels cover) defaults to the sites' box made square and grown by a
+    /// tenth of its side on every side. Site ids are list positions; on a tie (equal fp32
+    /// depth) the smaller id wins.
+    Voronoi(VoronoiArgs),
+    /// The unsigned distance field of a mesh on an N^3 grid, slice by slice (DiFi-style, a
+    /// reconstruction), written as float32 .npy indexed [z][y][x]; the grid is the cube over
+    /// the model's box grown by the margin, voxel centres at origin + spacing * (x, y, z).
+    DistanceField(DistanceFieldArgs),
+    /// The swept volume of a model moving along a path (Kim, Varadhan, Lin & Manocha 2003, a
+    /// reconstruction): ruled surfaces and posed faces, their distance field, a flood fill
+    /// from the border, the outer boundary by surface nets. PATH.json: [{"translation": [x,
+    /// y, z], "rotation": [w, x, y, z]}, ...], keyframes equally spaced in time, translation
+    /// interpolated linearly and rotation by slerp; a rotation that is not a unit quaternion
+    /// (within 1e-6) is refused.
+    SweptVolume(SweptVolumeArgs),
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,6 +106,8 @@ pub struct PairwiseArgs {
     pub check: bool,
 }
 
+pub use super::lecture1_fields::{DistanceFieldArgs, SweptVolumeArgs, VoronoiArgs};
+
 #[derive(clap::Args, Debug)]
 pub struct CompareArgs {
     /// Triangle counts of the swelling knot (at its thickest).
@@ -98,6 +120,9 @@ pub fn run(command: &Lecture1Command, ctx: &Context, json: bool) -> anyhow::Resu
         Lecture1Command::SelfCollision(a) => self_collision(a, ctx, json),
         Lecture1Command::Pairwise(a) => pairwise(a, ctx, json),
         Lecture1Command::Compare(a) => compare(a, ctx, json),
+        Lecture1Command::Voronoi(a) => super::lecture1_fields::voronoi(a, ctx, json),
+        Lecture1Command::DistanceField(a) => super::lecture1_fields::distance_field(a, ctx, json),
+        Lecture1Command::SweptVolume(a) => super::lecture1_fields::swept_volume(a, ctx, json),
     }
 }
 

@@ -7,6 +7,7 @@ pub mod crowd;
 pub mod glsl;
 pub mod learn;
 pub mod lecture1;
+pub mod lecture1_fields;
 pub mod lecture3;
 pub mod limits;
 pub mod mass;

@@ -16,8 +16,11 @@
 //! predicate. [`weld`] decides which triangles are neighbours; [`knotted_tube`] is a scene
 //! that folds onto itself. Shaders: `glsl/lecture1/`.
 
+pub mod distance_field;
 pub mod knotted_tube;
 pub mod pairwise;
 pub mod reference;
 pub mod self_collision;
+pub mod swept_volume;
+pub mod voronoi;
 pub mod weld;

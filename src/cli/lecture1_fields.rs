@@ -1,0 +1,336 @@
+//! `classic-gpgpu lecture1 voronoi | distance-field | swept-volume`: distance fields by
+//! rasterization and the swept volumes built on them (`src/lecture1/voronoi`,
+//! `distance_field`, `swept_volume`).
+
+use anyhow::Context as _;
+use classic_gpgpu::files;
+use classic_gpgpu::gl::picture::{picture, Panel, Scale};
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::lecture1::distance_field::compute::ComputeField;
+use classic_gpgpu::lecture1::distance_field::slices::SliceRasterizer;
+use classic_gpgpu::lecture1::distance_field::{reference as field_reference, Grid};
+use classic_gpgpu::lecture1::swept_volume::{self, path::Path3, Options, DEFAULT_POSES};
+use classic_gpgpu::lecture1::voronoi::raster::VoronoiRasterizer;
+use classic_gpgpu::lecture1::voronoi::{reference as voronoi_reference, Sites};
+use classic_gpgpu::mesh::{load_obj, write_obj, Mesh};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(clap::Args, Debug)]
+pub struct VoronoiArgs {
+    /// The sites (JSON; the format is in this command's description).
+    pub sites: PathBuf,
+    /// Pixels per side of the diagram.
+    #[arg(long, default_value_t = 256)]
+    pub resolution: usize,
+    /// The picture: nearest site and distance, each with its colour key.
+    #[arg(long)]
+    pub png: PathBuf,
+    /// The diagram as float32 .npy, shape [N, N, 2] indexed [y][x][c] (y from the bottom):
+    /// c = 0 the nearest site's id, c = 1 its distance.
+    #[arg(long)]
+    pub npy: Option<PathBuf>,
+    /// Overwrite existing output files.
+    #[arg(long)]
+    pub force: bool,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Formulation {
+    /// OpenGL 3.3: slices, rectangles, GL_MIN blending.
+    Classic,
+    /// OpenGL 4.3 compute shader: one invocation per voxel.
+    Compute,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct DistanceFieldArgs {
+    /// The model (OBJ).
+    pub model: PathBuf,
+    /// N: voxels per axis.
+    #[arg(long, default_value_t = 64)]
+    pub resolution: usize,
+    /// The field (float32 .npy, shape [N, N, N], indexed [z][y][x]).
+    #[arg(long)]
+    pub npy: PathBuf,
+    /// Bound the work: voxels farther than D from the mesh hold D (mesh units). Without it
+    /// every voxel holds its exact distance.
+    #[arg(long)]
+    pub clamp: Option<f64>,
+    /// Room around the model's box on every side, mesh units [default: a tenth of the box's
+    /// longest side].
+    #[arg(long)]
+    pub margin: Option<f64>,
+    #[arg(long, value_enum, default_value_t = Formulation::Classic)]
+    pub formulation: Formulation,
+    /// Also compute the field by brute force on the CPU and report the largest difference.
+    #[arg(long)]
+    pub check: bool,
+    /// Overwrite an existing output file.
+    #[arg(long)]
+    pub force: bool,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct SweptVolumeArgs {
+    /// The model (OBJ), a closed mesh.
+    pub model: PathBuf,
+    /// The keyframes (JSON; the format is in this command's description).
+    #[arg(long)]
+    pub path: PathBuf,
+    /// N: voxels per axis of the distance field (at least 16).
+    #[arg(long, default_value_t = 64)]
+    pub resolution: usize,
+    /// The swept volume's boundary (OBJ).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// K: poses sampled along the path.
+    #[arg(long, default_value_t = DEFAULT_POSES)]
+    pub poses: usize,
+    /// ε: how far the ruled quads' triangles may be from the quads, mesh units [default: a
+    /// quarter of a voxel].
+    #[arg(long)]
+    pub epsilon: Option<f64>,
+    /// Overwrite an existing output file.
+    #[arg(long)]
+    pub force: bool,
+}
+
+fn load(path: &Path) -> anyhow::Result<Mesh> {
+    load_obj(path).with_context(|| format!("reading model {}", path.display()))
+}
+
+fn renderer(ctx: &Context) -> String {
+    ctx.info().renderer_line()
+}
+
+pub fn voronoi(args: &VoronoiArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    files::check_output("--png", &args.png, &[&args.sites], args.force, &["png"])?;
+    if let Some(npy) = &args.npy {
+        files::check_output("--npy", npy, &[&args.sites], args.force, &["npy"])?;
+        anyhow::ensure!(
+            !files::same_file(npy, &args.png) && npy != &args.png,
+            "--npy and --png name the same file"
+        );
+    }
+    anyhow::ensure!(args.resolution >= 1, "--resolution must be at least 1");
+    let sites = Sites::load(&args.sites)?;
+    let domain = sites.domain()?;
+    let n = args.resolution;
+    let rasterizer = VoronoiRasterizer::new(ctx)?;
+    let start = Instant::now();
+    let (diagram, timings) = rasterizer.diagram(&sites.sites, domain, n)?;
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let agreement = voronoi_reference::compare(&diagram, &sites.sites);
+    anyhow::ensure!(
+        agreement.agrees(),
+        "the GPU diagram disagrees with brute force: {} pixel(s) given a farther site, largest \
+         distance error {} (tolerance {})",
+        agreement.wrong,
+        agreement.max_distance_error,
+        agreement.tolerance
+    );
+    // The picture: the nearest site and the distance, each on its own scale and key.
+    let ids: Vec<f32> = diagram.site.iter().map(|&s| s as f32).collect();
+    let panels = [
+        Panel {
+            title: "nearest site (id)".into(),
+            values: ids.clone(),
+            width: n as u32,
+            height: n as u32,
+            scale: Scale::fixed(0.0, (sites.sites.len() - 1) as f32),
+        },
+        Panel {
+            title: "distance".into(),
+            values: diagram.distance.clone(),
+            width: n as u32,
+            height: n as u32,
+            scale: Scale::of([diagram.distance.as_slice()]),
+        },
+    ];
+    let side = (2 * n as u32).clamp(256, 1024);
+    let (image, _) = picture(&panels, (2 * side, side + side / 4));
+    files::write_image(&args.png, &image::DynamicImage::ImageRgba8(image))?;
+    if let Some(npy) = &args.npy {
+        let data: Vec<f32> = ids
+            .iter()
+            .zip(&diagram.distance)
+            .flat_map(|(&s, &d)| [s, d])
+            .collect();
+        files::write_npy(npy, &[n, n, 2], &data)?;
+    }
+    let counts = diagram.pixel_counts(sites.sites.len());
+    if json {
+        let report = json!({
+            "renderer": renderer(ctx),
+            "resolution": n,
+            "sites": sites.sites.len(),
+            "domain": domain,
+            "pixel_counts": counts,
+            "agreement": agreement,
+            "tie_rule": "equal fp32 depth (distance / depth range): the smaller site id wins",
+            "timings_ms": {"site_pass_gpu": timings.pass_ms, "readback": timings.readback_ms,
+                           "total_wall": wall_ms},
+            "png": args.png,
+            "npy": args.npy,
+        });
+        println!("{}", serde_json::to_string(&report)?);
+        return Ok(());
+    }
+    println!("renderer: {}", renderer(ctx));
+    println!(
+        "{} sites at {n} x {n}: equal to brute force at {} pixels, ties at {}, largest \
+         distance difference {:.3e} (tolerance {:.3e})",
+        sites.sites.len(),
+        agreement.same_site,
+        agreement.ties,
+        agreement.max_distance_error,
+        agreement.tolerance
+    );
+    for (i, c) in counts.iter().enumerate() {
+        println!("site {i}: {c} pixels");
+    }
+    Ok(())
+}
+
+pub fn distance_field(args: &DistanceFieldArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    files::check_output("--npy", &args.npy, &[&args.model], args.force, &["npy"])?;
+    let mesh = load(&args.model)?;
+    let margin = args.margin.unwrap_or_else(|| Grid::default_margin(&mesh));
+    let grid = Grid::around(&mesh, args.resolution, margin)
+        .with_context(|| format!("the grid of model {}", args.model.display()))?;
+    let start = Instant::now();
+    let (field, timings) = match args.formulation {
+        Formulation::Classic => SliceRasterizer::new(ctx)?.field(&mesh, &grid, args.clamp)?,
+        Formulation::Compute => ComputeField::new(ctx)?.field(&mesh, &grid, args.clamp)?,
+    };
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let check = if args.check {
+        let reference = field_reference::brute_force(&mesh, &grid, args.clamp);
+        let error = field
+            .values
+            .iter()
+            .zip(&reference.values)
+            .map(|(&a, &b)| (a as f64 - b as f64).abs())
+            .fold(0.0, f64::max);
+        Some(error)
+    } else {
+        None
+    };
+    files::write_npy(&args.npy, &grid.shape(), &field.values)?;
+    let (lo, hi) = field
+        .values
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    if json {
+        let report = json!({
+            "renderer": renderer(ctx),
+            "formulation": format!("{:?}", args.formulation).to_lowercase(),
+            "triangles": mesh.triangles.len(),
+            "resolution": grid.n,
+            "shape": grid.shape(),
+            "origin": grid.origin.to_array(),
+            "spacing": vec![grid.spacing; 3],
+            "margin": margin,
+            "clamp": args.clamp,
+            "min": lo,
+            "max": hi,
+            "max_error_vs_cpu": check,
+            "timings_ms": {"passes": timings.passes_ms, "readback": timings.readback_ms,
+                           "upload": timings.upload_ms, "total_wall": wall_ms},
+            "triangle_rectangles_drawn": timings.triangles_drawn,
+            "npy": args.npy,
+        });
+        println!("{}", serde_json::to_string(&report)?);
+        return Ok(());
+    }
+    println!("renderer: {}", renderer(ctx));
+    println!(
+        "{}^3 voxels of side {} from {:?} (margin {margin}{}); distances {lo} .. {hi}",
+        grid.n,
+        grid.spacing,
+        grid.origin.to_array(),
+        args.clamp
+            .map_or(String::new(), |d| format!(", clamped at {d}"))
+    );
+    if let Some(e) = check {
+        println!("largest difference from brute force on the CPU: {e:.3e}");
+    }
+    println!("written to {}", args.npy.display());
+    Ok(())
+}
+
+pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    files::check_output(
+        "--out",
+        &args.out,
+        &[&args.model, &args.path],
+        args.force,
+        &["obj"],
+    )?;
+    let mesh = load(&args.model)?;
+    let path = Path3::load(&args.path)?;
+    let options = Options {
+        resolution: args.resolution,
+        poses: args.poses,
+        epsilon: args.epsilon,
+    };
+    let start = Instant::now();
+    let swept = swept_volume::sweep(ctx, &mesh, &path, options)
+        .with_context(|| format!("sweeping model {}", args.model.display()))?;
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    write_obj(&swept.surface.mesh, &args.out)?;
+    let s = &swept.surface;
+    if json {
+        let report = json!({
+            "renderer": renderer(ctx),
+            "resolution": swept.grid.n,
+            "volume": s.volume,
+            "euler_characteristic": s.euler_characteristic,
+            "watertight": s.watertight,
+            "non_manifold_edges": s.non_manifold_edges,
+            "vertices": s.mesh.positions.len(),
+            "triangles": s.mesh.triangles.len(),
+            "poses": args.poses,
+            "epsilon": swept.epsilon,
+            "primitives": {"face_triangles": swept.primitives.face_triangles,
+                           "ruled_triangles": swept.primitives.ruled_triangles,
+                           "most_splits": swept.primitives.most_splits},
+            "grid": {"origin": swept.grid.origin.to_array(), "spacing": swept.grid.spacing,
+                     "margin": swept.grid.margin},
+            "field_clamp": swept.clamp,
+            "outside_voxels": swept.classification.outside_voxels,
+            "segment_tests": swept.classification.segment_tests,
+            "timings_ms": {"primitives": swept.timings.primitives_ms,
+                           "field_passes_gpu": swept.timings.field.passes_ms,
+                           "field_readback": swept.timings.field.readback_ms,
+                           "field_wall": swept.timings.field_wall_ms,
+                           "classify": swept.timings.classify_ms,
+                           "extract": swept.timings.extract_ms,
+                           "total_wall": wall_ms},
+            "out": args.out,
+        });
+        println!("{}", serde_json::to_string(&report)?);
+        return Ok(());
+    }
+    println!("renderer: {}", renderer(ctx));
+    println!(
+        "swept volume at {}^3: volume {}, Euler characteristic {} ({}, {} non-manifold \
+         edges), {} triangles, written to {}",
+        swept.grid.n,
+        s.volume,
+        s.euler_characteristic,
+        if s.watertight {
+            "watertight"
+        } else {
+            "not watertight"
+        },
+        s.non_manifold_edges,
+        s.mesh.triangles.len(),
+        args.out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,56 @@
+//! The 2D generalized Voronoi diagram of points, segments and triangles by rasterization:
+//! Hoff, Keyser, Lin, Manocha & Culver, "Fast computation of generalized Voronoi diagrams
+//! using graphics hardware", SIGGRAPH 1999 (`lecture1-sources.md`, section 5).
+//!
+//! What the sources confirm: every site's distance function is rendered over the planar grid
+//! and the depth test keeps the nearest site, its id in the colour buffer and its distance in
+//! the depth buffer. What is ours (a reconstruction, as the sources suggest for OpenGL 3.3):
+//! instead of a distance mesh (a polygonal approximation of the distance function with a
+//! bounded error), each site draws one rectangle over the whole domain and every fragment
+//! computes its exact distance to the site and writes it to `gl_FragDepth` ([`raster`],
+//! `glsl/lecture1/voronoi_site.vert` and `voronoi_site.frag`). [`reference`] is brute force
+//! per pixel in f64.
+//!
+//! Ties: sites are drawn in id order and the depth test is LESS, so where two sites' depths
+//! are equal (the same fp32 value of distance / depth range) the site with the smaller id
+//! keeps the pixel; the reference takes the smallest id among exactly equal f64 distances.
+//! The two can differ only where the distances agree within [`Diagram::tolerance`].
+
+pub mod raster;
+pub mod reference;
+pub mod sites;
+
+pub use sites::{Domain, Site, Sites};
+
+/// A diagram: per pixel (rows from the bottom, `n x n`) the nearest site and its distance.
+#[derive(Clone, Debug)]
+pub struct Diagram {
+    pub n: usize,
+    pub domain: Domain,
+    /// The nearest site's index in the input list.
+    pub site: Vec<u32>,
+    /// Its distance from the pixel's centre (input units).
+    pub distance: Vec<f32>,
+    /// The depth values are distance / depth_range (input units).
+    pub depth_range: f64,
+}
+
+impl Diagram {
+    /// Pixels won by each site.
+    pub fn pixel_counts(&self, sites: usize) -> Vec<usize> {
+        let mut counts = vec![0; sites];
+        for &s in &self.site {
+            if let Some(c) = counts.get_mut(s as usize) {
+                *c += 1;
+            }
+        }
+        counts
+    }
+
+    /// How far two distances may differ and still be a tie (input units): fp32 on coordinates
+    /// of at most a few thousand pixels (1e-4 pixel), and four steps of the fp32 depth
+    /// value (2^-22 of the depth range).
+    pub fn tolerance(&self) -> f64 {
+        1e-4 * self.domain.pixel(self.n) + self.depth_range * 2f64.powi(-22)
+    }
+}

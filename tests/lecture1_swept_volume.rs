@@ -1,0 +1,350 @@
+//! Lecture 1, swept volumes (a reconstruction of Kim, Varadhan, Lin & Manocha 2003): the
+//! volume of the extracted boundary converges to the exact swept volume as the resolution
+//! grows (a convex polytope under pure translation sweeps exactly hull(start ∪ end), whose
+//! volume is computed here from the model's faces), a rotation sweeps the expected cylinder,
+//! the path's interpolation and checks, the primitives within ε, the exact segment test, and
+//! the command's output.
+
+use classic_gpgpu::lecture1::swept_volume::classify::segment_meets_triangle;
+use classic_gpgpu::lecture1::swept_volume::path::{Keyframe, Path3};
+use classic_gpgpu::lecture1::swept_volume::primitives::{edges, primitives};
+use classic_gpgpu::lecture1::swept_volume::{sweep, Options, SweptVolume};
+use classic_gpgpu::mesh::generate::cube;
+use classic_gpgpu::mesh::Mesh;
+use common::{classic_gpgpu, context, json_of};
+use glam::{DQuat, DVec3, Vec3};
+
+mod common;
+
+fn keyframe(t: DVec3, q: DQuat) -> Keyframe {
+    Keyframe {
+        translation: t.to_array(),
+        rotation: [q.w, q.x, q.y, q.z],
+    }
+}
+
+fn translation(v: DVec3) -> Path3 {
+    Path3::new(&[
+        keyframe(DVec3::ZERO, DQuat::IDENTITY),
+        keyframe(v, DQuat::IDENTITY),
+    ])
+    .unwrap()
+}
+
+/// A tetrahedron with no face parallel to an axis, outward faces.
+fn tetrahedron() -> Mesh {
+    Mesh::new(
+        vec![
+            Vec3::new(0.1, -0.2, 0.0),
+            Vec3::new(1.2, 0.1, 0.2),
+            Vec3::new(0.3, 1.0, -0.1),
+            Vec3::new(0.4, 0.3, 1.1),
+        ],
+        vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+    )
+}
+
+/// The exact volume swept by convex `mesh` translated by `v`: hull(P ∪ (P + v)) has volume
+/// vol(P) + |v| area(shadow of P along v), and the shadow's area is half the sum over the
+/// faces of |area vector · v̂|.
+fn convex_translation_volume(mesh: &Mesh, v: DVec3) -> f64 {
+    let shadow: f64 = (0..mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = mesh.triangle(t).map(|p| p.as_dvec3());
+            0.5 * (b - a).cross(c - a).dot(v.normalize()).abs()
+        })
+        .sum::<f64>()
+        * 0.5;
+    mesh.signed_volume() + v.length() * shadow
+}
+
+/// A bound on the length of the swept hull's sharp edges: they are among the model's sharp
+/// edges (two faces at an angle) at the start and at the end and its vertices' straight
+/// paths. Surface nets round a sharp edge off by at most about a voxel's square of volume per
+/// unit of length, which bounds the error (faces are placed exactly: the signed field is
+/// exact for a plane).
+fn sharp_edge_length(mesh: &Mesh, v: DVec3) -> f64 {
+    let normals = mesh.face_normals();
+    let sharp: f64 = edges(mesh)
+        .iter()
+        .filter(|&&[a, b]| {
+            let faces: Vec<Vec3> = mesh
+                .triangles
+                .iter()
+                .zip(&normals)
+                .filter(|(t, _)| t.contains(&a) && t.contains(&b))
+                .map(|(_, n)| *n)
+                .collect();
+            faces.windows(2).any(|f| f[0].dot(f[1]) < 1.0 - 1e-6)
+        })
+        .map(|&[a, b]| (mesh.positions[a as usize] - mesh.positions[b as usize]).length() as f64)
+        .sum();
+    2.0 * sharp + mesh.positions.len() as f64 * v.length()
+}
+
+fn run(mesh: &Mesh, path: &Path3, n: usize, poses: usize) -> SweptVolume {
+    let ctx = context();
+    sweep(
+        &ctx,
+        mesh,
+        path,
+        Options {
+            resolution: n,
+            poses,
+            epsilon: None,
+        },
+    )
+    .unwrap()
+}
+
+/// The error at two resolutions: within the bound at each, and smaller at the finer one.
+fn converges(mesh: &Mesh, v: DVec3, resolutions: [usize; 2]) {
+    let exact = convex_translation_volume(mesh, v);
+    let path = translation(v);
+    let mut errors = Vec::new();
+    for n in resolutions {
+        let swept = run(mesh, &path, n, 2);
+        let error = (swept.surface.volume - exact).abs();
+        let bound = sharp_edge_length(mesh, v) * swept.grid.spacing.powi(2);
+        eprintln!(
+            "n = {n}: volume {} (exact {exact}), error {error:.4}, bound {bound:.4}",
+            swept.surface.volume
+        );
+        assert!(
+            swept.surface.watertight,
+            "n = {n}: the surface is not watertight"
+        );
+        assert!(error <= bound, "n = {n}: error {error} above {bound}");
+        errors.push(error);
+    }
+    assert!(
+        errors[1] < errors[0],
+        "the error did not fall with the resolution: {errors:?}"
+    );
+}
+
+#[test]
+fn a_translated_cube_converges_to_one_plus_d() {
+    let mesh = cube(1.0);
+    let v = DVec3::new(1.5, 0.0, 0.0);
+    assert!((convex_translation_volume(&mesh, v) - 2.5).abs() < 1e-6);
+    converges(&mesh, v, [24, 48]);
+}
+
+#[test]
+fn a_translated_tetrahedron_converges_to_its_hull() {
+    converges(&tetrahedron(), DVec3::new(0.8, 0.5, 0.3), [20, 48]);
+}
+
+#[test]
+fn a_quarter_turn_sweeps_a_cylinder() {
+    // A unit cube turning a quarter turn about the z axis through its centre sweeps the disk
+    // of radius sqrt(2)/2 (the corners' circle) times its height: pi / 2.
+    let path = Path3::new(&[
+        keyframe(DVec3::ZERO, DQuat::IDENTITY),
+        keyframe(
+            DVec3::ZERO,
+            DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
+        ),
+    ])
+    .unwrap();
+    let swept = run(&cube(1.0), &path, 40, 17);
+    let exact = std::f64::consts::FRAC_PI_2;
+    let error = (swept.surface.volume - exact).abs() / exact;
+    assert!(error < 0.03, "volume {} vs {exact}", swept.surface.volume);
+    assert!(swept.surface.watertight);
+    assert!(swept.primitives.ruled_triangles > 0);
+}
+
+#[test]
+fn a_model_at_rest_is_its_own_volume() {
+    let path = Path3::new(&[keyframe(DVec3::new(3.0, -2.0, 1.0), DQuat::IDENTITY)]).unwrap();
+    let swept = run(&cube(1.0), &path, 32, 1);
+    assert!(
+        (swept.surface.volume - 1.0).abs() < 12.0 * swept.grid.spacing.powi(2),
+        "{}",
+        swept.surface.volume
+    );
+}
+
+#[test]
+fn the_path_interpolates_and_checks_its_keyframes() {
+    let q = DQuat::from_rotation_y(1.0);
+    let path = Path3::new(&[
+        keyframe(DVec3::ZERO, DQuat::IDENTITY),
+        keyframe(DVec3::new(2.0, 0.0, 0.0), q),
+        keyframe(DVec3::new(2.0, 4.0, 0.0), q),
+    ])
+    .unwrap();
+    let mid = path.at(0.25);
+    assert!((mid.translation - DVec3::new(1.0, 0.0, 0.0)).length() < 1e-12);
+    assert!(mid.rotation.angle_between(DQuat::from_rotation_y(0.5)) < 1e-9);
+    let late = path.at(0.75);
+    assert!((late.translation - DVec3::new(2.0, 2.0, 0.0)).length() < 1e-12);
+    let poses = path.sample(5);
+    assert_eq!(poses.len(), 5);
+    assert_eq!(poses[4].translation, DVec3::new(2.0, 4.0, 0.0));
+    // A quaternion that is not of unit length is refused, not normalised.
+    let err = Path3::parse(
+        r#"[{"translation": [0, 0, 0], "rotation": [1, 0, 0, 0]},
+            {"translation": [1, 0, 0], "rotation": [2, 0, 0, 0]}]"#,
+    )
+    .unwrap_err();
+    assert!(format!("{err:#}").contains("keyframe 1"), "{err:#}");
+    assert!(Path3::parse("[]").is_err());
+    assert!(Path3::parse(r#"[{"translation": [0, 0], "rotation": [1, 0, 0, 0]}]"#).is_err());
+}
+
+#[test]
+fn ruled_quads_are_within_epsilon() {
+    // A unit square edge turning half a turn: a twisted quad, split finely enough.
+    let mesh = Mesh::new(
+        vec![Vec3::ZERO, Vec3::X, Vec3::new(0.0, 1.0, 0.0)],
+        vec![[0, 1, 2]],
+    );
+    let path = Path3::new(&[
+        keyframe(DVec3::ZERO, DQuat::IDENTITY),
+        keyframe(
+            DVec3::Z,
+            DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
+        ),
+    ])
+    .unwrap();
+    let poses = path.sample(2);
+    let epsilon = 0.01;
+    let p = primitives(&mesh, &poses, epsilon).unwrap();
+    assert_eq!(p.face_triangles, 2);
+    let m = p.most_splits;
+    assert_eq!(p.ruled_triangles, 3 * 2 * m * m);
+    // A cell's two triangles are within |twist| / (4 m^2) of the bilinear quad: m is the
+    // smallest split that brings the most twisted edge's quad within ε.
+    let corner = |pose: usize, v: u32| poses[pose].apply(mesh.positions[v as usize].as_dvec3());
+    let twist = edges(&mesh)
+        .iter()
+        .map(|&[a, b]| (corner(0, a) - corner(0, b) - corner(1, a) + corner(1, b)).length())
+        .fold(0.0, f64::max);
+    assert!(twist / (4.0 * (m * m) as f64) <= epsilon);
+    assert!(twist / (4.0 * ((m - 1) * (m - 1)) as f64) > epsilon);
+    assert!(primitives(&mesh, &poses, 0.0).is_err());
+}
+
+#[test]
+fn segments_meet_triangles_exactly() {
+    let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+    let z = |x: f64, y: f64, z0: f64, z1: f64| (DVec3::new(x, y, z0), DVec3::new(x, y, z1));
+    let (p, q) = z(0.2, 0.2, -1.0, 1.0);
+    assert!(segment_meets_triangle(p, q, t));
+    let (p, q) = z(0.7, 0.7, -1.0, 1.0); // beyond the hypotenuse
+    assert!(!segment_meets_triangle(p, q, t));
+    let (p, q) = z(0.5, 0.5, -1.0, 1.0); // on the hypotenuse: touching counts
+    assert!(segment_meets_triangle(p, q, t));
+    let (p, q) = z(0.2, 0.2, 0.5, 1.0); // above it
+    assert!(!segment_meets_triangle(p, q, t));
+    let (p, q) = z(0.2, 0.2, 0.0, 1.0); // ends on it
+    assert!(segment_meets_triangle(p, q, t));
+}
+
+#[test]
+fn swept_volume_command_reports_and_refuses() {
+    let dir = std::env::temp_dir().join(format!("lecture1-swept-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("cube.obj");
+    classic_gpgpu::mesh::write_obj(&cube(1.0), &model).unwrap();
+    let path = dir.join("path.json");
+    std::fs::write(
+        &path,
+        r#"[{"translation": [0, 0, 0], "rotation": [1, 0, 0, 0]},
+            {"translation": [1, 0.5, 0], "rotation": [1, 0, 0, 0]}]"#,
+    )
+    .unwrap();
+    let out = dir.join("swept.obj");
+    let _ = std::fs::remove_file(&out);
+    let args = [
+        "--json",
+        "lecture1",
+        "swept-volume",
+        model.to_str().unwrap(),
+        "--path",
+        path.to_str().unwrap(),
+        "--resolution",
+        "24",
+        "--out",
+        out.to_str().unwrap(),
+        "--poses",
+        "2",
+    ];
+    let report = json_of(&args);
+    assert_eq!(report["resolution"], 24);
+    assert_eq!(report["euler_characteristic"], 2);
+    let volume = report["volume"].as_f64().unwrap();
+    // The written mesh encloses the reported volume.
+    let written = classic_gpgpu::mesh::load_obj(&out).unwrap();
+    assert!((written.signed_volume() - volume).abs() < 1e-3 * volume);
+    let exact = convex_translation_volume(&cube(1.0), DVec3::new(1.0, 0.5, 0.0));
+    assert!((volume - exact).abs() < 0.1 * exact, "{volume} vs {exact}");
+    // The output exists now: refused without --force.
+    let again = classic_gpgpu(&args);
+    assert!(!again.status.success());
+    assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
+    // A non-unit quaternion: a clear error naming the file and the keyframe.
+    std::fs::write(
+        &path,
+        r#"[{"translation": [0, 0, 0], "rotation": [0.5, 0, 0, 0]}]"#,
+    )
+    .unwrap();
+    let mut forced = args.to_vec();
+    forced.push("--force");
+    let bad = classic_gpgpu(&forced);
+    assert!(!bad.status.success());
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        err.contains("path.json") && err.contains("keyframe 0"),
+        "{err}"
+    );
+}
+
+#[test]
+fn report_blocks_render() {
+    use classic_gpgpu::report::lecture1::{distance_field, swept_volume, Setting};
+    use classic_gpgpu::report::timing::Runs;
+    use classic_gpgpu::report::BenchOptions;
+    let ctx = context();
+    let dir = std::env::temp_dir().join(format!("lecture1-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let opts = BenchOptions {
+        gl: &ctx,
+        quick: true,
+        out_dir: dir.clone(),
+        progress: indicatif::MultiProgress::with_draw_target(
+            indicatif::ProgressDrawTarget::hidden(),
+        ),
+        runs: Some(1),
+    };
+    let setting = Setting {
+        opts: &opts,
+        runs: Runs::exactly(1),
+        renderer: ctx.info().renderer_line(),
+        software: ctx.info().is_software(),
+    };
+    let field = distance_field::block(&setting).unwrap();
+    let rows = field.results.as_array().unwrap();
+    assert!(rows
+        .iter()
+        .all(|r| r["max_error_voxels"].as_f64().unwrap() < 1e-3));
+    let swept = swept_volume::block(&setting).unwrap();
+    let errors: Vec<f64> = swept
+        .results
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["relative_error"].as_f64().unwrap())
+        .collect();
+    assert!(errors.last().unwrap() < &errors[0], "{errors:?}");
+    for block in [&field, &swept] {
+        assert_eq!(block.tables.len(), 1);
+        assert!(!block.tables[0].rows.is_empty());
+        for f in &block.figures {
+            assert!(dir.join(&f.file).exists(), "{}", f.file);
+        }
+    }
+}
