@@ -8,6 +8,7 @@ pub mod glsl;
 pub mod learn;
 pub mod lecture1;
 pub mod lecture3;
+pub mod lecture3_light;
 pub mod limits;
 pub mod mass;
 pub mod mesh;

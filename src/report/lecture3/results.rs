@@ -22,6 +22,8 @@ pub struct Lecture3Results {
     pub pyramid: Vec<PyramidRow>,
     pub displacement: DisplacementRun,
     pub light: LightRun,
+    /// The light hierarchy's other uses (normal-aware clustering, subsurface, environment).
+    pub light_uses: super::light_uses::LightUsesRun,
     pub function: FunctionRun,
     pub random: RandomRun,
     pub depth_mask: DepthMaskRun,
