@@ -1,7 +1,10 @@
 // Lecture 3, subsurface scattering on the light hierarchy (after Ki & Oh's hierarchical
 // translucent rendering, reconstructed): the dipole diffusion profile of Jensen et al. 2001 as
 // the gathers' kernel (subsurface.rs, Dipole, is the same on the CPU).
-// Compiled after: glsl/lecture3/vpl_common.glsl
+// Part of the gathers (vpl_gather_tree.frag, vpl_gather_brute.frag), after vpl_common.glsl; the
+// program sets KERNEL to pick one of the three kernels (0 VPL irradiance, 1 the subsurface
+// dipole, 2 directional sky light); this is kernel 1.
+#if KERNEL == 1
 
 uniform vec3 u_sigma_tr;    // sqrt(3 sigma_a sigma_t'), per channel
 uniform vec3 u_alpha_prime; // sigma_s' / sigma_t'
@@ -25,3 +28,5 @@ vec3 light_from(vec3 x, vec3 n, vec3 light_position, vec3 light_normal, vec3 flu
 float light_distance(vec3 x, vec3 n, vec3 light_position) {
     return distance(x, light_position);
 }
+
+#endif

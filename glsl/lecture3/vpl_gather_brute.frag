@@ -1,8 +1,10 @@
 // Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
 // hierarchy): the brute-force gather it is compared with.
-// Compiled after: glsl/lecture3/vpl_common.glsl, glsl/lecture3/vpl_kernel.glsl
+// Compiled after: glsl/lecture3/vpl_common.glsl, #define KERNEL 0, glsl/lecture3/vpl_kernel.glsl
+// Compiled after: glsl/lecture3/subsurface_dipole.glsl, glsl/lecture3/environment_kernel.glsl
 // The brute-force gather the hierarchy is compared with: every VPL of level 0 summed.
-// (The fragment stage is vpl_common.glsl, a kernel, then this file.)
+// (The fragment stage is vpl_common.glsl, the program's #define KERNEL, the three kernel
+// files (one kept by KERNEL), then this file.)
 
 uniform int u_size; // the VPL image's side
 

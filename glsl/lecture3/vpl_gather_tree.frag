@@ -1,14 +1,16 @@
 // Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
 // hierarchy): the hierarchical search (tree traversal) of the lights.
-// Compiled after: glsl/lecture3/vpl_common.glsl, glsl/lecture3/vpl_kernel.glsl
+// Compiled after: glsl/lecture3/vpl_common.glsl, #define KERNEL 0, glsl/lecture3/vpl_kernel.glsl
+// Compiled after: glsl/lecture3/subsurface_dipole.glsl, glsl/lecture3/environment_kernel.glsl
 // Hierarchical search of the light hierarchy [Ki & Oh 2008, reconstructed from the
 // abstract]: a quadtree traversal from the root; a cluster is used as one light when it is
 // small as seen from the receiver (radius < theta x distance, a solid-angle criterion; the
 // kernel says what the distance is) and, with normal-aware clustering, its normals agree (the
 // flux-weighted mean normal is at least u_min_coherence long), else its four children are
-// visited; single VPLs are always used. Clusters without flux are skipped. The traversal needs no stack: nodes are numbered in Morton order per level, and
-// "next" climbs while the node is its parent's last child. (The fragment stage is
-// vpl_common.glsl, a kernel, then this file.)
+// visited; single VPLs are always used. Clusters without flux are skipped. The traversal
+// needs no stack: nodes are numbered in Morton order per level, and "next" climbs while the
+// node is its parent's last child. (The fragment stage is vpl_common.glsl, the program's
+// #define KERNEL, the three kernel files (one kept by KERNEL), then this file.)
 
 uniform int u_top;      // the root's level (the VPL image is 2^top a side)
 uniform float u_theta;  // 0: every VPL individually

@@ -1,7 +1,10 @@
 // Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
 // hierarchy): what a VPL or a cluster of VPLs gives a receiver (light.rs, VplKernel, is the same
 // on the CPU).
-// Compiled after: glsl/lecture3/vpl_common.glsl
+// Part of the gathers (vpl_gather_tree.frag, vpl_gather_brute.frag), after vpl_common.glsl; the
+// program sets KERNEL to pick one of the three kernels (0 VPL irradiance, 1 the subsurface
+// dipole, 2 directional sky light); this is kernel 0.
+#if KERNEL == 0
 
 uniform float u_min_distance; // distances are clamped to this (the usual VPL bias)
 
@@ -22,3 +25,5 @@ vec3 light_from(vec3 x, vec3 n, vec3 light_position, vec3 light_normal, vec3 flu
 float light_distance(vec3 x, vec3 n, vec3 light_position) {
     return distance(x, light_position);
 }
+
+#endif

@@ -21,7 +21,6 @@ use super::clusters::{Cluster, ClusterLevel, GpuClusters};
 use super::gather::KernelShader;
 use super::light::{Kernel, Receiver};
 use crate::gl::GlError;
-use crate::shader;
 use glam::{DVec3, Vec3};
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -104,7 +103,7 @@ impl Sky {
     /// The GPU's kernel (`environment_kernel.glsl`); it has no uniforms.
     pub fn kernel_shader(&self) -> KernelShader {
         KernelShader {
-            source: shader!("glsl/lecture3/environment_kernel.glsl"),
+            define: "#define KERNEL 2\n",
             floats: Vec::new(),
             vectors: Vec::new(),
         }

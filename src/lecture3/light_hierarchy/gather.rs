@@ -64,11 +64,13 @@ impl Gather {
     }
 }
 
-/// A kernel snippet (what one light gives a receiver, and the criterion's distance) and the
-/// uniforms it declares.
+/// A kernel (what one light gives a receiver, and the criterion's distance) and the uniforms
+/// it declares. The three kernel files are compiled into every gather, each inside
+/// `#if KERNEL == k`; `define` picks one.
 #[derive(Clone, Debug)]
 pub struct KernelShader {
-    pub source: ShaderSource<'static>,
+    /// `#define KERNEL k` (0: VPL irradiance, 1: the subsurface dipole, 2: directional sky light).
+    pub define: &'static str,
     pub floats: Vec<(&'static str, f32)>,
     pub vectors: Vec<(&'static str, Vec3)>,
 }
@@ -77,7 +79,7 @@ impl KernelShader {
     /// The VPLs' irradiance (`vpl_kernel.glsl`).
     pub fn vpl() -> KernelShader {
         KernelShader {
-            source: shader!("glsl/lecture3/vpl_kernel.glsl"),
+            define: "#define KERNEL 0\n",
             floats: vec![("u_min_distance", MIN_DISTANCE)],
             vectors: Vec::new(),
         }
@@ -106,16 +108,34 @@ impl GatherPasses {
         kernel: KernelShader,
     ) -> Result<GatherPasses, GlError> {
         let common = shader!("glsl/lecture3/vpl_common.glsl");
-        let k = kernel.source;
+        let k = [
+            ShaderSource {
+                name: "(generated: the kernel's number)",
+                source: kernel.define,
+            },
+            shader!("glsl/lecture3/vpl_kernel.glsl"),
+            shader!("glsl/lecture3/subsurface_dipole.glsl"),
+            shader!("glsl/lecture3/environment_kernel.glsl"),
+        ];
         let texture = Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F)?;
         Ok(GatherPasses {
             tree: Program::rect(
                 ctx,
-                &[common, k, shader!("glsl/lecture3/vpl_gather_tree.frag")],
+                &[
+                    &[common][..],
+                    &k,
+                    &[shader!("glsl/lecture3/vpl_gather_tree.frag")],
+                ]
+                .concat(),
             )?,
             brute: Program::rect(
                 ctx,
-                &[common, k, shader!("glsl/lecture3/vpl_gather_brute.frag")],
+                &[
+                    &[common][..],
+                    &k,
+                    &[shader!("glsl/lecture3/vpl_gather_brute.frag")],
+                ]
+                .concat(),
             )?,
             target: Framebuffer::new(ctx, "gathered light", &[&texture], None)?,
             kernel,

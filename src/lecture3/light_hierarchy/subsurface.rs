@@ -24,7 +24,6 @@ use super::clusters::Cluster;
 use super::gather::KernelShader;
 use super::light::{Kernel, Receiver};
 use crate::lecture3::error::{check_range, Error};
-use crate::shader;
 use glam::{DVec3, Vec3};
 use serde::Serialize;
 
@@ -106,7 +105,7 @@ impl Dipole {
     /// The GPU's kernel (`subsurface_dipole.glsl`) and its uniforms.
     pub fn kernel_shader(&self) -> KernelShader {
         KernelShader {
-            source: shader!("glsl/lecture3/subsurface_dipole.glsl"),
+            define: "#define KERNEL 1\n",
             floats: Vec::new(),
             vectors: vec![
                 ("u_sigma_tr", self.sigma_tr.as_vec3()),
