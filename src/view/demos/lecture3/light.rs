@@ -193,9 +193,8 @@ impl Demo for LightDemo {
         let light_use = self.lighting.light_use;
         vec![
             format!(
-                "lecture 3, light hierarchy, {} [m]: {} {}, theta {} [+/-], {} [n]",
+                "lecture 3, light hierarchy, {} [m]: {VPLS}x{VPLS} {}, theta {} [+/-], {} [n]",
                 light_use.name(),
-                VPLS * VPLS,
                 light_use.lights_name(),
                 fixed(self.theta as f64 / 10.0, 1),
                 if self.normal_aware {
