@@ -13,6 +13,7 @@ use classic_gpgpu::collide::stream_setup::auto_leaf_size_for_pair;
 use classic_gpgpu::collide::tri_test::Predicate;
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::mesh::Mesh;
+use indicatif::ProgressBar;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
@@ -288,8 +289,19 @@ pub struct SceneArgs {
 /// `collide-scene`: a deforming scene frame by frame; `json` prints one object.
 pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     check_scene_counts(args)?;
+    // Millions of triangles take minutes to build and stream: say what is happening.
+    let bar = classic_gpgpu::report::progress_bars(json).add(ProgressBar::new_spinner());
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar.set_message(format!(
+        "building the scene {}{}",
+        args.scene,
+        args.triangles
+            .map(|n| format!(" ({n} triangles a model)"))
+            .unwrap_or_default()
+    ));
     // The error names the scene and lists the scenes.
     let scene = Scene::build(&args.scene, args.triangles)?;
+    bar.set_message("building the streams and uploading them to the GPU");
     let options = args.pipeline.options(ctx, &scene.x.rest, &scene.y.rest)?;
     let (rest_x, rest_y) = (&scene.x.rest, &scene.y.rest);
     let mut collider = match args.pipeline.formulation {
@@ -304,11 +316,14 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
     let mut summary = SceneSummary::default();
     args.profile.start(ctx);
     for f in 0..args.frames {
+        bar.set_message(format!("frame {} of {}", f + 1, args.frames));
         let (px, py) = scene.frame(f);
         let r = collider.frame(&px, &py)?;
         if !json {
-            print!("frame {f:4}: ");
-            print_frame(&r);
+            bar.suspend(|| {
+                print!("frame {f:4}: ");
+                print_frame(&r);
+            });
         }
         summary.add(&r);
         frames.push(json!({
@@ -316,6 +331,7 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
             "scheme": r.scheme, "readback_bytes": r.readback_bytes, "timings_ms": timings_json(&r),
         }));
     }
+    bar.finish_and_clear();
     super::profile::print(ctx);
     if !json {
         println!(

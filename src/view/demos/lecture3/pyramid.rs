@@ -78,17 +78,16 @@ impl Demo for PyramidDemo {
     fn overlay(&self) -> Vec<String> {
         let agreement: Vec<String> = EXTREMES
             .iter()
+            .zip(NAMES)
             .zip(&self.pyramids)
-            .map(|(&extreme, (gpu, cpu))| {
-                let error = largest_difference(gpu, cpu);
-                match (extreme, error) {
-                    (_, None) => format!("{extreme:?}: level sizes DIFFER from the CPU's"),
-                    (Extreme::Mean, Some(e)) => format!("mean: within {e:.1e} of the CPU's"),
-                    (_, Some(e)) if e == 0.0 => format!("{extreme:?}: the CPU's bit for bit"),
-                    (_, Some(e)) => format!("{extreme:?}: DIFFERS from the CPU's by {e:.1e}"),
-                }
-                .to_lowercase()
-            })
+            .map(
+                |((&extreme, name), (gpu, cpu))| match (extreme, largest_difference(gpu, cpu)) {
+                    (_, None) => format!("{name} SIZES DIFFER"),
+                    (Extreme::Mean, Some(e)) => format!("{name} within {e:.1e}"),
+                    (_, Some(0.0)) => format!("{name} exact"),
+                    (_, Some(e)) => format!("{name} DIFFERS by {e:.1e}"),
+                },
+            )
             .collect();
         vec![
             format!(
@@ -99,7 +98,7 @@ impl Demo for PyramidDemo {
             ),
             // Max and min pick a value, so they must equal the CPU's exactly; a mean rounds
             // its sums in a different order.
-            format!("GPU against CPU: {}", agreement.join("; ")),
+            format!("GPU vs CPU: {}", agreement.join(", ")),
         ]
     }
 
