@@ -1,16 +1,21 @@
 // Lecture 3, "hierarchical quadtree search" for indirect light (Ki & Oh 2008, the light
 // hierarchy): the hierarchical search (tree traversal) of the lights.
-// Compiled after: glsl/lecture3/vpl_common.glsl
+// Compiled after: glsl/lecture3/vpl_common.glsl, #define KERNEL 0, glsl/lecture3/vpl_kernel.glsl
+// Compiled after: glsl/lecture3/subsurface_dipole.glsl, glsl/lecture3/environment_kernel.glsl
 // Hierarchical search of the light hierarchy [Ki & Oh 2008, reconstructed from the
 // abstract]: a quadtree traversal from the root; a cluster is used as one light when it is
-// small as seen from the receiver (radius < theta x distance, a solid-angle criterion), else
-// its four children are visited; single VPLs are always used. Clusters without flux are
-// skipped. The traversal needs no stack: nodes are numbered in Morton order per level, and
-// "next" climbs while the node is its parent's last child. (The fragment stage is
-// vpl_common.glsl followed by this file.)
+// small as seen from the receiver (radius < theta x distance, a solid-angle criterion; the
+// kernel says what the distance is) and, with normal-aware clustering, its normals agree (the
+// flux-weighted mean normal is at least u_min_coherence long), else its four children are
+// visited; single VPLs are always used. Clusters without flux are skipped. The traversal
+// needs no stack: nodes are numbered in Morton order per level, and "next" climbs while the
+// node is its parent's last child. (The fragment stage is vpl_common.glsl, the program's
+// #define KERNEL, the three kernel files (one kept by KERNEL), then this file.)
 
 uniform int u_top;      // the root's level (the VPL image is 2^top a side)
 uniform float u_theta;  // 0: every VPL individually
+uniform float u_min_coherence; // normal-aware clustering: a cluster is one light only when its
+                               // mean normal is at least this long (0: the fixed merge)
 
 // The (x, y) of Morton index i: its even bits are x, its odd bits y.
 int compact_bits(int v) {
@@ -25,9 +30,10 @@ int compact_bits(int v) {
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec4 receiver = texelFetch(u_receiver_position, pixel, 0);
-    if (receiver.w == 0.0) discard;
-    vec3 x = receiver.xyz;
     vec3 n = texelFetch(u_receiver_normal, pixel, 0).xyz;
+    // (A receiver has a unit normal; testing it keeps the normal read for kernels without it.)
+    if (receiver.w == 0.0 || dot(n, n) == 0.0) discard;
+    vec3 x = receiver.xyz;
     vec3 sum = vec3(0.0);
     int visited = 0;
     int level = u_top;
@@ -39,10 +45,11 @@ void main() {
         bool next = true;
         if (normal_weight.w > 0.0) {
             vec4 position_radius = texelFetch(u_cluster_position, at, 0);
-            float d = distance(x, position_radius.xyz);
-            if (level == 0 || position_radius.w < u_theta * d) {
+            float d = light_distance(x, n, position_radius.xyz);
+            bool coherent = length(normal_weight.xyz) >= u_min_coherence;
+            if (level == 0 || (position_radius.w < u_theta * d && coherent)) {
                 vec3 flux = texelFetch(u_cluster_flux, at, 0).rgb;
-                sum += irradiance(x, n, position_radius.xyz, normal_weight.xyz, flux);
+                sum += light_from(x, n, position_radius.xyz, normal_weight.xyz, flux);
             } else {
                 level -= 1; // descend to the first child
                 index *= 4;

@@ -4,6 +4,7 @@
 //! and writing PNGs on request. `lecture3-bench` goes through
 //! [`classic_gpgpu::report::bench_command`].
 
+use super::lecture3_light::{self, LightMode};
 use anyhow::{bail, Context as _};
 use classic_gpgpu::files;
 use classic_gpgpu::gl::dump::{texture_png, DumpRange};
@@ -15,8 +16,9 @@ use classic_gpgpu::lecture3::displacement::{exact, Camera, DisplacementRenderer,
 use classic_gpgpu::lecture3::error::check_range;
 use classic_gpgpu::lecture3::function_texture::{Function, FunctionPasses};
 use classic_gpgpu::lecture3::height_map::{load_grey, HeightMap, SHIPPED_SIZE};
+use classic_gpgpu::lecture3::light_hierarchy::normal_cone::compare_clustering;
 use classic_gpgpu::lecture3::light_hierarchy::shade::Terms;
-use classic_gpgpu::lecture3::light_hierarchy::Gather;
+use classic_gpgpu::lecture3::light_hierarchy::{Gather, LightUse};
 use classic_gpgpu::report::lecture3::{
     self as bench,
     images::{gpu_pyramids, pyramid_png},
@@ -193,11 +195,25 @@ pub struct LightArgs {
     /// Criterion: a cluster is one light when its radius < theta x its distance (0: every VPL).
     #[arg(long, default_value_t = 0.5)]
     theta: f32,
-    /// Show only the indirect light in --png.
+    /// Show only the indirect light in --png (--mode indirect).
     #[arg(long)]
     indirect_only: bool,
-    /// Write the gathered indirect irradiance (height x width x 3, RGB, rows from the bottom,
-    /// as the GPU read it back) to DIR/irradiance.npy (DIR is created).
+    /// What the hierarchy is used for.
+    #[arg(long, value_enum, default_value_t = LightMode::Indirect)]
+    mode: LightMode,
+    /// A Wavefront OBJ model: in the room in place of its block (indirect), alone otherwise
+    /// [default: the room's block; the shipped bunny for sss and environment].
+    #[arg(long, value_name = "MODEL.obj")]
+    scene: Option<PathBuf>,
+    /// Exposure of --png in stops (the picture times 2^E); the numbers never change.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    exposure: f32,
+    /// Normal-aware clustering (--mode indirect): a cluster is one light only when its mean
+    /// unit normal is at least this long (0..1; 0: the fixed merge, 0.9: cones of ~26 degrees).
+    #[arg(long, default_value_t = 0.0)]
+    min_coherence: f32,
+    /// Write the gathered irradiance (height x width x 3, RGB, rows from the bottom, as the
+    /// GPU read it back; radiant exitance for sss) to DIR/irradiance.npy (DIR is created).
     #[arg(long)]
     npy: Option<PathBuf>,
     #[command(flatten)]
@@ -532,24 +548,69 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
 }
 
 fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
-    a.output.check(&[])?;
+    let inputs: Vec<&Path> = a.scene.iter().map(PathBuf::as_path).collect();
+    a.output.check(&inputs)?;
     check_size("--size", a.size)?;
-    // The criterion is checked before anything runs.
-    Gather::tree(a.theta)?;
+    // The criterion and the exposure are checked before anything runs.
+    Gather::normal_aware(a.theta, a.min_coherence)?;
+    lecture3_light::check_exposure(a.exposure)?;
     let irradiance_npy = a.npy.as_ref().map(|dir| dir.join("irradiance.npy"));
     if let Some(path) = &irradiance_npy {
-        files::check_output("--npy", path, &[], a.output.force, &["npy"])?;
+        files::check_output("--npy", path, &inputs, a.output.force, &["npy"])?;
     }
+    if a.mode != LightMode::Indirect {
+        if a.indirect_only || a.min_coherence != 0.0 {
+            bail!("--indirect-only and --min-coherence are for --mode indirect");
+        }
+        let bar = progress(
+            json,
+            "lecture 3 light: samples, clusters, gathers (GPU and CPU)",
+        );
+        let (value, text, written) = lecture3_light::run_use(
+            &lecture3_light::UseArgs {
+                mode: a.mode,
+                model: a.scene.as_deref(),
+                lights: a.vpls,
+                size: a.size,
+                theta: a.theta,
+                exposure: a.exposure,
+                npy: irradiance_npy,
+                png: a.output.png.as_deref(),
+            },
+            ctx,
+        )?;
+        bar.finish_and_clear();
+        let renderer = ctx.info().renderer_line();
+        return print(
+            json,
+            json!({ "renderer": renderer, "light": value, "png": a.output.png, "written": written }),
+            format!("{text}\n(renderer: {renderer})") + &wrote_lines(&written),
+        );
+    }
+    let scene = lecture3_light::scene(&LightUse::Indirect, a.scene.as_deref())?;
     let bar = progress(
         json,
         "lecture 3 light: VPLs, clusters, gathers (tree and brute force)",
     );
-    let (run, lighting, ()) =
-        bench::light_run(ctx, a.vpls, a.size, a.size, &[a.theta], RUNS, |_| Ok(()))?;
+    let (run, lighting, ()) = bench::light_run_in(
+        ctx,
+        scene,
+        a.vpls,
+        (a.size, a.size),
+        &[a.theta],
+        RUNS,
+        |_| Ok(()),
+    )?;
+    // Normal-aware clustering beside the fixed merge; leaves its gather in the target.
+    let clustering = if a.min_coherence > 0.0 {
+        compare_clustering(&lighting, &[a.theta], a.min_coherence)?.pop()
+    } else {
+        None
+    };
     bar.finish_and_clear();
     let mut written = Vec::new();
     if let Some(path) = &irradiance_npy {
-        // `light_run` left the gather of `a.theta` in the target.
+        // `light_run` (or the clustering comparison) left the gather of `a.theta` in the target.
         let rgb: Vec<f32> = lighting
             .gathers
             .read()?
@@ -566,7 +627,10 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         } else {
             Terms::Both
         };
-        lighting.shade(terms, 1.5)?;
+        lighting.shade(
+            terms,
+            lecture3_light::exposure(&LightUse::Indirect, a.exposure),
+        )?;
         texture_png(lighting.shade.target.color(0), png, DumpRange::Auto)?;
         written.push(png.clone());
     }
@@ -574,7 +638,7 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let renderer = ctx.info().renderer_line();
     print(
         json,
-        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "light": run, "png": a.output.png, "written": written }),
+        json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "light": run, "clustering": clustering, "png": a.output.png, "written": written }),
         format!(
             "{} VPLs, {} receivers; theta {}: {:.1} nodes per receiver, relative RMS error \
              {:.2e} against the brute force\nGPU: tree {:.2} ms, brute force {:.2} ms; CPU \
@@ -590,7 +654,18 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             run.brute_cpu_ms,
             run.brute_cpu_ms / row.gpu_ms,
             run.brute_cpu_ms / run.brute_gpu_ms
-        ) + &wrote_lines(&written),
+        ) + &clustering.map_or(String::new(), |c| {
+            format!(
+                "\nnormal-aware clustering (mean normal at least {} long): relative RMS error \
+                 {:.2e} against {:.2e} for the fixed merge, {:.1} lights summed per receiver \
+                 against {:.1}",
+                c.min_coherence,
+                c.normal_aware_error,
+                c.fixed_error,
+                c.normal_aware_lights,
+                c.fixed_lights
+            )
+        }) + &wrote_lines(&written),
     )
 }
 

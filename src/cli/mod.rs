@@ -9,6 +9,7 @@ pub mod learn;
 pub mod lecture1;
 pub mod lecture1_fields;
 pub mod lecture3;
+pub mod lecture3_light;
 pub mod limits;
 pub mod mass;
 pub mod mesh;

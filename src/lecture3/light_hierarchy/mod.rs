@@ -16,16 +16,29 @@
 //!
 //! Steps, one file each: [`scene`], [`vpl_image`], [`clusters`], [`gbuffer`], [`gather`],
 //! [`shade`]; [`pipeline`] runs them in order; [`light`] is the CPU reference (f64).
+//!
+//! The hierarchy's other uses, all reconstructions (the abstract names them without saying
+//! how): [`normal_cone`], a criterion that also looks at the spread of a cluster's normals;
+//! [`subsurface`], the lecture's translucency demo with the dipole of Jensen et al. 2001
+//! summed over irradiance samples; [`environment`], a procedural sky as directional lights
+//! clustered on direction; [`uses`] says what each puts in level 0 and gathers; [`model`] makes
+//! a scene from an OBJ file.
 
 pub mod clusters;
+pub mod environment;
 pub mod gather;
 pub mod gbuffer;
 pub mod light;
+pub mod model;
+pub mod normal_cone;
 pub mod pipeline;
 pub mod scene;
 pub mod shade;
+pub mod subsurface;
+pub mod uses;
 pub mod vpl_image;
 
 pub use gather::Gather;
 pub use pipeline::IndirectLighting;
 pub use scene::Scene;
+pub use uses::LightUse;

@@ -6,6 +6,7 @@ use super::gather::{Gather, GatherPasses};
 use super::gbuffer::GBuffer;
 use super::scene::Scene;
 use super::shade::{ShadePass, Terms};
+use super::uses::LightUse;
 use super::vpl_image::VplPass;
 use crate::gl::{Context, VertexArray};
 use crate::lecture3::error::Error;
@@ -13,6 +14,8 @@ use crate::lecture3::error::Error;
 /// The GPU side of technique 3 for one scene, VPL image size and picture size.
 pub struct IndirectLighting {
     pub scene: Scene,
+    /// What the hierarchy holds and gathers (indirect light for [`IndirectLighting::new`]).
+    pub light_use: LightUse,
     vertices: VertexArray,
     vertex_count: usize,
     vpl_pass: VplPass,
@@ -33,6 +36,22 @@ impl IndirectLighting {
         width: u32,
         height: u32,
     ) -> Result<IndirectLighting, Error> {
+        IndirectLighting::for_use(ctx, LightUse::Indirect, scene, vpl_size, width, height)
+    }
+
+    /// The same steps for another use of the hierarchy: `vpl_size` is then the side of the
+    /// irradiance-sample image or of the sky's lat-long grid.
+    pub fn for_use(
+        ctx: &Context,
+        light_use: LightUse,
+        scene: Scene,
+        vpl_size: u32,
+        width: u32,
+        height: u32,
+    ) -> Result<IndirectLighting, Error> {
+        if let LightUse::Subsurface(m) = &light_use {
+            m.check()?;
+        }
         if !vpl_size.is_power_of_two() || !(2..=128).contains(&vpl_size) {
             return Err(Error::input(
                 "--vpls",
@@ -46,14 +65,21 @@ impl IndirectLighting {
             vpl_pass: VplPass::new(ctx)?,
             clusters: GpuClusters::new(ctx, vpl_size)?,
             gbuffer: GBuffer::new(ctx, width, height)?,
-            gathers: GatherPasses::new(ctx, width, height)?,
+            gathers: GatherPasses::with_kernel(ctx, width, height, light_use.kernel_shader())?,
             shade: ShadePass::new(ctx, width, height)?,
             scene,
+            light_use,
         })
     }
 
-    /// VPLs from the light into level 0, then the hierarchy above it.
+    /// VPLs (or irradiance samples) from the light into level 0, or the sky's lights
+    /// uploaded there, then the hierarchy above it.
     pub fn build_lights(&self) -> Result<(), Error> {
+        if let LightUse::Environment(sky) = &self.light_use {
+            sky.upload(&self.clusters)?;
+            self.clusters.build()?;
+            return Ok(());
+        }
         self.vpl_pass.draw(
             &self.scene,
             &self.vertices,

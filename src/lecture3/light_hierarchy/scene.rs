@@ -24,6 +24,14 @@ impl Quad {
     }
 }
 
+/// One triangle with a normal per corner (a model's, [`super::model`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle {
+    pub positions: [Vec3; 3],
+    pub normals: [Vec3; 3],
+    pub albedo: Vec3,
+}
+
 /// A perspective view: the spot light's (its frustum is its cone) or the camera's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View {
@@ -49,6 +57,8 @@ impl View {
 #[derive(Clone, Debug)]
 pub struct Scene {
     pub quads: Vec<Quad>,
+    /// Triangles besides the quads (a model from an OBJ file).
+    pub triangles: Vec<Triangle>,
     /// The spot light: a point light emitting `intensity` (per steradian, RGB) inside the
     /// square frustum of this view, nothing outside it.
     pub light: View,
@@ -87,6 +97,7 @@ impl Scene {
         ]);
         Scene {
             quads,
+            triangles: Vec::new(),
             light: View {
                 eye: Vec3::new(0.25, 0.92, 0.85),
                 target: Vec3::new(0.7, 0.25, 0.3),
@@ -101,8 +112,17 @@ impl Scene {
         }
     }
 
-    /// Two triangles per quad, each vertex `[position, normal, albedo]`.
+    /// Two triangles per quad, then the triangles, each vertex `[position, normal, albedo]`.
     pub fn vertices(&self) -> Vec<[[f32; 3]; 3]> {
+        let triangles = self.triangles.iter().flat_map(|t| {
+            (0..3).map(|k| {
+                [
+                    t.positions[k].to_array(),
+                    t.normals[k].to_array(),
+                    t.albedo.to_array(),
+                ]
+            })
+        });
         self.quads
             .iter()
             .flat_map(|q| {
@@ -116,6 +136,7 @@ impl Scene {
                 [c[0], c[1], c[2], c[0], c[2], c[3]]
                     .map(|p| [p.to_array(), n.to_array(), q.albedo.to_array()])
             })
+            .chain(triangles)
             .collect()
     }
 

@@ -133,6 +133,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     bar.finish_and_clear();
     let bar = stage("light hierarchy");
     let light = light(opts, runs)?;
+    let light_uses = super::light_uses::measure(opts, ctx)?;
     bar.finish_and_clear();
     let bar = stage("function in a texture");
     let function = function(ctx, quick, runs)?;
@@ -172,6 +173,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         displacement,
         prefilter,
         light,
+        light_uses,
         function,
         random,
         depth_mask,
@@ -411,7 +413,28 @@ pub fn light_run<T>(
     runs: Runs,
     with_brute_force: impl FnOnce(&IndirectLighting) -> anyhow::Result<T>,
 ) -> anyhow::Result<(LightRun, IndirectLighting, T)> {
-    let lighting = IndirectLighting::new(ctx, Scene::room(), vpl_side, width, height)?;
+    light_run_in(
+        ctx,
+        Scene::room(),
+        vpl_side,
+        (width, height),
+        thetas,
+        runs,
+        with_brute_force,
+    )
+}
+
+/// [`light_run`] on `scene`.
+pub fn light_run_in<T>(
+    ctx: &Context,
+    scene: Scene,
+    vpl_side: u32,
+    (width, height): (u32, u32),
+    thetas: &[f32],
+    runs: Runs,
+    with_brute_force: impl FnOnce(&IndirectLighting) -> anyhow::Result<T>,
+) -> anyhow::Result<(LightRun, IndirectLighting, T)> {
+    let lighting = IndirectLighting::new(ctx, scene, vpl_side, width, height)?;
     let build = gpu_ms(ctx, runs, || Ok(lighting.build_lights()?))?;
     lighting.draw_receivers()?;
     lighting.warm_up_gathers()?;

@@ -13,6 +13,7 @@ pub fn claims(r: &Lecture3Results) -> Vec<Claim> {
         frame_rate(r),
         resolution_independence(r),
         few_light_groups(&r.light),
+        other_uses(&r.light_uses),
         lookup_cheaper(r),
         random_numbers(r),
         depth_test_masks(r),
@@ -194,6 +195,53 @@ fn few_light_groups(l: &LightRun) -> Claim {
             row.mean_nodes < l.vpls as f64 / 4.0
                 && row.relative_rms_error < LIGHT_ERROR
                 && row.gpu_ms < l.brute_gpu_ms
+        })),
+    }
+}
+
+/// Subsurface scattering and environment light: for each, the criterion that sums the fewest
+/// lights within the error allowed; the claim holds when both sum under a quarter of their
+/// lights.
+fn other_uses(u: &super::light_uses::LightUsesRun) -> Claim {
+    let best = |run: &super::light_uses::UseRun| {
+        run.rows
+            .iter()
+            .filter(|row| row.theta > 0.0 && row.relative_rms_error <= LIGHT_ERROR)
+            .min_by(|a, b| a.mean_gathered.total_cmp(&b.mean_gathered))
+            .map(|row| (row.clone(), run.lights))
+    };
+    let found = [best(&u.subsurface), best(&u.environment)];
+    let measured = [&u.subsurface, &u.environment]
+        .iter()
+        .zip(&found)
+        .map(|(run, found)| match found {
+            Some((row, lights)) => format!(
+                "{}: theta {}, {:.0} summed per receiver for {} lights, error {:.1}%",
+                run.mode,
+                row.theta,
+                row.mean_gathered,
+                lights,
+                100.0 * row.relative_rms_error
+            ),
+            None => format!(
+                "{}: no criterion within {:.0}% relative RMS error",
+                run.mode,
+                100.0 * LIGHT_ERROR
+            ),
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    Claim {
+        claim: "3. The same hierarchy gathers subsurface scattering and environment light from \
+                a few light groups"
+            .into(),
+        paper: "Ki & Oh 2008 abstract: environment light, indirect light and subsurface \
+                scattering approximated by a small number of light groups"
+            .into(),
+        measured,
+        holds: Some(found.iter().all(|f| {
+            f.as_ref()
+                .is_some_and(|(row, lights)| row.mean_gathered < *lights as f64 / 4.0)
         })),
     }
 }

@@ -55,8 +55,30 @@ pub fn rows() -> Vec<Fidelity> {
             "Ki & Oh 2008 abstract; lecture 3 (quadtree search)",
             "glsl/lecture3/vpl_gather_tree.frag",
             "reconstruction: criterion radius < theta x distance, a stackless Morton-order walk, \
-             distances clamped to 0.1; occlusion ignored as in the paper; no subsurface \
-             scattering or environment light",
+             distances clamped to 0.1; occlusion ignored as in the paper",
+        ),
+        Fidelity::new(
+            "normal-aware clustering",
+            "Ki & Oh 2008 abstract (clustering unspecified)",
+            "src/lecture3/light_hierarchy/normal_cone.rs",
+            "ours: a cluster is one light only when its mean unit normal is at least 0.9 long as \
+             well as small from the receiver; the pyramid itself is unchanged",
+        ),
+        Fidelity::new(
+            "subsurface scattering from the light hierarchy (the lecture's demo)",
+            "Ki & Oh 2008 abstract; Ki & Oh, hierarchical translucent rendering (text not \
+             available); Jensen et al. 2001",
+            "src/lecture3/light_hierarchy/subsurface.rs, glsl/lecture3/subsurface_dipole.glsl",
+            "reconstruction: irradiance samples from the spot light's image, Jensen's dipole \
+             (skin 1, 1 unit = 20 mm) summed by the same tree search; Fresnel transmission \
+             left out; no single scattering",
+        ),
+        Fidelity::new(
+            "environment light from the light hierarchy",
+            "Ki & Oh 2008 abstract",
+            "src/lecture3/light_hierarchy/environment.rs, glsl/lecture3/environment_kernel.glsl",
+            "reconstruction: a procedural sky on a lat-long grid as directional lights, \
+             clustered on direction; criterion radius < theta |n . c|; visibility ignored",
         ),
         Fidelity::new(
             "a function stored in a texture",

@@ -14,6 +14,7 @@ mod function_table;
 mod histogram_table;
 pub mod images;
 mod light;
+pub mod light_uses;
 mod octree;
 mod prefilter;
 mod pyramid_table;
@@ -56,6 +57,7 @@ impl Paper for Lecture3 {
         figures.extend(displacement_artifacts::figures(opts, results)?);
         figures.push(displacement_speed::figure());
         figures.extend(light::figures(opts, results)?);
+        figures.push(light_uses::figure());
         figures.extend(random_table::figures(opts, results)?);
         figures.extend(depth_mask_table::figures(opts, results)?);
         Ok(Section {
@@ -67,6 +69,8 @@ impl Paper for Lecture3 {
                 prefilter::table(results),
                 octree::table(results),
                 light::table(results),
+                light_uses::clustering_table(results),
+                light_uses::uses_table(results),
                 function_table::error_table(results),
                 function_table::speed_table(results),
                 random_table::table(results),

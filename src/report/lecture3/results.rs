@@ -26,6 +26,8 @@ pub struct Lecture3Results {
     /// Octrees on the GPU: the octree cast against the flat walk, per grid resolution.
     pub octree: Vec<super::octree::OctreeRow>,
     pub light: LightRun,
+    /// The light hierarchy's other uses (normal-aware clustering, subsurface, environment).
+    pub light_uses: super::light_uses::LightUsesRun,
     pub function: FunctionRun,
     pub random: RandomRun,
     pub depth_mask: DepthMaskRun,

@@ -1,0 +1,109 @@
+//! A scene from a model (an OBJ file, or the shipped bunny): the mesh scaled so that its
+//! largest side is half the room, standing on the floor near the room's middle, with smooth
+//! normals (area-weighted vertex normals; a triangle's own normal where a vertex has none),
+//! turned outward if the file winds it inward. For indirect light it replaces the room's block;
+//! for subsurface scattering and environment light it stands alone, seen by a camera and a
+//! spot light placed for it.
+
+use super::scene::{Scene, Triangle, View};
+use crate::lecture3::error::Error;
+use crate::mesh::{self, Mesh};
+use glam::Vec3;
+use std::path::Path;
+
+/// The model's largest side, scene units.
+pub const MODEL_SIZE: f32 = 0.5;
+
+/// Where the model stands: the middle of its footprint, on the floor.
+const FOOT: Vec3 = Vec3::new(0.6, 0.0, 0.4);
+
+/// The OBJ file at `path`, as [`model_triangles`] places it; errors name the file.
+pub fn load_model(path: &Path, albedo: Vec3) -> Result<Vec<Triangle>, Error> {
+    let mesh = mesh::obj::load_obj(path).map_err(|e| Error::input("--scene", e.to_string()))?;
+    model_triangles(&mesh, &path.display().to_string(), albedo)
+}
+
+/// The mesh scaled and placed (see the module documentation), every triangle `albedo`.
+pub fn model_triangles(mesh: &Mesh, source: &str, albedo: Vec3) -> Result<Vec<Triangle>, Error> {
+    if mesh.triangle_count() == 0 {
+        return Err(Error::input(
+            "--scene",
+            format!("{source}: the model has no triangles"),
+        ));
+    }
+    let bounds = mesh.bounds();
+    let side = bounds.size().max_element();
+    if !side.is_finite() || side <= 0.0 {
+        return Err(Error::input(
+            "--scene",
+            format!("{source}: the model has no extent (every vertex at one point)"),
+        ));
+    }
+    let mesh = if mesh.is_outward() {
+        mesh.clone()
+    } else {
+        mesh.flipped()
+    };
+    let scale = MODEL_SIZE / side;
+    let centre = bounds.center();
+    let offset = FOOT - Vec3::new(centre.x, bounds.min.y, centre.z) * scale;
+    let vertex_normals = mesh.vertex_normals();
+    let face_normals = mesh.face_normals();
+    let triangles: Vec<Triangle> = mesh
+        .triangles
+        .iter()
+        .zip(&face_normals)
+        .filter(|(_, face)| face.length_squared() > 0.0)
+        .map(|(tri, &face)| {
+            let corner = |k: usize| tri[k] as usize;
+            let normal = |k: usize| {
+                let n = vertex_normals[corner(k)];
+                if n.length_squared() > 0.0 {
+                    n
+                } else {
+                    face
+                }
+            };
+            Triangle {
+                positions: [0, 1, 2].map(|k| mesh.positions[corner(k)] * scale + offset),
+                normals: [0, 1, 2].map(normal),
+                albedo,
+            }
+        })
+        .collect();
+    if triangles.is_empty() {
+        return Err(Error::input(
+            "--scene",
+            format!("{source}: every triangle of the model has zero area"),
+        ));
+    }
+    Ok(triangles)
+}
+
+/// The room with `model` in place of its block.
+pub fn room_with(model: Vec<Triangle>) -> Scene {
+    let mut scene = Scene::room();
+    scene.quads.truncate(5); // floor, ceiling, back, left, right: the block goes
+    scene.triangles = model;
+    scene
+}
+
+/// `model` alone, lit by a spot light from the upper right front and seen from the front.
+pub fn model_alone(model: Vec<Triangle>) -> Scene {
+    let centre = FOOT + Vec3::Y * (0.5 * MODEL_SIZE);
+    let mut scene = Scene::room();
+    scene.quads.clear();
+    scene.triangles = model;
+    scene.light = View {
+        eye: centre + Vec3::new(0.7, 0.6, 0.35),
+        target: centre,
+        fov_y: 45f32.to_radians(),
+    };
+    scene.intensity = Vec3::splat(1.0);
+    scene.camera = View {
+        eye: centre + Vec3::new(0.0, 0.1, 1.2),
+        target: centre,
+        fov_y: 35f32.to_radians(),
+    };
+    scene
+}

@@ -1,0 +1,375 @@
+//! Technique 3's other uses of the light hierarchy, measured: normal-aware clustering against
+//! the fixed merge on the room, subsurface scattering and environment light on the bunny, each
+//! tree search against the brute-force sum, GPU against the CPU reference (f64).
+
+use super::images::Rgba;
+use super::results::Lecture3Results;
+use crate::gl::Context;
+use crate::lecture3::light_hierarchy::light::{brute_force_with, tree_gather_with};
+use crate::lecture3::light_hierarchy::model::{model_alone, model_triangles};
+use crate::lecture3::light_hierarchy::normal_cone::{
+    compare_clustering, relative_rms, ClusteringRow, MIN_COHERENCE,
+};
+use crate::lecture3::light_hierarchy::shade::Terms;
+use crate::lecture3::light_hierarchy::{Gather, IndirectLighting, LightUse, Scene};
+use crate::mesh::obj::load_bunny;
+use crate::report::{BenchOptions, Figure, Table};
+use glam::{DVec3, Vec3};
+use serde::Serialize;
+
+/// One use of the hierarchy on one scene: the brute force, then each criterion.
+#[derive(Clone, Debug, Serialize)]
+pub struct UseRun {
+    /// `indirect`, `sss` or `environment`.
+    pub mode: String,
+    /// Lights (VPLs, irradiance samples or sky directions) that carry light.
+    pub lights: usize,
+    /// The side of their image.
+    pub side: u32,
+    pub image: (u32, u32),
+    pub receivers: usize,
+    /// Largest |GPU - CPU| of the brute-force sums, over the largest CPU value.
+    pub brute_gpu_vs_cpu: f64,
+    pub rows: Vec<UseRow>,
+}
+
+/// One criterion of a [`UseRun`].
+#[derive(Clone, Debug, Serialize)]
+pub struct UseRow {
+    pub theta: f32,
+    /// Normal-aware clustering's coherence (0: the fixed merge).
+    pub min_coherence: f32,
+    /// Relative RMS error of the GPU tree search against the GPU brute force.
+    pub relative_rms_error: f64,
+    /// The same on the CPU (f64): tree against brute force.
+    pub cpu_relative_rms_error: f64,
+    /// Largest |GPU - CPU| of the tree search over the largest CPU value, on the receivers
+    /// whose decisions are not within 1e-4 of a threshold.
+    pub tree_gpu_vs_cpu: f64,
+    /// Receivers left out of that comparison (a decision within 1e-4 of its threshold).
+    pub marginal: usize,
+    /// Nodes visited per receiver (GPU).
+    pub mean_nodes: f64,
+    /// Lights or clusters summed per receiver (CPU traversal of the same hierarchy).
+    pub mean_gathered: f64,
+}
+
+/// Runs `light_use` on `scene`: lights of a `side x side` image, `width x height` receivers,
+/// the brute force and each theta, GPU and CPU. The lighting is returned with the last
+/// criterion's gather in its target.
+pub fn use_run(
+    ctx: &Context,
+    light_use: LightUse,
+    scene: Scene,
+    side: u32,
+    (width, height): (u32, u32),
+    thetas: &[f32],
+    min_coherence: f32,
+) -> anyhow::Result<(UseRun, IndirectLighting)> {
+    let lighting = IndirectLighting::for_use(ctx, light_use, scene, side, width, height)?;
+    lighting.build_lights()?;
+    lighting.draw_receivers()?;
+    lighting.gather(Gather::BruteForce)?;
+    let brute = lighting.gathers.read()?;
+    let receivers = lighting.gbuffer.receivers()?;
+    let covered: Vec<bool> = receivers.iter().map(Option::is_some).collect();
+    let levels = lighting.clusters.read_atlas_levels()?;
+    let kernel = light_use.kernel();
+    let cpu_brute: Vec<[f32; 4]> = receivers
+        .iter()
+        .map(|r| r.map_or([0.0; 4], |r| rgb(brute_force_with(&r, &levels[0], &kernel))))
+        .collect();
+    let largest = cpu_brute
+        .iter()
+        .flat_map(|c| [c[0], c[1], c[2]])
+        .fold(0.0f32, f32::max)
+        .max(f32::MIN_POSITIVE) as f64;
+    let difference = |a: &[f32; 4], b: &[f32; 4]| -> f64 {
+        (0..3)
+            .map(|c| (a[c] as f64 - b[c] as f64).abs())
+            .fold(0.0, f64::max)
+    };
+    let brute_gpu_vs_cpu = brute
+        .iter()
+        .zip(&cpu_brute)
+        .map(|(g, c)| difference(g, c))
+        .fold(0.0, f64::max)
+        / largest;
+    let count = covered.iter().filter(|&&c| c).count();
+    let mut rows = Vec::with_capacity(thetas.len());
+    for &theta in thetas {
+        let gather = Gather::normal_aware(theta, min_coherence)?;
+        let criterion = gather.criterion().expect("a tree gather");
+        lighting.gather(gather)?;
+        let gpu = lighting.gathers.read()?;
+        let cpu: Vec<_> = receivers
+            .iter()
+            .map(|r| r.map(|r| tree_gather_with(&r, &levels, criterion, &kernel)))
+            .collect();
+        let cpu_rgb: Vec<[f32; 4]> = cpu
+            .iter()
+            .map(|t| t.map_or([0.0; 4], |t| rgb(t.irradiance)))
+            .collect();
+        let judged = || {
+            cpu.iter()
+                .zip(&gpu)
+                .filter_map(|(t, g)| Some((t.as_ref()?, g)))
+        };
+        let marginal = judged().filter(|(t, _)| t.margin < 1e-4).count();
+        let tree_gpu_vs_cpu = judged()
+            .filter(|(t, _)| t.margin >= 1e-4)
+            .map(|(t, g)| difference(g, &rgb(t.irradiance)))
+            .fold(0.0, f64::max)
+            / largest;
+        rows.push(UseRow {
+            theta,
+            min_coherence,
+            relative_rms_error: relative_rms(&gpu, &brute, &covered),
+            cpu_relative_rms_error: relative_rms(&cpu_rgb, &cpu_brute, &covered),
+            tree_gpu_vs_cpu,
+            marginal,
+            mean_nodes: gpu
+                .iter()
+                .zip(&covered)
+                .filter(|(_, &c)| c)
+                .map(|(g, _)| g[3] as f64)
+                .sum::<f64>()
+                / count.max(1) as f64,
+            mean_gathered: judged().map(|(t, _)| t.gathered as f64).sum::<f64>()
+                / count.max(1) as f64,
+        });
+    }
+    for value in rows
+        .iter()
+        .flat_map(|r| {
+            [
+                r.relative_rms_error,
+                r.cpu_relative_rms_error,
+                r.tree_gpu_vs_cpu,
+            ]
+        })
+        .chain([brute_gpu_vs_cpu])
+    {
+        if !value.is_finite() {
+            anyhow::bail!(
+                "lecture 3 light ({}): an error measure is not finite ({value})",
+                light_use.name()
+            );
+        }
+    }
+    let lights = levels[0].nodes.iter().filter(|l| l.weight > 0.0).count();
+    Ok((
+        UseRun {
+            mode: light_use.name().into(),
+            lights,
+            side,
+            image: (width, height),
+            receivers: count,
+            brute_gpu_vs_cpu,
+            rows,
+        },
+        lighting,
+    ))
+}
+
+fn rgb(v: DVec3) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, 0.0]
+}
+
+/// The picture's base exposure (multiplier before `--exposure`'s stops) per use: indirect
+/// light as before; subsurface light is dimmer and the sky brighter.
+pub fn base_exposure(light_use: &LightUse) -> f32 {
+    match light_use {
+        LightUse::Indirect => 1.5,
+        LightUse::Subsurface(_) => 4.0,
+        LightUse::Environment(_) => 0.6,
+    }
+}
+
+/// The default scene of a use: the room for indirect light, the shipped bunny alone for the
+/// others (white for subsurface scattering: its samples carry the power that enters).
+pub fn default_scene(light_use: &LightUse) -> Scene {
+    match light_use {
+        LightUse::Indirect => Scene::room(),
+        _ => model_alone(
+            model_triangles(&load_bunny(), "the shipped bunny", model_albedo(light_use))
+                .expect("the shipped bunny has triangles"),
+        ),
+    }
+}
+
+/// The albedo a model gets in a use.
+pub fn model_albedo(light_use: &LightUse) -> Vec3 {
+    match light_use {
+        LightUse::Subsurface(_) => Vec3::ONE,
+        _ => Vec3::splat(0.75),
+    }
+}
+
+/// What the report measures: the clustering comparison on the room and the two other uses on
+/// the bunny.
+#[derive(Clone, Debug, Serialize)]
+pub struct LightUsesRun {
+    pub clustering: Vec<ClusteringRow>,
+    pub subsurface: UseRun,
+    pub environment: UseRun,
+}
+
+/// The criteria of the uses' tables.
+pub const USE_THETAS: [f32; 4] = [0.0, 0.25, 0.5, 1.0];
+/// The criteria of the clustering table.
+pub const CLUSTERING_THETAS: [f32; 4] = [0.25, 0.5, 1.0, 2.0];
+/// The uses' picture in the report.
+pub const USES_PNG: &str = "lecture3_light_uses.png";
+
+/// Measures the uses and writes their picture (subsurface scattering and environment light,
+/// brute force and the coarsest criterion) into the report's folder.
+pub fn measure(opts: &BenchOptions, ctx: &Context) -> anyhow::Result<LightUsesRun> {
+    let (vpls, size, side) = if opts.quick {
+        (16, 64, 16)
+    } else {
+        (32, 128, 32)
+    };
+    let room = IndirectLighting::new(ctx, Scene::room(), vpls, size, size)?;
+    room.build_lights()?;
+    room.draw_receivers()?;
+    let clustering = compare_clustering(&room, &CLUSTERING_THETAS, MIN_COHERENCE)?;
+    let mut pictures = Vec::new();
+    let mut run = |light_use: LightUse| -> anyhow::Result<UseRun> {
+        let scene = default_scene(&light_use);
+        let (run, lighting) = use_run(ctx, light_use, scene, side, (size, size), &USE_THETAS, 0.0)?;
+        let coarse = picture(&lighting)?;
+        lighting.gather(Gather::BruteForce)?;
+        pictures.push(picture(&lighting)?);
+        pictures.push(coarse);
+        Ok(run)
+    };
+    let subsurface = run(LightUse::subsurface())?;
+    let environment = run(LightUse::environment())?;
+    Rgba::row(&pictures, 4).save(&opts.out_dir.join(USES_PNG))?;
+    Ok(LightUsesRun {
+        clustering,
+        subsurface,
+        environment,
+    })
+}
+
+fn picture(lighting: &IndirectLighting) -> anyhow::Result<Rgba> {
+    lighting.shade(Terms::Indirect, base_exposure(&lighting.light_use))?;
+    let fb = &lighting.shade.target;
+    Ok(Rgba {
+        width: fb.width(),
+        height: fb.height(),
+        data: fb.read_u8(0, crate::gl::Rect::sized(fb.width(), fb.height()))?,
+    })
+}
+
+/// Normal-aware clustering against the fixed merge.
+pub fn clustering_table(results: &Lecture3Results) -> Table {
+    let rows = &results.light_uses.clustering;
+    Table {
+        caption: format!(
+            "3. Normal-aware clustering on the room (corners where walls, floor and block \
+             meet): a cluster is one light when radius < theta x distance and its mean unit \
+             normal is at least {} long, against the fixed merge (distance alone); relative RMS \
+             error of the GPU tree search against the brute-force sum, lights summed per \
+             receiver (CPU traversal of the same hierarchy), nodes visited (GPU); on {}",
+            rows.first().map_or(MIN_COHERENCE, |r| r.min_coherence),
+            results.renderer
+        ),
+        header: [
+            "theta",
+            "error, fixed merge",
+            "error, normal-aware",
+            "lights, fixed",
+            "lights, normal-aware",
+            "nodes, fixed",
+            "nodes, normal-aware",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rows
+            .iter()
+            .map(|r| {
+                vec![
+                    r.theta.to_string(),
+                    format!("{:.2e}", r.fixed_error),
+                    format!("{:.2e}", r.normal_aware_error),
+                    format!("{:.1}", r.fixed_lights),
+                    format!("{:.1}", r.normal_aware_lights),
+                    format!("{:.1}", r.fixed_nodes),
+                    format!("{:.1}", r.normal_aware_nodes),
+                ]
+            })
+            .collect(),
+    }
+}
+
+/// Subsurface scattering and environment light: tree against brute force, GPU against CPU.
+pub fn uses_table(results: &Lecture3Results) -> Table {
+    let u = &results.light_uses;
+    let rows = [&u.subsurface, &u.environment]
+        .iter()
+        .flat_map(|run| {
+            run.rows.iter().map(move |r| {
+                vec![
+                    format!(
+                        "{} ({} {}, GPU brute force within {:.1e} of the CPU's)",
+                        run.mode,
+                        run.lights,
+                        lights_label(&run.mode),
+                        run.brute_gpu_vs_cpu
+                    ),
+                    r.theta.to_string(),
+                    format!("{:.2e}", r.relative_rms_error),
+                    format!("{:.2e}", r.cpu_relative_rms_error),
+                    format!("{:.1e}", r.tree_gpu_vs_cpu),
+                    format!("{:.1}", r.mean_gathered),
+                    format!("{:.1}", r.mean_nodes),
+                ]
+            })
+        })
+        .collect();
+    Table {
+        caption: format!(
+            "3. The hierarchy's other uses on the bunny ({}x{} receivers): subsurface scattering \
+             (Jensen et al.'s dipole, skin 1, summed over irradiance samples from the spot \
+             light) and environment light (a procedural sky on a lat-long grid, visibility \
+             ignored); relative RMS error of the tree search against the brute-force sum on \
+             the GPU and on the CPU (f64), largest GPU - CPU difference of the tree search over \
+             the largest value, samples or clusters summed and nodes visited per receiver; on {}",
+            u.subsurface.image.0, u.subsurface.image.1, results.renderer
+        ),
+        header: [
+            "use",
+            "theta",
+            "relative RMS error (GPU)",
+            "relative RMS error (CPU)",
+            "GPU vs CPU",
+            "summed per receiver",
+            "nodes visited",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows,
+    }
+}
+
+fn lights_label(mode: &str) -> &'static str {
+    match mode {
+        "sss" => "irradiance samples",
+        "environment" => "sky directions",
+        _ => "VPLs",
+    }
+}
+
+pub fn figure() -> Figure {
+    Figure {
+        file: USES_PNG.into(),
+        caption: format!(
+            "3. Subsurface scattering (brute force, theta {0}) and environment light (brute \
+             force, theta {0}) on the bunny, from the same light hierarchy",
+            USE_THETAS.last().expect("criteria")
+        ),
+    }
+}
