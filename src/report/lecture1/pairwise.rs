@@ -87,7 +87,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
     let ctx = setting.opts.gl;
     let bar = setting.stage("pairwise tests in textures");
     let counts: &[usize] = if setting.opts.quick {
-        &[150, 300, 600]
+        &[300, 600, 1200]
     } else {
         &[250, 500, 1000, 2000, 4000]
     };
@@ -138,9 +138,9 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         summary: format!(
             "Pairwise tests in textures: on the swelling knot at {} triangles and on two \
              models, the pair quad's pairs {} brute force and streaming AABBs.",
-            counts
+            run.by_count
                 .iter()
-                .map(|n| n.to_string())
+                .map(|r| r.triangles.to_string())
                 .collect::<Vec<_>>()
                 .join(", "),
             if all_equal {
@@ -165,7 +165,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                     "The pair quad on the knot of {} triangles: P0 (a texel per triangle \
                      pair, only i < j tested, neighbours skipped) and its hierarchical \
                      levels P1..P3 as the GPU left them",
-                    counts[0]
+                    run.by_count.first().map_or(0, |r| r.triangles)
                 ),
             },
         ],
