@@ -5,12 +5,12 @@
 mod pairwise;
 mod self_collision;
 
-use crate::collide::snapshot::SnapshotModel;
-use crate::gl::Context;
+use crate::collide::snapshot::{self, Orbit, SnapshotModel};
+use crate::gl::{Context, Framebuffer, Rect, Texture, TextureFormat};
 use crate::lecture1::pictures::BufferPanel;
 use crate::mesh::Mesh;
-use crate::view::inset::Shown;
-use crate::view::Demo;
+use crate::view::inset::{self, Shown};
+use crate::view::{overlay, Canvas, Demo, ViewState};
 use glam::Vec3;
 
 /// The techniques, named as `classic-gpgpu lecture1` names them.
@@ -72,4 +72,38 @@ fn sides(pairs: &[(u32, u32)], first: bool) -> Vec<u32> {
     out.sort_unstable();
     out.dedup();
     out
+}
+
+/// The scene frame: the models between the overlay text and the strip of buffer insets (so
+/// that neither covers them), the insets along the bottom.
+fn draw_scene(
+    canvas: &Canvas,
+    (x, y): (&SnapshotModel, &SnapshotModel),
+    insets: Vec<Shown>,
+    view: &ViewState,
+) -> anyhow::Result<()> {
+    let strip = inset::strip_rect(canvas, insets.len());
+    let free = canvas.below_text();
+    let rect = Rect::new(0, strip.h, free.w, free.h.saturating_sub(strip.h));
+    if rect.w >= 16 && rect.h >= 16 {
+        let ctx = canvas.context();
+        let colour = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Rgba8)?;
+        let depth = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Depth32F)?;
+        let target = Framebuffer::new(ctx, "lecture 1 scene", &[&colour], Some(&depth))?;
+        target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
+        target.clear_depth_stencil(1.0, 0)?;
+        let orbit = Orbit {
+            yaw: view.yaw,
+            pitch: view.pitch,
+            zoom: view.zoom * 0.9,
+        };
+        snapshot::draw(x, y, &target, orbit)?;
+        let mut pixels = target.read_u8(0, Rect::sized(rect.w, rect.h))?;
+        for px in pixels.chunks_exact_mut(4) {
+            px[3] = 255;
+        }
+        overlay::draw_image(canvas, &pixels, rect.w, rect.h, (rect.x, rect.y))?;
+    }
+    inset::draw_picture(canvas, insets, strip)?;
+    Ok(())
 }

@@ -2,9 +2,8 @@
 //! intersecting pairs red, and the pair quad's result P0 (a texel per triangle pair) with its
 //! hierarchical levels as insets; P0's probe shows brute force's exact answer beside it.
 
-use super::{shown, sides, snapshot_model};
+use super::{draw_scene, shown, sides, snapshot_model};
 use crate::collide::scenes::Scene;
-use crate::collide::snapshot::{self, Orbit};
 use crate::gl::Context;
 use crate::lecture1::pairwise::{PairwiseResult, PairwiseTester, DEFAULT_TILE};
 use crate::lecture1::pictures::pair_buffers;
@@ -107,16 +106,7 @@ impl Demo for PairwiseDemo {
             snapshot_model(a, &a.positions, &cx),
             snapshot_model(b, &b.positions, &cy),
         );
-        let orbit = Orbit {
-            yaw: view.yaw,
-            pitch: view.pitch,
-            zoom: view.zoom * 0.8,
-        };
-        snapshot::draw(&mx, &my, canvas.target(), orbit)?;
-        let pictures = take(&self.short_pictures);
-        let strip = inset::strip_rect(canvas, pictures.len());
-        inset::draw_picture(canvas, pictures, strip)?;
-        Ok(())
+        draw_scene(canvas, (&mx, &my), take(&self.short_pictures), view)
     }
 
     fn buffers(&self) -> Vec<String> {

@@ -2,9 +2,9 @@
 //! the triangles of intersecting pairs (no shared vertex) red, and the leaf-pair texture P0
 //! of the self test with its hierarchical levels as insets.
 
-use super::{shown, sides, snapshot_model};
+use super::{draw_scene, shown, sides, snapshot_model};
 use crate::collide::reduction::Scheme;
-use crate::collide::snapshot::{self, Orbit, SnapshotModel};
+use crate::collide::snapshot::SnapshotModel;
 use crate::collide::stream_setup::{auto_leaf_size, max_slots};
 use crate::gl::Context;
 use crate::lecture1::knotted_tube::KnottedTube;
@@ -96,16 +96,7 @@ impl Demo for SelfCollisionDemo {
             colliding: &[],
             cap_boxes: Vec::new(),
         };
-        let orbit = Orbit {
-            yaw: view.yaw,
-            pitch: view.pitch,
-            zoom: view.zoom * 0.8,
-        };
-        snapshot::draw(&model, &none, canvas.target(), orbit)?;
-        let pictures = self.pictures(true)?;
-        let strip = inset::strip_rect(canvas, pictures.len());
-        inset::draw_picture(canvas, pictures, strip)?;
-        Ok(())
+        draw_scene(canvas, (&model, &none), self.pictures(true)?, view)
     }
 
     fn buffers(&self) -> Vec<String> {
