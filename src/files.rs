@@ -131,7 +131,33 @@ pub fn write(
     if let Ok(folder) = std::fs::File::open(&dir) {
         let _ = folder.sync_all();
     }
+    remove_stale_temporaries(path, &dir);
     Ok(())
+}
+
+/// Removes the temporary files of `path` that killed runs left (`.NAME.tmp-PID` whose process
+/// is gone). Only where `/proc` says which processes live; a live PID's file is never touched.
+fn remove_stale_temporaries(path: &Path, dir: &Path) {
+    let Some(name) = path.file_name() else { return };
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let prefix = format!(".{}.tmp-", name.to_string_lossy());
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let entry_name = entry.file_name().to_string_lossy().into_owned();
+        let Some(pid) = entry_name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let gone = pid.parse::<u32>().is_ok_and(|pid| {
+            pid != std::process::id() && !Path::new(&format!("/proc/{pid}")).exists()
+        });
+        if gone {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// `bytes` written to `path` through [`write()`].
@@ -243,6 +269,23 @@ mod tests {
             1,
             "temporary left behind"
         );
+    }
+
+    #[test]
+    fn a_write_removes_what_killed_writers_left() {
+        let dir = scratch("stale");
+        let path = dir.join("out.json");
+        // PID 0 is never a process of ours; a live PID (ours, in another name) stays.
+        let stale = dir.join(".out.json.tmp-0");
+        let foreign = dir.join(".other.json.tmp-0");
+        let not_a_pid = dir.join(".out.json.tmp-x");
+        for f in [&stale, &foreign, &not_a_pid] {
+            std::fs::write(f, "left by a killed run").unwrap();
+        }
+        write_bytes(&path, b"new").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"new");
+        assert_eq!(stale.exists(), !Path::new("/proc/self").exists());
+        assert!(foreign.exists() && not_a_pid.exists());
     }
 
     #[test]

@@ -190,6 +190,9 @@ fn the_guide_builds_and_every_link_and_picture_resolves() {
             );
         }
     }
+    // The index says once how the pictures map values to colours.
+    let index = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    assert!(index.contains("zero is always the same dark grey"));
     // The glossary is linked from the lesson pages that use its terms.
     let peeling = std::fs::read_to_string(dir.join("lesson-depth-peeling.html")).unwrap();
     assert!(peeling.contains("glossary.html#peel"));

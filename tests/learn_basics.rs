@@ -265,8 +265,13 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
         .iter()
         .any(|s| s == "glsl/learn/reduce_wide.frag"));
     let picture = v["passes"][1]["picture"].as_str().unwrap();
+    // A 24x20 level of two channels: two panels, enlarged (nearest texel) with titles and
+    // colour keys, so the picture is bigger than the buffer.
     let png = image::open(pictures.join(picture)).unwrap();
-    assert_eq!((png.width(), png.height()), (24, 20)); // 48x40 -> 24x20
+    assert!(
+        png.width() >= 2 * 24 * 8 && png.height() > 20 * 8,
+        "{png:?}"
+    );
     let npy = pictures.join(picture.replace(".png", ".npy"));
     let (shape, values) = classic_gpgpu::files::read_npy(&npy).unwrap();
     assert_eq!(shape, vec![20, 24, 2]);
@@ -306,6 +311,21 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
         stdout.contains("pass 1: saxpy") && stdout.contains("passed"),
         "{stdout}"
     );
+    // Every lesson's passes get their pictures from the command line, the second half's too.
+    for id in ["count-and-mask", "depth-peeling", "render-to-vertex-buffer"] {
+        let folder = dir.join(id);
+        let v = json_of(&["learn", id, "--json", "--png", folder.to_str().unwrap()]);
+        let named: Vec<&str> = v["passes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|p| p["picture"].as_str())
+            .collect();
+        assert!(!named.is_empty(), "{id}: no pass named a picture");
+        for picture in named {
+            assert!(folder.join(picture).is_file(), "{id}: {picture} missing");
+        }
+    }
     // Bad input: a clear message, a non-zero exit, no panic.
     for (args, expect) in [
         (vec!["learn", "no-such-lesson"], "texture-is-array"),

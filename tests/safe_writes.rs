@@ -416,4 +416,31 @@ fn messages_say_each_thing_once() {
     assert_eq!(err.matches("interlocking-tori").count(), 1, "{err}");
     let out = classic_gpgpu(&["mesh", "generate", "cube", "--out", &text(&dir), "--force"]);
     assert_refused(&out, &["is a folder"]);
+    // serde's own "unknown variant" once, not again through the error's source.
+    let network = dir.join("net.json");
+    let layer = r#"{"weights":[[1,2]],"bias":[0],"activation":"bogus"}"#;
+    std::fs::write(&network, format!(r#"{{"layers":[{layer}]}}"#)).unwrap();
+    let input = dir.join("in.json");
+    std::fs::write(&input, "[[1,2]]").unwrap();
+    let out = classic_gpgpu(&[
+        "mlp",
+        "run",
+        "--network",
+        &text(&network),
+        "--input",
+        &text(&input),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_refused(&out, &["net.json", "unknown variant `bogus`"]);
+    assert_eq!(err.matches("unknown variant").count(), 1, "{err}");
+}
+
+#[test]
+fn random_names_the_bad_value() {
+    for (flag, value) in [("--steps", "0"), ("--size", "1")] {
+        let mut args = vec!["lecture3", "random", "--size", "8", "--steps", "4"];
+        let at = args.iter().position(|a| *a == flag).unwrap();
+        args[at + 1] = value;
+        assert_refused(&classic_gpgpu(&args), &[&format!("{flag} {value}")]);
+    }
 }

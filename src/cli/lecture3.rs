@@ -573,10 +573,17 @@ fn function(a: &FunctionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
 fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     a.output.check(&[])?;
     // Two generators a side at least: the neighbour correlation needs a pair in a row.
-    if !(2..=4096).contains(&a.size) || !(2..=1024).contains(&a.steps) {
+    if !(2..=4096).contains(&a.size) {
         bail!(
-            "--size must be 2 to 4096 generators a side (the neighbour correlation needs two in \
-             a row) and --steps 2 to 1024"
+            "--size {}: must be 2 to 4096 generators a side (the neighbour correlation needs two \
+             in a row)",
+            a.size
+        );
+    }
+    if !(2..=1024).contains(&a.steps) {
+        bail!(
+            "--steps {}: must be 2 to 1024 (the serial correlation compares a step with the next)",
+            a.steps
         );
     }
     if let Some(npy) = &a.npy {

@@ -6,6 +6,15 @@
 use font8x8::legacy::BASIC_LEGACY;
 use image::{Rgba, RgbaImage};
 
+/// How every picture of a float buffer maps values to colours, in a reader's words (the
+/// report and the guide print it; [`super::dump`] states it in full).
+pub const MAPPING_IN_WORDS: &str = "Pictures of float buffers: each channel is its own panel; \
+    zero is always the same dark grey; non-negative values run from that grey through dark red \
+    and orange to pale yellow, negative ones through dark blue to pale cyan; related pictures \
+    (all peels of a body, all levels of a pyramid) share one scale, which always contains zero; \
+    the colour key under each panel gives its range; NaN and infinite texels are magenta; small \
+    buffers are enlarged texel by texel, with no smoothing.";
+
 /// The colour of zero in every picture: a dark neutral grey, the background a buffer starts
 /// from (most buffers are mostly zero), distinct from the picture's black margin.
 pub const NEUTRAL: [u8; 4] = [48, 48, 48, 255];

@@ -84,14 +84,8 @@ impl Lesson for ComputeReduction {
         let reducer = Reducer::new(ctx, WIDTH, HEIGHT)?;
         let sum = reducer.reduce(&texture, ReduceOp::Sum)?[0];
         let max = reducer.reduce(&texture, ReduceOp::Max)?[0];
-        let picture = kit::picture(
-            opts,
-            "values",
-            &texture,
-            crate::gl::dump::DumpRange::Fixed(0.0, 1.0),
-        )?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&texture)?);
+        run.pass(
             "fragment ping-pong",
             "glsl/gl/reduce.frag",
             &format!(
@@ -115,8 +109,7 @@ impl Lesson for ComputeReduction {
             Some(why) => why,
             None => {
                 let (sum, max, passes) = reduce_shared(ctx, &values)?;
-                kit::pass(
-                    &mut run,
+                run.pass(
                     "compute, shared memory",
                     "glsl/learn/compute-reduction/reduce.comp",
                     &format!("{passes} passes of {PER_GROUP} values per work group"),
@@ -139,7 +132,8 @@ impl Lesson for ComputeReduction {
                 "ran: the tree in shared memory, 256 values per work group and pass".into()
             }
         });
-        Ok(kit::finish(run, &INFO, opts))
+        run.finish(&INFO, ctx, opts)?;
+        Ok(run)
     }
 }
 

@@ -6,8 +6,7 @@
 //! `if`s with the depth buffer.
 
 use super::kit;
-use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
-use crate::gl::dump::DumpRange;
+use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
 use crate::gl::{
     AtomicCounters, Buffer, BufferUsage, Compare, ComputeProgram, Context, DepthTest, DrawState,
     Framebuffer, OcclusionQuery, Program, StencilTest, Texture, TextureFormat,
@@ -77,9 +76,8 @@ impl Lesson for CountAndMask {
         let n = (SIDE * SIDE) as usize;
         let values = Texture::from_f32(ctx, SIDE, SIDE, TextureFormat::R32F, &data.values)?;
         let valid = Texture::from_f32(ctx, SIDE, SIDE, TextureFormat::R32F, &data.valid)?;
-        let picture = kit::picture(opts, "values", &values, DumpRange::Fixed(0.0, 1.0))?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&values)?);
+        run.pass(
             "upload",
             "",
             "the CPU's values, one float per texel",
@@ -103,9 +101,8 @@ impl Lesson for CountAndMask {
             .draw_full()?;
         query.end();
         let gpu_count = query.samples()?;
-        let picture = kit::picture(opts, "counted", &counted, DumpRange::Fixed(0.0, 1.0))?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&counted)?);
+        run.pass(
             "count",
             "glsl/learn/count-and-mask/count_above.frag",
             "discards the values at or below the threshold; the occlusion query counts the rest",
@@ -124,23 +121,16 @@ impl Lesson for CountAndMask {
         // The same work pass, first masked by depth alone, then by depth and stencil.
         let masks = Masks::new(ctx, &values, &valid)?;
         masks.write_depth()?;
-        let picture = kit::picture(opts, "depth_mask", &masks.depth, DumpRange::Fixed(0.0, 1.0))?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&masks.depth)?);
+        run.pass(
             "depth mask",
             "glsl/learn/count-and-mask/mask_depth.frag",
             "writes 1.0 (open) where the value is above the threshold, 0.0 elsewhere",
             picture,
         );
         let (result, ran) = masks.work(false)?;
-        let picture = kit::picture(
-            opts,
-            "work_depth",
-            &masks.result,
-            DumpRange::Fixed(UNTOUCHED, 1.0),
-        )?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&masks.result)?);
+        run.pass(
             "work (depth test)",
             "glsl/learn/count-and-mask/work.frag",
             "the square root with no if, drawn at depth 0.5 with LESS: runs where the mask is open",
@@ -165,28 +155,15 @@ impl Lesson for CountAndMask {
             .into_iter()
             .map(f32::from)
             .collect();
-        let picture = kit::picture_of_values(
-            opts,
-            "stencil_mask",
-            &stencil,
-            (SIDE, SIDE, 1),
-            DumpRange::Fixed(0.0, 1.0),
-        )?;
-        kit::pass(
-            &mut run,
+        let picture = Some(PassBuffer::floats(SIDE, SIDE, 1, stencil.clone()));
+        run.pass(
             "stencil mark",
             "glsl/learn/count-and-mask/stencil_mark.frag",
             "no colour: writes stencil 1 on the real slots, leaves 0 on the padding",
             picture,
         );
-        let picture = kit::picture(
-            opts,
-            "work_masked",
-            &masks.result,
-            DumpRange::Fixed(UNTOUCHED, 1.0),
-        )?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&masks.result)?);
+        run.pass(
             "work (depth and stencil tests)",
             "glsl/learn/count-and-mask/work.frag",
             "the same pass, now also where the stencil equals 1: real slots above the threshold",
@@ -207,8 +184,7 @@ impl Lesson for CountAndMask {
             Some(why) => why,
             None => {
                 let (result, above, ran) = compute(ctx, &data, n)?;
-                kit::pass(
-                    &mut run,
+                run.pass(
                     "compute",
                     "glsl/learn/count-and-mask/count_and_mask.comp",
                     "one invocation per element: the condition an if, both counts atomic",
@@ -234,7 +210,8 @@ impl Lesson for CountAndMask {
                     .into()
             }
         });
-        Ok(kit::finish(run, &INFO, opts))
+        run.finish(&INFO, ctx, opts)?;
+        Ok(run)
     }
 }
 

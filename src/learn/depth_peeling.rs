@@ -5,8 +5,7 @@
 //! peels a body this way to integrate over its surface (section 3.2).
 
 use super::kit;
-use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
-use crate::gl::dump::DumpRange;
+use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
 use crate::gl::peel::ortho_box;
 use crate::gl::{
     Buffer, BufferUsage, Compare, ComputeProgram, Context, DepthTest, DrawState, Framebuffer,
@@ -91,15 +90,8 @@ impl Lesson for DepthPeeling {
             layers.len().to_string(),
         ));
         for (k, layer) in layers.iter().enumerate() {
-            let picture = kit::picture_of_values(
-                opts,
-                &format!("layer_{k}"),
-                layer,
-                (SIZE, SIZE, 1),
-                DumpRange::Fixed(0.0, 1.0),
-            )?;
-            kit::pass(
-                &mut run,
+            let picture = Some(PassBuffer::floats(SIZE, SIZE, 1, layer.to_vec()).in_set("layers"));
+            run.pass(
                 &format!("peel {k}"),
                 "glsl/learn/depth-peeling/peel.frag",
                 if k == 0 {
@@ -141,8 +133,7 @@ impl Lesson for DepthPeeling {
             Some(why) => why,
             None => {
                 let (counts, depths) = ray_cast_compute(ctx, &view)?;
-                kit::pass(
-                    &mut run,
+                run.pass(
                     "compute ray cast",
                     "glsl/learn/depth-peeling/ray_cast.comp",
                     "one invocation per pixel: every triangle, the hit depths sorted",
@@ -165,7 +156,8 @@ impl Lesson for DepthPeeling {
                 "ran: every layer in one pass, one ray per pixel".into()
             }
         });
-        Ok(kit::finish(run, &INFO, opts))
+        run.finish(&INFO, ctx, opts)?;
+        Ok(run)
     }
 }
 

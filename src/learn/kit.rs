@@ -1,69 +1,31 @@
-//! What the lessons of the second half share: the pictures of their buffers, the notes of
-//! their passes, the exercise's verdict, and test data the CPU makes.
+//! What the lessons share beside [`super::LessonRun`]: a texture read back for its pass's
+//! picture, the exercise asked for, the compute counterpart's absence, and test data the CPU
+//! makes.
 
-use super::{LessonInfo, LessonOptions, LessonRun, PassNote};
-use crate::gl::dump::{self, DumpRange};
-use crate::gl::{Context, Texture};
+use super::{LessonInfo, LessonOptions, PassBuffer};
+use crate::gl::{Context, Texture, TextureFormat};
 use anyhow::bail;
 
-/// Write `texture` as `NAME.png` into the lesson's picture folder, if it has one; returns the
-/// file name for the pass note. Floats map as [`crate::gl::dump`] says.
-pub fn picture(
-    opts: &LessonOptions,
-    name: &str,
-    texture: &Texture,
-    range: DumpRange,
-) -> anyhow::Result<Option<String>> {
-    let Some(dir) = &opts.png_dir else {
-        return Ok(None);
-    };
-    let rgba = dump::to_rgba8(texture, range)?;
-    let file = format!("{name}.png");
-    let top_first = flip_rows(&rgba, texture.width() as usize * 4);
-    crate::files::write_png(
-        &dir.join(&file),
-        &top_first,
-        texture.width(),
-        texture.height(),
-    )?;
-    Ok(Some(file))
-}
-
-/// Write `values` (`channels` per texel, `width x height`, rows from the bottom) as
-/// `NAME.png`, mapped like a float texture.
-pub fn picture_of_values(
-    opts: &LessonOptions,
-    name: &str,
-    values: &[f32],
-    (width, height, channels): (u32, u32, usize),
-    range: DumpRange,
-) -> anyhow::Result<Option<String>> {
-    let Some(dir) = &opts.png_dir else {
-        return Ok(None);
-    };
-    let rgba = dump::map_floats(values, channels, range);
-    let file = format!("{name}.png");
-    let top_first = flip_rows(&rgba, width as usize * 4);
-    crate::files::write_png(&dir.join(&file), &top_first, width, height)?;
-    Ok(Some(file))
-}
-
-fn flip_rows(rgba: &[u8], row: usize) -> Vec<u8> {
-    rgba.chunks_exact(row).rev().flatten().copied().collect()
-}
-
-/// Record a pass: its name, shader file (empty for a copy or readback), what it does, and
-/// the picture of its output.
-pub fn pass(run: &mut LessonRun, name: &str, shader: &str, what: &str, picture: Option<String>) {
-    if !shader.is_empty() && !run.shaders.iter().any(|s| s == shader) {
-        run.shaders.push(shader.into());
-    }
-    run.passes.push(PassNote {
-        name: name.into(),
-        shader: shader.into(),
-        what: what.into(),
-        picture,
-    });
+/// What `texture` holds, read back for its pass's picture: floats as they are, a byte format
+/// as 0..1, a packed depth-stencil texture as its depth in 0..1, integers as their values.
+pub fn buffer(texture: &Texture) -> anyhow::Result<PassBuffer> {
+    let (width, height) = (texture.width(), texture.height());
+    let channels = texture.format().components();
+    Ok(match texture.format() {
+        TextureFormat::R8 | TextureFormat::Rgba8 => {
+            PassBuffer::bytes(width, height, channels, &texture.download_u8()?)
+        }
+        TextureFormat::Depth24Stencil8 => {
+            let depth = texture.download_u32()?;
+            let depth = depth.into_iter().map(|v| (v >> 8) as f32 / 16_777_215.0);
+            PassBuffer::floats(width, height, 1, depth.collect())
+        }
+        TextureFormat::Rgba32Ui => {
+            let values = texture.download_u32()?.into_iter().map(|v| v as f32);
+            PassBuffer::floats(width, height, channels, values.collect())
+        }
+        _ => PassBuffer::floats(width, height, channels, texture.download_f32()?),
+    })
 }
 
 /// The exercise `opts` asks for, checked to exist before anything runs.
@@ -83,24 +45,6 @@ pub fn exercise_asked(info: &LessonInfo, opts: &LessonOptions) -> anyhow::Result
         }
     }
     Ok(())
-}
-
-/// The end of a run: the hint of the exercise that was run when a check failed, and a run
-/// with no check at all is not a pass.
-pub fn finish(mut run: LessonRun, info: &LessonInfo, opts: &LessonOptions) -> LessonRun {
-    if run.checks.is_empty() {
-        run.passed = false;
-    }
-    if let Some(n) = opts.exercise {
-        if !run.passed {
-            run.hint = info
-                .exercises
-                .iter()
-                .find(|e| e.number == n)
-                .map(|e| e.hint.to_string());
-        }
-    }
-    run
 }
 
 /// Why the compute counterpart did not run on `ctx`, or `None` when it can.

@@ -28,6 +28,7 @@ mod scatter_and_blend;
 mod several_outputs;
 mod texture_is_array;
 
+use crate::gl::picture::{self, Panel, Scale};
 use crate::gl::Context;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -146,6 +147,14 @@ pub struct PassBuffer {
     pub values: Vec<f32>,
     /// A float buffer (also written as `.npy`); false for a byte format read as 0..1.
     pub float: bool,
+    /// The set of related buffers it shares one colour scale with (all levels of a
+    /// reduction, all steps of a ping-pong); empty: a set of its own.
+    pub set: &'static str,
+    /// What the CPU reference computes for the same texels, where the lesson has it per
+    /// texel: the viewer's probe shows it beside the GPU's value.
+    pub reference: Option<Vec<f32>>,
+    /// What each channel holds, for the panel titles (empty: "channel 0", ...).
+    pub channel_names: &'static [&'static str],
 }
 
 impl PassBuffer {
@@ -159,20 +168,61 @@ impl PassBuffer {
             channels,
             values,
             float: true,
+            set: "",
+            reference: None,
+            channel_names: &[],
         }
     }
 
-    /// The buffer as RGBA bytes, rows from the bottom, mapped as `gl::dump` maps float
-    /// textures (each channel from its smallest to its largest value; bytes as they are).
-    pub fn rgba(&self) -> Vec<u8> {
-        let range = if self.float {
-            crate::gl::dump::DumpRange::Auto
-        } else {
-            crate::gl::dump::DumpRange::Fixed(0.0, 1.0)
-        };
-        crate::gl::dump::map_floats(&self.values, self.channels, range)
+    /// A byte buffer (`channels` bytes per texel), as 0..1.
+    pub fn bytes(width: u32, height: u32, channels: usize, bytes: &[u8]) -> PassBuffer {
+        let values = bytes.iter().map(|&b| b as f32 / 255.0).collect();
+        PassBuffer {
+            float: false,
+            ..PassBuffer::floats(width, height, channels, values)
+        }
+    }
+
+    /// The same buffer, sharing its colour scale with the other buffers of `set`.
+    pub fn in_set(self, set: &'static str) -> PassBuffer {
+        PassBuffer { set, ..self }
+    }
+
+    /// The same buffer, its channels named.
+    pub fn named(self, channel_names: &'static [&'static str]) -> PassBuffer {
+        PassBuffer {
+            channel_names,
+            ..self
+        }
+    }
+
+    /// The same buffer, with the CPU reference's values of its texels.
+    pub fn with_reference(self, reference: Vec<f32>) -> PassBuffer {
+        PassBuffer {
+            reference: Some(reference),
+            ..self
+        }
+    }
+
+    /// Channel `c`'s values.
+    fn channel(&self, c: usize) -> impl Iterator<Item = f32> + '_ {
+        self.values.iter().skip(c).step_by(self.channels).copied()
     }
 }
+
+/// The size of the picture of a `width x height` buffer with `channels` panels: small
+/// buffers enlarged (nearest texel) to about 256 pixels a panel, with room for titles and
+/// keys; a one-row strip gets a quarter of that in height.
+fn picture_size(width: u32, height: u32, channels: usize) -> (u32, u32) {
+    let longer = width.max(height).max(1);
+    let side = longer.clamp(256, 512);
+    let panel_w = side * width / longer;
+    let panel_h = (side * height / longer).max(side / 4);
+    let columns = channels.clamp(1, 4) as u32;
+    let rows = (channels.max(1) as u32).div_ceil(columns);
+    ((panel_w * columns).max(256), (panel_h + 48) * rows)
+}
+
 impl LessonRun {
     /// An empty run of `info` on `ctx`, to be filled pass by pass.
     pub fn new(info: &LessonInfo, ctx: &Context) -> LessonRun {
@@ -225,6 +275,10 @@ impl LessonRun {
         ctx: &Context,
         opts: &LessonOptions,
     ) -> anyhow::Result<()> {
+        // A run that checked nothing has shown nothing.
+        if self.checks.is_empty() {
+            self.passed = false;
+        }
         if !self.passed {
             self.hint = failed_exercise(info, ctx, opts).map(|e| e.hint.to_string());
         }
@@ -249,23 +303,56 @@ impl LessonRun {
     /// Write each pass's buffer as `DIR/<pass>-<name>.png` (and `.npy` for float buffers),
     /// and name the picture in its pass's note.
     pub fn write_pictures(&mut self, dir: &Path) -> anyhow::Result<()> {
-        for b in &self.buffers {
-            let png = format!("{}.png", b.stem);
-            let top_first: Vec<u8> = b
-                .rgba()
-                .chunks_exact(b.width as usize * 4)
-                .rev()
-                .flatten()
-                .copied()
-                .collect();
-            crate::files::write_png(&dir.join(&png), &top_first, b.width, b.height)?;
+        for i in 0..self.buffers.len() {
+            let b = &self.buffers[i];
+            let (png, npy) = (format!("{}.png", b.stem), format!("{}.npy", b.stem));
             if b.float {
                 let shape = [b.height as usize, b.width as usize, b.channels];
-                crate::files::write_npy(&dir.join(format!("{}.npy", b.stem)), &shape, &b.values)?;
+                crate::files::write_npy(&dir.join(npy), &shape, &b.values)?;
             }
-            self.passes[b.pass].picture = Some(png);
+            let image = image::DynamicImage::ImageRgba8(self.picture(i));
+            crate::files::write_image(&dir.join(&png), &image)?;
+            let pass = self.buffers[i].pass;
+            self.passes[pass].picture = Some(png);
         }
         Ok(())
+    }
+
+    /// Buffer `i` as panels, one per channel, as `gl::dump` states the mapping: a float
+    /// channel on one scale over the same channel of every buffer of its set, bytes on 0..1.
+    pub fn panels(&self, i: usize) -> Vec<Panel> {
+        let b = &self.buffers[i];
+        let set: Vec<&PassBuffer> = if b.set.is_empty() {
+            vec![b]
+        } else {
+            let same = |o: &&PassBuffer| o.set == b.set && o.channels == b.channels;
+            self.buffers.iter().filter(same).collect()
+        };
+        let name = &self.passes[b.pass].name;
+        (0..b.channels)
+            .map(|c| {
+                let scale = if b.float {
+                    let values: Vec<Vec<f32>> =
+                        set.iter().map(|m| m.channel(c).collect()).collect();
+                    Scale::of(values.iter().map(Vec::as_slice))
+                } else {
+                    Scale::fixed(0.0, 1.0)
+                };
+                let title = match (b.channel_names.get(c), b.channels) {
+                    (Some(channel), _) => format!("{name}: {channel}"),
+                    (None, 1) => name.clone(),
+                    (None, _) => format!("{name}: channel {c}"),
+                };
+                Panel::channel(title, &b.values, b.channels, c, (b.width, b.height), scale)
+            })
+            .collect()
+    }
+
+    /// Buffer `i`'s picture: its panels with titles and colour keys.
+    pub fn picture(&self, i: usize) -> image::RgbaImage {
+        let b = &self.buffers[i];
+        let size = picture_size(b.width, b.height, b.channels);
+        picture::picture(&self.panels(i), size).0
     }
 
     /// Record a comparison: passes when `max_error <= tolerance` (and is finite).
@@ -433,4 +520,61 @@ pub(crate) fn random_values(n: usize, seed: u64, lo: f32, hi: f32) -> Vec<f32> {
     use rand::{Rng, SeedableRng};
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     (0..n).map(|_| rng.gen_range(lo..hi)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run_of(buffers: Vec<PassBuffer>) -> LessonRun {
+        let mut run = LessonRun {
+            id: "test".into(),
+            title: "test".into(),
+            renderer: String::new(),
+            passes: Vec::new(),
+            checks: Vec::new(),
+            passed: true,
+            max_error: 0.0,
+            shaders: Vec::new(),
+            notes: Vec::new(),
+            compute: None,
+            hint: None,
+            buffers: Vec::new(),
+        };
+        for (k, b) in buffers.into_iter().enumerate() {
+            run.pass(&format!("pass {k}"), "", "", Some(b));
+        }
+        run
+    }
+
+    #[test]
+    fn a_set_shares_one_scale_per_channel_and_zero_is_neutral() {
+        let run = run_of(vec![
+            PassBuffer::floats(2, 1, 2, vec![0.0, 1.0, 2.0, -1.0]).in_set("levels"),
+            PassBuffer::floats(1, 1, 2, vec![8.0, 0.5]).in_set("levels"),
+            PassBuffer::floats(2, 1, 1, vec![0.0, 3.0]),
+        ]);
+        let (first, second, alone) = (run.panels(0), run.panels(1), run.panels(2));
+        assert_eq!(first.len(), 2);
+        // Channel 0 over both levels: 0..8; channel 1 signed: -1..1.
+        assert_eq!(first[0].scale, second[0].scale);
+        assert_eq!(first[0].scale.hi, 8.0);
+        assert_eq!(first[1].scale, second[1].scale);
+        assert!(first[1].scale.is_signed());
+        // A buffer of no set keeps its own scale.
+        assert_eq!(alone[0].scale.hi, 3.0);
+        assert_eq!(alone[0].scale.colour(0.0), picture::NEUTRAL);
+        // Bytes are on 0..1 whatever they hold.
+        let bytes = run_of(vec![PassBuffer::bytes(2, 1, 1, &[0, 128])]);
+        assert_eq!(bytes.panels(0)[0].scale, Scale::fixed(0.0, 1.0));
+    }
+
+    #[test]
+    fn small_buffers_are_enlarged_and_strips_get_height() {
+        assert_eq!(picture_size(8, 8, 1), (256, 304));
+        let (w, h) = picture_size(256, 1, 1);
+        assert!(w >= 256 && h >= 64 + 48, "{w}x{h}");
+        let (w, _) = picture_size(24, 20, 2);
+        assert_eq!(w, 512);
+    }
 }

@@ -164,7 +164,7 @@ fn jacobi_gpu(
         "start",
         "",
         &format!("a {N}x{N} grid into texture A: zero inside, the top row held at 1"),
-        Some(PassBuffer::floats(N, N, 1, start.to_vec())),
+        Some(PassBuffer::floats(N, N, 1, start.to_vec()).in_set("grid")),
     );
     // (read, write) for step k: A -> B on even steps, B -> A on odd ones.
     let roles = [(&a, &fb_b, "A", "B"), (&b, &fb_a, "B", "A")];
@@ -186,7 +186,7 @@ fn jacobi_gpu(
                     "read {from}, draw into {to}: every interior texel becomes the mean of \
                      its four neighbours in {from}; then {to} is read and {from} written"
                 ),
-                Some(PassBuffer::floats(N, N, 1, values)),
+                Some(PassBuffer::floats(N, N, 1, values).in_set("grid")),
             );
         } else if k == 2 {
             run.pass(
@@ -224,7 +224,7 @@ fn in_place(
         JACOBI,
         "the same steps reading and drawing into one texture: a feedback loop whose result GL \
          leaves undefined, shown for comparison only",
-        Some(PassBuffer::floats(N, N, 1, values.clone())),
+        Some(PassBuffer::floats(N, N, 1, values.clone()).in_set("grid")),
     );
     run.note(
         "one texture read and written",
@@ -266,7 +266,7 @@ fn jacobi_compute(
         "compute: jacobi",
         JACOBI_COMPUTE,
         "the same steps between two storage buffers, a barrier between dispatches",
-        Some(PassBuffer::floats(N, N, 1, gpu.clone())),
+        Some(PassBuffer::floats(N, N, 1, gpu.clone()).in_set("grid")),
     );
     run.check(
         &format!("compute: after {steps} steps the grid = the CPU's iterate"),

@@ -120,7 +120,7 @@ fn saxpy(
              own pixel into a third texture",
             x.len()
         ),
-        Some(PassBuffer::floats(W, H, 1, gpu.clone())),
+        Some(PassBuffer::floats(W, H, 1, gpu.clone()).with_reference(cpu.to_vec())),
     );
     run.check(
         "saxpy = the CPU loop",

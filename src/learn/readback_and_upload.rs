@@ -8,7 +8,6 @@
 
 use super::kit;
 use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
-use crate::gl::dump::DumpRange;
 use crate::gl::{
     AtomicCounters, Buffer, BufferUsage, ComputeProgram, Context, Framebuffer, Program, Rect,
     Texture, TextureFormat, TimerQuery,
@@ -85,9 +84,8 @@ impl Lesson for ReadbackAndUpload {
             "upload from client memory: the call",
             wall_ms(start),
         );
-        let picture = kit::picture(opts, "data", &direct, DumpRange::Fixed(0.0, 1.0))?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&direct)?);
+        run.pass(
             "upload (client memory)",
             "",
             "glTexSubImage2D from the CPU's array",
@@ -107,8 +105,7 @@ impl Lesson for ReadbackAndUpload {
             "upload from a PBO: the call (queued)",
             wall_ms(start),
         );
-        kit::pass(
-            &mut run,
+        run.pass(
             "upload (PBO)",
             "",
             "glTexSubImage2D from a pixel unpack buffer",
@@ -130,8 +127,7 @@ impl Lesson for ReadbackAndUpload {
             "glReadPixels into client memory, whole array",
             wall_ms(start),
         );
-        kit::pass(
-            &mut run,
+        run.pass(
             "glReadPixels",
             "",
             "the whole array into client memory: the CPU waits",
@@ -157,8 +153,7 @@ impl Lesson for ReadbackAndUpload {
             "reading the PBO: where the CPU waits",
             wall_ms(start),
         );
-        kit::pass(
-            &mut run,
+        run.pass(
             "glReadPixels into a PBO",
             "",
             "queued; the CPU waits only when it reads the buffer",
@@ -172,21 +167,14 @@ impl Lesson for ReadbackAndUpload {
 
         // The reduced readback: flags per block, then only the flagged blocks.
         let (flags_texture, read_back, bytes_read, flag_ms) = reduced_readback(ctx, &direct)?;
-        let picture = kit::picture(
-            opts,
-            "block_flags",
-            &flags_texture,
-            DumpRange::Fixed(0.0, 1.0),
-        )?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&flags_texture)?);
+        run.pass(
             "block flags",
             "glsl/learn/readback-and-upload/block_flags.frag",
             "one texel per 8x8 block: 1 where the block holds data",
             picture,
         );
-        kit::pass(
-            &mut run,
+        run.pass(
             "read the flagged blocks",
             "",
             "the flags, then glReadPixels of each flagged block",
@@ -208,8 +196,7 @@ impl Lesson for ReadbackAndUpload {
         run.compute = Some(match kit::compute_missing(ctx, "the compute compaction") {
             Some(why) => why,
             None => {
-                kit::pass(
-                    &mut run,
+                run.pass(
                     "compute compaction",
                     "glsl/learn/readback-and-upload/compact.comp",
                     "every non-zero element appended through an atomic counter",
@@ -224,7 +211,8 @@ impl Lesson for ReadbackAndUpload {
                 "ran: the non-zero elements compacted into a list, its length read first".into()
             }
         });
-        Ok(kit::finish(run, &INFO, opts))
+        run.finish(&INFO, ctx, opts)?;
+        Ok(run)
     }
 }
 

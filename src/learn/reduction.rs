@@ -147,7 +147,7 @@ fn ladder(
                 level.width(),
                 level.height()
             ),
-            Some(PassBuffer::floats(w, h, 2, rg)),
+            Some(PassBuffer::floats(w, h, 2, rg).named(&["sum", "max"])),
         );
         level = next;
     }

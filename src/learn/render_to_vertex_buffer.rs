@@ -6,7 +6,6 @@
 
 use super::kit;
 use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
-use crate::gl::dump::DumpRange;
 use crate::gl::{
     feedback, Barrier, Buffer, BufferUsage, ComputeProgram, Context, Framebuffer, Primitive,
     Program, Texture, TextureFormat, VertexArray,
@@ -85,9 +84,8 @@ impl Lesson for RenderToVertexBuffer {
             .pass(&program, "pass 1")?
             .uniform("u_n", N as i32)
             .draw_full()?;
-        let picture = kit::picture(opts, "pass1_positions", &positions, DumpRange::Auto)?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&positions)?.named(&["x", "y", "z (height)", "w"]));
+        run.pass(
             "pass 1",
             "glsl/learn/render-to-vertex-buffer/grid.frag",
             "one vertex per texel: x, y on the grid, z the height (RGBA32F)",
@@ -99,8 +97,7 @@ impl Lesson for RenderToVertexBuffer {
         target.read_into_buffer(0, target.rect(), &pbo, 0)?;
         let vbo = Buffer::new(ctx, bytes, BufferUsage::GpuCopy)?;
         vbo.copy_from(&pbo, 0, 0, bytes)?;
-        kit::pass(
-            &mut run,
+        run.pass(
             "PBO -> VBO",
             "",
             "glReadPixels into a pixel pack buffer, then a buffer copy into the vertex buffer",
@@ -115,9 +112,8 @@ impl Lesson for RenderToVertexBuffer {
         // Pass 2: draw the vertex buffer as points.
         let drawer = PointDrawer::new(ctx)?;
         let heights = drawer.draw(&vbo, count)?;
-        let picture = kit::picture(opts, "pass2_points", &drawer.picture, DumpRange::Auto)?;
-        kit::pass(
-            &mut run,
+        let picture = Some(kit::buffer(&drawer.picture)?);
+        run.pass(
             "pass 2",
             "glsl/learn/render-to-vertex-buffer/draw_points.vert",
             "the buffer drawn as points: each lands on its pixel and writes its height",
@@ -140,8 +136,7 @@ impl Lesson for RenderToVertexBuffer {
         capture.set("u_n", N as i32)?;
         let captured = Buffer::new(ctx, bytes, BufferUsage::GpuCopy)?;
         let written = feedback::capture_points(ctx, &capture, &captured, count)?;
-        kit::pass(
-            &mut run,
+        run.pass(
             "transform feedback",
             "glsl/learn/render-to-vertex-buffer/feedback.vert",
             "the vertex shader computes each vertex from gl_VertexID; the outputs are captured",
@@ -172,8 +167,7 @@ impl Lesson for RenderToVertexBuffer {
                     .uniform("u_n", N as i32)
                     .run_over(count as u32)?;
                 crate::gl::memory_barrier(ctx, &[Barrier::VertexAttrib, Barrier::BufferUpdate]);
-                kit::pass(
-                    &mut run,
+                run.pass(
                     "compute positions",
                     "glsl/learn/render-to-vertex-buffer/positions.comp",
                     "the vertices written into a storage buffer, then drawn from it",
@@ -193,7 +187,8 @@ impl Lesson for RenderToVertexBuffer {
                 "ran: positions into a storage buffer, drawn as the vertex buffer".into()
             }
         });
-        Ok(kit::finish(run, &INFO, opts))
+        run.finish(&INFO, ctx, opts)?;
+        Ok(run)
     }
 }
 

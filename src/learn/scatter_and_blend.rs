@@ -105,7 +105,11 @@ impl Lesson for ScatterAndBlend {
                          {BINS}x1 R32F target; each fragment writes 1 and blending adds it",
                         values.len()
                     ),
-                    Some(PassBuffer::floats(BINS, 1, 1, gpu.clone())),
+                    Some(
+                        PassBuffer::floats(BINS, 1, 1, gpu.clone())
+                            .in_set("bins")
+                            .with_reference(cpu.clone()),
+                    ),
                 );
                 // Counts are sums of 1.0, exact in fp32 up to 2^24.
                 run.check(
@@ -125,7 +129,11 @@ impl Lesson for ScatterAndBlend {
                     "scatter without blending",
                     POINTS,
                     "the same points without blending: each fragment overwrites the bin",
-                    Some(PassBuffer::floats(BINS, 1, 1, gpu.clone())),
+                    Some(
+                        PassBuffer::floats(BINS, 1, 1, gpu.clone())
+                            .in_set("bins")
+                            .with_reference(cpu.clone()),
+                    ),
                 );
                 run.note(
                     "without blending",
@@ -180,7 +188,11 @@ fn compute(
         "compute: atomic histogram",
         HISTOGRAM_COMPUTE,
         "one invocation per value adds 1 to its bin with atomicAdd",
-        Some(PassBuffer::floats(BINS, 1, 1, counts.clone())),
+        Some(
+            PassBuffer::floats(BINS, 1, 1, counts.clone())
+                .in_set("bins")
+                .with_reference(cpu.to_vec()),
+        ),
     );
     run.check(
         "compute: the atomic counts = the CPU's histogram (exact)",

@@ -18,6 +18,10 @@ const INTEGRANDS_COMPUTE: &str = "glsl/learn/compute/integrands.comp";
 /// Cells per side.
 const N: u32 = 16;
 
+/// What each channel of the two targets holds.
+const TARGET_0: &[&str] = &["z", "x z", "y z", "z^2/2"];
+const TARGET_1: &[&str] = &["x^2 z", "y^2 z", "z^3/3", "x y z"];
+
 pub struct SeveralOutputs;
 
 static INFO: LessonInfo = LessonInfo {
@@ -81,15 +85,14 @@ impl Lesson for SeveralOutputs {
         run.pass(
             "integrands: target 0",
             INTEGRANDS,
-            "one pass, two targets: target 0 gets z, x z, y z, z^2/2 (shown: the first three \
-             as red, green, blue)",
-            Some(PassBuffer::floats(N, N, 4, gpu0.clone())),
+            "one pass, two targets: target 0 gets z, x z, y z, z^2/2",
+            Some(PassBuffer::floats(N, N, 4, gpu0.clone()).named(TARGET_0)),
         );
         run.pass(
             "integrands: target 1",
             INTEGRANDS,
             "the same pass's target 1: x^2 z, y^2 z, z^3/3, x y z",
-            Some(PassBuffer::floats(N, N, 4, gpu1.clone())),
+            Some(PassBuffer::floats(N, N, 4, gpu1.clone()).named(TARGET_1)),
         );
         run.check(
             "target 0 = the CPU's integrands",
@@ -185,7 +188,7 @@ fn compute(
         "compute: integrands",
         INTEGRANDS_COMPUTE,
         "one invocation per cell writes its eight integrands to two storage buffers",
-        Some(PassBuffer::floats(N, N, 4, gpu1.clone())),
+        Some(PassBuffer::floats(N, N, 4, gpu1.clone()).named(TARGET_1)),
     );
     run.check(
         "compute: both buffers = the CPU's integrands",

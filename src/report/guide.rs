@@ -152,9 +152,13 @@ fn index_page(
             escape(&compute)
         ));
     }
+    body.push_str(&format!(
+        "</table>\n<p>{}</p>\n",
+        escape(crate::gl::picture::MAPPING_IN_WORDS)
+    ));
     body.push_str(
-        "</table>\n<p>Then: the <a href=\"reading.html\">reading order</a> from the lessons \
-         into the papers, and the <a href=\"glossary.html\">glossary</a>.</p>\n",
+        "<p>Then: the <a href=\"reading.html\">reading order</a> from the lessons into the \
+         papers, and the <a href=\"glossary.html\">glossary</a>.</p>\n",
     );
     page("Learn classic GPGPU", &body)
 }

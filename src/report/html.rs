@@ -262,6 +262,10 @@ fn contents(sections: &[Section]) -> String {
          load.</p>\n",
         super::timing::LOADED_PER_CORE
     ));
+    out.push_str(&format!(
+        "<p>{}</p>\n",
+        escape(crate::gl::picture::MAPPING_IN_WORDS)
+    ));
     out.push_str(&claims_summary(sections));
     for s in sections {
         out.push_str(&section(s));
@@ -361,6 +365,9 @@ mod tests {
             .map(|rest| &rest[..rest.find('"').unwrap()])
             .collect();
         assert_eq!(links.len(), 6, "a section link and a claim link per claim");
+        // How pictures map values is said once, before the sections.
+        let mapping = html.find("zero is always the same dark grey").unwrap();
+        assert!(mapping < html.find("Every claim at a glance").unwrap());
         for link in links {
             assert_eq!(
                 html.matches(&format!(" id=\"{link}\"")).count(),

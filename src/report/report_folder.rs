@@ -167,9 +167,11 @@ pub fn check_out(out: &Path, force: bool) -> anyhow::Result<()> {
 }
 
 /// The lock of one report folder: held while a run reads the old report and writes the new
-/// one, released when dropped (or when the process dies, however it dies).
+/// one, released when dropped (or when the process dies, however it dies). A run that ends
+/// normally removes the lock file; one that was killed leaves it, and the next run reuses it.
 pub struct Lock {
-    _file: std::fs::File,
+    file: std::fs::File,
+    path: PathBuf,
 }
 
 impl Lock {
@@ -180,23 +182,54 @@ impl Lock {
         std::fs::create_dir_all(&parent)
             .with_context(|| format!("creating {}", parent.display()))?;
         let path = parent.join(format!(".{name}.lock"));
-        // The lock is a file's flock, not its contents: it is opened, never written.
-        let file = std::fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&path)
-            .with_context(|| format!("opening the lock {}", path.display()))?;
-        match rustix::fs::flock(&file, rustix::fs::FlockOperation::NonBlockingLockExclusive) {
-            Ok(()) => Ok(Lock { _file: file }),
-            Err(rustix::io::Errno::WOULDBLOCK) => bail!(
-                "--out {}: another `classic-gpgpu reproduce` is writing this report now (it \
-                 holds {}); run again when it has finished, or choose another --out",
-                out.display(),
-                path.display()
-            ),
-            Err(e) => Err(e).with_context(|| format!("locking {}", path.display())),
+        // A holder removes the file before it unlocks, so a lock taken on a file that is no
+        // longer at `path` is stale: open the file at `path` again.
+        for _ in 0..16 {
+            let file = open_lock_file(&path)?;
+            match rustix::fs::flock(&file, rustix::fs::FlockOperation::NonBlockingLockExclusive) {
+                Ok(()) if still_at(&file, &path) => return Ok(Lock { file, path }),
+                Ok(()) => continue,
+                Err(rustix::io::Errno::WOULDBLOCK) => bail!(
+                    "--out {}: another `classic-gpgpu reproduce` is writing this report now (it \
+                     holds {}); run again when it has finished, or choose another --out",
+                    out.display(),
+                    path.display()
+                ),
+                Err(e) => return Err(e).with_context(|| format!("locking {}", path.display())),
+            }
         }
+        bail!(
+            "locking {}: the lock file kept being replaced",
+            path.display()
+        )
+    }
+}
+
+impl Drop for Lock {
+    fn drop(&mut self) {
+        // Removed while still held; the flock goes with the file handle just after.
+        if still_at(&self.file, &self.path) {
+            let _ = std::fs::remove_file(&self.path);
+        }
+    }
+}
+
+/// The lock is a file's flock, not its contents: it is opened, never written.
+fn open_lock_file(path: &Path) -> anyhow::Result<std::fs::File> {
+    std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(path)
+        .with_context(|| format!("opening the lock {}", path.display()))
+}
+
+/// Whether `path` is still the file `file` has open.
+fn still_at(file: &std::fs::File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    match (file.metadata(), std::fs::metadata(path)) {
+        (Ok(open), Ok(named)) => open.dev() == named.dev() && open.ino() == named.ino(),
+        _ => false,
     }
 }
 
@@ -381,4 +414,30 @@ fn swap(staging: &Path, out: &Path) -> anyhow::Result<()> {
         std::fs::remove_dir_all(&aside).ok();
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_run_holds_the_lock_and_leaves_no_file() {
+        let dir = std::env::temp_dir().join(format!("cg-lock-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = dir.join("report");
+        let lock_file = dir.join(".report.lock");
+        let held = Lock::take(&out).unwrap();
+        assert!(lock_file.exists());
+        let second = Lock::take(&out)
+            .err()
+            .expect("a second lock while the first is held");
+        assert!(format!("{second:#}").contains("another"), "{second:#}");
+        drop(held);
+        assert!(!lock_file.exists(), "the lock file outlived its run");
+        // A lock file a killed run left is simply taken over.
+        std::fs::write(&lock_file, "").unwrap();
+        drop(Lock::take(&out).unwrap());
+        assert!(!lock_file.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

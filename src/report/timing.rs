@@ -234,7 +234,8 @@ pub fn judge(spread: &Spread, target: Target, load: Option<Load>, unit: &str) ->
         (
             None,
             format!(
-                "not judged: machine loaded ({:.2} per core, above the {LOADED_PER_CORE:.1}                  this report judges timings under)",
+                "not judged: machine loaded ({:.2} per core, above the {LOADED_PER_CORE:.1} \
+                 this report judges timings under)",
                 l.per_core()
             ),
         )
@@ -261,7 +262,8 @@ pub fn judge_under_load(holds: bool, load: Option<Load>) -> TimedVerdict {
         Some(l) if l.is_loaded() => TimedVerdict {
             holds: None,
             note: format!(
-                "{}; not judged: machine loaded ({:.2} per core, above the                  {LOADED_PER_CORE:.1} this report judges timings under)",
+                "{}; not judged: machine loaded ({:.2} per core, above the \
+                 {LOADED_PER_CORE:.1} this report judges timings under)",
                 l.in_words(),
                 l.per_core()
             ),

@@ -320,8 +320,17 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         table1_load: None,
     };
     let mut snapshots = Vec::new();
+    // Frames and the atlas are images (RGBA8), written as they are; pass 1's float target is
+    // data: x, y and z of each skinned vertex as three panels with their colour keys (a
+    // column per character, a row per vertex).
     let mut snapshot = |texture: &Texture, file: String, shows: Shows| -> anyhow::Result<()> {
-        dump::texture_png(texture, &opts.out_dir.join(&file), DumpRange::Auto)?;
+        let path = opts.out_dir.join(&file);
+        if texture.format().is_float() {
+            let channels = ["pass 1 x", "pass 1 y", "pass 1 z"];
+            dump::texture_picture_png(texture, &channels, DumpRange::Auto, (960, 480), &path)?;
+        } else {
+            dump::texture_png(texture, &path, DumpRange::Auto)?;
+        }
         snapshots.push(Snapshot { file, shows });
         Ok(())
     };

@@ -21,8 +21,9 @@ fn caption(shows: &Shows) -> String {
             format!("Fig. 3: {characters} soldiers without LOD and frustum culling (two-pass)")
         }
         Shows::RenderTarget { model } => format!(
-            "Fig. 2: the pass-1 render target after the last {} run, skinned positions as colour \
-             (a column per character, a row per vertex index, blocks of 128 characters stacked)",
+            "Fig. 2: the pass-1 render target after the last {} run, the skinned positions' x, y \
+             and z as three panels (a column per character, a row per vertex index, blocks of \
+             128 characters stacked)",
             model.name()
         ),
         Shows::ImpostorAtlas {

@@ -2,9 +2,10 @@
 //! the pass and the checks against the CPU in the overlay, and for a lesson that iterates
 //! (ping-pong) one more iteration per step.
 
-use crate::gl::{Context, Rect};
+use crate::gl::Context;
 use crate::learn::{self, Lesson, LessonOptions, LessonRun};
-use crate::view::{inset, Canvas, Demo, ViewState};
+use crate::view::inset::{self, Shown};
+use crate::view::{Canvas, Demo, ViewState};
 
 pub struct LearnDemo {
     ctx: Context,
@@ -62,13 +63,23 @@ impl Demo for LearnDemo {
         }
         self.shown = view.shown % buffers.len();
         let b = &buffers[self.shown];
-        inset::draw_rgba(
-            canvas,
-            &b.rgba(),
-            (b.width, b.height),
-            Rect::sized(canvas.width(), canvas.height()),
-            "",
-        )?;
+        // Each channel a panel on its set's scale, probed against the CPU where the lesson
+        // keeps its reference per texel.
+        let shown: Vec<Shown> = self
+            .run
+            .panels(self.shown)
+            .into_iter()
+            .enumerate()
+            .map(|(c, panel)| Shown {
+                panel,
+                probe_values: None,
+                reference: b
+                    .reference
+                    .as_ref()
+                    .map(|r| r.iter().skip(c).step_by(b.channels).copied().collect()),
+            })
+            .collect();
+        inset::draw_picture(canvas, shown, canvas.below_text())?;
         Ok(())
     }
 
