@@ -1,6 +1,8 @@
 //! `classic-gpgpu lecture1 ...`: the tutorial's lecture 1 beyond paper 1 (`src/lecture1/`):
 //! self-collision with streaming AABBs, pairwise triangle tests with the triangles in
-//! textures, and a comparison of the two with brute force by triangle count.
+//! textures (classic, or as one compute dispatch with `--formulation compute`), and a
+//! comparison of the two with brute force by triangle count. The report's `lecture1` section
+//! (`reproduce --only lecture1`) and `view lecture1 ...` show the same techniques.
 
 use anyhow::Context as _;
 use classic_gpgpu::collide::deform::{Deformation, Deforming, Pulsating, Wavy};
