@@ -456,3 +456,18 @@ fn the_window_reads_shaders_from_glsl_dir() {
 fn learn_ping_pong_window_matches_headless() {
     window_matches_headless("learn", &["learn", "ping-pong", "--buffer", "2"], 2);
 }
+
+/// Lecture 1: each technique's scene with its buffer insets, and its pair texture P0 (Tab),
+/// in a window against the headless frame.
+#[test]
+fn lecture1_window_matches_headless() {
+    for technique in ["self-collision", "pairwise"] {
+        for buffer in ["0", "1"] {
+            window_matches_headless(
+                &format!("lecture1-{technique}-{buffer}"),
+                &["lecture1", technique, "--buffer", buffer],
+                2,
+            );
+        }
+    }
+}

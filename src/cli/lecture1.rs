@@ -1,6 +1,8 @@
 //! `classic-gpgpu lecture1 ...`: the tutorial's lecture 1 beyond paper 1 (`src/lecture1/`):
 //! self-collision with streaming AABBs, pairwise triangle tests with the triangles in
-//! textures, and a comparison of the two with brute force by triangle count.
+//! textures (classic, or as one compute dispatch with `--formulation compute`), and a
+//! comparison of the two with brute force by triangle count. The report's `lecture1` section
+//! (`reproduce --only lecture1`) and `view lecture1 ...` show the same techniques.
 
 use anyhow::Context as _;
 use classic_gpgpu::collide::deform::{Deformation, Deforming, Pulsating, Wavy};
@@ -9,6 +11,7 @@ use classic_gpgpu::collide::stream_setup::auto_leaf_size;
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::lecture1::knotted_tube::KnottedTube;
 use classic_gpgpu::lecture1::pairwise::{PairwiseTester, DEFAULT_TILE};
+use classic_gpgpu::lecture1::pairwise_compute::ComputePairwiseTester;
 use classic_gpgpu::lecture1::reference;
 use classic_gpgpu::lecture1::self_collision::{Options, SelfCollider};
 use classic_gpgpu::lecture1::weld::weld;
@@ -24,7 +27,8 @@ pub enum Lecture1Command {
     /// pair of intersecting triangles that share no vertex.
     SelfCollision(SelfCollisionArgs),
     /// Pairwise triangle tests with the triangles in textures (a reconstruction of Choi, Kim
-    /// & Kim 2006): every intersecting pair between two models, or within one.
+    /// & Kim 2006): every intersecting pair between two models, or within one; with
+    /// `--formulation compute`, the same test as one OpenGL 4.3 compute dispatch.
     Pairwise(PairwiseArgs),
     /// Pairwise tests, streaming AABBs and brute force on the swelling knot, by triangle
     /// count (wall-clock times, measured side by side; the renderer named).
@@ -104,6 +108,17 @@ pub struct PairwiseArgs {
     /// Check the pairs against brute force with the same exact predicate (quadratic).
     #[arg(long)]
     pub check: bool,
+    /// classic: the pair quad over triangle textures, hierarchical readback (OpenGL 3.3);
+    /// compute: one compute dispatch over all pairs with an atomic-append pair list (OpenGL
+    /// 4.3, then and now).
+    #[arg(long, value_enum, default_value_t = Formulation::Classic)]
+    pub formulation: Formulation,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Formulation {
+    Classic,
+    Compute,
 }
 
 pub use super::lecture1_fields::{DistanceFieldArgs, SweptVolumeArgs, VoronoiArgs};
@@ -257,9 +272,17 @@ fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow
 fn pairwise(args: &PairwiseArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let a = load(&args.a)?;
     let b = args.b.as_deref().map(load).transpose()?;
-    let tester = PairwiseTester::new(ctx, args.tile)?;
     let start = Instant::now();
-    let result = tester.run(&a, b.as_ref())?;
+    let (result, tile) = match args.formulation {
+        Formulation::Classic => {
+            let tester = PairwiseTester::new(ctx, args.tile)?;
+            (tester.run(&a, b.as_ref())?, Some(tester.tile))
+        }
+        Formulation::Compute => {
+            let mut tester = ComputePairwiseTester::new(ctx)?;
+            (tester.run(&a, b.as_ref())?, None)
+        }
+    };
     let ms = start.elapsed().as_secs_f64() * 1e3;
     if args.check {
         let expected = match &b {
@@ -282,24 +305,34 @@ fn pairwise(args: &PairwiseArgs, ctx: &Context, json: bool) -> anyhow::Result<()
         let report = json!({
             "renderer": renderer,
             "triangles": if b.is_some() { counts.to_vec() } else { vec![counts[0]] },
-            "tile": tester.tile,
+            "formulation": format!("{:?}", args.formulation).to_lowercase(),
+            "tile": tile,
             "tiles": result.tiles,
             "candidates": result.candidates,
             "readback_bytes": result.readback_bytes,
             "checked": args.check,
             "pairs": result.pairs.iter().map(|&(i, j)| [i, j]).collect::<Vec<_>>(),
-            "timings_ms": {"pair_passes_gpu": result.test_ms, "total_wall": ms},
+            "timings_ms": {
+                "pair_passes_gpu": result.test_ms,
+                "total_wall": ms,
+                "pair_passes_timing": match args.formulation {
+                    Formulation::Classic => "GL timer query",
+                    Formulation::Compute => "wall clock between glFinish calls (with the list's readback)",
+                },
+            },
         });
         println!("{}", serde_json::to_string(&report)?);
         return Ok(());
     }
     println!("renderer: {renderer}");
+    let passes = match tile {
+        Some(tile) => format!("{} tile(s) of at most {tile}", result.tiles),
+        None => format!("{} compute dispatch(es)", result.tiles),
+    };
     println!(
-        "{} pairs ({} reported by the GPU, {} tile(s) of at most {}; {ms:.1} ms wall){}",
+        "{} pairs ({} reported by the GPU, {passes}; {ms:.1} ms wall){}",
         result.pairs.len(),
         result.candidates,
-        result.tiles,
-        tester.tile,
         if args.check {
             ", equal to brute force"
         } else {

@@ -3,6 +3,7 @@
 
 use anyhow::Context as _;
 use classic_gpgpu::gl::Context;
+use classic_gpgpu::view::demos::lecture1::Technique as Lecture1Technique;
 use classic_gpgpu::view::demos::lecture3::Technique as Lecture3Technique;
 use classic_gpgpu::view::window::{self, WindowOptions};
 use classic_gpgpu::view::{self as viewer, DemoSpec, ViewState};
@@ -101,6 +102,14 @@ pub enum DemoCommand {
     /// adjustable (keys + and -).
     #[command(subcommand)]
     Mlp(MlpDemo),
+    /// The tutorial's lecture 1: self-collision of the swelling knotted tube, or pairwise
+    /// triangle tests in textures between two tori; the pair texture and its hierarchical
+    /// levels one Tab away, each level's texel probed against the CPU encoding.
+    Lecture1 {
+        /// The technique, as `classic-gpgpu lecture1` names it.
+        #[arg(value_enum)]
+        technique: Lecture1Technique,
+    },
     /// The tutorial's lecture 3: one technique live, its buffers one Tab away, each texel
     /// probed against the CPU reference.
     Lecture3 {
@@ -169,6 +178,9 @@ impl DemoCommand {
             },
             DemoCommand::Mlp(MlpDemo::Detect { image }) => DemoSpec::MlpDetect {
                 image: image.clone(),
+            },
+            DemoCommand::Lecture1 { technique } => DemoSpec::Lecture1 {
+                technique: *technique,
             },
             DemoCommand::Lecture3 { technique } => DemoSpec::Lecture3 {
                 technique: *technique,

@@ -12,6 +12,9 @@
 //!   reference 38 (triangles mapped into textures, a hierarchical readback); the layout of
 //!   the textures, the pair quad, its tiling and the fragment test are a reconstruction.
 //!
+//! - [`pairwise_compute`]: the same pair test as one OpenGL 4.3 compute dispatch with an
+//!   atomic-append pair list (then and now; not a part of the sources).
+//!
 //! Every GPU path is checked against [`mod@reference`], brute force with paper 1's exact
 //! predicate. [`weld`] decides which triangles are neighbours; [`knotted_tube`] is a scene
 //! that folds onto itself. Shaders: `glsl/lecture1/`.
@@ -19,6 +22,8 @@
 pub mod distance_field;
 pub mod knotted_tube;
 pub mod pairwise;
+pub mod pairwise_compute;
+pub mod pictures;
 pub mod reference;
 pub mod self_collision;
 pub mod swept_volume;

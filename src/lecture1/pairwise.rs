@@ -101,6 +101,18 @@ pub struct PairwiseResult {
     pub pairs: Vec<(u32, u32)>,
 }
 
+/// One tile's buffers after its pass and readback ([`PairwiseTester::first_tile`]).
+pub struct TileBuffers {
+    /// `P0`: texel (column j, row i) is 1 when pair (i, j) may intersect.
+    pub target: PairTarget,
+    /// `P1..P3`, the hierarchical 4x4 encoding of `P0`.
+    pub reduction: Reduction,
+    /// Pairs the occlusion query counted.
+    pub reported: u64,
+    /// The pairs the readback decoded, `(row i, column j)`, before the CPU's confirmation.
+    pub candidates: Vec<(u32, u32)>,
+}
+
 /// The pair test: the program, `P0` with its reduction levels, and an occlusion query.
 pub struct PairwiseTester {
     ctx: Context,
@@ -119,7 +131,13 @@ impl PairwiseTester {
             .min(limits.max_viewport_dims[1] as usize);
         Ok(PairwiseTester {
             ctx: ctx.clone(),
-            program: Program::rect(ctx, &[shader!("glsl/lecture1/pair_test.frag")])?,
+            program: Program::rect(
+                ctx,
+                &[
+                    shader!("glsl/lecture1/pair_filter.glsl"),
+                    shader!("glsl/lecture1/pair_test.frag"),
+                ],
+            )?,
             tile: tile.min(limit),
             query: OcclusionQuery::new(ctx)?,
         })
@@ -195,6 +213,39 @@ impl PairwiseTester {
         Ok(out)
     }
 
+    /// The first tile's buffers, for pictures: `P0` of the tile of pairs starting at triangle
+    /// 0 of A and of B (the whole pair quad when the models fit one tile), and its
+    /// hierarchical levels after the readback.
+    pub fn first_tile(&self, a: &Mesh, b: Option<&Mesh>) -> anyhow::Result<TileBuffers> {
+        let welded;
+        let (a, b) = match b {
+            Some(b) => (a, b),
+            None => {
+                welded = weld(a);
+                (&welded, &welded)
+            }
+        };
+        let self_test = std::ptr::eq(a, b);
+        let tex_a = TriangleTexture::new(&self.ctx, a)?;
+        let tex_b = if self_test {
+            None
+        } else {
+            Some(TriangleTexture::new(&self.ctx, b)?)
+        };
+        let tex_b = tex_b.as_ref().unwrap_or(&tex_a);
+        let (h, w) = (tex_a.count.min(self.tile), tex_b.count.min(self.tile));
+        let target = PairTarget::new(&self.ctx, w, h)?;
+        let reduction = Reduction::new(&self.ctx, w, h)?;
+        let count = self.draw_tile(&target, (&tex_a, tex_b), IVec2::ZERO, self_test)?;
+        let readback = reduction.read(&self.ctx, &target, Scheme::Hierarchical)?;
+        Ok(TileBuffers {
+            target,
+            reduction,
+            reported: count,
+            candidates: readback.decoded.caps,
+        })
+    }
+
     /// The pair quad over one tile; returns the number of pairs it reported.
     fn draw_tile(
         &self,
@@ -224,7 +275,12 @@ impl PairwiseTester {
 
 /// The exact predicate on every reported pair (the GPU's filter leaves touching and coplanar
 /// pairs to it); sorted.
-fn confirm(a: &Mesh, b: &Mesh, self_test: bool, candidates: &[(u32, u32)]) -> Vec<(u32, u32)> {
+pub(super) fn confirm(
+    a: &Mesh,
+    b: &Mesh,
+    self_test: bool,
+    candidates: &[(u32, u32)],
+) -> Vec<(u32, u32)> {
     let corners = |m: &Mesh, t: u32| -> [Vec3; 3] { m.triangle(t as usize) };
     let mut pairs: Vec<(u32, u32)> = candidates
         .iter()

@@ -40,6 +40,7 @@ pub fn stages() -> Vec<Stage> {
         Stage::of::<super::paper2::Paper2>(),
         Stage::of::<super::paper3::Paper3>(),
         Stage::of::<super::paper4::Paper4>(),
+        Stage::of::<super::lecture1::Lecture1>(),
         Stage::of::<super::lecture3::Lecture3>(),
     ]
 }

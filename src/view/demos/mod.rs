@@ -5,6 +5,7 @@ mod buoyancy;
 mod collide;
 mod crowd;
 mod learn;
+pub mod lecture1;
 pub mod lecture3;
 mod mass;
 mod mlp;
@@ -29,6 +30,8 @@ pub enum DemoSpec {
     Crowd { characters: usize },
     /// Paper 3: text detection on an image.
     MlpDetect { image: std::path::PathBuf },
+    /// The tutorial's lecture 1: one technique.
+    Lecture1 { technique: lecture1::Technique },
     /// The tutorial's lecture 3: one technique.
     Lecture3 { technique: lecture3::Technique },
     /// A lesson of `learn`: its passes' buffers, its checks.
@@ -44,6 +47,7 @@ impl DemoSpec {
             DemoSpec::Buoyancy { .. } => "buoyancy".to_string(),
             DemoSpec::Crowd { .. } => "crowd".to_string(),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
+            DemoSpec::Lecture1 { technique } => format!("lecture1 {}", technique.name()),
             DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
             DemoSpec::Learn { id } => format!("learn {id}"),
         }
@@ -67,6 +71,7 @@ impl DemoSpec {
             }
             DemoSpec::Crowd { characters } => format!("crowd --characters {characters}"),
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
+            DemoSpec::Lecture1 { technique } => format!("lecture1 {}", technique.name()),
             DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
             DemoSpec::Learn { id } => format!("learn {id}"),
         }
@@ -95,6 +100,13 @@ impl DemoSpec {
                     image.display()
                 )
             }
+            DemoSpec::Lecture1 { technique } => match technique {
+                lecture1::Technique::SelfCollision => {
+                    "classic-gpgpu lecture1 self-collision --scene knotted-tube --frames 8 --dt 0.25"
+                        .to_string()
+                }
+                lecture1::Technique::Pairwise => "classic-gpgpu lecture1 pairwise A.obj B.obj".into(),
+            },
             DemoSpec::Lecture3 { technique } => {
                 format!("classic-gpgpu lecture3 {}", technique.name())
             }
@@ -122,6 +134,7 @@ impl DemoSpec {
                 Box::new(crowd::CrowdDemo::new(ctx, *characters, size)?)
             }
             DemoSpec::MlpDetect { image } => Box::new(mlp::MlpDemo::new(ctx, image)?),
+            DemoSpec::Lecture1 { technique } => technique.build(ctx)?,
             DemoSpec::Lecture3 { technique } => technique.build(ctx)?,
             DemoSpec::Learn { id } => Box::new(learn::LearnDemo::new(ctx, id)?),
         })
