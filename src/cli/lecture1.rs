@@ -17,6 +17,8 @@ use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod penetration;
+
 /// The lecture-1 techniques.
 #[derive(clap::Subcommand, Debug)]
 pub enum Lecture1Command {
@@ -29,6 +31,10 @@ pub enum Lecture1Command {
     /// Pairwise tests, streaming AABBs and brute force on the swelling knot, by triangle
     /// count (wall-clock times, measured side by side; the renderer named).
     Compare(CompareArgs),
+    /// Penetration depth by rasterized Minkowski sums (a reconstruction of Kim, Otaduy, Lin
+    /// & Manocha 2002): how far, and along which direction, B must move to touch A without
+    /// overlap. Each OBJ object or group is a convex piece; a non-convex piece is refused.
+    Penetration(penetration::PenetrationArgs),
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -98,6 +104,7 @@ pub fn run(command: &Lecture1Command, ctx: &Context, json: bool) -> anyhow::Resu
         Lecture1Command::SelfCollision(a) => self_collision(a, ctx, json),
         Lecture1Command::Pairwise(a) => pairwise(a, ctx, json),
         Lecture1Command::Compare(a) => compare(a, ctx, json),
+        Lecture1Command::Penetration(a) => penetration::run(a, ctx, json),
     }
 }
 

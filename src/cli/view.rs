@@ -108,12 +108,26 @@ pub enum DemoCommand {
         #[arg(value_enum)]
         technique: Lecture3Technique,
     },
+    /// The tutorial's lecture 1: `penetration`, a cube circling in the corner of an L of two
+    /// boxes, the T buffer of the penetration-depth query (six cube faces) probed against the
+    /// CPU, the depth and its direction.
+    Lecture1 {
+        #[arg(value_enum)]
+        technique: Lecture1Technique,
+    },
     /// A lesson of `learn` live: each pass's buffer (Tab), the checks against the CPU, one
     /// more iteration per step where the lesson iterates (ping-pong).
     Learn {
         /// The lesson's id or number (`classic-gpgpu learn --list`).
         id: String,
     },
+}
+
+/// The lecture-1 techniques the viewer shows.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lecture1Technique {
+    /// Penetration depth by rasterized Minkowski sums.
+    Penetration,
 }
 
 #[derive(clap::Subcommand, Debug)]
@@ -174,6 +188,9 @@ impl DemoCommand {
                 technique: *technique,
             },
             DemoCommand::Learn { id } => DemoSpec::Learn { id: id.clone() },
+            DemoCommand::Lecture1 {
+                technique: Lecture1Technique::Penetration,
+            } => DemoSpec::Lecture1Penetration,
         })
     }
 }

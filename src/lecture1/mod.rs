@@ -18,6 +18,7 @@
 
 pub mod knotted_tube;
 pub mod pairwise;
+pub mod penetration;
 pub mod reference;
 pub mod self_collision;
 pub mod weld;

@@ -10,6 +10,7 @@
 pub mod blocks;
 pub mod guide;
 mod html;
+pub mod lecture1;
 pub mod lecture3;
 pub mod paper1;
 pub mod paper2;

@@ -5,6 +5,7 @@ mod buoyancy;
 mod collide;
 mod crowd;
 mod learn;
+mod lecture1_penetration;
 pub mod lecture3;
 mod mass;
 mod mlp;
@@ -33,6 +34,8 @@ pub enum DemoSpec {
     Lecture3 { technique: lecture3::Technique },
     /// A lesson of `learn`: its passes' buffers, its checks.
     Learn { id: String },
+    /// The tutorial's lecture 1: penetration depth by rasterized Minkowski sums.
+    Lecture1Penetration,
 }
 
 impl DemoSpec {
@@ -46,6 +49,7 @@ impl DemoSpec {
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
             DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
             DemoSpec::Learn { id } => format!("learn {id}"),
+            DemoSpec::Lecture1Penetration => "lecture1 penetration".to_string(),
         }
     }
 
@@ -69,6 +73,7 @@ impl DemoSpec {
             DemoSpec::MlpDetect { image } => format!("mlp detect {}", image.display()),
             DemoSpec::Lecture3 { technique } => format!("lecture3 {}", technique.name()),
             DemoSpec::Learn { id } => format!("learn {id}"),
+            DemoSpec::Lecture1Penetration => "lecture1 penetration".to_string(),
         }
     }
 
@@ -99,6 +104,9 @@ impl DemoSpec {
                 format!("classic-gpgpu lecture3 {}", technique.name())
             }
             DemoSpec::Learn { id } => format!("classic-gpgpu learn {id} --png DIR"),
+            DemoSpec::Lecture1Penetration => {
+                "classic-gpgpu lecture1 penetration A.obj B.obj --png t.png".to_string()
+            }
         };
         format!(
             "`classic-gpgpu view {} --headless --screenshot frame.png` (or `{paper}`)",
@@ -124,6 +132,9 @@ impl DemoSpec {
             DemoSpec::MlpDetect { image } => Box::new(mlp::MlpDemo::new(ctx, image)?),
             DemoSpec::Lecture3 { technique } => technique.build(ctx)?,
             DemoSpec::Learn { id } => Box::new(learn::LearnDemo::new(ctx, id)?),
+            DemoSpec::Lecture1Penetration => {
+                Box::new(lecture1_penetration::PenetrationDemo::new(ctx)?)
+            }
         })
     }
 }
