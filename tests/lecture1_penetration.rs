@@ -104,9 +104,9 @@ fn assert_t_buffers_agree(sums: &[Polytope], result: &Penetration, what: &str) {
     );
     let cpu_min = cpu.iter().copied().fold(f32::INFINITY, f32::min) as f64 * result.scale;
     assert!(
-        (cpu_min - result.upper_bound).abs() <= tolerance * result.scale,
+        (cpu_min - result.rasterized_bound).abs() <= tolerance * result.scale,
         "{what}: smallest T {} on the GPU, {cpu_min} on the CPU",
-        result.upper_bound
+        result.rasterized_bound
     );
 }
 
@@ -328,6 +328,7 @@ fn compute_matches_the_classic_path() {
     }
     let compute = compute.unwrap();
     assert_eq!(compute.passes, 0);
+    assert!(!classic.bound_corrected && !compute.bound_corrected);
     let (c, g) = (classic.exits.unwrap(), compute.exits.unwrap());
     let agree = c
         .iter()

@@ -98,7 +98,12 @@ pub struct Penetration {
     pub sums_kept: usize,
     /// Classic passes drawn (0 for the compute formulation).
     pub passes: usize,
-    /// The rasterized upper bound (smallest T over all pixels) and its pixel's direction.
+    /// The smallest T over all pixels (the rasterized bound).
+    pub rasterized_bound: f64,
+    /// Whether the rasterized bound's point lay inside a sum (a fragment the renderer lost),
+    /// so that the bound below is the CPU's exit along the same ray instead.
+    pub bound_corrected: bool,
+    /// The upper bound the refinement starts from, and its pixel's direction.
     pub upper_bound: f64,
     pub upper_bound_direction: [f64; 3],
     /// What the object-space refinement did.
@@ -189,12 +194,21 @@ impl PenetrationQuery {
             Formulation::Classic => self.classic(&unit, options)?,
             Formulation::Compute => self.compute(&unit, options)?,
         };
-        let upper_bound = nearest.0 as f64 * scale;
+        let rasterized_bound = nearest.0 as f64 * scale;
         let bound_direction = cube_map::direction_of(nearest.1, options.resolution);
         anyhow::ensure!(
-            upper_bound.is_finite(),
-            "the closest-point query gave a non-finite upper bound ({upper_bound})"
+            rasterized_bound.is_finite(),
+            "the closest-point query gave a non-finite upper bound ({rasterized_bound})"
         );
+        // The bound's point must lie outside every sum's interior; if a renderer lost a
+        // fragment there (T too small), the exit along the same ray, in f64, is the bound.
+        let point = bound_direction * rasterized_bound;
+        let bound_corrected = overlap && kept.iter().any(|s| s.depth_of(point) < -tolerance);
+        let upper_bound = if bound_corrected {
+            reference::union_exit(&kept, bound_direction, 0.0)
+        } else {
+            rasterized_bound
+        };
         let refinement = if overlap {
             refine::refine(&kept, upper_bound, bound_direction, tolerance)
         } else {
@@ -223,6 +237,8 @@ impl PenetrationQuery {
             sums: all,
             sums_kept: kept.len(),
             passes,
+            rasterized_bound,
+            bound_corrected,
             upper_bound,
             upper_bound_direction: bound_direction.to_array(),
             refinement,
