@@ -20,6 +20,8 @@ use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod penetration;
+
 /// The lecture-1 techniques.
 #[derive(clap::Subcommand, Debug)]
 pub enum Lecture1Command {
@@ -53,6 +55,10 @@ pub enum Lecture1Command {
     /// interpolated linearly and rotation by slerp; a rotation that is not a unit quaternion
     /// (within 1e-6) is refused.
     SweptVolume(SweptVolumeArgs),
+    /// Penetration depth by rasterized Minkowski sums (a reconstruction of Kim, Otaduy, Lin
+    /// & Manocha 2002): how far, and along which direction, B must move to touch A without
+    /// overlap. Each OBJ object or group is a convex piece; a non-convex piece is refused.
+    Penetration(penetration::PenetrationArgs),
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,6 +144,7 @@ pub fn run(command: &Lecture1Command, ctx: &Context, json: bool) -> anyhow::Resu
         Lecture1Command::Voronoi(a) => super::lecture1_fields::voronoi(a, ctx, json),
         Lecture1Command::DistanceField(a) => super::lecture1_fields::distance_field(a, ctx, json),
         Lecture1Command::SweptVolume(a) => super::lecture1_fields::swept_volume(a, ctx, json),
+        Lecture1Command::Penetration(a) => penetration::run(a, ctx, json),
     }
 }
 

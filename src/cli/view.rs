@@ -102,9 +102,10 @@ pub enum DemoCommand {
     /// adjustable (keys + and -).
     #[command(subcommand)]
     Mlp(MlpDemo),
-    /// The tutorial's lecture 1: self-collision of the swelling knotted tube, or pairwise
-    /// triangle tests in textures between two tori; the pair texture and its hierarchical
-    /// levels one Tab away, each level's texel probed against the CPU encoding.
+    /// The tutorial's lecture 1: self-collision of the swelling knotted tube, pairwise
+    /// triangle tests in textures between two tori (the pair texture and its hierarchical
+    /// levels one Tab away, each level's texel probed against the CPU encoding), or
+    /// penetration depth (the six cube faces of the T buffer, probed against the CPU).
     Lecture1 {
         /// The technique, as `classic-gpgpu lecture1` names it.
         #[arg(value_enum)]

@@ -23,6 +23,7 @@ pub mod distance_field;
 pub mod knotted_tube;
 pub mod pairwise;
 pub mod pairwise_compute;
+pub mod penetration;
 pub mod pictures;
 pub mod reference;
 pub mod self_collision;

@@ -14,6 +14,7 @@
 pub mod distance_field;
 mod fidelity;
 mod pairwise;
+pub mod penetration;
 mod self_collision;
 pub mod swept_volume;
 mod then_and_now;
@@ -77,7 +78,7 @@ pub const BLOCKS: &[(&str, Measure)] = &[
     ("distance-field", distance_field::block),
     ("swept-volume", swept_volume::block),
     ("then-and-now", then_and_now::block),
-    // Penetration depth goes here.
+    ("penetration", penetration::block),
 ];
 
 /// Everything the section measured.

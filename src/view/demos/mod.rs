@@ -106,6 +106,9 @@ impl DemoSpec {
                         .to_string()
                 }
                 lecture1::Technique::Pairwise => "classic-gpgpu lecture1 pairwise A.obj B.obj".into(),
+                lecture1::Technique::Penetration => {
+                    "classic-gpgpu lecture1 penetration A.obj B.obj --png t.png".into()
+                }
             },
             DemoSpec::Lecture3 { technique } => {
                 format!("classic-gpgpu lecture3 {}", technique.name())

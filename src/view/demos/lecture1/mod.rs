@@ -3,6 +3,7 @@
 //! hierarchical levels as insets, each level's texel probed against the CPU encoding.
 
 mod pairwise;
+mod penetration;
 mod self_collision;
 
 use crate::collide::snapshot::{self, Orbit, SnapshotModel};
@@ -20,6 +21,9 @@ pub enum Technique {
     SelfCollision,
     /// Pairwise triangle tests in textures between two deforming tori.
     Pairwise,
+    /// Penetration depth by rasterized Minkowski sums: a cube circling in the corner of an L
+    /// of two boxes, the six cube faces of the T buffer.
+    Penetration,
 }
 
 impl Technique {
@@ -28,6 +32,7 @@ impl Technique {
         match self {
             Technique::SelfCollision => "self-collision",
             Technique::Pairwise => "pairwise",
+            Technique::Penetration => "penetration",
         }
     }
 
@@ -36,6 +41,7 @@ impl Technique {
         Ok(match self {
             Technique::SelfCollision => Box::new(self_collision::SelfCollisionDemo::new(ctx)?),
             Technique::Pairwise => Box::new(pairwise::PairwiseDemo::new(ctx)?),
+            Technique::Penetration => Box::new(penetration::PenetrationDemo::new(ctx)?),
         })
     }
 }
