@@ -470,4 +470,6 @@ fn lecture1_window_matches_headless() {
             );
         }
     }
+    // Penetration depth has one buffer, the T cube faces, drawn over the scene's text.
+    window_matches_headless("lecture1-penetration", &["lecture1", "penetration"], 2);
 }

@@ -142,8 +142,8 @@ fn ladder(
             &format!("{fan}x{fan} level {}", sizes.len()),
             shader,
             &format!(
-                "{}x{} -> {w}x{h}: each texel sums (red) and takes the maximum (green) of the \
-                 {fan}x{fan} block below it",
+                "{}x{} -> {w}x{h}: each texel sums (panel \"sum\") and takes the maximum \
+                 (panel \"max\") of the {fan}x{fan} block below it",
                 level.width(),
                 level.height()
             ),
