@@ -226,10 +226,15 @@ fn picture_size(width: u32, height: u32, channels: usize) -> (u32, u32) {
 impl LessonRun {
     /// An empty run of `info` on `ctx`, to be filled pass by pass.
     pub fn new(info: &LessonInfo, ctx: &Context) -> LessonRun {
+        LessonRun::named(info.id, info.title, ctx.info().renderer_line())
+    }
+
+    /// An empty run called `id` and `title`, on `renderer`.
+    fn named(id: &str, title: &str, renderer: String) -> LessonRun {
         LessonRun {
-            id: info.id.into(),
-            title: info.title.into(),
-            renderer: ctx.info().renderer_line(),
+            id: id.into(),
+            title: title.into(),
+            renderer,
             passes: Vec::new(),
             checks: Vec::new(),
             passed: true,
@@ -527,20 +532,7 @@ mod tests {
     use super::*;
 
     fn run_of(buffers: Vec<PassBuffer>) -> LessonRun {
-        let mut run = LessonRun {
-            id: "test".into(),
-            title: "test".into(),
-            renderer: String::new(),
-            passes: Vec::new(),
-            checks: Vec::new(),
-            passed: true,
-            max_error: 0.0,
-            shaders: Vec::new(),
-            notes: Vec::new(),
-            compute: None,
-            hint: None,
-            buffers: Vec::new(),
-        };
+        let mut run = LessonRun::named("test", "test", String::new());
         for (k, b) in buffers.into_iter().enumerate() {
             run.pass(&format!("pass {k}"), "", "", Some(b));
         }
