@@ -71,8 +71,10 @@ fn the_quick_section_agrees_with_brute_force_and_writes_its_figures() {
         assert!(why.contains("needs OpenGL 4.3"), "{why}");
     }
     // Figures on disk, tables and the reconstruction wording on the page.
+    // Self-collision's three scenes, pairwise's buffers and plot, and one figure each for
+    // the distance field, the swept volume and penetration depth.
     let figures = section["figures"].as_array().unwrap();
-    assert_eq!(figures.len(), 5);
+    assert_eq!(figures.len(), 8);
     for figure in figures {
         let file = out_dir.join(figure["file"].as_str().unwrap());
         let image = image::open(&file).unwrap();
@@ -84,9 +86,19 @@ fn the_quick_section_agrees_with_brute_force_and_writes_its_figures() {
         .iter()
         .map(|t| t["caption"].as_str().unwrap())
         .collect();
-    assert_eq!(tables.len(), 4, "{tables:?}");
-    assert!(tables.iter().any(|c| c.starts_with("Where each wins")));
-    assert!(tables.iter().any(|c| c.starts_with("Then and now")));
+    assert_eq!(tables.len(), 7, "{tables:?}");
+    for start in [
+        "Where each wins",
+        "Then and now",
+        "Distance field",
+        "Swept volume",
+        "Penetration depth",
+    ] {
+        assert!(
+            tables.iter().any(|c| c.starts_with(start)),
+            "{start}: {tables:?}"
+        );
+    }
     let page = std::fs::read_to_string(out_dir.join("index.html")).unwrap();
     assert!(page.contains("reconstruction"));
     std::fs::remove_dir_all(&out_dir).ok();
