@@ -113,6 +113,31 @@ pub struct TileBuffers {
     pub candidates: Vec<(u32, u32)>,
 }
 
+/// The two sides of a pairwise query: models A and B, or one model against itself, welded
+/// so that split copies of a vertex make neighbours.
+pub(crate) enum Sides<'m> {
+    Two(&'m Mesh, &'m Mesh),
+    One(Mesh),
+}
+
+impl<'m> Sides<'m> {
+    /// A against B, or (`b` = `None`) A welded against itself.
+    pub(crate) fn of(a: &'m Mesh, b: Option<&'m Mesh>) -> Sides<'m> {
+        match b {
+            Some(b) => Sides::Two(a, b),
+            None => Sides::One(weld(a)),
+        }
+    }
+
+    /// A, B, and whether it is the self test (then A and B are the same model).
+    pub(crate) fn pair(&self) -> (&Mesh, &Mesh, bool) {
+        match self {
+            Sides::Two(a, b) => (a, b, std::ptr::eq(*a, *b)),
+            Sides::One(m) => (m, m, true),
+        }
+    }
+}
+
 /// The pair test: the program, `P0` with its reduction levels, and an occlusion query.
 pub struct PairwiseTester {
     ctx: Context,
@@ -149,16 +174,8 @@ impl PairwiseTester {
         if let Some(b) = b {
             validate_mesh(b).map_err(|e| anyhow::anyhow!("model B: {e}"))?;
         }
-        // One model: welded, so that split copies of a vertex make neighbours.
-        let welded;
-        let (a, b) = match b {
-            Some(b) => (a, b),
-            None => {
-                welded = weld(a);
-                (&welded, &welded)
-            }
-        };
-        let self_test = std::ptr::eq(a, b);
+        let sides = Sides::of(a, b);
+        let (a, b, self_test) = sides.pair();
         let tex_a = TriangleTexture::new(&self.ctx, a)?;
         let tex_b = if self_test {
             None
@@ -217,15 +234,8 @@ impl PairwiseTester {
     /// 0 of A and of B (the whole pair quad when the models fit one tile), and its
     /// hierarchical levels after the readback.
     pub fn first_tile(&self, a: &Mesh, b: Option<&Mesh>) -> anyhow::Result<TileBuffers> {
-        let welded;
-        let (a, b) = match b {
-            Some(b) => (a, b),
-            None => {
-                welded = weld(a);
-                (&welded, &welded)
-            }
-        };
-        let self_test = std::ptr::eq(a, b);
+        let sides = Sides::of(a, b);
+        let (a, b, self_test) = sides.pair();
         let tex_a = TriangleTexture::new(&self.ctx, a)?;
         let tex_b = if self_test {
             None

@@ -7,8 +7,7 @@
 //! hierarchical readback. The CPU confirms each listed pair with the exact predicate, as the
 //! classic path does, so both give the same pairs.
 
-use super::pairwise::{confirm, PairwiseResult};
-use super::weld::weld;
+use super::pairwise::{confirm, PairwiseResult, Sides};
 use crate::collide::stream_setup::validate_mesh;
 use crate::gl::{
     memory_barrier, time_finished, AtomicCounters, Barrier, Buffer, BufferUsage, ComputeProgram,
@@ -78,15 +77,8 @@ impl ComputePairwiseTester {
         if let Some(b) = b {
             validate_mesh(b).map_err(|e| anyhow::anyhow!("model B: {e}"))?;
         }
-        let welded;
-        let (a, b) = match b {
-            Some(b) => (a, b),
-            None => {
-                welded = weld(a);
-                (&welded, &welded)
-            }
-        };
-        let self_test = std::ptr::eq(a, b);
+        let sides = Sides::of(a, b);
+        let (a, b, self_test) = sides.pair();
         let buf_a = triangle_buffer(&self.ctx, a)?;
         let buf_b = if self_test {
             None
