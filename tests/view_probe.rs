@@ -108,3 +108,60 @@ fn overlay_lines_fit_the_default_and_a_small_canvas() {
         }
     }
 }
+
+/// A demo whose overlay gains lines while it draws (a figure the frame measures, a line that
+/// then wraps): it records where the canvas told it the text ends each time it drew.
+struct GrowingText {
+    drawn: usize,
+    tops: Vec<u32>,
+}
+
+impl classic_gpgpu::view::Demo for GrowingText {
+    fn step(&mut self) -> anyhow::Result<()> {
+        Ok(())
+    }
+    fn render(
+        &mut self,
+        canvas: &classic_gpgpu::view::Canvas,
+        _view: &ViewState,
+    ) -> anyhow::Result<()> {
+        self.drawn += 1;
+        let below = canvas.below_text();
+        self.tops.push(canvas.height() - below.h);
+        Ok(())
+    }
+    fn buffers(&self) -> Vec<String> {
+        vec!["scene".into()]
+    }
+    fn overlay(&self) -> Vec<String> {
+        // Three lines before the first drawing, eight once it has drawn.
+        let lines = if self.drawn == 0 { 3 } else { 8 };
+        (0..lines).map(|i| format!("line {i}")).collect()
+    }
+    fn timings(&self) -> String {
+        String::new()
+    }
+}
+
+#[test]
+fn text_that_grows_while_a_frame_draws_is_never_drawn_over_the_frame() {
+    let ctx = context();
+    let canvas = classic_gpgpu::view::Canvas::new(&ctx, 960, 600).unwrap();
+    let mut demo = GrowingText {
+        drawn: 0,
+        tops: Vec::new(),
+    };
+    let view = ViewState::default();
+    classic_gpgpu::view::draw_frame(&mut demo, &canvas, &view, 1).unwrap();
+    // Drawn again below the taller text: the last drawing's top is the final text's height.
+    assert_eq!(demo.drawn, 2, "drawn {} times", demo.drawn);
+    let mut lines = vec!["frame 1  [tab] scene  [h] help".to_string()];
+    lines.extend(classic_gpgpu::view::Demo::overlay(&demo));
+    let text = overlay::text_height(&lines, 960, 600);
+    let last_top = *demo.tops.last().unwrap();
+    assert!(
+        last_top >= text,
+        "text {text} px tall, the frame drawn from {last_top} px: {:?}",
+        demo.tops
+    );
+}

@@ -120,7 +120,6 @@ pub fn draw_frame(
     view: &ViewState,
     frame: usize,
 ) -> anyhow::Result<Vec<String>> {
-    canvas.clear_probed();
     let text = |demo: &dyn Demo| {
         let buffers = demo.buffers();
         let shown = buffers
@@ -131,15 +130,24 @@ pub fn draw_frame(
         lines.extend(demo.overlay());
         lines
     };
-    // The demo draws its buffers below the text (measured before, drawn after it).
+    // The demo draws its buffers below the text (measured before, drawn after it). Where
+    // drawing changed the text so that it needs more room (a figure the frame measured, a
+    // line that now wraps), the frame is drawn again below the taller text, so that the text
+    // never covers a panel's title.
     demo.show(view.shown);
-    let before = text(demo);
-    canvas.set_text_height(overlay::text_height(
-        &before,
-        canvas.width(),
-        canvas.height(),
-    ));
-    demo.render(canvas, view)?;
+    let height = |lines: &[String]| overlay::text_height(lines, canvas.width(), canvas.height());
+    let mut measured = height(&text(demo));
+    loop {
+        canvas.set_text_height(measured);
+        canvas.clear_probed();
+        demo.render(canvas, view)?;
+        let needed = height(&text(demo));
+        if needed <= measured {
+            break;
+        }
+        measured = needed;
+        canvas.clear([0.0, 0.0, 0.0, 1.0])?;
+    }
     overlay::draw_text(canvas, &text(demo), overlay::Corner::TopLeft)?;
     if view.help {
         let mut help = vec!["keys".to_string()];

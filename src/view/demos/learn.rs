@@ -106,7 +106,7 @@ impl Demo for LearnDemo {
                 format!(" [{}]", pass.shader)
             };
             lines.push(format!("pass {}: {}{shader}", b.pass, pass.name));
-            lines.extend(wrap(&pass.what, 90));
+            lines.extend(crate::gl::picture::wrap(&pass.what, 90));
         }
         let passed = r.checks.iter().filter(|c| c.passed).count();
         lines.push(format!(
@@ -130,21 +130,4 @@ impl Demo for LearnDemo {
     fn show(&mut self, shown: usize) {
         self.shown = shown % self.run.buffers.len().max(1);
     }
-}
-
-/// `text` in lines of at most `width` characters, broken at spaces.
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in text.split_whitespace() {
-        let last = lines.last_mut().expect("one line");
-        if !last.is_empty() && last.len() + 1 + word.len() > width {
-            lines.push(word.to_string());
-        } else {
-            if !last.is_empty() {
-                last.push(' ');
-            }
-            last.push_str(word);
-        }
-    }
-    lines
 }
