@@ -370,6 +370,24 @@ impl Context {
         }
     }
 
+    /// Whether this context may make textures of `format`: always without a period GPU,
+    /// otherwise when the chip had the format.
+    pub fn allows_format(&self, format: TextureFormat) -> bool {
+        self.period()
+            .is_none_or(|gpu| gpu.texture_formats.value.iter().any(|f| f == format.name()))
+    }
+
+    /// The depth format of a plain z-buffer (visibility only, never read as data): 32-bit
+    /// float depth today, 24-bit depth (with stencil) on a period GPU without float depth,
+    /// as every z-buffer of the period was.
+    pub fn z_buffer_format(&self) -> TextureFormat {
+        if self.allows_format(TextureFormat::Depth32F) {
+            TextureFormat::Depth32F
+        } else {
+            TextureFormat::Depth24Stencil8
+        }
+    }
+
     /// The most colour targets one pass may write: the renderer's, or the period GPU's.
     pub fn max_render_targets(&self) -> u32 {
         let l = &self.info().limits;
@@ -379,4 +397,45 @@ impl Context {
             None => renderer,
         }
     }
+}
+
+/// `x` rounded to the nearest 16-bit (half) float, ties to even: what an RGBA16F or R16F
+/// texel stores (11 significant bits, subnormals below 2^-14, largest finite 65504, beyond
+/// that infinity). The CPU model of the period's fp16 storage. OpenGL leaves the rounding of
+/// a float to half precision to the implementation: [`round_to_f16_toward_zero`] is the
+/// other rounding a driver may use (llvmpipe's blender does).
+pub fn round_to_f16(x: f32) -> f32 {
+    if !x.is_finite() || x == 0.0 {
+        return x;
+    }
+    // Halfway between 65504 and the next step (65536) and beyond: infinity.
+    if x.abs() >= 65520.0 {
+        return f32::INFINITY.copysign(x);
+    }
+    let step = f16_step(x);
+    (x / step).round_ties_even() * step
+}
+
+/// `x` rounded toward zero to a 16-bit float (beyond 65504: 65504).
+pub fn round_to_f16_toward_zero(x: f32) -> f32 {
+    if !x.is_finite() || x == 0.0 {
+        return x;
+    }
+    if x.abs() >= 65504.0 {
+        return 65504f32.copysign(x);
+    }
+    let step = f16_step(x);
+    (x / step).trunc() * step
+}
+
+/// The spacing of 16-bit floats around `x` (finite, below 65504 in magnitude): 2^(e - 10)
+/// for 2^e <= |x| < 2^(e + 1), and 2^-24 among the subnormals below 2^-14.
+fn f16_step(x: f32) -> f32 {
+    let a = x.abs();
+    let exponent = if a < 2f32.powi(-14) {
+        -14
+    } else {
+        ((a.to_bits() >> 23) as i32) - 127
+    };
+    2f32.powi(exponent - 10)
 }
