@@ -43,6 +43,8 @@ pub struct PipelineArgs {
     /// (compute, OpenGL 4.3; --readback and --max-tile do not apply).
     #[arg(long, value_enum, default_value_t)]
     pub formulation: super::Formulation,
+    #[command(flatten)]
+    pub period: super::period::PeriodArg,
 }
 
 /// `--predicate`: the names of [`Predicate`], listed in `--help`, parsed by its `FromStr`.
@@ -131,6 +133,7 @@ pub struct CollideArgs {
 
 /// `collide`: one frame of the pipeline on two static meshes; `json` prints one object.
 pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    args.pipeline.period.apply(ctx, 1);
     let load = |p: &Path| -> anyhow::Result<classic_gpgpu::mesh::Mesh> {
         let mesh = classic_gpgpu::mesh::load_obj(p)
             .with_context(|| format!("reading model {}", p.display()))?;
@@ -288,6 +291,7 @@ pub struct SceneArgs {
 
 /// `collide-scene`: a deforming scene frame by frame; `json` prints one object.
 pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    args.pipeline.period.apply(ctx, 1);
     check_scene_counts(args)?;
     // Millions of triangles take minutes to build and stream: say what is happening.
     let bar = classic_gpgpu::report::progress_bars(json).add(ProgressBar::new_spinner());

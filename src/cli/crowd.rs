@@ -68,6 +68,8 @@ pub struct CrowdArgs {
     pub formulation: super::Formulation,
     #[command(flatten)]
     pub profile: super::profile::ProfileArg,
+    #[command(flatten)]
+    pub period: super::period::PeriodArg,
 }
 
 /// The library's [`ModelKind`], as the command line names it.
@@ -124,6 +126,7 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 /// Runs `crowd`.
 pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    args.period.apply(ctx, 2);
     if let Some(png) = &args.png {
         classic_gpgpu::files::check_output("--png", png, &[], args.force, &["png"])?;
     }

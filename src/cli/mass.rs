@@ -55,9 +55,12 @@ pub struct PeelArgs {
     pub max_peels: usize,
     /// running-sums (default): add each peel into running sums as it is drawn, one
     /// reduction at the end (memory and passes do not grow with the peels). keep-layers:
-    /// the paper's order, keep the n peel textures and reduce each.
-    #[arg(long, value_enum, default_value_t = Order::RunningSums)]
-    pub order: Order,
+    /// the paper's order, keep the n peel textures and reduce each (the default with
+    /// --period: the period's GPU could not blend 32-bit float targets).
+    #[arg(long, value_enum)]
+    pub order: Option<Order>,
+    #[command(flatten)]
+    pub period: super::period::PeriodArg,
 }
 
 /// [`PeelOrder`] for clap.
@@ -75,8 +78,11 @@ impl PeelArgs {
         Ok(PeelSettings {
             max_peels: self.max_peels,
             order: match self.order {
-                Order::RunningSums => PeelOrder::RunningSums,
-                Order::KeepLayers => PeelOrder::KeepLayers,
+                Some(Order::RunningSums) => PeelOrder::RunningSums,
+                Some(Order::KeepLayers) => PeelOrder::KeepLayers,
+                // The period's way: n layers kept and each reduced, no float blending.
+                None if self.period.period => PeelOrder::KeepLayers,
+                None => PeelOrder::RunningSums,
             },
         })
     }
@@ -104,6 +110,7 @@ fn check_resolution(ctx: &Context, resolution: u32) -> anyhow::Result<()> {
 
 /// `classic-gpgpu mass`.
 pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
+    args.peeling.period.apply(ctx, 4);
     check_resolution(ctx, args.resolution)?;
     if !(args.density.is_finite() && args.density > 0.0) {
         bail!("--density {}: must be a positive number", args.density);
@@ -472,6 +479,7 @@ pub struct BuoyancyArgs {
 
 /// `classic-gpgpu buoyancy`.
 pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
+    args.peeling.period.apply(ctx, 4);
     let most = super::limits::fit_in_memory(16);
     super::limits::check_count("--steps", args.steps as u64, most, "16 bytes kept per step")?;
     check_resolution(ctx, args.resolution)?;

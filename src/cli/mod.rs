@@ -14,6 +14,7 @@ pub mod limits;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;
+pub mod period;
 pub mod selftest;
 
 /// `--formulation`: which formulation of a paper's kernels runs ("then and now"):

@@ -190,7 +190,8 @@ impl StreamingCollider {
         }
         let sx = AabbStream::build(x, options.leaf_size)?;
         let sy = AabbStream::build(y, options.leaf_size)?;
-        let limit = ctx.info().limits.max_texture_size as usize;
+        // The renderer's limit, or the period GPU's (`Context::set_period`).
+        let limit = ctx.max_texture_size() as usize;
         let max_tile = options.max_tile.unwrap_or(DEFAULT_MAX_TILE).min(limit);
         let layout = TileLayout::new(sx.len(), sy.len(), max_tile)?;
         let x_gpu = GpuStream::new(ctx, sx, &layout)?;

@@ -36,7 +36,7 @@ pub fn write_png(
     path: &Path,
 ) -> Result<(), GlError> {
     let colour = Texture::new_2d(ctx, size, size, TextureFormat::Rgba8)?;
-    let depth = Texture::new_2d(ctx, size, size, TextureFormat::Depth32F)?;
+    let depth = Texture::new_2d(ctx, size, size, ctx.z_buffer_format())?;
     let target = Framebuffer::new(ctx, "snapshot", &[&colour], Some(&depth))?;
     target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
     target.clear_depth_stencil(1.0, 0)?;

@@ -34,7 +34,7 @@ pub fn characters_per_target(max_texture_size: u32, vertices: u32) -> u32 {
 
 /// [`characters_per_target`] on this renderer: the most characters one pass-1 draw skins.
 pub fn max_characters(ctx: &Context, vertices: u32) -> u32 {
-    characters_per_target(ctx.info().limits.max_texture_size, vertices)
+    characters_per_target(ctx.max_texture_size(), vertices)
 }
 
 /// The render target texture(s): `row_characters` columns x (`blocks` x `vertices`) rows,
@@ -55,7 +55,7 @@ impl SkinningTarget {
             return Err(GlError::Limit(format!(
                 "a render target for {characters} characters of {vertices} vertices needs \
                  {blocks} x {vertices} rows, more than this renderer's {} texels",
-                ctx.info().limits.max_texture_size
+                ctx.max_texture_size()
             )));
         }
         let texture = || {

@@ -97,7 +97,8 @@ pub fn lod_scene(kind: ModelKind, n: usize, aspect: f32, seed: u64, policy: LodP
 /// The off-screen colour + depth target frames are drawn into.
 pub fn scene_target(ctx: &Context, width: u32, height: u32) -> Result<Framebuffer, GlError> {
     let colour = Texture::new_2d(ctx, width, height, TextureFormat::Rgba8)?;
-    let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
+    // Visibility only: 24-bit on the period GPU, which had no float depth.
+    let depth = Texture::new_2d(ctx, width, height, ctx.z_buffer_format())?;
     Framebuffer::new(ctx, "crowd scene", &[&colour], Some(&depth))
 }
 

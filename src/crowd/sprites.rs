@@ -62,7 +62,7 @@ impl Sprites {
     ) -> Result<Self, GlError> {
         let (w, h) = (VIEWS * TILE, FRAMES * TILE);
         let colour_texture = Texture::new_2d(ctx, w, h, TextureFormat::Rgba8)?;
-        let depth = Texture::new_2d(ctx, w, h, TextureFormat::Depth32F)?;
+        let depth = Texture::new_2d(ctx, w, h, ctx.z_buffer_format())?;
         let atlas = Framebuffer::new(
             ctx,
             "crowd impostor atlas",

@@ -12,7 +12,7 @@ use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::{Placement, Soup};
 use super::peel::{Job, PeelSettings, Peeler};
-use crate::gl::{profile, query, Context, GlError, Rect};
+use crate::gl::{profile, query, Context, GlError, Rect, TextureFormat};
 use crate::mesh::Mesh;
 use glam::DVec3;
 use serde::Serialize;
@@ -46,11 +46,26 @@ pub struct GpuMass {
 
 impl GpuMass {
     pub fn new(ctx: &Context, resolution: u32) -> Result<GpuMass, GlError> {
+        Self::with_sum_format(ctx, resolution, TextureFormat::Rgba32F)
+    }
+
+    /// Running sums stored as `sum_format` (RGBA16F: the float format a GeForce 7800 could
+    /// blend into; see [`crate::mass::reduce::Accumulator::with_format`]).
+    pub fn with_sum_format(
+        ctx: &Context,
+        resolution: u32,
+        sum_format: TextureFormat,
+    ) -> Result<GpuMass, GlError> {
         Ok(GpuMass {
-            peeler: Peeler::new(ctx, resolution, resolution, None)?,
+            peeler: Peeler::with_sum_format(ctx, resolution, resolution, None, sum_format)?,
             soup: Soup::new(ctx)?,
             resolution,
         })
+    }
+
+    /// Peel with `settings` from now on ([`Peeler::set_settings`]).
+    pub fn set_settings(&mut self, settings: PeelSettings) -> Result<(), GlError> {
+        self.peeler.set_settings(settings)
     }
 
     /// The depth peeler (to capture its peels).

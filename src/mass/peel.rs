@@ -235,7 +235,18 @@ impl Peeler {
         height: u32,
         block: Option<u32>,
     ) -> Result<Peeler, GlError> {
-        let accumulator = Accumulator::new(ctx, width, height)?;
+        Self::with_sum_format(ctx, width, height, block, TextureFormat::Rgba32F)
+    }
+
+    /// The same with the running sums stored as `sum_format` ([`Accumulator::with_format`]).
+    pub fn with_sum_format(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        block: Option<u32>,
+        sum_format: TextureFormat,
+    ) -> Result<Peeler, GlError> {
+        let accumulator = Accumulator::with_format(ctx, width, height, sum_format)?;
         let layers = [
             peel_layer(ctx, width, height, "mass: peel 1")?,
             peel_layer(ctx, width, height, "mass: peels (even)")?,

@@ -49,8 +49,20 @@ pub struct Accumulator {
 
 impl Accumulator {
     pub fn new(ctx: &Context, width: u32, height: u32) -> Result<Accumulator, GlError> {
+        Self::with_format(ctx, width, height, TextureFormat::Rgba32F)
+    }
+
+    /// Running sums stored as `format`: RGBA16F is what a GeForce 7800 could blend into
+    /// (it blended no 32-bit float target), each addition rounded to half precision. The
+    /// reduction's ping-pong stays RGBA32F (it draws without blending).
+    pub fn with_format(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        format: TextureFormat,
+    ) -> Result<Accumulator, GlError> {
         let sums: Vec<Texture> = (0..TARGETS)
-            .map(|_| Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F))
+            .map(|_| Texture::new_2d(ctx, width, height, format))
             .collect::<Result<_, _>>()?;
         let all: Vec<&Texture> = sums.iter().collect();
         let half = |name| -> Result<Framebuffer, GlError> {

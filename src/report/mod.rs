@@ -16,6 +16,7 @@ pub mod paper1;
 pub mod paper2;
 pub mod paper3;
 pub mod paper4;
+pub mod period;
 pub mod plot;
 pub mod profile;
 pub mod published;

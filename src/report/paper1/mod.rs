@@ -12,6 +12,7 @@ mod fig10_12;
 mod fig7;
 mod fig8_9;
 mod leaf_sweep;
+pub mod period;
 mod profile;
 mod readback_schemes;
 mod table3;
@@ -23,6 +24,7 @@ pub use bench::{
     Fig7, Fig7Curve, FrameTimes, Paper1Results, SceneRun, Setup, SweepPoint, TileStudy,
 };
 
+use super::period::WithPeriod;
 use super::published::Published;
 use super::{BenchOptions, Paper, Section};
 use crate::collide::cullide::PAPER_RESOLUTION;
@@ -81,13 +83,13 @@ impl Paper for Paper1 {
     const TITLE: &'static str =
         "Paper 1: collision detection with streaming AABBs (Zhang & Kim 2007)";
     type Options = Paper1Args;
-    type Results = Paper1Results;
+    type Results = WithPeriod<Paper1Results>;
 
-    fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1Results> {
-        bench::measure(opts, args)
+    fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Self::Results> {
+        WithPeriod::measure(bench::measure(opts, args)?, opts, period::measure)
     }
 
-    fn section(opts: &BenchOptions, results: &Paper1Results) -> anyhow::Result<Section> {
+    fn section(opts: &BenchOptions, results: &Self::Results) -> anyhow::Result<Section> {
         let paper = &Published::get()?.paper1;
         let mut tables = vec![
             table3::table(results, paper),
@@ -103,6 +105,7 @@ impl Paper for Paper1 {
             tables.push(leaf_sweep::table(results));
         }
         tables.extend(profile::table(results));
+        tables.extend(results.period_tables());
         let mut figures = fig7::figures(opts, results)?;
         for run in &results.scenes {
             figures.extend(fig8_9::figure(run));

@@ -14,6 +14,7 @@ mod bench;
 mod claims;
 mod fidelity;
 mod fig3_5;
+pub mod period;
 mod profile;
 mod ratios;
 mod snapshots;
@@ -23,6 +24,7 @@ mod then_and_now;
 
 pub use bench::{LodInfo, ModelInfo, Paper2Results, Setup, Shows, Snapshot, Variant};
 
+use super::period::WithPeriod;
 use super::published::Published;
 use super::{BenchOptions, NoOptions, Paper, Section};
 use crate::crowd::ModelKind;
@@ -34,15 +36,15 @@ impl Paper for Paper2 {
     const ID: &'static str = "paper2";
     const TITLE: &'static str = "Paper 2: Kang & Han 2006, real-time animation of large crowds";
     type Options = NoOptions;
-    type Results = Paper2Results;
+    type Results = WithPeriod<Paper2Results>;
 
-    fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Paper2Results> {
+    fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Self::Results> {
         let (mut results, table) = super::profile::profiled(opts.gl, || bench::measure(opts))?;
         results.profile = Some(table);
-        Ok(results)
+        WithPeriod::measure(results, opts, period::measure)
     }
 
-    fn section(opts: &BenchOptions, results: &Paper2Results) -> anyhow::Result<Section> {
+    fn section(opts: &BenchOptions, results: &Self::Results) -> anyhow::Result<Section> {
         let paper = &Published::get()?.paper2;
         let mut figures = snapshots::figures(results);
         figures.extend(table1::figures(opts, results, &paper.table1)?);
@@ -57,6 +59,7 @@ impl Paper for Paper2 {
             ]
             .into_iter()
             .chain(profile::table(results))
+            .chain(results.period_tables())
             .collect(),
             claims: claims::claims(results),
             figures,

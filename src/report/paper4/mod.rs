@@ -11,12 +11,14 @@ mod fidelity;
 mod fig10;
 mod fig4;
 mod fig5;
+pub mod period;
 mod speed;
 mod table1;
 mod then_and_now;
 
 pub use bench::{BuoyancyRun, ObjectRun, Paper4Results, PeelOrderRun, ResolutionRow, SpeedTargets};
 
+use super::period::WithPeriod;
 use super::published::Published;
 use super::{BenchOptions, NoOptions, Paper, Section};
 
@@ -28,13 +30,13 @@ impl Paper for Paper4 {
     const TITLE: &'static str =
         "Paper 4: Kim, Kim, Ko & Terzopoulos 2006, mass properties by depth peeling, and buoyancy";
     type Options = NoOptions;
-    type Results = Paper4Results;
+    type Results = WithPeriod<Paper4Results>;
 
-    fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Paper4Results> {
-        bench::measure(opts)
+    fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Self::Results> {
+        WithPeriod::measure(bench::measure(opts)?, opts, period::measure)
     }
 
-    fn section(opts: &BenchOptions, results: &Paper4Results) -> anyhow::Result<Section> {
+    fn section(opts: &BenchOptions, results: &Self::Results) -> anyhow::Result<Section> {
         let paper = &Published::get()?.paper4;
         let mut figures = fig4::figures(opts, results)?;
         figures.push(fig5::figure(opts, results)?);
@@ -58,7 +60,10 @@ impl Paper for Paper4 {
                     "Where the time goes: ten buoyancy steps of the 50-body scene, per pass",
                     &results.profile_buoyancy,
                 ),
-            ],
+            ]
+            .into_iter()
+            .chain(results.period_tables())
+            .collect(),
             claims: claims::claims(results, paper),
             figures,
             fidelity: fidelity::rows(),
