@@ -24,6 +24,9 @@ impl Context {
     /// `Ok` when this context runs compute shaders; otherwise an error naming `what` needed
     /// them, the version it needs and the version the context has.
     pub fn require_compute(&self, what: &str) -> Result<(), GlError> {
+        if let Some(gpu) = self.period() {
+            gpu.check_compute(what)?;
+        }
         if self.has_compute() {
             return Ok(());
         }
@@ -178,6 +181,9 @@ impl Dispatch<'_> {
             return Err(e);
         }
         let ctx = &self.compute.ctx;
+        if let Some(gpu) = ctx.period() {
+            gpu.check_compute(&format!("dispatch {}", self.name))?;
+        }
         let gl = ctx.gl();
         for (axis, &count) in groups.iter().enumerate() {
             let max = ctx.max_work_groups(axis as u32);

@@ -161,6 +161,8 @@ pub(super) struct Inner {
     checks: Cell<bool>,
     /// A lower limit on work groups per dispatch axis (a test hook), if set.
     work_group_limit: Cell<Option<u32>>,
+    /// The period GPU whose limits are checked ([`Context::set_period`]), if any.
+    pub(super) period: Cell<Option<&'static super::period::PeriodGpu>>,
     /// The empty vertex array that attribute-less draws (rectangles) bind.
     pub(super) empty_vao: glow::VertexArray,
     pub(super) extra: ExtraEntryPoints,
@@ -356,6 +358,7 @@ impl Context {
                 info,
                 checks: Cell::new(checks),
                 work_group_limit: Cell::new(None),
+                period: Cell::new(None),
                 empty_vao,
                 extra,
                 profile: std::cell::RefCell::new(None),

@@ -127,7 +127,14 @@ pub fn to_rgba8(texture: &Texture, range: DumpRange) -> Result<Vec<u8>, GlError>
             .into_iter()
             .flat_map(|v| [v, v, v, 255])
             .collect(),
-        TextureFormat::Rgba32F => map_floats(&texture.download_f32()?, 4, range),
+        TextureFormat::Rgba32F | TextureFormat::Rgba16F => {
+            map_floats(&texture.download_f32()?, 4, range)
+        }
+        TextureFormat::Rg32F => {
+            let rg = texture.download_f32()?;
+            let rgba: Vec<f32> = rg.chunks(2).flat_map(|c| [c[0], c[1], 0.0, 1.0]).collect();
+            map_floats(&rgba, 4, range)
+        }
         TextureFormat::R32F | TextureFormat::R16F | TextureFormat::Depth32F => {
             map_floats(&texture.download_f32()?, 1, range)
         }

@@ -82,6 +82,9 @@ impl Framebuffer {
             )));
         }
         let (width, height) = first.level_size(level);
+        if let Some(gpu) = ctx.period() {
+            gpu.check_draw_buffers(name, colors.len())?;
+        }
         let max = ctx
             .info()
             .limits

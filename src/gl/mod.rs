@@ -32,6 +32,7 @@ mod mesh_buffers;
 pub mod npy;
 mod pass;
 pub mod peel;
+pub mod period;
 pub mod picture;
 pub mod profile;
 mod program;
@@ -55,6 +56,7 @@ pub use mesh_buffers::MeshBuffers;
 pub use pass::{
     Blend, Compare, DepthTest, DrawState, Face, Pass, Primitive, StencilOp, StencilTest,
 };
+pub use period::PeriodGpu;
 pub use program::{Program, ShaderError, ShaderSource};
 pub use query::{FragmentInvocationsQuery, OcclusionQuery, TimerQuery};
 pub use storage::AtomicCounters;

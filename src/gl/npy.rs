@@ -21,8 +21,10 @@ pub fn texture_floats(texture: &Texture) -> Result<Option<Floats>, GlError> {
     let (width, height) = (texture.width() as usize, texture.height() as usize);
     let (channels, values) = match texture.format() {
         TextureFormat::Rgba32F
+        | TextureFormat::Rg32F
         | TextureFormat::R32F
         | TextureFormat::R16F
+        | TextureFormat::Rgba16F
         | TextureFormat::Depth32F => (texture.format().components(), texture.download_f32()?),
         TextureFormat::Depth24Stencil8 => (
             1,

@@ -202,6 +202,8 @@ pub struct Pass<'a> {
     viewport: Rect,
     state: DrawState,
     textures: Vec<(u32, Texture)>,
+    /// The sampler uniform of each of `textures`.
+    samplers: Vec<String>,
     error: Option<GlError>,
 }
 
@@ -223,6 +225,7 @@ impl<'a> Pass<'a> {
             viewport: target.rect(),
             state: DrawState::default(),
             textures: Vec::new(),
+            samplers: Vec::new(),
             error: None,
         })
     }
@@ -251,7 +254,31 @@ impl<'a> Pass<'a> {
         }
         self.uniform(sampler, unit as i32);
         self.textures.push((unit, texture.clone()));
+        self.samplers.push(sampler.to_string());
         self
+    }
+
+    /// Under a period GPU ([`Context::set_period`]): whether it could have drawn this pass,
+    /// blending into these targets and sampling these textures as set up.
+    fn check_period(&self) -> Result<(), GlError> {
+        let Some(gpu) = self.ctx.period() else {
+            return Ok(());
+        };
+        if self.state.blend.is_some() && self.state.color_write {
+            for target in self.target.colors() {
+                gpu.check_blend(self.name, target.format())?;
+            }
+        }
+        for ((_, texture), sampler) in self.textures.iter().zip(&self.samplers) {
+            gpu.check_sampling(
+                self.name,
+                sampler,
+                texture.format(),
+                texture.filter(),
+                self.program.vertex_stage_samples(sampler),
+            )?;
+        }
+        Ok(())
     }
 
     /// Set a uniform of the pass's program. A name the program does not declare is an error,
@@ -423,6 +450,7 @@ impl<'a> Pass<'a> {
         if let Some(e) = self.error.take() {
             return Err(e);
         }
+        self.check_period()?;
         if arrays.iter().any(|va| !va.has_indices()) {
             return Err(GlError::Invalid(format!(
                 "pass {}: draw_elements on a vertex array without an index buffer",
@@ -459,6 +487,7 @@ impl<'a> Pass<'a> {
         if let Some(e) = self.error.take() {
             return Err(e);
         }
+        self.check_period()?;
         let _scope = super::profile::scope(self.ctx, self.name);
         let gl = self.ctx.gl();
         self.bind_all();

@@ -59,6 +59,8 @@ pub struct Program {
     id: glow::Program,
     files: String,
     uniforms: Declared,
+    /// The sampler uniforms the vertex stage declares (vertex texture fetch).
+    vertex_samplers: Vec<String>,
     locations: RefCell<HashMap<String, Option<glow::UniformLocation>>>,
 }
 
@@ -155,6 +157,12 @@ impl Program {
             id,
             files,
             uniforms: Declared::parse(&all),
+            vertex_samplers: stages
+                .iter()
+                .filter(|(kind, _, _)| *kind == glow::VERTEX_SHADER)
+                .flat_map(|(_, _, parts)| parts.iter())
+                .flat_map(|part| sampler_names(part.source))
+                .collect(),
             locations: RefCell::new(HashMap::new()),
         };
         let shaders = stages
@@ -283,6 +291,11 @@ impl Program {
         self.uniforms.names.contains(base_name(name))
     }
 
+    /// Whether the vertex stage declares sampler `name` (it reads a texture there).
+    pub fn vertex_stage_samples(&self, name: &str) -> bool {
+        self.vertex_samplers.iter().any(|s| s == base_name(name))
+    }
+
     /// Whether the linked program uses uniform `name` (the driver kept it).
     pub fn uses_uniform(&self, name: &str) -> bool {
         self.location(name).is_some()
@@ -341,6 +354,33 @@ fn from_glsl_dir(ctx: &Context, part: &ShaderSource) -> Result<(String, Option<S
         message: format!("cannot read this shader (given by --glsl-dir): {e}"),
     })?;
     Ok((path.display().to_string(), Some(text)))
+}
+
+/// The names of the sampler uniforms `source` declares (`uniform sampler2D u_tiles;`,
+/// `uniform highp usampler2D a, b;`), comments aside.
+fn sampler_names(source: &str) -> Vec<String> {
+    let mut names = Vec::new();
+    for line in source.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        for statement in code.split(';') {
+            let words: Vec<&str> = statement
+                .split(|c: char| c.is_whitespace() || c == ',')
+                .filter(|w| !w.is_empty())
+                .collect();
+            let Some(u) = words.iter().position(|w| *w == "uniform") else {
+                continue;
+            };
+            let Some(t) = words[u + 1..].iter().position(|w| w.contains("sampler")) else {
+                continue;
+            };
+            names.extend(
+                words[u + 1 + t + 1..]
+                    .iter()
+                    .map(|w| w.split('[').next().unwrap_or(w).to_string()),
+            );
+        }
+    }
+    names
 }
 
 /// Join the files of one stage, each numbered as its own source string.

@@ -71,7 +71,11 @@ impl OcclusionQuery {
     }
     /// The number of samples that passed (waits for the GPU).
     pub fn samples(&self) -> Result<u64, GlError> {
-        self.0.result("reading an occlusion query")
+        let samples = self.0.result("reading an occlusion query")?;
+        if let Some(gpu) = self.0.ctx.period() {
+            gpu.check_occlusion_count(samples)?;
+        }
+        Ok(samples)
     }
     /// The samples of every query of `queries`, in order: one wait for the GPU (the first
     /// result) and one error check for all of them, as a pass of many queries reads them.
@@ -80,7 +84,7 @@ impl OcclusionQuery {
             return Ok(Vec::new());
         };
         let ctx = &first.0.ctx;
-        let values = super::profile::wait(ctx, "query result", || {
+        let values: Vec<u64> = super::profile::wait(ctx, "query result", || {
             queries
                 .iter()
                 .map(|q| {
@@ -99,6 +103,11 @@ impl OcclusionQuery {
                 .collect()
         });
         ctx.check("reading occlusion queries")?;
+        if let Some(gpu) = ctx.period() {
+            values
+                .iter()
+                .try_for_each(|&samples| gpu.check_occlusion_count(samples))?;
+        }
         Ok(values)
     }
     /// Whether [`OcclusionQuery::samples`] would return without waiting.

@@ -9,11 +9,15 @@ use std::rc::Rc;
 pub enum TextureFormat {
     /// Four 32-bit floats: the workhorse of every paper.
     Rgba32F,
+    /// Two 32-bit floats.
+    Rg32F,
     /// One 32-bit float.
     R32F,
     /// One 16-bit (half) float: 11 significant bits, largest finite 65504. Uploaded and read
     /// back as 32-bit floats (the driver converts).
     R16F,
+    /// Four 16-bit (half) floats: the float format the GeForce 7800 could blend and filter.
+    Rgba16F,
     /// One normalised byte.
     R8,
     /// Four normalised bytes (images).
@@ -34,8 +38,10 @@ impl TextureFormat {
     pub(super) fn gl(self) -> (u32, u32, u32) {
         match self {
             TextureFormat::Rgba32F => (glow::RGBA32F, glow::RGBA, glow::FLOAT),
+            TextureFormat::Rg32F => (glow::RG32F, glow::RG, glow::FLOAT),
             TextureFormat::R32F => (glow::R32F, glow::RED, glow::FLOAT),
             TextureFormat::R16F => (glow::R16F, glow::RED, glow::FLOAT),
+            TextureFormat::Rgba16F => (glow::RGBA16F, glow::RGBA, glow::FLOAT),
             TextureFormat::R8 => (glow::R8, glow::RED, glow::UNSIGNED_BYTE),
             TextureFormat::Rgba8 => (glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE),
             TextureFormat::Depth32F => {
@@ -58,7 +64,11 @@ impl TextureFormat {
     /// Values per texel in the upload/download arrays.
     pub fn components(self) -> usize {
         match self {
-            TextureFormat::Rgba32F | TextureFormat::Rgba8 | TextureFormat::Rgba32Ui => 4,
+            TextureFormat::Rgba32F
+            | TextureFormat::Rgba16F
+            | TextureFormat::Rgba8
+            | TextureFormat::Rgba32Ui => 4,
+            TextureFormat::Rg32F => 2,
             _ => 1,
         }
     }
@@ -66,9 +76,9 @@ impl TextureFormat {
     /// Bytes per texel in the upload/download arrays.
     pub fn bytes_per_texel(self) -> usize {
         match self {
-            TextureFormat::Rgba32F | TextureFormat::Rgba32Ui => 16,
+            TextureFormat::Rgba32F | TextureFormat::Rgba16F | TextureFormat::Rgba32Ui => 16,
             TextureFormat::R8 => 1,
-            TextureFormat::Depth32FStencil8 => 8,
+            TextureFormat::Depth32FStencil8 | TextureFormat::Rg32F => 8,
             _ => 4,
         }
     }
@@ -78,10 +88,21 @@ impl TextureFormat {
         matches!(
             self,
             TextureFormat::Rgba32F
+                | TextureFormat::Rg32F
                 | TextureFormat::R32F
                 | TextureFormat::R16F
+                | TextureFormat::Rgba16F
                 | TextureFormat::Depth32F
         )
+    }
+
+    /// Bits of each stored float (16 or 32), 0 for a format that is not float.
+    pub fn float_bits(self) -> u32 {
+        match self {
+            TextureFormat::R16F | TextureFormat::Rgba16F => 16,
+            f if f.is_float() => 32,
+            _ => 0,
+        }
     }
 
     pub fn is_depth(self) -> bool {
@@ -104,8 +125,10 @@ impl TextureFormat {
     pub fn name(self) -> &'static str {
         match self {
             TextureFormat::Rgba32F => "RGBA32F",
+            TextureFormat::Rg32F => "RG32F",
             TextureFormat::R32F => "R32F",
             TextureFormat::R16F => "R16F",
+            TextureFormat::Rgba16F => "RGBA16F",
             TextureFormat::R8 => "R8",
             TextureFormat::Rgba8 => "RGBA8",
             TextureFormat::Depth32F => "DEPTH_COMPONENT32F",
@@ -148,6 +171,8 @@ struct TextureObject {
     format: TextureFormat,
     /// Mipmap levels allocated (1 for a plain texture).
     levels: u32,
+    /// The filter last set ([`Texture::set_filter`]), checked against a period GPU's limits.
+    filter: std::cell::Cell<Filter>,
 }
 
 impl Drop for TextureObject {
@@ -212,6 +237,9 @@ impl Texture {
         format: TextureFormat,
         levels: u32,
     ) -> Result<Texture, GlError> {
+        if let Some(gpu) = ctx.period() {
+            gpu.check_texture(width, height, format)?;
+        }
         let max = ctx.info().limits.max_texture_size;
         if width == 0 || height == 0 || width > max || height > max {
             return Err(GlError::Limit(format!(
@@ -232,6 +260,7 @@ impl Texture {
                 height,
                 format,
                 levels,
+                filter: std::cell::Cell::new(Filter::Nearest),
             }),
         };
         unsafe {
@@ -352,6 +381,10 @@ impl Texture {
     pub fn format(&self) -> TextureFormat {
         self.obj.format
     }
+    /// How lookups filter ([`Texture::set_filter`]).
+    pub fn filter(&self) -> Filter {
+        self.obj.filter.get()
+    }
     pub fn is_1d(&self) -> bool {
         self.obj.target == glow::TEXTURE_1D
     }
@@ -406,6 +439,7 @@ impl Texture {
             (Filter::Linear, false) => (glow::LINEAR, glow::LINEAR),
             (Filter::Linear, true) => (glow::LINEAR_MIPMAP_NEAREST, glow::LINEAR),
         };
+        self.obj.filter.set(filter);
         let gl = self.obj.ctx.gl();
         unsafe {
             gl.bind_texture(self.obj.target, Some(self.obj.id));
