@@ -226,3 +226,137 @@ fn only_the_fp24_programs_round_and_fp24_refuses_the_packed_formulation() {
         .to_string();
     assert!(e.contains("faithful") && e.contains("packed"), "{e}");
 }
+
+/// A scratch directory for this test binary.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("mlp_fp24_{}_{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &std::path::Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+/// `mlp run --period`: the outputs are the fp24 model's within its bound (identity layers: its
+/// very bits), the products are split into the board's passes, and the JSON names the board.
+#[test]
+fn mlp_run_period_runs_the_r300_profile() {
+    let dir = scratch("run");
+    let mut rng = ChaCha8Rng::seed_from_u64(31);
+    let net = network(&mut rng, &[20, 6, 2], Activation::Identity);
+    let x = batch(&mut rng, 9, 20);
+    let net_file = write(&dir, "net.json", &net.to_json());
+    let rows: Vec<Vec<f32>> = x.outer_iter().map(|r| r.to_vec()).collect();
+    let x_file = write(&dir, "x.json", &serde_json::to_string(&rows).unwrap());
+    let base = [
+        "mlp",
+        "run",
+        "--network",
+        &net_file,
+        "--input",
+        &x_file,
+        "--json",
+    ];
+    let v = common::json_of(&[&base[..], &["--period"]].concat());
+    assert_eq!(v["period"]["gpu"], "ATI RADEON 9700 PRO");
+    assert_eq!(v["product_passes"], serde_json::json!([2, 1])); // 20 inputs: 15 + 5; 6: 6
+    let model = forward_fp24(&net, x.view());
+    let outputs = v["outputs"].as_array().unwrap();
+    for (j, row) in outputs.iter().enumerate() {
+        for (i, value) in row.as_array().unwrap().iter().enumerate() {
+            let got = value.as_f64().unwrap() as f32;
+            assert_eq!(got.to_bits(), model[[j, i]].to_bits(), "output {i} of {j}");
+        }
+    }
+    // without --period: fp32, one pass per product, no board named
+    let plain = common::json_of(&base);
+    assert!(plain["period"].is_null());
+    assert_eq!(plain["product_passes"], serde_json::json!([1, 1]));
+}
+
+/// What the R300 could not do is refused with the limit named: a compute pass, a layer wider
+/// than its 2048-texel textures; the packed formulation has no fp24 emulation.
+#[test]
+fn mlp_run_period_refuses_what_the_board_could_not_do() {
+    let dir = scratch("refuse");
+    let wide = Network::new(vec![Layer {
+        weights: Array2::zeros((1, 2049)),
+        bias: Array1::zeros(1),
+        activation: Activation::Sigmoid,
+    }])
+    .unwrap();
+    let wide_file = write(&dir, "wide.json", &wide.to_json());
+    let wide_x = write(&dir, "wide_x.json", &format!("[{:?}]", vec![0.5f32; 2049]));
+    let small = write(&dir, "net.json", &wide_small().to_json());
+    let small_x = write(&dir, "x.json", "[[1, 2]]");
+    let cases: [(&[&str], &[&str]); 3] = [
+        (
+            &["--network", &wide_file, "--input", &wide_x],
+            &["ATI RADEON 9700 PRO", "max_texture_size", "2048"],
+        ),
+        (
+            &[
+                "--network",
+                &small,
+                "--input",
+                &small_x,
+                "--formulation",
+                "compute",
+            ],
+            &["ATI RADEON 9700 PRO", "compute_shaders"],
+        ),
+        (
+            &[
+                "--network",
+                &small,
+                "--input",
+                &small_x,
+                "--formulation",
+                "packed",
+            ],
+            &["24-bit", "faithful"],
+        ),
+    ];
+    for (args, words) in cases {
+        let out = common::classic_gpgpu(&[&["mlp", "run", "--period"][..], args].concat());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} should fail: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        for word in words {
+            assert!(stderr.contains(word), "{args:?}: '{word}' not in {stderr}");
+        }
+    }
+    // the same wide layer runs at today's limits
+    let out = common::classic_gpgpu(&["mlp", "run", "--network", &wide_file, "--input", &wide_x]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+fn wide_small() -> Network {
+    Network::new(vec![Layer {
+        weights: Array2::from_elem((1, 2), 0.25),
+        bias: Array1::zeros(1),
+        activation: Activation::Sigmoid,
+    }])
+    .unwrap()
+}
+
+/// `mlp detect --period` classifies an image as the board would and says so.
+#[test]
+fn mlp_detect_period_names_the_board() {
+    let dir = scratch("detect");
+    let image = GrayImage::from_fn(23, 7, |x, y| image::Luma([((x * 41 + y * 89) % 256) as u8]));
+    let path = dir.join("page.png");
+    image.save(&path).unwrap();
+    let path = path.display().to_string();
+    let v = common::json_of(&["mlp", "detect", &path, "--period", "--json"]);
+    assert_eq!(v["period"]["gpu"], "ATI RADEON 9700 PRO");
+    assert_eq!(v["product_passes"], serde_json::json!([9, 2])); // 121 = 8 x 15 + 1; 30 = 15 + 15
+    assert!(v["text_pixels"].as_u64().unwrap() <= 23 * 7);
+}
