@@ -1,6 +1,6 @@
 // Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 2: the matrix product's first (or
 // only) pass.
-// Compiled after: glsl/mlp/inner_product.frag
+// Compiled after: #define PERIOD_FP24 0, glsl/mlp/fp24.glsl, glsl/mlp/inner_product.frag
 // Oh & Jung 2004, section 3, eq. 2: the pixel shader of the matrix product's first (or only)
 // rendering pass. Pixel (i, j) sums the terms k_begin .. k_end - 1 of W_i . X_j
 // (glsl/mlp/inner_product.frag); with the whole range 0 .. N it is the product in one pass.

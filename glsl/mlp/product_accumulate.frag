@@ -1,5 +1,5 @@
 // Paper 3 (Oh & Jung 2004), section 3 "GPU processing", eq. 2: the product's later passes.
-// Compiled after: glsl/mlp/inner_product.frag
+// Compiled after: #define PERIOD_FP24 0, glsl/mlp/fp24.glsl, glsl/mlp/inner_product.frag
 // Oh & Jung 2004, section 3: "the number of rendering passes required for matrix
 // multiplication depends on the capability of the GPU". Every pass after the first reads the
 // running sum of the passes before it from their render target (ping-pong: a 2004 board could

@@ -3,14 +3,16 @@
 
 use anyhow::{bail, Context as _};
 use classic_gpgpu::files;
-use classic_gpgpu::gl::Context;
+use classic_gpgpu::gl::{period, Context};
 use classic_gpgpu::mlp::chain::{Formulation, GpuMlp, GpuNetwork, StepTimes};
 use classic_gpgpu::mlp::compute::ComputeMlp;
 use classic_gpgpu::mlp::cpu::{forward, CpuProduct};
 use classic_gpgpu::mlp::detect::{
     classify_cpu, classify_gpu, mask_image, shipped_detector, Classified, THRESHOLD,
 };
+use classic_gpgpu::mlp::fp24::Precision;
 use classic_gpgpu::mlp::labelled::LabelledImage;
+use classic_gpgpu::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 use classic_gpgpu::mlp::network::{parse_inputs, Network};
 use classic_gpgpu::mlp::train::{
     evaluate, labelled_window_sets, train, window_set, TrainConfig, WindowSet, HELD_OUT_EVERY,
@@ -65,6 +67,13 @@ struct Engine {
     /// queries, read after the run), its wall time, and the time spent waiting for the GPU.
     #[arg(long, conflicts_with = "cpu")]
     profile: bool,
+    /// Run as the paper's own board, an ATI RADEON 9700 PRO (R300), would have: its 24-bit
+    /// float arithmetic emulated at every step of the passes, its limits enforced by the GL
+    /// layer (textures up to 2048, no float blending or filtering, no compute shaders; a step
+    /// beyond them is an error naming the limit), and each product split into passes of at
+    /// most 15 inputs unless --inputs-per-pass says otherwise. Faithful formulation only.
+    #[arg(long, conflicts_with = "cpu")]
+    period: bool,
 }
 
 /// The library's [`Formulation`], as the command line names it.
@@ -126,11 +135,52 @@ impl Engine {
         }
     }
 
-    /// The network's textures, its products split as `--inputs-per-pass` asks.
+    /// The network's textures, its products split as `--inputs-per-pass` asks (under
+    /// `--period`, by default, into the passes of the paper's board).
     fn load<'g>(&self, gpu: &'g GpuMlp, net: &Network) -> anyhow::Result<GpuNetwork<'g>> {
+        let per_pass = self
+            .inputs_per_pass
+            .or(self.period.then_some(RADEON_9700_INPUTS_PER_PASS));
         Ok(gpu
             .load(net, self.formulation())?
-            .split_products(self.inputs_per_pass)?)
+            .split_products(per_pass)?)
+    }
+
+    /// The programs, at the R300's precision and under its limits with `--period`.
+    fn gpu(&self, ctx: &Context) -> anyhow::Result<GpuMlp> {
+        if !self.period {
+            return Ok(GpuMlp::new(ctx)?);
+        }
+        anyhow::ensure!(
+            self.formulation() == Formulation::Faithful,
+            "--period emulates the ATI RADEON 9700 PRO's 24-bit arithmetic in the paper's \
+             faithful passes only; the packed formulation (not the paper's) runs in fp32"
+        );
+        ctx.set_period(Some(period::for_paper(3)));
+        Ok(GpuMlp::with_precision(ctx, Precision::Fp24)?)
+    }
+
+    /// ", as an ATI RADEON 9700 PRO (fp24 emulated)" under `--period`, else nothing.
+    fn period_text(&self) -> String {
+        match self.period {
+            true => format!(
+                ", as an {} ({} emulated, its limits enforced)",
+                period::for_paper(3).name,
+                Precision::Fp24.name()
+            ),
+            false => String::new(),
+        }
+    }
+
+    /// The period GPU and its arithmetic, as the JSON reports name them (null without it).
+    fn period_json(&self) -> serde_json::Value {
+        match self.period {
+            true => json!({
+                "gpu": period::for_paper(3).name,
+                "precision": Precision::Fp24.name(),
+            }),
+            false => serde_json::Value::Null,
+        }
     }
 }
 
@@ -328,6 +378,10 @@ fn evaluate_batch(
     }
     let ctx = context()?;
     super::profile::start(&ctx, engine.profile);
+    if engine.period {
+        // the R300's limits hold from here on: a compute pass is refused, naming the limit
+        ctx.set_period(Some(period::for_paper(3)));
+    }
     if engine.compute() {
         anyhow::ensure!(
             engine.max_vectors.is_none() && engine.inputs_per_pass.is_none(),
@@ -346,7 +400,7 @@ fn evaluate_batch(
             product_passes: vec![1; net.layers().len()],
         });
     }
-    let gpu = GpuMlp::new(&ctx)?;
+    let gpu = engine.gpu(&ctx)?;
     let loaded = engine.load(&gpu, net)?;
     let result = loaded.forward(batch, engine.max_vectors)?;
     super::profile::print(&ctx);
@@ -396,6 +450,7 @@ fn run_network(
             "renderer": result.renderer,
             "evaluated_by": args.engine.evaluated_by(),
             "formulation": args.engine.family(),
+            "period": args.engine.period_json(),
             "tiles": result.tiles,
             "product_passes": result.product_passes,
             "outputs": outputs,
@@ -403,7 +458,12 @@ fn run_network(
         });
         println!("{report}");
     } else {
-        println!("# {} ({} tile(s))", result.renderer, result.tiles);
+        println!(
+            "# {}{} ({} tile(s))",
+            result.renderer,
+            args.engine.period_text(),
+            result.tiles
+        );
         for row in &outputs {
             let cells: Vec<String> = row.iter().map(|v| format!("{v:.7}")).collect();
             println!("{}", cells.join(" "));
@@ -470,7 +530,7 @@ fn detect(
         None => {
             let ctx = context()?;
             super::profile::start(&ctx, args.engine.profile);
-            let gpu = GpuMlp::new(&ctx)?;
+            let gpu = args.engine.gpu(&ctx)?;
             let loaded = args.engine.load(&gpu, &net)?;
             let classified = classify_gpu(&loaded, &image, 1 << 18, args.engine.max_vectors)?;
             super::profile::print(&ctx);
@@ -509,6 +569,7 @@ fn detect(
             "network": args.network.as_ref().map(|p| p.display().to_string()),
             "renderer": renderer,
             "evaluated_by": args.engine.evaluated_by(),
+            "period": args.engine.period_json(),
             "batches": batches,
             "product_passes": product_passes,
             "text_pixels": text_pixels,
@@ -520,12 +581,13 @@ fn detect(
         println!("{report}");
     } else {
         println!(
-            "{}: {} x {}, {} text pixels ({:.1}%) on {renderer}, {wall_ms:.1} ms{}",
+            "{}: {} x {}, {} text pixels ({:.1}%) on {renderer}{}, {wall_ms:.1} ms{}",
             args.image.display(),
             image.width(),
             image.height(),
             text_pixels,
             100.0 * fraction,
+            args.engine.period_text(),
             args.out
                 .as_ref()
                 .map(|p| format!(", mask written to {}", p.display()))

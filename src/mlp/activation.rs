@@ -2,17 +2,22 @@
 //! bias texture; the pixel shader adds the two and applies the sigmoid. The result is a
 //! render-target texture that is the next layer's texture X.
 
+use super::fp24::Precision;
 use super::network::Activation;
 use super::textures::LayerTextures;
 use crate::gl::{Context, Framebuffer, GlError, Program, Texture};
 use crate::shader;
 
-/// The program of the bias + sigmoid pass.
-pub fn activation_program(ctx: &Context) -> Result<Program, GlError> {
+/// The program of the bias + sigmoid pass at `precision`.
+pub fn activation_program(ctx: &Context, precision: Precision) -> Result<Program, GlError> {
     Program::new(
         ctx,
         &[shader!("glsl/mlp/bias_sigmoid.vert")],
-        &[shader!("glsl/mlp/bias_sigmoid.frag")],
+        &[
+            precision.shader_define(),
+            shader!("glsl/mlp/fp24.glsl"),
+            shader!("glsl/mlp/bias_sigmoid.frag"),
+        ],
     )
 }
 

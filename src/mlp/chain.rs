@@ -4,6 +4,7 @@
 //! output is read back.
 
 use super::activation::{activation_pass, activation_program};
+use super::fp24::Precision;
 use super::matmul::{float_target, pass_ranges, product_passes, product_targets, ProductPrograms};
 use super::network::Network;
 use super::packed::{
@@ -53,6 +54,8 @@ impl StepTimes {
 /// The compiled programs of both formulations on one context.
 pub struct GpuMlp {
     ctx: Context,
+    /// The arithmetic of the faithful passes.
+    precision: Precision,
     product: ProductPrograms,
     activation: Program,
     packed: PackedPrograms,
@@ -78,12 +81,20 @@ pub struct GpuNetwork<'a> {
 }
 
 impl GpuMlp {
-    /// Compiles the programs of both formulations.
+    /// Compiles the programs of both formulations, in fp32.
     pub fn new(ctx: &Context) -> Result<GpuMlp, GlError> {
+        GpuMlp::with_precision(ctx, Precision::Fp32)
+    }
+
+    /// Compiles the programs of both formulations; the faithful passes compute at
+    /// `precision` (the packed formulation, not the paper's, stays fp32 and is refused by
+    /// [`GpuMlp::load`] at any other precision).
+    pub fn with_precision(ctx: &Context, precision: Precision) -> Result<GpuMlp, GlError> {
         let mlp = GpuMlp {
             ctx: ctx.clone(),
-            product: ProductPrograms::new(ctx)?,
-            activation: activation_program(ctx)?,
+            precision,
+            product: ProductPrograms::new(ctx, precision)?,
+            activation: activation_program(ctx, precision)?,
             packed: PackedPrograms::new(ctx)?,
         };
         Ok(mlp)
@@ -93,9 +104,19 @@ impl GpuMlp {
         &self.ctx
     }
 
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+
     /// Makes the weight and bias textures of `net`, refusing layers wider than the renderer's
     /// textures (see [`super::tiling::check_network_fits`]).
     pub fn load(&self, net: &Network, formulation: Formulation) -> Result<GpuNetwork<'_>, GlError> {
+        if formulation == Formulation::Packed && self.precision != Precision::Fp32 {
+            return Err(GlError::Invalid(format!(
+                "the {} arithmetic is emulated in the paper's faithful passes only; the packed                  formulation (not the paper's) runs in fp32",
+                self.precision.name()
+            )));
+        }
         super::tiling::check_network_fits(&self.ctx, net, formulation)?;
         let start = Instant::now();
         let layers = match formulation {

@@ -123,11 +123,30 @@ pub fn forward(kind: CpuProduct, net: &Network, batch: ArrayView2<f32>) -> CpuFo
 /// twice the bound.
 pub fn error_bound(net: &Network, batch: ArrayView2<f32>) -> Array2<f32> {
     const SIGMOID_EVALUATION: f64 = 1e-6;
-    let u = f64::from(f32::EPSILON) / 2.0;
+    rounding_bound(
+        net,
+        batch,
+        f64::from(f32::EPSILON) / 2.0,
+        0,
+        SIGMOID_EVALUATION,
+    )
+}
+
+/// [`error_bound`] for an arithmetic of unit roundoff `u`, with `extra_steps` more rounded
+/// steps per term of each inner product than fp32's one per addition (the 24-bit emulation
+/// also rounds each fetched value and product), and a sigmoid evaluated within
+/// `sigmoid_evaluation` (absolute).
+pub fn rounding_bound(
+    net: &Network,
+    batch: ArrayView2<f32>,
+    u: f64,
+    extra_steps: usize,
+    sigmoid_evaluation: f64,
+) -> Array2<f32> {
     let mut values = batch.mapv(f64::from);
     let mut errors = Array2::<f64>::zeros(batch.raw_dim());
     for layer in net.layers() {
-        let n = (layer.inputs() + 1) as f64;
+        let n = (layer.inputs() + 1 + extra_steps) as f64;
         let gamma = n * u / (1.0 - n * u) + 4.0 * u;
         let w = layer.weights.mapv(f64::from);
         let abs_w = w.mapv(f64::abs);
@@ -139,7 +158,7 @@ pub fn error_bound(net: &Network, batch: ArrayView2<f32>) -> Array2<f32> {
         match layer.activation {
             Activation::Sigmoid => {
                 m.mapv_inplace(|v| 1.0 / (1.0 + (-v).exp()));
-                e.mapv_inplace(|v| (0.25 * v).min(1.0) + SIGMOID_EVALUATION);
+                e.mapv_inplace(|v| (0.25 * v).min(1.0) + sigmoid_evaluation);
             }
             Activation::Identity => {}
         }

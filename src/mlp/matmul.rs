@@ -9,6 +9,7 @@
 //! inputs (ping-pong between two targets). A GLSL 330 loop has no such limit, so by default
 //! the whole product is one pass.
 
+use super::fp24::Precision;
 use super::textures::LayerTextures;
 use crate::gl::{Context, Framebuffer, GlError, Program, Texture, TextureFormat};
 use crate::shader;
@@ -28,19 +29,23 @@ pub struct ProductPrograms {
 }
 
 impl ProductPrograms {
-    pub fn new(ctx: &Context) -> Result<ProductPrograms, GlError> {
+    /// The programs at `precision` (fp32, or each step rounded to the R300's 24-bit floats).
+    pub fn new(ctx: &Context, precision: Precision) -> Result<ProductPrograms, GlError> {
         let vertex = [shader!("glsl/mlp/product.vert")];
-        let inner_product = shader!("glsl/mlp/inner_product.frag");
+        let fragment = |main| {
+            [
+                precision.shader_define(),
+                shader!("glsl/mlp/fp24.glsl"),
+                shader!("glsl/mlp/inner_product.frag"),
+                main,
+            ]
+        };
         Ok(ProductPrograms {
-            first: Program::new(
-                ctx,
-                &vertex,
-                &[inner_product, shader!("glsl/mlp/product.frag")],
-            )?,
+            first: Program::new(ctx, &vertex, &fragment(shader!("glsl/mlp/product.frag")))?,
             accumulate: Program::new(
                 ctx,
                 &vertex,
-                &[inner_product, shader!("glsl/mlp/product_accumulate.frag")],
+                &fragment(shader!("glsl/mlp/product_accumulate.frag")),
             )?,
         })
     }

@@ -12,7 +12,8 @@
 //! targets), [`packed`] (the faster RGBA formulation), [`tiling`] (batches beyond the maximum
 //! texture size), [`window`] (the 11 x 11 input windows of section 4), [`labelled`] (images
 //! and their per-pixel truth), [`synth`] (synthetic training images), [`train`]
-//! (backpropagation), [`detect`] (classifying every pixel of an image). Shaders: `glsl/mlp/`.
+//! (backpropagation), [`detect`] (classifying every pixel of an image), [`fp24`] (the paper's
+//! board's 24-bit arithmetic, emulated). Shaders: `glsl/mlp/`.
 //! The `mlp` commands live in the binary (`src/cli/mlp.rs`).
 
 pub mod activation;
@@ -20,6 +21,7 @@ pub mod chain;
 pub mod compute;
 pub mod cpu;
 pub mod detect;
+pub mod fp24;
 pub mod labelled;
 pub mod matmul;
 pub mod network;

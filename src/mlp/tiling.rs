@@ -24,10 +24,11 @@ pub struct GpuForward {
     pub product_passes: Vec<usize>,
 }
 
-/// The largest side of a texture that is also a render target.
+/// The largest side of a texture that is also a render target (under a period GPU's
+/// limits, that GPU's: 2048 on the paper's board).
 fn max_side(ctx: &Context) -> u32 {
     let l = &ctx.info().limits;
-    l.max_texture_size
+    ctx.max_texture_size()
         .min(l.max_viewport_dims[0])
         .min(l.max_viewport_dims[1])
 }
@@ -56,11 +57,19 @@ pub fn check_network_fits(
             Formulation::Packed => (texels(n), texels(m) * PACK, "four weights per texel"),
         };
         if w_wide > max || w_high > max {
+            let limit = match ctx.period() {
+                Some(gpu) => format!("{}'s max_texture_size, assets/period_gpus.toml", gpu.name),
+                None => "GL_MAX_TEXTURE_SIZE / viewport".to_string(),
+            };
+            let renderer = match ctx.period() {
+                Some(gpu) => gpu.name.as_str(),
+                None => "this renderer",
+            };
             return Err(GlError::Limit(format!(
-                "layer {index} ({n} inputs, {m} outputs) does not fit this renderer: its \
+                "layer {index} ({n} inputs, {m} outputs) does not fit {renderer}: its \
                  texture W would be {w_wide} x {w_high} texels ({what}) but textures hold at \
-                 most {max} per side (GL_MAX_TEXTURE_SIZE / viewport); only the batch is split \
-                 into tiles, so a layer this wide is refused"
+                 most {max} per side ({limit}); only the batch is split into tiles, so a layer \
+                 this wide is refused"
             )));
         }
     }

@@ -39,6 +39,8 @@ pub struct Paper3Results {
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
     /// Where the time of this run went, pass by pass.
     pub profile: Option<crate::gl::profile::ProfileTable>,
+    /// The detector at the paper's board's precision and under its limits, beside fp32.
+    pub period: super::period::PeriodResults,
 }
 
 impl Paper3Results {
@@ -226,6 +228,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         }
     }
     bar.finish_and_clear();
+    let period = {
+        let _scope = crate::gl::profile::scope(ctx, "period: text.png at fp24 (R300)");
+        super::period::measure(opts, &photo)?
+    };
     let detection = match detection {
         Some(detection) => detection,
         None => {
@@ -242,6 +248,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         detection,
         then_and_now: super::then_and_now::measure(opts)?,
         profile: None,
+        period,
     })
 }
 

@@ -59,6 +59,19 @@ pub fn rows() -> Vec<Fidelity> {
              threshold (0.5) is not stated in the paper",
         ),
         Fidelity::new(
+            "The paper's board, an ATI RADEON 9700 PRO: 24-bit floats in the fragment pipeline, \
+             textures up to 2048, no float blending",
+            "Section 4, Table 1, footnote 1",
+            "glsl/mlp/fp24.glsl, src/mlp/fp24.rs, src/gl/period.rs (--period, the period tables)",
+            "emulated, not the board: every step is computed in fp32 and rounded to a 16-bit \
+             mantissa and 7-bit exponent (round to nearest even, no denormals, overflow to \
+             infinity; the R300's own rounding mode and edge behaviour are not documented \
+             publicly), so a result is fp24(fp32(a op b)) rather than a correctly rounded fp24 \
+             op; the board's multiply-add may not have rounded the product before adding; its \
+             exp and reciprocal approximations are replaced by fp32 exp and division, rounded; \
+             fetched texels are rounded, texture coordinates are not",
+        ),
+        Fidelity::new(
             "Not in the paper: packed RGBA variant (4 x 4 outputs per fragment, MRT)",
             "-",
             "glsl/mlp/packed_product.frag, src/mlp/packed.rs",

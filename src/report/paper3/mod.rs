@@ -1,14 +1,16 @@
 //! Paper 3's section (Oh & Jung 2004): Table 1 (texture creation, matrix product, sigmoid; GPU
 //! vs CPU) beside the published numbers (`[paper3]` of `assets/paper_tables.toml`), the
 //! GFLOP/s of both GPU formulations against both CPU baselines measured side by side in one
-//! run, Fig. 2 (the classified text image), and apart from the paper's claims this project's
-//! own targets.
+//! run, Fig. 2 (the classified text image), the period tables (the detector at the paper's
+//! board's 24-bit precision and under its limits, beside fp32), and apart from the paper's
+//! claims this project's own targets.
 
 mod bench;
 mod claims;
 mod fidelity;
 mod fig2;
 mod gflops;
+mod period;
 mod profile;
 mod table1;
 mod targets;
@@ -39,6 +41,7 @@ impl Paper for Paper3 {
         let paper = &Published::get()?.paper3.table1;
         let mut figures = fig2::figures();
         figures.push(gflops::figure(opts, results)?);
+        figures.push(period::figure(&results.period));
         Ok(Section {
             summary: summary(results),
             tables: vec![
@@ -47,6 +50,8 @@ impl Paper for Paper3 {
                 fig2::table(results),
                 targets::table(results),
                 results.then_and_now.table(&results.renderer),
+                period::results_table(&results.period, &results.renderer),
+                period::steps_table(&results.period),
             ]
             .into_iter()
             .chain(profile::table(results))

@@ -1,0 +1,389 @@
+//! The period tables: paper 3 on its own board's terms. The text detector runs twice on the
+//! same batches, once in today's fp32 and once as the ATI RADEON 9700 PRO (R300) would have:
+//! its 24-bit fragment arithmetic emulated at every step (`mlp::fp24`), its limits enforced by
+//! the GL layer (`gl::period`), each product split into passes of at most
+//! [`RADEON_9700_INPUTS_PER_PASS`] inputs. One table sets the outputs, the detection mask and
+//! the error against labelled windows side by side; the other says which step fits the R300.
+
+use super::bench::FIG2A_FILE;
+use crate::gl::{period, Context, GlError};
+use crate::mlp::detect::{classify_gpu, mask_image, shipped_detector, THRESHOLD};
+use crate::mlp::fp24::{error_bound_fp24, forward_fp24, Precision};
+use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
+use crate::mlp::train::{evaluate, window_set};
+use crate::mlp::{Formulation, GpuMlp, Network};
+use crate::report::{BenchOptions, Figure, Table};
+use anyhow::Context as _;
+use image::GrayImage;
+use ndarray::Array2;
+use serde::Serialize;
+
+/// The mask at fp24, with the pixels whose class changed marked.
+pub const PERIOD_MASK_FILE: &str = "paper3_period_fp24_mask.png";
+
+/// Rows of text.png classified under `--quick` (the whole photograph otherwise).
+const QUICK_ROWS: u32 = 24;
+
+/// What the period run measured.
+#[derive(Clone, Debug, Serialize)]
+pub struct PeriodResults {
+    /// The board, "ATI RADEON 9700 PRO".
+    pub gpu: String,
+    pub inputs_per_pass: usize,
+    pub photo: PhotoAtFp24,
+    pub labelled: LabelledAtFp24,
+    pub steps: Vec<StepFit>,
+}
+
+/// text.png (or its first rows under `--quick`) at fp32 and at fp24.
+#[derive(Clone, Debug, Serialize)]
+pub struct PhotoAtFp24 {
+    pub width: u32,
+    pub rows: u32,
+    /// Whether `rows` is only the photograph's first rows (`--quick`).
+    pub cropped: bool,
+    pub max_abs_diff: f32,
+    pub mean_abs_diff: f64,
+    pub fp32_text_pixels: usize,
+    pub fp24_text_pixels: usize,
+    /// Pixels whose class (text or not) differs between the two.
+    pub changed_pixels: usize,
+    /// Texture tiles of input vectors at fp24 (at most 2048 vectors each on the R300).
+    pub fp24_tiles: usize,
+    pub product_passes: Vec<usize>,
+}
+
+/// Labelled synthetic windows (images the detector was not trained on) at both precisions.
+#[derive(Clone, Debug, Serialize)]
+pub struct LabelledAtFp24 {
+    pub windows: usize,
+    pub fp32_accuracy: f64,
+    pub fp24_accuracy: f64,
+    pub fp32_mse: f64,
+    pub fp24_mse: f64,
+    /// The GPU at fp24 against the CPU model of the same rounding at the output furthest
+    /// from it relative to its bound, and what that output allows (twice `error_bound_fp24`).
+    pub max_diff_vs_cpu_model: f32,
+    pub allowed_vs_cpu_model: f32,
+}
+
+/// One step of paper 3 against the R300's limits.
+#[derive(Clone, Debug, Serialize)]
+pub struct StepFit {
+    pub step: String,
+    pub needs: String,
+    pub r300: String,
+}
+
+/// Seed of the labelled windows: other synthetic images than the detector's training (seed 1).
+const LABELLED_SEED: u64 = 77;
+
+pub fn measure(opts: &BenchOptions, photo: &GrayImage) -> anyhow::Result<PeriodResults> {
+    let ctx = opts.gl;
+    let net = shipped_detector()?;
+    let r300 = period::for_paper(3);
+    let rows = if opts.quick {
+        QUICK_ROWS.min(photo.height())
+    } else {
+        photo.height()
+    };
+    let full_height = photo.height();
+    let photo = image::imageops::crop_imm(photo, 0, 0, photo.width(), rows).to_image();
+    let fp32_gpu = GpuMlp::new(ctx)?;
+    let fp32_outputs = classify_gpu(
+        &fp32_gpu.load(&net, Formulation::Faithful)?,
+        &photo,
+        1 << 18,
+        None,
+    )?
+    .outputs;
+    let images = if opts.quick { 8 } else { 40 };
+    let windows = window_set(LABELLED_SEED, images, 30);
+    let fp32_windows = fp32_gpu
+        .load(&net, Formulation::Faithful)?
+        .forward(windows.inputs.view(), None)?
+        .outputs;
+    // the R300's run: its limits on the context for as long as it lasts
+    let (fp24, windows_fp24) = under_period(ctx, r300, || {
+        let gpu = GpuMlp::with_precision(ctx, Precision::Fp24)?;
+        let loaded = gpu
+            .load(&net, Formulation::Faithful)?
+            .split_products(Some(RADEON_9700_INPUTS_PER_PASS))?;
+        let classified = classify_gpu(&loaded, &photo, 1 << 18, None)?;
+        let windows_out = loaded.forward(windows.inputs.view(), None)?;
+        Ok((classified, windows_out))
+    })
+    .with_context(|| format!("paper 3 as the {}", r300.name))?;
+    let fp24_outputs = &fp24.outputs;
+    for outputs in [&fp32_outputs, fp24_outputs] {
+        anyhow::ensure!(
+            outputs.iter().all(|v| v.is_finite()),
+            "period: a text.png output is not finite"
+        );
+    }
+    write_mask(opts, &photo, &fp32_outputs, fp24_outputs)?;
+    let diffs: Vec<f32> = fp32_outputs
+        .iter()
+        .zip(fp24_outputs)
+        .map(|(a, b)| (a - b).abs())
+        .collect();
+    let text = |outputs: &[f32]| outputs.iter().filter(|&&v| v > THRESHOLD).count();
+    let photo_result = PhotoAtFp24 {
+        width: photo.width(),
+        rows,
+        cropped: rows < full_height,
+        max_abs_diff: diffs.iter().copied().fold(0.0, f32::max),
+        mean_abs_diff: diffs.iter().map(|&d| f64::from(d)).sum::<f64>() / diffs.len() as f64,
+        fp32_text_pixels: text(&fp32_outputs),
+        fp24_text_pixels: text(fp24_outputs),
+        changed_pixels: fp32_outputs
+            .iter()
+            .zip(fp24_outputs)
+            .filter(|(a, b)| (**a > THRESHOLD) != (**b > THRESHOLD))
+            .count(),
+        fp24_tiles: fp24.batches,
+        product_passes: windows_fp24.product_passes.clone(),
+    };
+    let labelled = labelled_result(&net, &windows, &fp32_windows, &windows_fp24.outputs);
+    anyhow::ensure!(
+        labelled.max_diff_vs_cpu_model <= labelled.allowed_vs_cpu_model,
+        "period: the GPU at fp24 is {} from the CPU model of the rounding, beyond the {} the \
+         rounding allows",
+        labelled.max_diff_vs_cpu_model,
+        labelled.allowed_vs_cpu_model
+    );
+    Ok(PeriodResults {
+        gpu: r300.name.clone(),
+        inputs_per_pass: RADEON_9700_INPUTS_PER_PASS,
+        steps: steps(&net, r300, &photo_result),
+        photo: photo_result,
+        labelled,
+    })
+}
+
+/// `run` with the context under `gpu`'s limits, which are lifted again whatever happens.
+fn under_period<T>(
+    ctx: &Context,
+    gpu: &'static period::PeriodGpu,
+    run: impl FnOnce() -> Result<T, GlError>,
+) -> Result<T, GlError> {
+    let before = ctx.period();
+    ctx.set_period(Some(gpu));
+    let result = run();
+    ctx.set_period(before);
+    result
+}
+
+fn labelled_result(
+    net: &Network,
+    windows: &crate::mlp::train::WindowSet,
+    fp32: &Array2<f32>,
+    fp24: &Array2<f32>,
+) -> LabelledAtFp24 {
+    let mse = |outputs: &Array2<f32>| {
+        outputs
+            .column(0)
+            .iter()
+            .zip(&windows.labels)
+            .map(|(y, t)| f64::from(y - t).powi(2))
+            .sum::<f64>()
+            / windows.labels.len() as f64
+    };
+    let model = forward_fp24(net, windows.inputs.view());
+    let bound = error_bound_fp24(net, windows.inputs.view());
+    // the worst output relative to what its own bound allows
+    let (max_diff, allowed) = fp24
+        .iter()
+        .zip(&model)
+        .zip(&bound)
+        .map(|((g, c), e)| ((g - c).abs(), 2.0 * e))
+        .max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)))
+        .unwrap_or((0.0, 0.0));
+    LabelledAtFp24 {
+        windows: windows.labels.len(),
+        fp32_accuracy: evaluate(fp32.column(0), &windows.labels, THRESHOLD).accuracy,
+        fp24_accuracy: evaluate(fp24.column(0), &windows.labels, THRESHOLD).accuracy,
+        fp32_mse: mse(fp32),
+        fp24_mse: mse(fp24),
+        max_diff_vs_cpu_model: max_diff,
+        allowed_vs_cpu_model: allowed,
+    }
+}
+
+/// The fp24 mask (black = text) with the pixels whose class differs from fp32's in red.
+fn write_mask(
+    opts: &BenchOptions,
+    photo: &GrayImage,
+    fp32: &[f32],
+    fp24: &[f32],
+) -> anyhow::Result<()> {
+    let (width, height) = photo.dimensions();
+    let mask = mask_image(fp24, width, height, THRESHOLD);
+    let rgba: Vec<u8> = mask
+        .pixels()
+        .zip(fp32.iter().zip(fp24))
+        .flat_map(|(p, (a, b))| {
+            if (*a > THRESHOLD) != (*b > THRESHOLD) {
+                [255, 0, 0, 255]
+            } else {
+                [p.0[0], p.0[0], p.0[0], 255]
+            }
+        })
+        .collect();
+    crate::files::write_png(&opts.out_dir.join(PERIOD_MASK_FILE), &rgba, width, height)
+        .with_context(|| format!("writing {PERIOD_MASK_FILE}"))
+}
+
+/// Each step of the faithful passes, what it asks of the GPU in this run, and the R300's
+/// limit; the run above went through the GL layer under those limits, so each fitted.
+fn steps(net: &Network, r300: &period::PeriodGpu, photo: &PhotoAtFp24) -> Vec<StepFit> {
+    let max = r300.max_texture_size.value;
+    let widest = net
+        .layers()
+        .iter()
+        .map(|l| l.inputs().max(l.outputs()))
+        .max()
+        .unwrap_or(0);
+    let pixels = (photo.width * photo.rows) as usize;
+    let per_tile = pixels.min(max as usize);
+    let passes: Vec<String> = photo.product_passes.iter().map(|p| p.to_string()).collect();
+    let blended = if r300.float_blending.value.is_empty() {
+        "no float target is blended".to_string()
+    } else {
+        format!("blends {}", r300.float_blending.value.join(", "))
+    };
+    vec![
+        StepFit {
+            step: "Texture W and the 1D bias texture (R32F)".into(),
+            needs: format!("at most {widest} texels a side (the 121-30-1 detector)"),
+            r300: format!("textures up to {max} a side; R32F allocated"),
+        },
+        StepFit {
+            step: "Texture X: input vectors accumulated per texture".into(),
+            needs: format!(
+                "{pixels} vectors in {} tile(s) of at most {per_tile}",
+                photo.fp24_tiles
+            ),
+            r300: format!("textures up to {max} wide"),
+        },
+        StepFit {
+            step: "Matrix product W x X".into(),
+            needs: format!(
+                "{} pass(es) per layer of at most {} inputs, the running sum read from the \
+                 previous target (ping-pong), never blended",
+                passes.join(" + "),
+                RADEON_9700_INPUTS_PER_PASS
+            ),
+            r300: format!("{blended}; ps_2_0 length (our estimate of 15 inputs per pass)"),
+        },
+        StepFit {
+            step: "Bias + sigmoid".into(),
+            needs: "one pass, texture W x X and the bias texture read at texel centres".into(),
+            r300: "float textures read unfiltered only (nearest)".into(),
+        },
+        StepFit {
+            step: "Layer chaining through render targets".into(),
+            needs: "one R32F colour target per pass".into(),
+            r300: format!(
+                "{} colour targets; float targets written, not blended",
+                r300.max_draw_buffers.value
+            ),
+        },
+        StepFit {
+            step: "Arithmetic".into(),
+            needs: "fp32 today".into(),
+            r300: format!(
+                "{}-bit floats in the fragment pipeline: emulated by rounding every step",
+                r300.fragment_float_bits.value
+            ),
+        },
+    ]
+}
+
+/// The results at fp24 beside fp32.
+pub fn results_table(results: &PeriodResults, renderer: &str) -> Table {
+    let p = &results.photo;
+    let l = &results.labelled;
+    let pixels = (p.width * p.rows) as usize;
+    let share = |n: usize| format!("{n} ({:.2}%)", 100.0 * n as f64 / pixels as f64);
+    let percent = |v: f64| format!("{:.2}%", 100.0 * v);
+    Table {
+        caption: format!(
+            "Period: the text detector at the {}'s 24-bit fragment arithmetic (emulated: each \
+             step rounded to a 16-bit mantissa and 7-bit exponent) beside fp32, under its \
+             limits, {} inputs per product pass; text.png {} x {}{}, and {} labelled synthetic \
+             windows the detector was not trained on; {renderer}",
+            results.gpu,
+            results.inputs_per_pass,
+            p.width,
+            p.rows,
+            if p.cropped { " (its first rows)" } else { "" },
+            l.windows
+        ),
+        header: ["quantity", "fp32", "fp24 (R300)", "difference"]
+            .map(String::from)
+            .to_vec(),
+        rows: vec![
+            vec![
+                "text.png outputs".into(),
+                "-".into(),
+                "-".into(),
+                format!("max {:.3e}, mean {:.3e}", p.max_abs_diff, p.mean_abs_diff),
+            ],
+            vec![
+                "text.png pixels called text".into(),
+                share(p.fp32_text_pixels),
+                share(p.fp24_text_pixels),
+                format!("{} pixel(s) change class", p.changed_pixels),
+            ],
+            vec![
+                "labelled windows: accuracy".into(),
+                percent(l.fp32_accuracy),
+                percent(l.fp24_accuracy),
+                format!("{:+.3} points", 100.0 * (l.fp24_accuracy - l.fp32_accuracy)),
+            ],
+            vec![
+                "labelled windows: mean squared error against the labels".into(),
+                format!("{:.6}", l.fp32_mse),
+                format!("{:.6}", l.fp24_mse),
+                format!("{:+.2e}", l.fp24_mse - l.fp32_mse),
+            ],
+            vec![
+                "GPU at fp24 against the CPU model of the same rounding".into(),
+                "-".into(),
+                format!("max {:.2e}", l.max_diff_vs_cpu_model),
+                format!("allowed {:.2e}", l.allowed_vs_cpu_model),
+            ],
+        ],
+    }
+}
+
+/// Which steps fit the R300.
+pub fn steps_table(results: &PeriodResults) -> Table {
+    Table {
+        caption: format!(
+            "Period: paper 3's steps on the {} (limits from assets/period_gpus.toml, enforced by \
+             the GL layer during the fp24 run above: every step ran, none needed another way)",
+            results.gpu
+        ),
+        header: ["step", "this run needs", "R300 limit"]
+            .map(String::from)
+            .to_vec(),
+        rows: results
+            .steps
+            .iter()
+            .map(|s| vec![s.step.clone(), s.needs.clone(), s.r300.clone()])
+            .collect(),
+    }
+}
+
+pub fn figure(results: &PeriodResults) -> Figure {
+    Figure {
+        file: PERIOD_MASK_FILE.into(),
+        caption: format!(
+            "Period: {} classified at the {}'s 24-bit precision (black = text), red where the \
+             class differs from fp32 ({} pixel(s))",
+            FIG2A_FILE, results.gpu, results.photo.changed_pixels
+        ),
+    }
+}
