@@ -226,8 +226,8 @@ pub const USES_PNG: &str = "lecture3_light_uses.png";
 /// brute force and the coarsest criterion) into the report's folder.
 pub fn measure(opts: &BenchOptions, ctx: &Context) -> anyhow::Result<LightUsesRun> {
     // Subsurface scattering's samples are the light's image of the model: a finer image than
-    // the sky's grid, so that the tree has enough samples to group (about 70% of the texels
-    // see the model in the fitted light's frustum).
+    // the sky's grid, so that the tree has enough samples to group (the bunny fills about 30%
+    // of the fitted light's image: some 300 samples of 32x32).
     let (vpls, size, side, samples_side) = if opts.quick {
         (16, 64, 16, 32)
     } else {
