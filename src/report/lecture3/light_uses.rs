@@ -225,30 +225,39 @@ pub const USES_PNG: &str = "lecture3_light_uses.png";
 /// Measures the uses and writes their picture (subsurface scattering and environment light,
 /// brute force and the coarsest criterion) into the report's folder.
 pub fn measure(opts: &BenchOptions, ctx: &Context) -> anyhow::Result<LightUsesRun> {
-    // Subsurface scattering's samples are the light's image of the model: a finer image than
-    // the sky's grid, so that the tree has enough samples to group (the bunny fills about 30%
-    // of the fitted light's image: some 300 samples of 32x32).
-    let (vpls, size, side, samples_side) = if opts.quick {
-        (16, 64, 16, 32)
+    // The lights of both uses fill a finer image than the room's VPLs, so that the tree has
+    // enough lights to group: subsurface scattering's samples are the light's image of the
+    // model (the bunny fills about 30% of the fitted light's image: some 300 samples of
+    // 32x32), environment light's the sky's lat-long grid.
+    let (vpls, size, lights_side) = if opts.quick {
+        (16, 64, 32)
     } else {
-        (32, 128, 32, 64)
+        (32, 128, 64)
     };
     let room = IndirectLighting::new(ctx, Scene::room(), vpls, size, size)?;
     room.build_lights()?;
     room.draw_receivers()?;
     let clustering = compare_clustering(&room, &CLUSTERING_THETAS, MIN_COHERENCE)?;
     let mut pictures = Vec::new();
-    let mut run = |light_use: LightUse, side: u32| -> anyhow::Result<UseRun> {
+    let mut run = |light_use: LightUse| -> anyhow::Result<UseRun> {
         let scene = default_scene(&light_use);
-        let (run, lighting) = use_run(ctx, light_use, scene, side, (size, size), &USE_THETAS, 0.0)?;
+        let (run, lighting) = use_run(
+            ctx,
+            light_use,
+            scene,
+            lights_side,
+            (size, size),
+            &USE_THETAS,
+            0.0,
+        )?;
         let coarse = picture(&lighting)?;
         lighting.gather(Gather::BruteForce)?;
         pictures.push(picture(&lighting)?);
         pictures.push(coarse);
         Ok(run)
     };
-    let subsurface = run(LightUse::subsurface(), samples_side)?;
-    let environment = run(LightUse::environment(), side)?;
+    let subsurface = run(LightUse::subsurface())?;
+    let environment = run(LightUse::environment())?;
     Rgba::row(&pictures, 4).save(&opts.out_dir.join(USES_PNG))?;
     Ok(LightUsesRun {
         clustering,
