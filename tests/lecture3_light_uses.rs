@@ -224,6 +224,35 @@ fn ball(light_use: LightUse, side: u32) -> IndirectLighting {
     l
 }
 
+/// A model alone is lit by a spot light whose frustum is fitted to it, so that the light's
+/// image (subsurface scattering's irradiance samples) is spent on the model: a sphere's outline
+/// fills a disc inscribed in the square image, pi/4 = 78.5% of it (less the fit's 2% margin
+/// and the tessellation, whose outline lies inside the sphere's), and it reaches the image's
+/// border.
+#[test]
+fn the_fitted_light_spends_its_image_on_the_model() {
+    let side = 32;
+    let l = ball(LightUse::subsurface(), side);
+    let level0 = &l.clusters.read_levels().unwrap()[0];
+    let lit = |x: u32, y: u32| level0.at(x, y).weight > 0.0;
+    let count = (0..side)
+        .flat_map(|y| (0..side).map(move |x| (x, y)))
+        .filter(|&(x, y)| lit(x, y))
+        .count();
+    let share = count as f64 / (side * side) as f64;
+    assert!(
+        share > 0.65 && share < 0.79,
+        "{count} of {} texels lit",
+        side * side
+    );
+    // The widest vertex lies within the 2% margin (a third of a texel) of the border.
+    let border = (0..side)
+        .flat_map(|y| (0..side).map(move |x| (x, y)))
+        .filter(|&(x, y)| x.min(y).min(side - 1 - x).min(side - 1 - y) < 2)
+        .any(|(x, y)| lit(x, y));
+    assert!(border, "the frustum is loose: nothing lit near its border");
+}
+
 /// Relative RMS error of the GPU tree search against the GPU brute force, and nodes visited.
 fn tree_error(l: &IndirectLighting, theta: f32) -> (f64, f64) {
     l.gather(Gather::BruteForce).unwrap();

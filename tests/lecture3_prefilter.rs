@@ -10,7 +10,8 @@
 
 use classic_gpgpu::lecture3::displacement::compare::{compare_prefiltered, Comparison};
 use classic_gpgpu::lecture3::displacement::prefilter::{
-    image_error, stop_level, supersampled, Prefilter,
+    cpu_prefiltered, cpu_supersampled, image_error, shown_of_rgba8, stop_level, supersampled,
+    Prefilter, Shown,
 };
 use classic_gpgpu::lecture3::displacement::{Camera, DisplacementRenderer, Method, Pixel, Surface};
 use classic_gpgpu::lecture3::HeightMap;
@@ -40,7 +41,7 @@ fn camera(surface: &Surface, distance: f32, azimuth: f32, elevation: f32, size: 
     Camera::orbit(surface.centre(), distance, azimuth, elevation, size, size)
 }
 
-fn render(renderer: &DisplacementRenderer, camera: &Camera, method: Method) -> (Vec<u8>, f64) {
+fn render(renderer: &DisplacementRenderer, camera: &Camera, method: Method) -> (Shown, f64) {
     let target = renderer.target(camera.width, camera.height).unwrap();
     renderer.render(&target, camera, method).unwrap();
     let frame = renderer.read(&target).unwrap();
@@ -54,7 +55,7 @@ fn render(renderer: &DisplacementRenderer, camera: &Camera, method: Method) -> (
         })
         .collect();
     let mean_steps = steps.iter().sum::<f64>() / steps.len().max(1) as f64;
-    (frame.colour, mean_steps)
+    (shown_of_rgba8(&frame.colour), mean_steps)
 }
 
 fn assert_exact(c: &Comparison, what: &str) {
@@ -130,9 +131,6 @@ fn prefiltered_frames_equal_the_cpu_reference_of_the_same_rule() {
 
 /// The prefilter's speed as a property: far away it stops the descent early, so a hit pixel
 /// takes fewer traversal steps; close up (every footprint under 2 patches) it changes nothing.
-/// Its image error against a supersampled frame is measured by the report and the command
-/// (`displace --prefilter`), not asserted: with the mean surface's own normal it was larger
-/// than the unfiltered frame's on every map and distance tried (see the report's table).
 #[test]
 fn far_away_the_prefilter_takes_fewer_steps_and_close_up_it_changes_nothing() {
     let ctx = context();
@@ -164,4 +162,51 @@ fn far_away_the_prefilter_takes_fewer_steps_and_close_up_it_changes_nothing() {
 
 fn camera_near(surface: &Surface) -> Camera {
     camera(surface, 1.2, 225.0, 50.0, 96)
+}
+
+/// Quality, the abstract's claim, where it holds: seen steeply (70 degrees) and far away, where
+/// each pixel covers many patches, the prefiltered frame is closer to the supersampled
+/// unfiltered image (8x8 rays per pixel) than the unfiltered frame (one ray per pixel) is, by
+/// at least `MARGIN` of the unfiltered error; on the GPU and by the CPU reference of the same
+/// rule (exact f64 traces of every sub-pixel ray and of the rule, shaded alike), which agree to
+/// `AGREE` (8-bit colours, and the few pixels whose hit fp32 moves across a checker edge).
+///
+/// At lower elevations it does not hold (the report's claim row says so, with its numbers):
+/// the mean normal weights every facet under a node alike, while a pixel sees the facets that
+/// face the camera; shading each prefiltered pixel with the mean shading of the facets its
+/// sub-pixel rays hit brings its error below the unfiltered frame's at 40 degrees too, so the
+/// shading, not the prefiltered surface, is what errs there.
+#[test]
+fn seen_steeply_from_far_away_the_prefiltered_frame_is_closer_to_the_supersampled_image() {
+    const MARGIN: f64 = 0.1;
+    const AGREE: f64 = 0.01;
+    let ctx = context();
+    for (map, distance) in [(rough_map(129, 3), 7.0), (rough_map(129, 4), 12.0)] {
+        let surface = Surface::new(map, 0.3).unwrap();
+        let renderer = DisplacementRenderer::new(&ctx, surface).unwrap();
+        let camera = camera(renderer.surface(), distance, 225.0, 70.0, 48);
+        let acting = prefiltered_pixels(renderer.surface(), &camera);
+        assert!(acting > 100, "{acting} pixels stop above level 0");
+        let reference = supersampled(&renderer, &camera, 8).unwrap();
+        let plain = image_error(&render(&renderer, &camera, Method::Pyramid).0, &reference);
+        let filtered = image_error(
+            &render(&renderer, &camera, Method::Prefiltered).0,
+            &reference,
+        );
+        let surface = renderer.surface();
+        let cpu_reference = cpu_supersampled(surface, &camera, 8);
+        let cpu_plain = image_error(&cpu_supersampled(surface, &camera, 1), &cpu_reference);
+        let cpu_filtered = image_error(&cpu_prefiltered(surface, &camera), &cpu_reference);
+        let what = format!(
+            "distance {distance}: GPU unfiltered {plain:.4} prefiltered {filtered:.4}; CPU \
+             unfiltered {cpu_plain:.4} prefiltered {cpu_filtered:.4}"
+        );
+        eprintln!("{what}");
+        assert!(filtered <= (1.0 - MARGIN) * plain, "{what}");
+        assert!(cpu_filtered <= (1.0 - MARGIN) * cpu_plain, "{what}");
+        assert!(
+            (plain - cpu_plain).abs() <= AGREE && (filtered - cpu_filtered).abs() <= AGREE,
+            "{what}"
+        );
+    }
 }

@@ -1,56 +1,29 @@
 #version 330 core
 // Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006):
 // what both ray tracers share.
+// Compiled after: glsl/lecture3/pixel_ray.glsl, glsl/lecture3/displace_normal.glsl
 // What the displacement tracers share: the pixel's ray in grid space, the box it enters,
 // the bilinear patches of the height map, and the outputs (hit, statistics, shaded colour,
 // depth). Grid space: x, y in patches (patch (i, j) spans [i, i+1] x [j, j+1]), z the height
 // in [0, 1]; the ray parameter is the distance along the unit world direction.
 
-uniform vec2 u_viewport;       // image size in pixels
-uniform vec3 u_eye;            // world
-uniform vec3 u_forward;        // the camera's ray frame (camera.rs)
-uniform vec3 u_right;
-uniform vec3 u_up;
-uniform vec3 u_world_to_grid;  // a diagonal scale
 uniform ivec2 u_patches;       // (width - 1, height - 1)
 uniform sampler2D u_heights;   // the height map, one sample per texel
 uniform mat4 u_view_projection;
 
 layout(location = 0) out vec4 o_hit;    // grid x, y, z and the ray parameter
-layout(location = 1) out vec4 o_stats;  // iterations, kind (1 surface, 2 wall, -1 unfinished),
-                                        // the shown normal's x and y (world)
+layout(location = 1) out vec4 o_stats;  // iterations, kind (1 surface, 2 wall, -1 unfinished)
 layout(location = 2) out vec4 o_colour; // shaded
-
-const float BIG = 1e30;
-
-struct Ray {
-    vec3 o; // grid space
-    vec3 d; // grid-space image of the unit world direction
-};
+layout(location = 3) out vec4 o_normal; // the normal shaded with (world), xyz
 
 Ray pixel_ray() {
-    vec2 ndc = gl_FragCoord.xy / u_viewport * 2.0 - 1.0;
-    vec3 dir = normalize(u_forward + ndc.x * u_right + ndc.y * u_up);
-    return Ray(u_eye * u_world_to_grid, dir * u_world_to_grid);
+    return pixel_ray_scaled(u_world_to_grid);
 }
 
 // The parameter interval inside the box [0, wp] x [0, hp] x [0, 1], from 0 on; empty (x > y)
 // when the ray misses it.
 vec2 box_interval(Ray r) {
-    vec3 hi = vec3(vec2(u_patches), 1.0);
-    float t0 = 0.0;
-    float t1 = BIG;
-    for (int k = 0; k < 3; ++k) {
-        if (r.d[k] == 0.0) {
-            if (r.o[k] < 0.0 || r.o[k] > hi[k]) return vec2(1.0, 0.0);
-            continue;
-        }
-        float a = (0.0 - r.o[k]) / r.d[k];
-        float b = (hi[k] - r.o[k]) / r.d[k];
-        t0 = max(t0, min(a, b));
-        t1 = min(t1, max(a, b));
-    }
-    return vec2(t0, t1);
+    return ray_box(r, vec3(vec2(u_patches), 1.0));
 }
 
 // Whether the ray enters the box through one of its four sides (x or y planes), from outside,
@@ -113,18 +86,11 @@ float patch_first_hit(vec4 h, vec3 start, vec3 step, float len) {
     return best < BIG ? best : -1.0;
 }
 
-// The world normal of a bilinear patch with corners h, `side` patches wide, at local (s, t).
-vec3 patch_normal(vec4 h, vec2 st, float side) {
-    float dhds = ((h.y - h.x) + (h.x - h.y - h.z + h.w) * st.y) / side;
-    float dhdt = ((h.z - h.x) + (h.x - h.y - h.z + h.w) * st.x) / side;
-    // World slopes: dz/dx = (dH/ds) (grid x per world x) / (grid z per world z).
-    vec2 slope = vec2(dhds, dhdt) * u_world_to_grid.xy / u_world_to_grid.z;
-    return normalize(vec3(-slope, 1.0));
-}
-
 // Writes the hit at parameter tau shown with `surface_n` where it is on the surface: its grid
 // position, statistics, a shaded colour (that normal, or the wall's, under one directional
-// light, on a checkerboard of 8x8 patches) and its depth.
+// light, on a checkerboard of 8x8 patches) and its depth. The shading is linear in the normal
+// (where it faces the light), so a prefiltered normal shorter than 1 (the mean of the unit
+// normals under a node) shades as the mean of its unit normals' shadings.
 void write_shaded(Ray r, float tau, bool wall, float iterations, vec3 surface_n) {
     vec3 g = r.o + tau * r.d;
     o_hit = vec4(g, tau);
@@ -137,9 +103,8 @@ void write_shaded(Ray r, float tau, bool wall, float iterations, vec3 surface_n)
         n = m == to_low.x ? vec3(-1, 0, 0) : m == to_high.x ? vec3(1, 0, 0)
           : m == to_low.y ? vec3(0, -1, 0) : vec3(0, 1, 0);
     }
-    // The normal goes out beside the kind: a wall's has z = 0, a surface's z > 0, so x and y
-    // determine it.
-    o_stats = vec4(iterations, wall ? 2.0 : 1.0, n.xy);
+    o_stats = vec4(iterations, wall ? 2.0 : 1.0, 0.0, 0.0);
+    o_normal = vec4(n, 0.0);
     ivec2 square = ivec2(floor(g.xy / 8.0));
     vec3 albedo = ((square.x + square.y) & 1) == 0 ? vec3(0.85, 0.75, 0.6) : vec3(0.55, 0.6, 0.75);
     vec3 light = normalize(vec3(0.4, 0.3, 0.85));
@@ -160,5 +125,6 @@ void write_unfinished(float iterations) {
     o_hit = vec4(0.0, 0.0, 0.0, -1.0);
     o_stats = vec4(iterations, -1.0, 0.0, 0.0);
     o_colour = vec4(1.0, 0.0, 1.0, 1.0);
+    o_normal = vec4(0.0);
     gl_FragDepth = 0.0;
 }

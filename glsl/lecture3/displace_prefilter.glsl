@@ -1,17 +1,25 @@
 #version 330 core
 // Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006):
 // the minification prefilter (reconstructed; src/lecture3/displacement/prefilter.rs).
+// Compiled after: glsl/lecture3/pixel_ray.glsl, glsl/lecture3/displace_normal.glsl
 // Compiled after: glsl/lecture3/displace_common.glsl
 // Where a pixel's footprint covers many patches the traversal stops at the level whose nodes
 // are no wider than the footprint and meets a prefiltered surface there: one bilinear patch
 // per node, its corners the mean of the height samples about each corner (four nodes of the
-// mean pyramid), clamped under the node's bound so that the max pyramid still bounds it.
+// mean pyramid), clamped under the node's bound so that the max pyramid still bounds it. A hit
+// on it is shaded with the level's prefiltered normal: the mean of the unit normals of the
+// patches about the hit (the normal pyramid, bilinear between node centres), not normalised.
 
+uniform sampler2D u_bounds;   // max pyramid of the patch bounds, as an atlas
+uniform int u_level_x[16];    // where each level starts in the atlas
+uniform int u_level_y[16];
 uniform int u_prefilter;      // 0: trace the finest patches; 1: stop at the footprint's level
 uniform float u_footprint;    // the pixel's footprint in patches per unit of ray parameter
 uniform sampler2D u_means;    // mean pyramid of the height samples, as an atlas
 uniform int u_mean_x[16];     // where each of its levels starts in the atlas
 uniform int u_mean_y[16];
+uniform sampler2D u_normals;  // mean pyramid of the patches' mean unit normals (xyz), as an
+                              // atlas laid out as the bound pyramid's (u_level_x, u_level_y)
 
 // The stop level of a ray entering the box at t_in: the coarsest level <= top whose nodes,
 // 2^L patches wide, are no wider than the footprint there.
@@ -43,4 +51,23 @@ vec4 prefiltered_corners(ivec2 node, int level, float bound) {
     vec4 h = vec4(coarse_corner(node, level), coarse_corner(node + ivec2(1, 0), level),
                   coarse_corner(node + ivec2(0, 1), level), coarse_corner(node + ivec2(1, 1), level));
     return min(h, vec4(bound));
+}
+
+// Normal pyramid node m of `level`, clamped to the nodes that cover patches.
+vec3 normal_node(ivec2 m, int level) {
+    ivec2 valid = (u_patches + ((1 << level) - 1)) >> level; // ceil(patches / 2^level)
+    m = clamp(m, ivec2(0), valid - 1);
+    return texelFetch(u_normals, ivec2(u_level_x[level], u_level_y[level]) + m, 0).xyz;
+}
+
+// The prefiltered normal at grid point g on `level`: the level's mean normals interpolated
+// bilinearly between node centres (node n's centre at (n + 1/2) 2^level), constant beyond the
+// outer centres. Its length stays what the means give.
+vec3 prefiltered_normal(vec2 g, int level) {
+    vec2 p = g / float(1 << level) - 0.5;
+    ivec2 n = ivec2(floor(p));
+    vec2 f = p - vec2(n);
+    vec3 bottom = mix(normal_node(n, level), normal_node(n + ivec2(1, 0), level), f.x);
+    vec3 top = mix(normal_node(n + ivec2(0, 1), level), normal_node(n + ivec2(1, 1), level), f.x);
+    return mix(bottom, top, f.y);
 }

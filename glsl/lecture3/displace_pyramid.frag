@@ -1,6 +1,8 @@
 // Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006): the
 // ray traced through the max pyramid.
-// Compiled after: glsl/lecture3/displace_common.glsl, glsl/lecture3/displace_prefilter.glsl
+// Compiled after: glsl/lecture3/pixel_ray.glsl, glsl/lecture3/displace_normal.glsl
+// Compiled after: glsl/lecture3/displace_common.glsl
+// Compiled after: glsl/lecture3/displace_prefilter.glsl
 // Pyramidal displacement mapping [Oh, Ki & Lee, VRST 2006; reconstructed from the
 // abstract]: the pixel's ray is traced through the max pyramid of the patch bounds, top
 // down. A node whose highest point the ray stays above while it crosses the node is skipped
@@ -9,11 +11,8 @@
 // After leaving a node the traversal climbs one level, so empty space is crossed in large
 // steps. With the prefilter on (displace_prefilter.glsl) the descent stops at the level of
 // the pixel's footprint and meets that level's prefiltered patch instead. (The fragment stage
-// is displace_common.glsl, then displace_prefilter.glsl, then this file.)
+// is pixel_ray.glsl, displace_normal.glsl, displace_common.glsl, displace_prefilter.glsl, then this file.)
 
-uniform sampler2D u_bounds;   // max pyramid of the patch bounds, as an atlas
-uniform int u_level_x[16];    // where each level starts in the atlas
-uniform int u_level_y[16];
 uniform int u_top;            // the top level (one node)
 uniform int u_max_iterations; // far more than any traversal needs; reaching it is reported
 
@@ -73,8 +72,8 @@ void main() {
                 if (level == 0) {
                     write_hit(r, t + u, wall, float(it + 1));
                 } else {
-                    vec2 st = clamp((r.o.xy + (t + u) * r.d.xy - origin) / side, 0.0, 1.0);
-                    write_shaded(r, t + u, wall, float(it + 1), patch_normal(h, st, side));
+                    vec2 g = r.o.xy + (t + u) * r.d.xy;
+                    write_shaded(r, t + u, wall, float(it + 1), prefiltered_normal(g, level));
                 }
                 return;
             }

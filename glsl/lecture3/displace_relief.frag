@@ -1,5 +1,6 @@
 // Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006):
 // relief mapping's search, the method it is compared with.
+// Compiled after: glsl/lecture3/pixel_ray.glsl, glsl/lecture3/displace_normal.glsl
 // Compiled after: glsl/lecture3/displace_common.glsl
 // Relief mapping's search [Policarpo, Oliveira & Comba, I3D 2005], the method pyramidal
 // displacement mapping is compared with: the ray's segment inside the box is sampled in
@@ -7,7 +8,8 @@
 // step is halved u_binary_steps times. The height field is the same bilinear field
 // (interpolated in the shader from texelFetch, not by the texture unit). A step can jump over
 // a thin feature: at grazing angles the hit lands behind it, or is missed.
-// (The fragment stage is displace_common.glsl followed by this file.)
+// (The fragment stage is pixel_ray.glsl, displace_normal.glsl, displace_common.glsl, then
+// this file.)
 
 uniform int u_linear_steps;
 uniform int u_binary_steps;

@@ -1,6 +1,6 @@
 // Lecture 3, "octrees and quadtrees on the GPU" (reconstructed; src/lecture3/octree/cast.rs):
 // the ray cast through the octree.
-// Compiled after: glsl/lecture3/octree_common.glsl
+// Compiled after: glsl/lecture3/pixel_ray.glsl, glsl/lecture3/octree_common.glsl
 // Top-down traversal of the occupancy pyramid: an occupied node is entered (one level down,
 // the child that holds the ray's current point); an empty node is crossed whole, the ray
 // moving to where it leaves the node and one level up, so that empty space costs a step per

@@ -1,15 +1,11 @@
 #version 330 core
 // Lecture 3, "octrees and quadtrees on the GPU" (reconstructed; src/lecture3/octree/cast.rs):
 // what the octree and flat ray casts share.
+// Compiled after: glsl/lecture3/pixel_ray.glsl
 // Each fragment casts its pixel's ray into the N^3 voxel grid (grid space: the cube [0, N]^3,
 // the ray parameter the distance along the unit world direction) and writes the first
 // occupied voxel it meets, the parameter where it enters it, and its step count.
 
-uniform vec2 u_viewport;       // image size in pixels
-uniform vec3 u_eye;            // world
-uniform vec3 u_forward;        // the camera's ray frame (displacement/camera.rs)
-uniform vec3 u_right;
-uniform vec3 u_up;
 uniform float u_world_to_grid; // grid units per world unit
 uniform int u_n;               // the leaf grid's side
 uniform int u_top;             // the root's level
@@ -27,34 +23,13 @@ uniform sampler2D u_level7;
 layout(location = 0) out vec4 o_hit;   // the voxel (i, j, l) and the entry parameter
 layout(location = 1) out vec4 o_stats; // steps, 1 hit / 0 miss / -1 unfinished
 
-const float BIG = 1e30;
-
-struct Ray {
-    vec3 o; // grid space
-    vec3 d; // grid-space image of the unit world direction
-};
-
 Ray pixel_ray() {
-    vec2 ndc = gl_FragCoord.xy / u_viewport * 2.0 - 1.0;
-    vec3 dir = normalize(u_forward + ndc.x * u_right + ndc.y * u_up);
-    return Ray(u_eye * u_world_to_grid, dir * u_world_to_grid);
+    return pixel_ray_scaled(vec3(u_world_to_grid));
 }
 
 // The parameter interval inside [0, N]^3 from 0 on; empty (x > y) when the ray misses it.
 vec2 box_interval(Ray r) {
-    float t0 = 0.0;
-    float t1 = BIG;
-    for (int k = 0; k < 3; ++k) {
-        if (r.d[k] == 0.0) {
-            if (r.o[k] < 0.0 || r.o[k] > float(u_n)) return vec2(1.0, 0.0);
-            continue;
-        }
-        float a = (0.0 - r.o[k]) / r.d[k];
-        float b = (float(u_n) - r.o[k]) / r.d[k];
-        t0 = max(t0, min(a, b));
-        t1 = min(t1, max(a, b));
-    }
-    return vec2(t0, t1);
+    return ray_box(r, vec3(float(u_n)));
 }
 
 // Whether node v of `level` is occupied (its z slice tiled as the level's texture lays it).

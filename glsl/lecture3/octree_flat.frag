@@ -1,6 +1,6 @@
 // Lecture 3, "octrees and quadtrees on the GPU" (reconstructed; src/lecture3/octree/cast.rs):
 // the flat search the octree is measured against.
-// Compiled after: glsl/lecture3/octree_common.glsl
+// Compiled after: glsl/lecture3/pixel_ray.glsl, glsl/lecture3/octree_common.glsl
 // A 3D DDA over the full grid (Amanatides & Woo): the ray visits every voxel it crosses, in
 // order, and stops at the first occupied one. Empty space costs one step per voxel.
 

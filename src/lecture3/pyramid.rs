@@ -239,14 +239,21 @@ impl PyramidBuilder {
 
     /// An empty pyramid texture for a `width x height` image (level 0 padded).
     pub fn allocate(&self, width: u32, height: u32, extreme: Extreme) -> Result<Pyramid, GlError> {
+        self.allocate_as(width, height, extreme, TextureFormat::R32F)
+    }
+
+    /// An empty pyramid of `format` (`Rgba32F`: four values per node, each channel combined
+    /// alike).
+    pub fn allocate_as(
+        &self,
+        width: u32,
+        height: u32,
+        extreme: Extreme,
+        format: TextureFormat,
+    ) -> Result<Pyramid, GlError> {
         let (w, h) = padded_size(width, height);
-        let texture = Texture::new_2d_mipmapped(
-            &self.ctx,
-            w,
-            h,
-            TextureFormat::R32F,
-            level_count(width, height),
-        )?;
+        let texture =
+            Texture::new_2d_mipmapped(&self.ctx, w, h, format, level_count(width, height))?;
         let targets = (0..texture.levels())
             .map(|level| {
                 Framebuffer::new_at_level(&self.ctx, "pyramid level", &[&texture], None, level)

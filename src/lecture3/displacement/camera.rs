@@ -2,8 +2,9 @@
 //! pixel, computed the same way on the GPU (fp32, from the uniforms) and the CPU (f64, from
 //! the same fp32 uniforms).
 
+use crate::gl::{Framebuffer, GlError, Pass};
 use glam::camera::rh::{proj::opengl, view::look_at_mat4};
-use glam::{DVec3, Mat4, Vec3};
+use glam::{DVec3, Mat4, Vec2, Vec3};
 use serde::Serialize;
 
 /// A perspective camera and the image it renders.
@@ -53,6 +54,16 @@ impl Camera {
         }
     }
 
+    /// The same view with `samples` times as many pixels along each side (each pixel of this
+    /// camera covers `samples x samples` of its pixels).
+    pub fn enlarged(&self, samples: u32) -> Camera {
+        Camera {
+            width: self.width * samples,
+            height: self.height * samples,
+            ..*self
+        }
+    }
+
     pub fn aspect(&self) -> f32 {
         self.width as f32 / self.height as f32
     }
@@ -77,6 +88,30 @@ impl Camera {
         let x = (px as f64 + 0.5) / self.width as f64 * 2.0 - 1.0;
         let y = (py as f64 + 0.5) / self.height as f64 * 2.0 - 1.0;
         (f.forward.as_dvec3() + x * f.right.as_dvec3() + y * f.up.as_dvec3()).normalize()
+    }
+
+    /// Sets the uniforms of `glsl/lecture3/pixel_ray.glsl` (the viewport and the ray frame)
+    /// on a pass drawing into `fb`, after checking that `fb` is this camera's size.
+    pub fn set_ray_uniforms(&self, pass: &mut Pass, fb: &Framebuffer) -> Result<(), GlError> {
+        if (fb.width(), fb.height()) != (self.width, self.height) {
+            return Err(GlError::Invalid(format!(
+                "a {}x{} camera drawing into a {}x{} target",
+                self.width,
+                self.height,
+                fb.width(),
+                fb.height()
+            )));
+        }
+        let frame = self.ray_frame();
+        pass.uniform(
+            "u_viewport",
+            Vec2::new(self.width as f32, self.height as f32),
+        )
+        .uniform("u_eye", self.eye)
+        .uniform("u_forward", frame.forward)
+        .uniform("u_right", frame.right)
+        .uniform("u_up", frame.up);
+        Ok(())
     }
 
     pub fn view_projection(&self) -> Mat4 {

@@ -21,8 +21,9 @@
 //! kind are ill-conditioned as well.
 //!
 //! A prefiltered frame ([`super::prefilter`]) is judged the same way against the exact tracer
-//! of the field its pixel's rule selects (the prefiltered field of the stop level, with its
-//! own normals); pixels whose stop level fp32 rounding could change are ill-conditioned.
+//! of the field its pixel's rule selects (the prefiltered field of the stop level, shaded with
+//! the level's mean normals); pixels whose stop level fp32 rounding could change are
+//! ill-conditioned.
 
 use super::camera::Camera;
 use super::exact::{box_interval, trace, Hit};
@@ -155,7 +156,7 @@ fn judge_drawing(
     let reach = (grid - exact.grid).truncate().length() + EDGE;
     let normals_at = |g: DVec3, margin: f64| match (wall, field) {
         (true, _) => shading::wall_normals(surface, g, margin),
-        (false, Some(field)) => field.surface_normals(surface, g, margin),
+        (false, Some(field)) => field.surface_normals(g),
         (false, None) => shading::surface_normals(surface, g, margin),
     };
     let mut normals = normals_at(grid, EDGE);

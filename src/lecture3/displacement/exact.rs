@@ -7,7 +7,7 @@
 //! than `trace(.., -delta)`: that is how the tests state the GPU's tolerance.
 
 use super::camera::Camera;
-use super::patch::{first_hit, Segment};
+use super::patch::{first_hit, Corners, Segment};
 use super::surface::Surface;
 use glam::DVec3;
 use serde::Serialize;
@@ -62,34 +62,68 @@ pub fn enters_through_side(o: DVec3, d: DVec3, wp: f64, hp: f64) -> bool {
 /// `offset`.
 pub fn trace(surface: &Surface, eye: DVec3, dir: DVec3, offset: f64) -> Option<Hit> {
     let scale = surface.world_to_grid().as_dvec3();
-    let (o, d) = (eye * scale, dir * scale);
-    let (wp, hp) = surface.patches();
-    let (t_in, t_out) = box_interval(o, d, wp as f64, hp as f64)?;
-    let mut t = t_in;
-    let start = o + t * d;
-    let mut i = (start.x.floor() as i64).clamp(0, wp as i64 - 1);
-    let mut j = (start.y.floor() as i64).clamp(0, hp as i64 - 1);
-    let exit = |cell: i64, o: f64, d: f64| {
+    let cells = Cells {
+        side: 1.0,
+        count: surface.patches(),
+        patches: surface.patches(),
+    };
+    walk(&cells, eye * scale, dir * scale, |i, j| {
+        surface.corners(i, j, offset)
+    })
+}
+
+/// A height field of bilinear cells over the map's patches: `count` cells along x and y,
+/// each `side` patches wide (the last ones cut at the map's edge, `patches`). The map's own
+/// field is one cell per patch; the prefilter's coarser fields one per pyramid node.
+pub struct Cells {
+    pub side: f64,
+    pub count: (u32, u32),
+    pub patches: (u32, u32),
+}
+
+/// The exact first hit of the grid-space ray `o + tau d` with the field of `cells` whose cell
+/// (i, j) has corners `corners(i, j)`: a walk over every cell the ray crosses, in order, each
+/// cell's quadratic solved ([`super::patch`]).
+pub fn walk(
+    cells: &Cells,
+    o: DVec3,
+    d: DVec3,
+    corners: impl Fn(u32, u32) -> Corners,
+) -> Option<Hit> {
+    let (wp, hp) = (cells.patches.0 as f64, cells.patches.1 as f64);
+    let (nx, ny) = (cells.count.0 as i64, cells.count.1 as i64);
+    let side = cells.side;
+    let (t_in, t_out) = box_interval(o, d, wp, hp)?;
+    let start = o + t_in * d;
+    let cell_of = |x: f64, n: i64| ((x / side).floor() as i64).clamp(0, n - 1);
+    let (mut i, mut j) = (cell_of(start.x, nx), cell_of(start.y, ny));
+    // Where the ray leaves cell `n` along one axis (the last cell ends at the map's edge).
+    let exit = |n: i64, o: f64, d: f64, edge: f64| {
+        let (lo, hi) = (n as f64 * side, ((n + 1) as f64 * side).min(edge));
         if d > 0.0 {
-            (cell as f64 + 1.0 - o) / d
+            (hi - o) / d
         } else if d < 0.0 {
-            (cell as f64 - o) / d
+            (lo - o) / d
         } else {
             f64::INFINITY
         }
     };
-    let mut first = true;
-    let through_side = enters_through_side(o, d, wp as f64, hp as f64);
+    let through_side = enters_through_side(o, d, wp, hp);
+    let (mut t, mut first) = (t_in, true);
     loop {
-        let (tx, ty) = (exit(i, o.x, d.x), exit(j, o.y, d.y));
+        let (tx, ty) = (exit(i, o.x, d.x, wp), exit(j, o.y, d.y, hp));
         let t_exit = tx.min(ty).min(t_out);
         let p = o + t * d;
         let segment = Segment {
-            start: [p.x - i as f64, p.y - j as f64, p.z],
-            step: [d.x, d.y, d.z],
+            start: [
+                (p.x - i as f64 * side) / side,
+                (p.y - j as f64 * side) / side,
+                p.z,
+            ],
+            step: [d.x / side, d.y / side, d.z],
             length: (t_exit - t).max(0.0),
         };
-        if let Some(u) = first_hit(surface.corners(i as u32, j as u32, offset), &segment) {
+        if let Some(u) = first_hit(corners(i as u32, j as u32), &segment) {
             let tau = t + u;
             return Some(Hit {
                 tau,
@@ -105,7 +139,7 @@ pub fn trace(surface: &Surface, eye: DVec3, dir: DVec3, offset: f64) -> Option<H
         } else {
             j += d.y.signum() as i64;
         }
-        if i < 0 || j < 0 || i >= wp as i64 || j >= hp as i64 {
+        if i < 0 || j < 0 || i >= nx || j >= ny {
             return None;
         }
         t = t_exit;

@@ -17,8 +17,12 @@
 //!   box of `2^(L+1)` samples a side about the corner. Each corner is then clamped to the
 //!   node's bound (the max pyramid), so the patch lies under its node's bound and the
 //!   traversal's skips stay safe for it.
-//! - Shading: the prefiltered surface's own normal at the hit (the normal of the node's
-//!   bilinear patch), and the same checkerboard and light as unfiltered hits.
+//! - Shading: the level's prefiltered normal at the hit ([`super::normals`]: the mean of the
+//!   unit normals of the patches about it, not normalised), the same checkerboard and light as
+//!   unfiltered hits. The prefiltered surface's own normal would be wrong: it is the normal of
+//!   a smoothed surface, nearly flat where the map is rough, and shades every rough region as
+//!   brightly as a plane (its images were further from the supersampled ones than the
+//!   unfiltered frames, on every map and distance tried).
 //!
 //! [`Prefilter`] is the CPU reference of the same rule, in f64: the level per pixel and an exact
 //! tracer of each level's prefiltered field; [`super::compare`] judges prefiltered GPU frames
@@ -27,8 +31,10 @@
 
 use super::bounds::cpu_bound_pyramid;
 use super::camera::Camera;
-use super::exact::{box_interval, enters_through_side, Hit};
-use super::patch::{first_hit, Corners, Segment};
+use super::exact::{self, box_interval, walk, Cells, Hit};
+use super::normals::{cpu_normal_levels, NormalLevel};
+use super::patch::Corners;
+use super::shading;
 use super::surface::Surface;
 use super::tracer::{DisplacementRenderer, Method};
 use crate::gl::{Context, GlError};
@@ -69,6 +75,8 @@ pub struct LevelField {
     patches: (u32, u32),
     /// Corner heights per node, row by row from the bottom.
     corners: Vec<Corners>,
+    /// The level's mean normals (the prefiltered shading).
+    normals: NormalLevel,
 }
 
 impl LevelField {
@@ -87,96 +95,26 @@ impl LevelField {
     /// ([`super::exact::trace`] over nodes instead of patches).
     pub fn trace(&self, surface: &Surface, eye: DVec3, dir: DVec3, offset: f64) -> Option<Hit> {
         let scale = surface.world_to_grid().as_dvec3();
-        let (o, d) = (eye * scale, dir * scale);
-        let (wp, hp) = (self.patches.0 as f64, self.patches.1 as f64);
-        let (t_in, t_out) = box_interval(o, d, wp, hp)?;
-        let side = self.side();
-        let start = o + t_in * d;
-        let node_of = |x: f64, n: u32| ((x / side).floor() as i64).clamp(0, n as i64 - 1);
-        let (mut i, mut j) = (
-            node_of(start.x, self.nodes.0),
-            node_of(start.y, self.nodes.1),
-        );
-        // Where the ray leaves node `n` along one axis (the last node ends at the map's edge).
-        let exit = |n: i64, o: f64, d: f64, edge: f64| {
-            let (lo, hi) = (n as f64 * side, ((n + 1) as f64 * side).min(edge));
-            if d > 0.0 {
-                (hi - o) / d
-            } else if d < 0.0 {
-                (lo - o) / d
-            } else {
-                f64::INFINITY
-            }
+        let cells = Cells {
+            side: self.side(),
+            count: self.nodes,
+            patches: self.patches,
         };
-        let through_side = enters_through_side(o, d, wp, hp);
-        let (mut t, mut first) = (t_in, true);
-        loop {
-            let (tx, ty) = (exit(i, o.x, d.x, wp), exit(j, o.y, d.y, hp));
-            let t_exit = tx.min(ty).min(t_out);
-            let p = o + t * d;
-            let segment = Segment {
-                start: [
-                    (p.x - i as f64 * side) / side,
-                    (p.y - j as f64 * side) / side,
-                    p.z,
-                ],
-                step: [d.x / side, d.y / side, d.z],
-                length: (t_exit - t).max(0.0),
-            };
-            if let Some(u) = first_hit(self.corners(i as u32, j as u32, offset), &segment) {
-                let tau = t + u;
-                return Some(Hit {
-                    tau,
-                    grid: o + tau * d,
-                    wall: first && u == 0.0 && through_side,
-                });
-            }
-            if t_exit >= t_out {
-                return None;
-            }
-            if tx <= ty {
-                i += d.x.signum() as i64;
-            } else {
-                j += d.y.signum() as i64;
-            }
-            if i < 0 || j < 0 || i >= self.nodes.0 as i64 || j >= self.nodes.1 as i64 {
-                return None;
-            }
-            t = t_exit;
-            first = false;
-        }
+        walk(&cells, eye * scale, dir * scale, |i, j| {
+            self.corners(i, j, offset)
+        })
     }
 
-    /// The world normal of node `node`'s patch at local `st` (node units).
-    pub fn normal(&self, surface: &Surface, node: (u32, u32), st: (f64, f64)) -> DVec3 {
-        let h = self.corners(node.0, node.1, 0.0);
-        let c = h[0] - h[1] - h[2] + h[3];
-        // Slopes per patch: the node's bilinear patch spans `side` patches.
-        let dhds = ((h[1] - h[0]) + c * st.1) / self.side();
-        let dhdt = ((h[2] - h[0]) + c * st.0) / self.side();
-        let scale = surface.world_to_grid().as_dvec3();
-        DVec3::new(-dhds * scale.x / scale.z, -dhdt * scale.y / scale.z, 1.0).normalize()
+    /// The normal a hit at grid `g` is shaded with: the level's mean normals interpolated
+    /// ([`NormalLevel::interpolate`]).
+    pub fn normal(&self, g: DVec3) -> DVec3 {
+        self.normals.interpolate(g)
     }
 
-    /// The normals a hit at grid `g` may show: its node's, and those of nodes within `margin`
-    /// patches (the field's normal jumps across node edges).
-    pub fn surface_normals(&self, surface: &Surface, g: DVec3, margin: f64) -> Vec<DVec3> {
-        let side = self.side();
-        let nodes = |x: f64, n: u32| {
-            let at = |x: f64| ((x / side).floor().max(0.0) as u32).min(n - 1);
-            at(x - margin)..=at(x + margin)
-        };
-        let mut normals = Vec::new();
-        for j in nodes(g.y, self.nodes.1) {
-            for i in nodes(g.x, self.nodes.0) {
-                let st = (
-                    ((g.x - i as f64 * side) / side).clamp(0.0, 1.0),
-                    ((g.y - j as f64 * side) / side).clamp(0.0, 1.0),
-                );
-                normals.push(self.normal(surface, (i, j), st));
-            }
-        }
-        normals
+    /// The normals a hit at grid `g` may show: the interpolated normal there (it is continuous,
+    /// so fp32 rounding of `g` moves it by no more than the tolerance).
+    pub fn surface_normals(&self, g: DVec3) -> Vec<DVec3> {
+        vec![self.normal(g)]
     }
 }
 
@@ -195,7 +133,7 @@ pub struct Prefilter {
 impl Prefilter {
     /// The rule for `camera` on `surface`.
     pub fn new(surface: &Surface, camera: &Camera) -> Prefilter {
-        let levels = level_fields(&surface.map);
+        let levels = level_fields(surface);
         Prefilter {
             footprint: footprint_per_unit(camera, surface),
             top: levels.len() as u32 - 1,
@@ -207,34 +145,53 @@ impl Prefilter {
     pub fn footprint_at(&self, t_in: f64) -> f64 {
         t_in * self.footprint as f64
     }
+
+    /// Pixel (px, py) of `camera` traced by the rule: its stop level and the hit on that
+    /// level's field.
+    pub fn trace_pixel(
+        &self,
+        surface: &Surface,
+        camera: &Camera,
+        px: u32,
+        py: u32,
+    ) -> Option<(u32, Hit)> {
+        let eye = camera.eye.as_dvec3();
+        let scale = surface.world_to_grid().as_dvec3();
+        let (wp, hp) = surface.patches();
+        let dir = camera.pixel_direction(px, py);
+        let (t_in, _) = box_interval(eye * scale, dir * scale, wp as f64, hp as f64)?;
+        let level = stop_level(self.footprint_at(t_in), self.top);
+        let hit = self.levels[level as usize].trace(surface, eye, dir, 0.0)?;
+        Some((level, hit))
+    }
 }
 
 /// Every pixel of `camera`'s image traced by the rule (each through the field of its stop
 /// level), row by row from the bottom.
 pub fn trace_image(surface: &Surface, camera: &Camera) -> Vec<Option<Hit>> {
     let rule = Prefilter::new(surface, camera);
-    let eye = camera.eye.as_dvec3();
-    let scale = surface.world_to_grid().as_dvec3();
-    let (wp, hp) = surface.patches();
-    (0..camera.height)
-        .flat_map(|py| (0..camera.width).map(move |px| (px, py)))
-        .map(|(px, py)| {
-            let dir = camera.pixel_direction(px, py);
-            let (t_in, _) = box_interval(eye * scale, dir * scale, wp as f64, hp as f64)?;
-            let level = stop_level(rule.footprint_at(t_in), rule.top);
-            rule.levels[level as usize].trace(surface, eye, dir, 0.0)
-        })
+    pixels(camera)
+        .map(|(px, py)| Some(rule.trace_pixel(surface, camera, px, py)?.1))
         .collect()
 }
 
-/// Every level's prefiltered field, from the CPU bound pyramid and the CPU mean pyramid of the
-/// height samples (level 0: the map's own patches).
-pub fn level_fields(map: &HeightMap) -> Vec<LevelField> {
+/// The pixels of `camera`'s image, row by row from the bottom.
+fn pixels(camera: &Camera) -> impl Iterator<Item = (u32, u32)> + '_ {
+    (0..camera.height).flat_map(|py| (0..camera.width).map(move |px| (px, py)))
+}
+
+/// Every level's prefiltered field, from the CPU bound pyramid, the CPU mean pyramid of the
+/// height samples and the CPU normal pyramid (level 0: the map's own patches).
+pub fn level_fields(surface: &Surface) -> Vec<LevelField> {
+    let map = &surface.map;
     let bounds = cpu_bound_pyramid(map, Extreme::Max);
     let means = cpu_pyramid(map.width(), map.height(), map.heights(), Extreme::Mean);
     let patches = map.patches();
-    (0..bounds.len() as u32)
-        .map(|level| {
+    // Both pyramids span the patches: one normal level per bound level.
+    cpu_normal_levels(surface)
+        .into_iter()
+        .map(|normals| {
+            let level = normals.level;
             let side = 1u32 << level;
             let nodes = (patches.0.div_ceil(side), patches.1.div_ceil(side));
             // Mean nodes that cover samples at this level.
@@ -269,6 +226,7 @@ pub fn level_fields(map: &HeightMap) -> Vec<LevelField> {
                 nodes,
                 patches,
                 corners,
+                normals,
             }
         })
         .collect()
@@ -285,46 +243,105 @@ pub fn mean_atlas(ctx: &Context, map: &HeightMap) -> Result<PyramidAtlas, GlErro
     AtlasBuilder::new(ctx)?.atlas(&means.texture)
 }
 
-/// The image of `camera` with `samples x samples` unfiltered rays per pixel, averaged (RGB in
-/// [0, 1], pixels where no ray hits count as black), rows from the bottom: the quality
-/// reference. The rays are the pixels of one frame `samples` times larger, whose pixel centres
-/// divide each pixel evenly.
+/// An image's pixels as RGB in [0, 1] and whether anything is shown there; rows from the
+/// bottom.
+pub type Shown = Vec<Option<[f64; 3]>>;
+
+/// An RGBA8 frame as [`Shown`] (alpha 0: nothing shown).
+pub fn shown_of_rgba8(colour: &[u8]) -> Shown {
+    colour
+        .chunks_exact(4)
+        .map(|c| (c[3] > 0).then(|| [0, 1, 2].map(|k| c[k] as f64 / 255.0)))
+        .collect()
+}
+
+/// The mean of the `samples x samples` sub-pixels of a `samples`-times larger image, per
+/// pixel (where no sub-pixel shows anything the pixel shows nothing; otherwise those that
+/// show nothing count as black).
+fn box_filter(big: &Shown, width: u32, height: u32, samples: u32) -> Shown {
+    let (w, s) = (width as usize, samples as usize);
+    let mut sum = vec![None::<[f64; 3]>; w * height as usize];
+    for (i, px) in big.iter().enumerate() {
+        let (x, y) = (i % (w * s) / s, i / (w * s) / s);
+        if let Some(c) = px {
+            let acc = sum[y * w + x].get_or_insert([0.0; 3]);
+            for k in 0..3 {
+                acc[k] += c[k] / (s * s) as f64;
+            }
+        }
+    }
+    sum
+}
+
+/// The image of `camera` with `samples x samples` unfiltered rays per pixel, averaged: the
+/// quality reference. The rays are the pixels of one frame `samples` times larger, whose pixel
+/// centres divide each pixel evenly.
 pub fn supersampled(
     renderer: &DisplacementRenderer,
     camera: &Camera,
     samples: u32,
-) -> Result<Vec<[f32; 3]>, Error> {
-    let big = Camera {
-        width: camera.width * samples,
-        height: camera.height * samples,
-        ..*camera
-    };
+) -> Result<Shown, Error> {
+    let big = camera.enlarged(samples);
     let target = renderer.target(big.width, big.height)?;
     renderer.render(&target, &big, Method::Pyramid)?;
     let frame = renderer.read(&target)?;
     frame.check_finished()?;
-    let (w, s) = (camera.width as usize, samples as usize);
-    let mut out = vec![[0f32; 3]; w * camera.height as usize];
-    for (i, px) in frame.colour.chunks_exact(4).enumerate() {
-        let (x, y) = (i % (w * s) / s, i / (w * s) / s);
-        for k in 0..3 {
-            out[y * w + x][k] += px[k] as f32 / 255.0 / (s * s) as f32;
-        }
-    }
-    Ok(out)
+    Ok(box_filter(
+        &shown_of_rgba8(&frame.colour),
+        camera.width,
+        camera.height,
+        samples,
+    ))
 }
 
-/// The root mean square difference (RGB in [0, 1]) between an RGBA8 frame and the
-/// supersampled reference, over the pixels where either shows something.
-pub fn image_error(colour: &[u8], reference: &[[f32; 3]]) -> f64 {
-    let (sum, count) = colour
-        .chunks_exact(4)
+/// What a CPU-traced hit shows: the wall's or `surface_normal`'s shading of the
+/// checkerboard there.
+fn hit_colour(surface: &Surface, hit: &Hit, surface_normal: DVec3) -> [f64; 3] {
+    let normal = if hit.wall {
+        shading::wall_normal(surface, hit.grid)
+    } else {
+        surface_normal
+    };
+    shading::shade(shading::albedo(hit.grid), normal)
+}
+
+/// The CPU reference of [`supersampled`]: every sub-pixel ray traced exactly (f64) and shaded
+/// as the shader shades it, then averaged the same way.
+pub fn cpu_supersampled(surface: &Surface, camera: &Camera, samples: u32) -> Shown {
+    let big = camera.enlarged(samples);
+    let shown = exact::trace_image(surface, &big, 0.0)
+        .iter()
+        .map(|hit| hit.map(|h| hit_colour(surface, &h, shading::field_normal(surface, h.grid))))
+        .collect();
+    box_filter(&shown, camera.width, camera.height, samples)
+}
+
+/// The CPU reference of a prefiltered frame's colours: each pixel traced by the rule (through
+/// its stop level's field) and shaded with that level's normal (the map's own at level 0).
+pub fn cpu_prefiltered(surface: &Surface, camera: &Camera) -> Shown {
+    let rule = Prefilter::new(surface, camera);
+    pixels(camera)
+        .map(|(px, py)| {
+            let (level, hit) = rule.trace_pixel(surface, camera, px, py)?;
+            let normal = match level {
+                0 => shading::field_normal(surface, hit.grid),
+                _ => rule.levels[level as usize].normal(hit.grid),
+            };
+            Some(hit_colour(surface, &hit, normal))
+        })
+        .collect()
+}
+
+/// The root mean square difference (RGB in [0, 1]) between an image and the supersampled
+/// reference, over the pixels where either shows something (nothing counts as black).
+pub fn image_error(shown: &Shown, reference: &Shown) -> f64 {
+    let (sum, count) = shown
+        .iter()
         .zip(reference)
-        .filter(|(c, r)| c[3] > 0 || r.iter().any(|&v| v > 0.0))
+        .filter(|(c, r)| c.is_some() || r.is_some())
         .fold((0.0, 0usize), |(sum, n), (c, r)| {
-            let d: f64 = (0..3)
-                .map(|k| (c[k] as f64 / 255.0 - r[k] as f64).powi(2))
-                .sum();
+            let (c, r) = (c.unwrap_or([0.0; 3]), r.unwrap_or([0.0; 3]));
+            let d: f64 = (0..3).map(|k| (c[k] - r[k]).powi(2)).sum();
             (sum + d / 3.0, n + 1)
         });
     if count == 0 {
@@ -356,7 +373,7 @@ mod tests {
             .collect();
         let map = HeightMap::new("test", 17, 11, heights).unwrap();
         let surface = Surface::new(map.clone(), 0.4).unwrap();
-        let levels = level_fields(&map);
+        let levels = level_fields(&surface);
         let bounds = cpu_bound_pyramid(&map, Extreme::Max);
         assert_eq!(levels[0].corners(3, 4, 0.0), surface.corners(3, 4, 0.0));
         for (field, bound) in levels.iter().zip(&bounds) {

@@ -30,6 +30,17 @@ pub fn patch_normal(surface: &Surface, cell: (u32, u32), st: (f64, f64)) -> DVec
     DVec3::new(-slope.0, -slope.1, 1.0).normalize()
 }
 
+/// The normal of the map's field at grid `g` (the patch containing it, clamped to the map),
+/// as `write_hit` takes it.
+pub fn field_normal(surface: &Surface, g: DVec3) -> DVec3 {
+    let (wp, hp) = surface.patches();
+    let cell = (
+        (g.x.floor().max(0.0) as u32).min(wp - 1),
+        (g.y.floor().max(0.0) as u32).min(hp - 1),
+    );
+    patch_normal(surface, cell, (g.x - cell.0 as f64, g.y - cell.1 as f64))
+}
+
 /// The normals a surface point at grid `g` may be shown with: its patch's, and where `g`
 /// lies within `margin` patches of a patch edge, the neighbours' (the field's normal jumps
 /// across patch edges, so a hit rounded onto the other side shows the neighbour's).
@@ -53,9 +64,9 @@ pub fn surface_normals(surface: &Surface, g: DVec3, margin: f64) -> Vec<DVec3> {
     normals
 }
 
-/// The outward normals of the box sides within `margin` patches of grid `g` (a wall hit lies
-/// on one side; near a vertical edge of the box, either side may be shown).
-pub fn wall_normals(surface: &Surface, g: DVec3, margin: f64) -> Vec<DVec3> {
+/// The box's four sides as seen from grid `g`: (distance from `g` to the side's plane, its
+/// outward normal), in the shader's order (-x, +x, -y, +y).
+fn sides(surface: &Surface, g: DVec3) -> [(f64, DVec3); 4] {
     let (wp, hp) = surface.patches();
     [
         (g.x, DVec3::NEG_X),
@@ -63,10 +74,36 @@ pub fn wall_normals(surface: &Surface, g: DVec3, margin: f64) -> Vec<DVec3> {
         (g.y, DVec3::NEG_Y),
         (hp as f64 - g.y, DVec3::Y),
     ]
-    .into_iter()
-    .filter(|(distance, _)| distance.abs() <= margin)
-    .map(|(_, n)| n)
-    .collect()
+}
+
+/// The outward normals of the box sides within `margin` patches of grid `g` (a wall hit lies
+/// on one side; near a vertical edge of the box, either side may be shown).
+pub fn wall_normals(surface: &Surface, g: DVec3, margin: f64) -> Vec<DVec3> {
+    sides(surface, g)
+        .into_iter()
+        .filter(|(distance, _)| distance.abs() <= margin)
+        .map(|(_, n)| n)
+        .collect()
+}
+
+/// The outward normal of the box side nearest grid `g` (where a wall hit lies), as the shader
+/// picks it (ties: the first in its order).
+pub fn wall_normal(surface: &Surface, g: DVec3) -> DVec3 {
+    sides(surface, g)
+        .into_iter()
+        .fold((f64::INFINITY, DVec3::NEG_X), |best, (d, n)| {
+            if d < best.0 {
+                (d, n)
+            } else {
+                best
+            }
+        })
+        .1
+}
+
+/// The checkerboard's albedo at grid `g`.
+pub fn albedo(g: DVec3) -> [f64; 3] {
+    albedos(g, 0.0)[0]
 }
 
 /// The albedos a point at grid `g` may be shown with: its square's, and both where `g` lies

@@ -1,10 +1,11 @@
 //! The GPU tracers: the displaced box drawn with back faces culled, each fragment tracing its
 //! pixel's ray, by the pyramid traversal or by relief mapping's search, into three targets:
-//! the hit (grid position and ray parameter), statistics (iterations, surface or wall) and a
-//! shaded colour, plus the hit's depth.
+//! the hit (grid position and ray parameter), statistics (iterations, surface or wall), a
+//! shaded colour and the normal shaded with, plus the hit's depth.
 
 use super::bounds::BoundPyramidBuilder;
 use super::camera::Camera;
+use super::normals::NormalPyramidBuilder;
 use super::surface::Surface;
 use crate::gl::{
     Compare, Context, DepthTest, DrawState, Face, Framebuffer, GlError, Pass, Primitive, Program,
@@ -14,7 +15,7 @@ use crate::lecture3::error::Error;
 use crate::lecture3::pyramid::{Extreme, Pyramid};
 use crate::lecture3::pyramid_atlas::{AtlasBuilder, PyramidAtlas};
 use crate::shader;
-use glam::{DVec3, IVec2, Vec2};
+use glam::{DVec3, IVec2};
 use serde::Serialize;
 
 /// How the fragment shader finds the hit.
@@ -61,6 +62,8 @@ pub struct DisplacementRenderer {
     bounds_atlas: PyramidAtlas,
     /// The mean pyramid of the height samples (the prefilter's surfaces).
     means_atlas: PyramidAtlas,
+    /// The mean pyramid of the patches' unit normals (the prefilter's shading).
+    normals_atlas: PyramidAtlas,
     pyramid_program: Program,
     relief_program: Program,
 }
@@ -81,7 +84,8 @@ pub enum Pixel {
         /// Distance from the eye.
         tau: f64,
         wall: bool,
-        /// The normal the pixel is shaded with (world; a wall's is horizontal).
+        /// The normal the pixel is shaded with (world; a wall's is horizontal; a prefiltered
+        /// one may be shorter than 1).
         normal: DVec3,
         iterations: u32,
     },
@@ -95,6 +99,7 @@ pub struct Frame {
     pub height: u32,
     hit: Vec<f32>,
     stats: Vec<f32>,
+    normal: Vec<f32>,
     /// RGBA8, row by row from the bottom.
     pub colour: Vec<u8>,
     /// Window depth, 1 where nothing was hit.
@@ -111,18 +116,12 @@ impl Frame {
         if stats[1] == 0.0 {
             return Pixel::Miss;
         }
-        let wall = stats[1] == 2.0;
-        let (nx, ny) = (stats[2] as f64, stats[3] as f64);
-        let nz = if wall {
-            0.0
-        } else {
-            (1.0 - nx * nx - ny * ny).max(0.0).sqrt()
-        };
+        let n = &self.normal[4 * i..4 * i + 3];
         Pixel::Hit {
             grid: DVec3::new(hit[0] as f64, hit[1] as f64, hit[2] as f64),
             tau: hit[3] as f64,
-            wall,
-            normal: DVec3::new(nx, ny, nz),
+            wall: stats[1] == 2.0,
+            normal: DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64),
             iterations: stats[0] as u32,
         }
     }
@@ -184,7 +183,16 @@ impl DisplacementRenderer {
             BoundPyramidBuilder::new(ctx)?.build(&heights, surface.patches(), Extreme::Max)?;
         let bounds_atlas = AtlasBuilder::new(ctx)?.atlas(&bounds.texture)?;
         let means_atlas = super::prefilter::mean_atlas(ctx, map)?;
+        let normals_atlas = NormalPyramidBuilder::new(ctx)?.build(&surface, &heights)?;
+        // The traversal reads both with the bound pyramid's offsets (both span the patches).
+        if normals_atlas.offsets != bounds_atlas.offsets {
+            return Err(
+                GlError::Invalid("the normal and bound atlases differ in layout".into()).into(),
+            );
+        }
         let vertex = [shader!("glsl/lecture3/displace_box.vert")];
+        let ray = shader!("glsl/lecture3/pixel_ray.glsl");
+        let normal = shader!("glsl/lecture3/displace_normal.glsl");
         let common = shader!("glsl/lecture3/displace_common.glsl");
         Ok(DisplacementRenderer {
             ctx: ctx.clone(),
@@ -192,6 +200,8 @@ impl DisplacementRenderer {
                 ctx,
                 &vertex,
                 &[
+                    ray,
+                    normal,
                     common,
                     shader!("glsl/lecture3/displace_prefilter.glsl"),
                     shader!("glsl/lecture3/displace_pyramid.frag"),
@@ -200,13 +210,19 @@ impl DisplacementRenderer {
             relief_program: Program::new(
                 ctx,
                 &vertex,
-                &[common, shader!("glsl/lecture3/displace_relief.frag")],
+                &[
+                    ray,
+                    normal,
+                    common,
+                    shader!("glsl/lecture3/displace_relief.frag"),
+                ],
             )?,
             surface,
             heights,
             bounds,
             bounds_atlas,
             means_atlas,
+            normals_atlas,
         })
     }
 
@@ -229,12 +245,13 @@ impl DisplacementRenderer {
         let hit = Texture::new_2d(&self.ctx, width, height, TextureFormat::Rgba32F)?;
         let stats = Texture::new_2d(&self.ctx, width, height, TextureFormat::Rgba32F)?;
         let colour = Texture::new_2d(&self.ctx, width, height, TextureFormat::Rgba8)?;
+        let normal = Texture::new_2d(&self.ctx, width, height, TextureFormat::Rgba32F)?;
         let depth = Texture::new_2d(&self.ctx, width, height, TextureFormat::Depth32F)?;
         Ok(FrameTarget {
             framebuffer: Framebuffer::new(
                 &self.ctx,
                 "displacement frame",
-                &[&hit, &stats, &colour],
+                &[&hit, &stats, &colour, &normal],
                 Some(&depth),
             )?,
         })
@@ -255,15 +272,6 @@ impl DisplacementRenderer {
         method: Method,
     ) -> Result<(), GlError> {
         let fb = &target.framebuffer;
-        if (fb.width(), fb.height()) != (camera.width, camera.height) {
-            return Err(GlError::Invalid(format!(
-                "a {}x{} camera drawing into a {}x{} target",
-                camera.width,
-                camera.height,
-                fb.width(),
-                fb.height()
-            )));
-        }
         fb.clear_colors([0.0; 4])?;
         fb.clear_depth_stencil(1.0, 0)?;
         let program = match method {
@@ -271,11 +279,13 @@ impl DisplacementRenderer {
             Method::Relief { .. } => &self.relief_program,
         };
         let mut pass = fb.pass(program, "displacement mapping")?;
+        camera.set_ray_uniforms(&mut pass, fb)?;
         self.set_frame_uniforms(&mut pass, camera);
         match method {
             Method::Pyramid | Method::Prefiltered => pass
                 .texture("u_bounds", &self.bounds_atlas.texture)
                 .texture("u_means", &self.means_atlas.texture)
+                .texture("u_normals", &self.normals_atlas.texture)
                 .uniform("u_mean_x", &self.means_atlas.offsets_x()[..])
                 .uniform("u_mean_y", &self.means_atlas.offsets_y()[..])
                 .uniform("u_prefilter", (method == Method::Prefiltered) as i32)
@@ -306,17 +316,8 @@ impl DisplacementRenderer {
     }
 
     fn set_frame_uniforms(&self, pass: &mut Pass, camera: &Camera) {
-        let frame = camera.ray_frame();
         let (wp, hp) = self.surface.patches();
         pass.texture("u_heights", &self.heights)
-            .uniform(
-                "u_viewport",
-                Vec2::new(camera.width as f32, camera.height as f32),
-            )
-            .uniform("u_eye", camera.eye)
-            .uniform("u_forward", frame.forward)
-            .uniform("u_right", frame.right)
-            .uniform("u_up", frame.up)
             .uniform("u_world_to_grid", self.surface.world_to_grid())
             .uniform("u_patches", IVec2::new(wp as i32, hp as i32))
             .uniform("u_view_projection", camera.view_projection())
@@ -333,6 +334,7 @@ impl DisplacementRenderer {
             hit: fb.read_f32(0, rect)?,
             stats: fb.read_f32(1, rect)?,
             colour: fb.read_u8(2, rect)?,
+            normal: fb.read_f32(3, rect)?,
             depth: fb.read_depth(rect)?,
         })
     }

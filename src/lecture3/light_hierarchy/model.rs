@@ -88,17 +88,16 @@ pub fn room_with(model: Vec<Triangle>) -> Scene {
     scene
 }
 
-/// `model` alone, lit by a spot light from the upper right front and seen from the front.
+/// `model` alone, lit by a spot light from the upper right front and seen from the front. The
+/// light's square frustum is fitted to the model ([`fitted_light`]), so that its image (the
+/// irradiance samples of subsurface scattering, the VPLs of indirect light) is spent on the
+/// model rather than on the space around it.
 pub fn model_alone(model: Vec<Triangle>) -> Scene {
     let centre = FOOT + Vec3::Y * (0.5 * MODEL_SIZE);
     let mut scene = Scene::room();
     scene.quads.clear();
+    scene.light = fitted_light(centre + Vec3::new(0.7, 0.6, 0.35), centre, &model);
     scene.triangles = model;
-    scene.light = View {
-        eye: centre + Vec3::new(0.7, 0.6, 0.35),
-        target: centre,
-        fov_y: 45f32.to_radians(),
-    };
     scene.intensity = Vec3::splat(1.0);
     scene.camera = View {
         eye: centre + Vec3::new(0.0, 0.1, 1.2),
@@ -106,4 +105,29 @@ pub fn model_alone(model: Vec<Triangle>) -> Scene {
         fov_y: 35f32.to_radians(),
     };
     scene
+}
+
+/// Border left around the model in a fitted light's image (a fraction of its half-extent), so
+/// that no part of the silhouette is cut by rounding.
+const FIT_MARGIN: f32 = 1.02;
+
+/// A spot light at `eye` aimed at `target` whose square frustum just holds every vertex of
+/// `model` (the widest angle of a vertex from the axis, horizontally or vertically, plus
+/// [`FIT_MARGIN`]); `target` should lie inside the model's bounds.
+pub fn fitted_light(eye: Vec3, target: Vec3, model: &[Triangle]) -> View {
+    let mut light = View {
+        eye,
+        target,
+        fov_y: 0.0,
+    };
+    let view = light.view_matrix();
+    let half_extent = model
+        .iter()
+        .flat_map(|t| t.positions)
+        .map(|p| view.transform_point3(p))
+        .filter(|p| p.z < 0.0)
+        .map(|p| (p.x / -p.z).abs().max((p.y / -p.z).abs()))
+        .fold(0.0f32, f32::max);
+    light.fov_y = 2.0 * (FIT_MARGIN * half_extent).atan();
+    light
 }

@@ -43,13 +43,17 @@ pub struct View {
 
 impl View {
     pub fn view_projection(&self, aspect: f32) -> Mat4 {
+        opengl::perspective(self.fov_y, aspect, 0.02, 10.0) * self.view_matrix()
+    }
+
+    /// World to the view's eye space (looking down -z).
+    pub fn view_matrix(&self) -> Mat4 {
         let up = if (self.target - self.eye).normalize().y.abs() > 0.99 {
             Vec3::Z
         } else {
             Vec3::Y
         };
-        opengl::perspective(self.fov_y, aspect, 0.02, 10.0)
-            * look_at_mat4(self.eye, self.target, up)
+        look_at_mat4(self.eye, self.target, up)
     }
 }
 

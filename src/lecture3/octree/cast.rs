@@ -10,7 +10,7 @@ use crate::gl::{Context, Framebuffer, GlError, Program, Rect, Texture, TextureFo
 use crate::lecture3::displacement::Camera;
 use crate::lecture3::error::Error;
 use crate::shader;
-use glam::{IVec3, Vec2, Vec3};
+use glam::{IVec3, Vec3};
 use serde::Serialize;
 
 /// How the fragment shader searches the grid.
@@ -122,15 +122,19 @@ pub struct CastTarget {
 impl OctreeCaster {
     /// Builds the octree of `voxels` on the GPU (level 0 uploaded, the rest by passes).
     pub fn new(ctx: &Context, voxels: &VoxelGrid) -> Result<OctreeCaster, GlError> {
+        let ray = shader!("glsl/lecture3/pixel_ray.glsl");
         let common = shader!("glsl/lecture3/octree_common.glsl");
         Ok(OctreeCaster {
             ctx: ctx.clone(),
             levels: LevelBuilder::new(ctx)?.build(voxels)?,
             octree_program: Program::rect(
                 ctx,
-                &[common, shader!("glsl/lecture3/octree_cast.frag")],
+                &[ray, common, shader!("glsl/lecture3/octree_cast.frag")],
             )?,
-            flat_program: Program::rect(ctx, &[common, shader!("glsl/lecture3/octree_flat.frag")])?,
+            flat_program: Program::rect(
+                ctx,
+                &[ray, common, shader!("glsl/lecture3/octree_flat.frag")],
+            )?,
         })
     }
 
@@ -161,37 +165,20 @@ impl OctreeCaster {
         search: Search,
     ) -> Result<(), GlError> {
         let fb = &target.framebuffer;
-        if (fb.width(), fb.height()) != (camera.width, camera.height) {
-            return Err(GlError::Invalid(format!(
-                "a {}x{} camera casting into a {}x{} target",
-                camera.width,
-                camera.height,
-                fb.width(),
-                fb.height()
-            )));
-        }
         let program = match search {
             Search::Octree => &self.octree_program,
             Search::Flat => &self.flat_program,
         };
-        let frame = camera.ray_frame();
         let tiles_x: Vec<i32> = (0..8)
             .map(|k| grid::tiles((self.n() >> k).max(1)).0 as i32)
             .collect();
         let mut pass = fb.pass(program, "octree ray cast")?;
-        pass.uniform(
-            "u_viewport",
-            Vec2::new(camera.width as f32, camera.height as f32),
-        )
-        .uniform("u_eye", camera.eye)
-        .uniform("u_forward", frame.forward)
-        .uniform("u_right", frame.right)
-        .uniform("u_up", frame.up)
-        .uniform("u_world_to_grid", self.n() as f32 / WORLD_SIDE)
-        .uniform("u_n", self.n() as i32)
-        .uniform_if_used("u_top", self.levels.count() as i32 - 1)
-        .uniform("u_tiles_x", &tiles_x[..])
-        .uniform("u_max_iterations", self.max_iterations());
+        camera.set_ray_uniforms(&mut pass, fb)?;
+        pass.uniform("u_world_to_grid", self.n() as f32 / WORLD_SIDE)
+            .uniform("u_n", self.n() as i32)
+            .uniform_if_used("u_top", self.levels.count() as i32 - 1)
+            .uniform("u_tiles_x", &tiles_x[..])
+            .uniform("u_max_iterations", self.max_iterations());
         // The flat search reads level 0 only (the compiler may drop the other samplers).
         let bound = if search == Search::Octree { 8 } else { 1 };
         for k in 0..bound {

@@ -32,8 +32,18 @@ pub fn rows() -> Vec<Fidelity> {
             "VRST 2006 abstract (magnification)",
             "src/lecture3/displacement/patch.rs, glsl/lecture3/displace_common.glsl",
             "reconstruction: the ray against each patch's height as a closed-form quadratic; the \
-             paper's mipmap-like prefilter at minification is not reproduced; the map lies on \
-             a box whose side walls are hit too",
+             map lies on a box whose side walls are hit too",
+        ),
+        Fidelity::new(
+            "a mipmap-like prefilter at minification",
+            "VRST 2006 abstract (minification)",
+            "src/lecture3/displacement/{prefilter,normals}.rs, \
+             glsl/lecture3/displace_prefilter.glsl",
+            "reconstruction (the construction is not given): the descent stops at the level of \
+             the pixel's footprint where the ray enters the box; there a bilinear patch per \
+             node from the mean pyramid of the heights, clamped under the node's bound, shaded \
+             with the mean of the unit normals below it (not normalised, as Toksvig's mipmapped \
+             normals)",
         ),
         Fidelity::new(
             "linear + binary search (relief mapping) as the artifact-prone comparison",

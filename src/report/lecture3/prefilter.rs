@@ -6,7 +6,7 @@
 use super::bench::{gpu_ms_warm, DEPTH};
 use super::results::Lecture3Results;
 use crate::lecture3::displacement::compare::{Comparison, ReferenceImage};
-use crate::lecture3::displacement::prefilter::{image_error, supersampled};
+use crate::lecture3::displacement::prefilter::{image_error, shown_of_rgba8, supersampled};
 use crate::lecture3::displacement::{Camera, DisplacementRenderer, Frame, Method, Pixel, Surface};
 use crate::lecture3::HeightMap;
 use crate::report::timing::{Runs, Spread};
@@ -56,8 +56,11 @@ pub fn prefilter_quality(
     unfiltered.check_finished()?;
     Ok(PrefilterQuality {
         samples: SUPERSAMPLES,
-        prefiltered_error: finite(image_error(&prefiltered.colour, &reference))?,
-        unfiltered_error: finite(image_error(&unfiltered.colour, &reference))?,
+        prefiltered_error: finite(image_error(
+            &shown_of_rgba8(&prefiltered.colour),
+            &reference,
+        ))?,
+        unfiltered_error: finite(image_error(&shown_of_rgba8(&unfiltered.colour), &reference))?,
         prefiltered_steps: mean_steps(prefiltered),
         unfiltered_steps: mean_steps(&unfiltered),
     })

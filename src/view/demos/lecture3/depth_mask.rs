@@ -1,11 +1,10 @@
 //! Technique 6: the expensive shader run only where the mask is active, by the depth test: the
 //! mask, and the picture against the CPU's.
 
-use super::to_f32;
-use crate::gl::picture::{Panel, Scale};
+use super::{against, draw_one_of, square, to_f32};
+use crate::gl::picture::Scale;
 use crate::gl::Context;
 use crate::lecture3::depth_mask::{self, cpu_picture, DepthMask, MaskShape};
-use crate::view::inset::{self, Shown};
 use crate::view::{Canvas, Demo, ViewState};
 
 pub struct DepthMaskDemo {
@@ -56,35 +55,22 @@ impl Demo for DepthMaskDemo {
     }
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
-        canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-        let shown = if view.shown.is_multiple_of(2) {
-            Shown {
-                panel: Panel {
-                    title: "depth-masked picture: the expensive function where active, 0 elsewhere"
-                        .into(),
-                    values: self.picture.clone(),
-                    width: SIDE,
-                    height: SIDE,
-                    scale: Scale::of([self.picture.as_slice(), self.cpu.as_slice()]),
-                },
-                probe_values: None,
-                reference: Some(self.cpu.clone()),
-            }
-        } else {
-            Panel {
-                title: format!(
-                    "the mask: active where the key < {} (written into the depth buffer)",
-                    self.fraction as f32 / 100.0
-                ),
-                values: self.mask.clone(),
-                width: SIDE,
-                height: SIDE,
-                scale: Scale::fixed(0.0, 1.0),
-            }
-            .into()
-        };
-        inset::draw_picture(canvas, vec![shown], canvas.below_text())?;
-        Ok(())
+        let picture = square(
+            "depth-masked picture: the expensive function where active, 0 elsewhere",
+            &self.picture,
+            SIDE,
+            Scale::of([self.picture.as_slice(), self.cpu.as_slice()]),
+        );
+        let mask = square(
+            &format!(
+                "the mask: active where the key < {} (written into the depth buffer)",
+                self.fraction as f32 / 100.0
+            ),
+            &self.mask,
+            SIDE,
+            Scale::fixed(0.0, 1.0),
+        );
+        draw_one_of(canvas, view, [against(picture, &self.cpu), mask.into()])
     }
 
     fn buffers(&self) -> Vec<String> {

@@ -4,6 +4,7 @@
 //! off (the exact tracer then follows the same rule), `+` / `-` move the camera nearer or
 //! farther.
 
+use super::{against, cleared, gpu_beside_cpu, square};
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::displacement::bounds::cpu_bound_pyramid;
@@ -12,7 +13,7 @@ use crate::lecture3::displacement::{
 };
 use crate::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
 use crate::lecture3::pyramid::{Extreme, Level};
-use crate::view::inset::{self, Probed, Shown};
+use crate::view::inset::{self, Probed};
 use crate::view::{Canvas, Demo, ViewState};
 
 pub struct DisplaceDemo {
@@ -120,18 +121,10 @@ impl Demo for DisplaceDemo {
     }
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
-        canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-        let area = canvas.below_text();
-        if self.frame == 0 {
+        if !cleared(canvas, self.frame)? {
             return Ok(());
         }
-        let panel = |title: &str, values: &[f32], scale: Scale| Panel {
-            title: title.into(),
-            values: values.to_vec(),
-            width: SIDE,
-            height: SIDE,
-            scale,
-        };
+        let area = canvas.below_text();
         match view.shown % 4 {
             0 => {
                 let placed = inset::draw_rgba(canvas, &self.colour, (SIDE, SIDE), area, "")?;
@@ -145,22 +138,17 @@ impl Demo for DisplaceDemo {
                 }
             }
             1 => {
-                let scale = Scale::of([self.tau.as_slice(), self.exact_tau.as_slice()]);
-                let shown = vec![
-                    Shown {
-                        panel: panel("GPU distance to the hit (0: none)", &self.tau, scale),
-                        probe_values: None,
-                        reference: Some(self.exact_tau.clone()),
-                    },
-                    panel("exact CPU tracer's distance", &self.exact_tau, scale).into(),
-                ];
+                let shown = gpu_beside_cpu(
+                    SIDE,
+                    ("GPU distance to the hit (0: none)", &self.tau),
+                    ("exact CPU tracer's distance", &self.exact_tau),
+                );
                 inset::draw_picture(canvas, shown, area)?;
             }
             2 => {
                 let scale = Scale::of([self.iterations.as_slice()]);
-                let shown =
-                    vec![panel("traversal steps per pixel", &self.iterations, scale).into()];
-                inset::draw_picture(canvas, shown, area)?;
+                let steps = square("traversal steps per pixel", &self.iterations, SIDE, scale);
+                inset::draw_picture(canvas, vec![steps.into()], area)?;
             }
             _ => {
                 let scale = Scale::of(self.bounds.iter().map(|l| l.values.as_slice()));
@@ -169,16 +157,15 @@ impl Demo for DisplaceDemo {
                     .iter()
                     .zip(&self.cpu_bounds)
                     .enumerate()
-                    .map(|(i, (g, c))| Shown {
-                        panel: Panel {
+                    .map(|(i, (g, c))| {
+                        let level = Panel {
                             title: format!("bound level {i} ({}x{})", g.width, g.height),
                             values: g.values.clone(),
                             width: g.width,
                             height: g.height,
                             scale,
-                        },
-                        probe_values: None,
-                        reference: Some(c.values.clone()),
+                        };
+                        against(level, &c.values)
                     })
                     .collect();
                 inset::draw_picture(canvas, shown, area)?;

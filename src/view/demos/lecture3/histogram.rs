@@ -1,11 +1,11 @@
 //! Technique 7: a histogram by additive blending, one point per value: the values, and the
 //! bins against the CPU's counts.
 
+use super::{against, draw_one_of, square};
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::blend_histogram::{cpu_histogram, Bins, Histogram, Method, Values};
 use crate::lecture3::random_texture::HybridTaus;
-use crate::view::inset::{self, Shown};
 use crate::view::{Canvas, Demo, ViewState};
 
 pub struct HistogramDemo {
@@ -43,31 +43,20 @@ impl Demo for HistogramDemo {
     }
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
-        canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-        let shown = if view.shown.is_multiple_of(2) {
-            Shown {
-                panel: Panel {
-                    title: format!("the {BINS} bins over [0, 1): texel = count (blended points)"),
-                    values: self.bins.clone(),
-                    width: BINS,
-                    height: 1,
-                    scale: Scale::of([self.bins.as_slice()]),
-                },
-                probe_values: None,
-                reference: Some(self.cpu.clone()),
-            }
-        } else {
-            Panel {
-                title: format!("the {} values counted (one point each)", self.values.len()),
-                values: self.values.clone(),
-                width: SIDE,
-                height: SIDE,
-                scale: Scale::fixed(0.0, 1.0),
-            }
-            .into()
+        let bins = Panel {
+            title: format!("the {BINS} bins over [0, 1): texel = count (blended points)"),
+            values: self.bins.clone(),
+            width: BINS,
+            height: 1,
+            scale: Scale::of([self.bins.as_slice()]),
         };
-        inset::draw_picture(canvas, vec![shown], canvas.below_text())?;
-        Ok(())
+        let values = square(
+            &format!("the {} values counted (one point each)", self.values.len()),
+            &self.values,
+            SIDE,
+            Scale::fixed(0.0, 1.0),
+        );
+        draw_one_of(canvas, view, [against(bins, &self.cpu), values.into()])
     }
 
     fn buffers(&self) -> Vec<String> {

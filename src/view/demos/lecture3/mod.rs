@@ -11,8 +11,10 @@ mod octree;
 mod pyramid;
 mod random;
 
+use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
-use crate::view::Demo;
+use crate::view::inset::{self, Shown};
+use crate::view::{Canvas, Demo, ViewState};
 
 /// The seven techniques, named as `classic-gpgpu lecture3` names them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -68,4 +70,53 @@ impl Technique {
 /// Values in f64 as the f32 the probe compares with.
 fn to_f32(values: &[f64]) -> Vec<f32> {
     values.iter().map(|&v| v as f32).collect()
+}
+
+/// A `side x side` panel of `values`.
+fn square(title: &str, values: &[f32], side: u32, scale: Scale) -> Panel {
+    Panel {
+        title: title.into(),
+        values: values.to_vec(),
+        width: side,
+        height: side,
+        scale,
+    }
+}
+
+/// `panel` (a GPU buffer) probed against `reference`, the CPU's values of the same buffer.
+fn against(panel: Panel, reference: &[f32]) -> Shown {
+    Shown {
+        panel,
+        probe_values: None,
+        reference: Some(reference.to_vec()),
+    }
+}
+
+/// A `side x side` GPU buffer probed against the CPU's, and the CPU's beside it, on one scale.
+fn gpu_beside_cpu(side: u32, gpu: (&str, &[f32]), cpu: (&str, &[f32])) -> Vec<Shown> {
+    let scale = Scale::of([gpu.1, cpu.1]);
+    vec![
+        against(square(gpu.0, gpu.1, side, scale), cpu.1),
+        square(cpu.0, cpu.1, side, scale).into(),
+    ]
+}
+
+/// Clears the canvas; whether there is a frame to draw (an orbiting demo has none before its
+/// first step).
+fn cleared(canvas: &Canvas, frames: usize) -> anyhow::Result<bool> {
+    canvas.clear([0.0, 0.0, 0.0, 1.0])?;
+    Ok(frames > 0)
+}
+
+/// Clears the canvas and draws one of two buffers (the first on even `view.shown`), filling
+/// the space below the text.
+fn draw_one_of(canvas: &Canvas, view: &ViewState, [even, odd]: [Shown; 2]) -> anyhow::Result<()> {
+    canvas.clear([0.0, 0.0, 0.0, 1.0])?;
+    let shown = if view.shown.is_multiple_of(2) {
+        even
+    } else {
+        odd
+    };
+    inset::draw_picture(canvas, vec![shown], canvas.below_text())?;
+    Ok(())
 }

@@ -3,6 +3,7 @@
 //! the octree cast and of the flat walk, and every level of the octree (z slices tiled) against
 //! the CPU's.
 
+use super::{against, cleared, gpu_beside_cpu, square};
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::displacement::Camera;
@@ -11,7 +12,7 @@ use crate::lecture3::octree::grid::{self, shape_points, VoxelGrid};
 use crate::lecture3::octree::levels::{cpu_levels, Level};
 use crate::lecture3::octree::reference::CastReference;
 use crate::lecture3::octree::{OctreeCaster, Search};
-use crate::view::inset::{self, Shown};
+use crate::view::inset;
 use crate::view::{Canvas, Demo, ViewState};
 
 pub struct OctreeDemo {
@@ -79,39 +80,24 @@ impl Demo for OctreeDemo {
     }
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
-        canvas.clear([0.0, 0.0, 0.0, 1.0])?;
-        let area = canvas.below_text();
-        if self.frame == 0 {
+        if !cleared(canvas, self.frame)? {
             return Ok(());
         }
-        let panel = |title: &str, values: &[f32], scale: Scale| Panel {
-            title: title.into(),
-            values: values.to_vec(),
-            width: SIDE,
-            height: SIDE,
-            scale,
-        };
+        let area = canvas.below_text();
         let shown = match view.shown % 3 {
-            0 => {
-                let scale = Scale::of([self.distance.as_slice(), self.cpu_distance.as_slice()]);
-                vec![
-                    Shown {
-                        panel: panel(
-                            "GPU octree cast: distance to the first voxel",
-                            &self.distance,
-                            scale,
-                        ),
-                        probe_values: None,
-                        reference: Some(self.cpu_distance.clone()),
-                    },
-                    panel("CPU flat walk's distance", &self.cpu_distance, scale).into(),
-                ]
-            }
+            0 => gpu_beside_cpu(
+                SIDE,
+                (
+                    "GPU octree cast: distance to the first voxel",
+                    &self.distance,
+                ),
+                ("CPU flat walk's distance", &self.cpu_distance),
+            ),
             1 => {
                 let scale = Scale::of([self.octree_steps.as_slice(), self.flat_steps.as_slice()]);
                 vec![
-                    panel("octree steps per pixel", &self.octree_steps, scale).into(),
-                    panel("flat walk steps per pixel", &self.flat_steps, scale).into(),
+                    square("octree steps per pixel", &self.octree_steps, SIDE, scale).into(),
+                    square("flat walk steps per pixel", &self.flat_steps, SIDE, scale).into(),
                 ]
             }
             _ => self
@@ -121,17 +107,14 @@ impl Demo for OctreeDemo {
                 .enumerate()
                 .map(|(k, (g, c))| {
                     let (w, h) = grid::texture_size(g.n);
-                    Shown {
-                        panel: Panel {
-                            title: format!("level {k} ({0}^3, z slices tiled)", g.n),
-                            values: g.tiled(),
-                            width: w,
-                            height: h,
-                            scale: Scale::fixed(0.0, 1.0),
-                        },
-                        probe_values: None,
-                        reference: Some(c.tiled()),
-                    }
+                    let level = Panel {
+                        title: format!("level {k} ({0}^3, z slices tiled)", g.n),
+                        values: g.tiled(),
+                        width: w,
+                        height: h,
+                        scale: Scale::fixed(0.0, 1.0),
+                    };
+                    against(level, &c.tiled())
                 })
                 .collect(),
         };
