@@ -179,3 +179,58 @@ fn a_mesh_past_the_work_group_limit_is_split_into_several_dispatches() {
     ctx.set_work_group_limit(None);
     assert!(refused.contains("allows 10"), "{refused}");
 }
+
+/// Past the work-group limit the reduction is split too, along both of its axes: with at
+/// most 3 groups a dispatch, a body of 16384 triangles needs 32 partials in its first pass
+/// (11 dispatches along x) and five bodies are 15 segments (5 along y). Past what one
+/// storage buffer holds, the triangles go through in chunks: with room for 1000 triangles
+/// of each of the five bodies, 17 chunks. Each way the sums equal the unsplit run's (within
+/// fp32 rounding of another order of additions) and the CPU's.
+#[test]
+fn work_past_the_dispatch_and_buffer_limits_is_split() {
+    let (ctx, compute) = compute_context();
+    if !compute {
+        return;
+    }
+    ctx.set_checks(true);
+    let big = transformed(
+        &torus(1.0, 0.4, 128, 64),
+        DQuat::from_rotation_y(0.3),
+        DVec3::new(-2.0, 1.0, 0.0),
+    );
+    assert_eq!(big.triangles.len(), 16384);
+    let mut meshes = bodies();
+    meshes.push(big);
+    let refs: Vec<&Mesh> = meshes.iter().collect();
+    let mass = ComputeMass::new(&ctx).unwrap();
+    let whole = mass.integrate(&refs).unwrap();
+    ctx.set_work_group_limit(Some(3));
+    let split = mass.integrate(&refs);
+    ctx.set_work_group_limit(None);
+    let split = split.unwrap();
+    ctx.set_storage_buffer_limit(Some(1000 * 3 * 16 * meshes.len()));
+    let chunked = mass.integrate(&refs);
+    ctx.set_storage_buffer_limit(None);
+    let chunked = chunked.unwrap();
+    for (k, mesh) in meshes.iter().enumerate() {
+        assert_integrals_close(
+            &format!("body {k}, chunked vs whole"),
+            &chunked.integrals[k],
+            &whole.integrals[k],
+            1e-6,
+        );
+        let cpu = tetrahedron_sum(mesh, split.integrals[k].origin);
+        assert_integrals_close(
+            &format!("body {k}, split vs CPU"),
+            &split.integrals[k],
+            &cpu,
+            1e-5,
+        );
+        assert_integrals_close(
+            &format!("body {k}, split vs whole"),
+            &split.integrals[k],
+            &whole.integrals[k],
+            1e-6,
+        );
+    }
+}

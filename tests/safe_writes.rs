@@ -369,7 +369,7 @@ fn collide_refuses_classic_options_under_compute_and_warns_moller_far_from_unit_
         "--json",
     ]);
     json(&out);
-    assert!(!String::from_utf8_lossy(&out.stderr).contains("unit scale"));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("warning: --predicate moller"));
     let big = |offset: f32| {
         cube_obj([offset; 3], 1)
             .lines()

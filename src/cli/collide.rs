@@ -10,7 +10,7 @@ use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
 use classic_gpgpu::collide::scenes::Scene;
 use classic_gpgpu::collide::snapshot::{dump_buffers, frame_png};
 use classic_gpgpu::collide::stream_setup::auto_leaf_size_for_pair;
-use classic_gpgpu::collide::tri_test::Predicate;
+use classic_gpgpu::collide::tri_test::{Predicate, MOLLER_SAFE_SCALES};
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::mesh::Mesh;
 use indicatif::ProgressBar;
@@ -93,9 +93,11 @@ impl PipelineArgs {
     }
 }
 
-/// Möller's floating-point test decides touching and near-touching pairs by the sign of
-/// products of coordinates: far from unit scale those signs are rounding noise (1e25 models
-/// gave hundreds of invented pairs). Said when the models reach that far.
+/// Möller's floating-point test multiplies plane distances together: outside the scales
+/// where it was measured to agree with the exact predicate on every pair
+/// ([`MOLLER_SAFE_SCALES`], measured by `tests/moller_scale.rs`), those products overflow or
+/// underflow and it invents and misses pairs. Said when the models' largest coordinate lies
+/// outside that band.
 fn moller_scale_warning(x: &Mesh, y: &Mesh) -> Option<String> {
     let largest = x
         .positions
@@ -103,11 +105,13 @@ fn moller_scale_warning(x: &Mesh, y: &Mesh) -> Option<String> {
         .chain(&y.positions)
         .map(|p| p.abs().max_element())
         .fold(0.0f32, f32::max);
-    (largest >= 1e6).then(|| {
+    let [low, high] = MOLLER_SAFE_SCALES;
+    (largest > high || largest < low).then(|| {
         format!(
-            "--predicate moller: the models' coordinates reach {largest:.1e}, far from unit \
-             scale, where the floating-point test invents or misses contacts; --predicate exact \
-             decides every pair exactly at any scale"
+            "--predicate moller: the models' largest coordinate is {largest:.1e}, outside \
+             {low:.0e}..{high:.0e}, where the floating-point test was measured to agree with \
+             the exact one; beyond it its products overflow or underflow and it invents or \
+             misses contacts; --predicate exact decides every pair exactly at any scale"
         )
     })
 }

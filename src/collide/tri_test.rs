@@ -39,6 +39,15 @@ pub enum Predicate {
     Exact,
 }
 
+/// The range of the largest coordinate magnitude within which Möller's test agreed with the
+/// exact predicate on every one of 4000 random triangle pairs, measured at every quarter
+/// decade of f32's range by `tests/moller_scale.rs` (which asserts that these are the
+/// measured ends): clean from a largest coordinate of 1.3e-24 to 1.3e24; at 2.3e24 it
+/// invented 52 pairs and missed 5 of 86, at 7.3e-25 it invented 14 and missed 2. Its
+/// products of plane distances grow as the 13th power of the scale, so they overflow f64
+/// above the band and underflow below it.
+pub const MOLLER_SAFE_SCALES: [f32; 2] = [1.3e-24, 1.3e24];
+
 impl Predicate {
     /// Every predicate, as its name parses.
     pub const ALL: [Predicate; 2] = [Predicate::Moller, Predicate::Exact];

@@ -52,6 +52,12 @@ const SCRATCH_TARGET: u32 = glow::COPY_WRITE_BUFFER;
 impl Buffer {
     /// A buffer of `len` bytes, contents undefined.
     pub fn new(ctx: &Context, len: usize, usage: BufferUsage) -> Result<Buffer, GlError> {
+        if len > i32::MAX as usize {
+            return Err(GlError::Limit(format!(
+                "a buffer of {len} bytes: buffer sizes here are 32-bit (at most {} bytes)",
+                i32::MAX
+            )));
+        }
         let id = unsafe { ctx.gl().create_buffer() }.map_err(GlError::Invalid)?;
         let buffer = Buffer {
             obj: Rc::new(BufferObject {

@@ -163,6 +163,8 @@ pub(super) struct Inner {
     work_group_limit: Cell<Option<u32>>,
     /// The period GPU whose limits are checked ([`Context::set_period`]), if any.
     pub(super) period: Cell<Option<&'static super::period::PeriodGpu>>,
+    /// A lower limit on the bytes of one storage buffer (a test hook), if set.
+    storage_buffer_limit: Cell<Option<usize>>,
     /// The empty vertex array that attribute-less draws (rectangles) bind.
     pub(super) empty_vao: glow::VertexArray,
     pub(super) extra: ExtraEntryPoints,
@@ -359,6 +361,7 @@ impl Context {
                 checks: Cell::new(checks),
                 work_group_limit: Cell::new(None),
                 period: Cell::new(None),
+                storage_buffer_limit: Cell::new(None),
                 empty_vao,
                 extra,
                 profile: std::cell::RefCell::new(None),
@@ -416,6 +419,29 @@ impl Context {
     /// the limit is tested on small inputs. `None` restores the renderer's limit.
     pub fn set_work_group_limit(&self, limit: Option<u32>) {
         self.inner.work_group_limit.set(limit);
+    }
+
+    /// Test hook: storage buffers may hold at most `bytes` (when below the renderer's own
+    /// limit), so that code which splits work too large for one buffer is tested on small
+    /// inputs. `None` restores the renderer's limit.
+    pub fn set_storage_buffer_limit(&self, bytes: Option<usize>) {
+        self.inner.storage_buffer_limit.set(bytes);
+    }
+
+    /// The most bytes one storage buffer may hold here: what one shader storage block may
+    /// see (`GL_MAX_SHADER_STORAGE_BLOCK_SIZE`, OpenGL 4.3) and what a buffer's size can say
+    /// (the binding passes sizes as 32-bit signed integers).
+    pub fn max_storage_buffer_bytes(&self) -> usize {
+        let block = unsafe {
+            self.gl()
+                .get_parameter_i64(glow::MAX_SHADER_STORAGE_BLOCK_SIZE)
+        }
+        .max(0) as u64;
+        let renderer = block.min(i32::MAX as u64) as usize;
+        self.inner
+            .storage_buffer_limit
+            .get()
+            .map_or(renderer, |limit| limit.min(renderer))
     }
 
     /// The most work groups one dispatch may have along `axis` (0, 1, 2).

@@ -81,14 +81,23 @@ impl SharedReducer {
                 segments as usize * groups as usize * 16,
                 BufferUsage::GpuCopy,
             )?;
-            self.program
-                .dispatch("shared-memory reduction")
-                .storage(0, &source)
-                .storage(1, &out)
-                .uniform("u_count", count)
-                .uniform("u_op", shader_op)
-                .uniform("u_nonzero", nonzero && first)
-                .run([groups, segments, 1])?;
+            // In as many dispatches as the work-group limit of each axis needs.
+            let most = [0, 1].map(|axis| ctx.max_work_groups(axis).max(1));
+            for y in (0..segments).step_by(most[1] as usize) {
+                for x in (0..groups).step_by(most[0] as usize) {
+                    self.program
+                        .dispatch("shared-memory reduction")
+                        .storage(0, &source)
+                        .storage(1, &out)
+                        .uniform("u_count", count)
+                        .uniform("u_op", shader_op)
+                        .uniform("u_nonzero", nonzero && first)
+                        .uniform("u_first_group", x)
+                        .uniform("u_first_segment", y)
+                        .uniform("u_groups", groups)
+                        .run([most[0].min(groups - x), most[1].min(segments - y), 1])?;
+                }
+            }
             memory_barrier(ctx, &[Barrier::Storage, Barrier::BufferUpdate]);
             source = out;
             count = groups;

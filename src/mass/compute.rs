@@ -6,6 +6,10 @@
 //! projected surface, peels every depth layer and sums pixels, this sums the exact
 //! per-triangle terms: no framing, no resolution, no peels.
 //!
+//! Meshes larger than one storage buffer holds go through in chunks of triangles, each chunk
+//! one integrand pass and one reduction, their sums added in f64; dispatches past the
+//! renderer's work-group limit are split.
+//!
 //! Every body goes through fp32 in a unit frame (its bounding-box centre subtracted in f64,
 //! divided per axis by a power of two), as the classic path does, and the sums are scaled
 //! back in f64.
@@ -62,13 +66,24 @@ impl ComputeMass {
         })
     }
 
-    /// The ten integrals of each body, all bodies in one integrand pass and one reduction.
+    /// The ten integrals of each body, all bodies in one integrand pass and one reduction
+    /// (or, past what one storage buffer holds, one per chunk of triangles).
     pub fn integrate(&self, bodies: &[&Mesh]) -> Result<ComputeResult, GlError> {
         if bodies.is_empty() {
             return Ok(ComputeResult {
                 integrals: Vec::new(),
                 gpu_ms: 0.0,
             });
+        }
+        let mut frames = Vec::with_capacity(bodies.len());
+        for (body, mesh) in bodies.iter().enumerate() {
+            if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+                return Err(GlError::Invalid(format!(
+                    "body {body}: vertex {i} is not finite ({:?})",
+                    mesh.positions[i]
+                )));
+            }
+            frames.push(unit_frame(mesh));
         }
         // Each body's triangles in a segment of `per_body` slots; the rest are zero
         // triangles, which add nothing.
@@ -78,28 +93,92 @@ impl ComputeMass {
             .max()
             .unwrap_or(0)
             .max(1);
-        let slots = per_body * bodies.len();
-        let mut corners = vec![Vec4::ZERO; 3 * slots];
-        let mut frames = Vec::with_capacity(bodies.len());
-        for (body, mesh) in bodies.iter().enumerate() {
-            if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
-                return Err(GlError::Invalid(format!(
-                    "body {body}: vertex {i} is not finite ({:?})",
-                    mesh.positions[i]
-                )));
-            }
-            let (center, scale) = unit_frame(mesh);
-            for (k, tri) in mesh.triangles.iter().enumerate() {
-                for (corner, &v) in tri.iter().enumerate() {
-                    let p = (mesh.positions[v as usize].as_dvec3() - center) / scale;
-                    corners[3 * (body * per_body + k) + corner] = p.as_vec3().extend(1.0);
+        // A chunk takes up to `chunk` triangles of every body: its corner and term buffers
+        // (three vec4 a triangle each) within what one storage buffer holds.
+        let bytes_per_slot = 3 * std::mem::size_of::<Vec4>() * bodies.len();
+        let most = self.ctx.max_storage_buffer_bytes() / bytes_per_slot;
+        if most == 0 {
+            return Err(GlError::Limit(format!(
+                "{} bodies: one triangle of each needs {bytes_per_slot} bytes of a storage \
+                 buffer; this renderer allows {}",
+                bodies.len(),
+                self.ctx.max_storage_buffer_bytes()
+            )));
+        }
+        let chunk = per_body.min(most);
+        let mut sums = vec![[0f64; 4]; 3 * bodies.len()];
+        let mut gpu_ms = 0.0;
+        for first in (0..per_body).step_by(chunk) {
+            let count = chunk.min(per_body - first);
+            let (partial, ms) = self.integrate_chunk(bodies, &frames, first, count)?;
+            ensure_finite(
+                partial.iter().flatten().copied(),
+                "the volume integrals",
+                "triangle integrals (compute)",
+            )?;
+            for (sum, part) in sums.iter_mut().zip(&partial) {
+                for (s, p) in sum.iter_mut().zip(part) {
+                    *s += *p as f64;
                 }
             }
-            frames.push((center, scale));
+            gpu_ms += ms;
+        }
+        ensure_finite(
+            sums.iter().flatten().copied(),
+            "the volume integrals",
+            "triangle integrals (compute)",
+        )?;
+        let n = bodies.len();
+        let integrals = frames
+            .iter()
+            .enumerate()
+            .map(|(body, &(center, scale))| {
+                let [l0, l1, l2] = [sums[body], sums[n + body], sums[2 * n + body]];
+                let unit = VolumeIntegrals {
+                    origin: DVec3::ZERO,
+                    v: l0[0],
+                    x: l0[1],
+                    y: l0[2],
+                    z: l0[3],
+                    xx: l1[0],
+                    yy: l1[1],
+                    zz: l1[2],
+                    xy: l2[0],
+                    yz: l2[1],
+                    zx: l2[2],
+                };
+                VolumeIntegrals {
+                    origin: center,
+                    ..unit.stretched(scale)
+                }
+            })
+            .collect();
+        Ok(ComputeResult { integrals, gpu_ms })
+    }
+
+    /// Triangles `first .. first + count` of every body through the integrand pass and the
+    /// reduction: three sums a body (`[lane * bodies + body]`), and the milliseconds.
+    fn integrate_chunk(
+        &self,
+        bodies: &[&Mesh],
+        frames: &[(DVec3, DVec3)],
+        first: usize,
+        count: usize,
+    ) -> Result<(Vec<[f32; 4]>, f64), GlError> {
+        let slots = count * bodies.len();
+        let mut corners = vec![Vec4::ZERO; 3 * slots];
+        for (body, (mesh, &(center, scale))) in bodies.iter().zip(frames).enumerate() {
+            let triangles = mesh.triangles.iter().skip(first).take(count);
+            for (k, tri) in triangles.enumerate() {
+                for (corner, &v) in tri.iter().enumerate() {
+                    let p = (mesh.positions[v as usize].as_dvec3() - center) / scale;
+                    corners[3 * (body * count + k) + corner] = p.as_vec3().extend(1.0);
+                }
+            }
         }
         let input = Buffer::from_slice(&self.ctx, &corners, BufferUsage::Static)?;
         let terms = Buffer::new(&self.ctx, 3 * slots * 16, BufferUsage::GpuCopy)?;
-        let (sums, gpu_ms) = time_finished(&self.ctx, || {
+        time_finished(&self.ctx, || {
             self.program
                 .dispatch("triangle integrals (compute)")
                 .storage(0, &input)
@@ -110,39 +189,10 @@ impl ComputeMass {
             self.reducer.reduce_segments(
                 &terms,
                 3 * bodies.len() as u32,
-                per_body as u32,
+                count as u32,
                 ReduceOp::Sum,
             )
-        })?;
-        let flat = sums.iter().flatten().copied();
-        ensure_finite(flat, "the volume integrals", "triangle integrals (compute)")?;
-        let n = bodies.len();
-        let integrals = frames
-            .iter()
-            .enumerate()
-            .map(|(body, &(center, scale))| {
-                let [l0, l1, l2] = [sums[body], sums[n + body], sums[2 * n + body]];
-                let f = |x: f32| x as f64;
-                let unit = VolumeIntegrals {
-                    origin: DVec3::ZERO,
-                    v: f(l0[0]),
-                    x: f(l0[1]),
-                    y: f(l0[2]),
-                    z: f(l0[3]),
-                    xx: f(l1[0]),
-                    yy: f(l1[1]),
-                    zz: f(l1[2]),
-                    xy: f(l2[0]),
-                    yz: f(l2[1]),
-                    zx: f(l2[2]),
-                };
-                VolumeIntegrals {
-                    origin: center,
-                    ..unit.stretched(scale)
-                }
-            })
-            .collect();
-        Ok(ComputeResult { integrals, gpu_ms })
+        })
     }
 }
 

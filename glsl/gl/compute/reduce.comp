@@ -15,6 +15,12 @@ layout(std430, binding = 1) writeonly buffer Output { vec4 b_output[]; };
 uniform uint u_count;    // values per segment in the input
 uniform int u_op;        // 0: sum, 1: min, 2: max
 uniform bool u_nonzero;  // first pass of OR / count: each component becomes (x != 0)
+// A pass too large for one dispatch (the renderer's work-group limit per axis) is split into
+// several: this dispatch's first partial and first segment, and the pass's number of
+// partials per segment.
+uniform uint u_first_group;
+uniform uint u_first_segment;
+uniform uint u_groups;
 
 shared vec4 s_values[256];
 
@@ -38,8 +44,9 @@ vec4 fetch(uint segment, uint i) {
 
 void main() {
     uint local = gl_LocalInvocationID.x;
-    uint segment = gl_WorkGroupID.y;
-    uint first = gl_WorkGroupID.x * 512u + local;
+    uint group = u_first_group + gl_WorkGroupID.x;
+    uint segment = u_first_segment + gl_WorkGroupID.y;
+    uint first = group * 512u + local;
     s_values[local] = combine(fetch(segment, first), fetch(segment, first + 256u));
     barrier();
     for (uint stride = 128u; stride > 0u; stride >>= 1) {
@@ -49,6 +56,6 @@ void main() {
         barrier();
     }
     if (local == 0u) {
-        b_output[segment * gl_NumWorkGroups.x + gl_WorkGroupID.x] = s_values[0];
+        b_output[segment * u_groups + group] = s_values[0];
     }
 }
