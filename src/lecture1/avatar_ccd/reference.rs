@@ -58,7 +58,7 @@ pub fn sample(
 ) -> Sampled {
     let triangles = shapes(env);
     let step = 1.0 / per_interval.max(1) as f64;
-    let count = ((keyframes.end() / step).round() as usize).max(0);
+    let count = (keyframes.end() / step).round() as usize;
     let mut out = Sampled {
         step,
         first_within_tolerance: None,

@@ -61,7 +61,7 @@ struct Hulls {
 
 impl VisibilityCuller {
     pub fn new(ctx: &Context, resolution: u32) -> Result<VisibilityCuller, GlError> {
-        if resolution < 8 || resolution > ctx.info().limits.max_texture_size as u32 {
+        if !(8..=ctx.info().limits.max_texture_size).contains(&resolution) {
             return Err(GlError::Limit(format!(
                 "a visibility resolution of {resolution}: it must be at least 8 and at most \
                  the renderer's texture size {}",
