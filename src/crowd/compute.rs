@@ -325,14 +325,9 @@ pub fn run(
     scene.crowd.step(dt, stride);
     let (passes, plan) = render_frame(crowd, target, scene, true)?;
     ctx.finish_all();
-    times.sort_by(f64::total_cmp);
-    let n = times.len();
-    let frame_ms = if n % 2 == 1 {
-        times[n / 2]
-    } else {
-        0.5 * (times[n / 2 - 1] + times[n / 2])
-    };
+    let frame_ms = super::scene::median(&mut times);
     Ok(RunStats {
+        frame_ms_range: super::scene::range(&times),
         model: crowd.model.kind.name().to_string(),
         method: "compute".to_string(),
         vertex_shader_batch: 0,

@@ -119,6 +119,8 @@ pub struct RunStats {
     /// Wall clock per frame (culling, bone matrices, GPU passes, glFinish): the median
     /// over the timed frames, so that a frame slowed by another process does not count.
     pub frame_ms: f64,
+    /// The fastest and the slowest timed frame, ms: the ends of the runs behind `frame_ms`.
+    pub frame_ms_range: [f64; 2],
     pub fps: f64,
     /// Per-pass breakdown of one frame measured with GL timer queries.
     pub passes: FrameStats,
@@ -207,13 +209,25 @@ pub fn clear(target: &Framebuffer) -> Result<(), GlError> {
 }
 
 /// The median of `values` (the mean of the middle two for an even count).
-fn median(values: &mut [f64]) -> f64 {
+pub(crate) fn median(values: &mut [f64]) -> f64 {
     values.sort_by(f64::total_cmp);
     match values.len() {
         0 => f64::NAN,
         n if n % 2 == 1 => values[n / 2],
         n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
     }
+}
+
+/// The smallest and largest of `values` (NaN for none).
+pub(crate) fn range(values: &[f64]) -> [f64; 2] {
+    if values.is_empty() {
+        return [f64::NAN; 2];
+    }
+    values
+        .iter()
+        .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
+            [lo.min(v), hi.max(v)]
+        })
 }
 
 /// How one measured configuration renders: the method, and for the vertex-shader method
@@ -329,6 +343,7 @@ pub fn run_side_by_side<E: From<GlError>>(
         shown(i, target)?;
         let frame_ms = median(times);
         out.push(RunStats {
+            frame_ms_range: range(times),
             model: renderer.model.kind.name().to_string(),
             method: config.method.name().to_string(),
             vertex_shader_batch: renderer.vertex_shader_batch(),

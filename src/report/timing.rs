@@ -121,6 +121,18 @@ impl Spread {
         }
     }
 
+    /// "3 runs: 20.000-22.000 ms, median 21.000 ms" (`unit` follows each number).
+    pub fn in_words(&self, unit: &str) -> String {
+        format!(
+            "{} run{}: {:.3}-{:.3}{unit}, median {:.3}{unit}",
+            self.runs,
+            if self.runs == 1 { "" } else { "s" },
+            self.min,
+            self.max,
+            self.median
+        )
+    }
+
     /// (max - min) / median: how far apart the runs were, relative to what is reported
     /// (0 for a zero median).
     pub fn relative_range(&self) -> f64 {
@@ -160,6 +172,14 @@ impl Load {
             one_minute,
             cores: cores.max(1),
         })
+    }
+
+    /// The busier of two readings (either may be missing).
+    pub fn worst(a: Option<Load>, b: Option<Load>) -> Option<Load> {
+        [a, b]
+            .into_iter()
+            .flatten()
+            .max_by(|x, y| x.per_core().total_cmp(&y.per_core()))
     }
 
     pub fn per_core(&self) -> f64 {
@@ -217,19 +237,48 @@ pub struct TimedVerdict {
 
 /// Judges a timed quantity against `target`: not judged while `load` is above
 /// [`LOADED_PER_CORE`] ("not judged: machine loaded") or while the runs fall on both sides of
-/// the target ("not judged: the runs straddle ..."); otherwise by the median. The note always
-/// gives the runs' range and the load (or says it is unknown). `unit` follows each number.
+/// the target ("not judged: the runs fall on both sides ..."); otherwise by the runs. The note
+/// always gives the runs' range and the load (or says it is unknown). `unit` follows each
+/// number.
 pub fn judge(spread: &Spread, target: Target, load: Option<Load>, unit: &str) -> TimedVerdict {
-    let runs = format!(
-        "{} run{}: {:.3}-{:.3}{unit}, median {:.3}{unit}",
-        spread.runs,
-        if spread.runs == 1 { "" } else { "s" },
-        spread.min,
-        spread.max,
-        spread.median
-    );
-    let load_words = load.map_or("load average unknown".to_string(), |l| l.in_words());
     let t = target.value();
+    judge_ends(
+        Ends {
+            at_best: target.met_by(spread.min).max(target.met_by(spread.max)),
+            at_worst: target.met_by(spread.min).min(target.met_by(spread.max)),
+        },
+        &spread.in_words(unit),
+        &format!("the runs fall on both sides of {t}{unit}"),
+        load,
+    )
+}
+
+/// A claim evaluated twice on the runs of its timings: with every timing at the end of its
+/// runs that favours the claim, and at the end that goes against it. Where the two agree the
+/// runs decide the claim; where they differ the runs cannot, and the claim is not judged
+/// rather than decided by whichever median a busy machine gave.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Ends {
+    pub at_best: bool,
+    pub at_worst: bool,
+}
+
+impl Ends {
+    /// Evaluates `claim` at both ends: `claim(true)` must take each timing at its end that
+    /// favours the claim, `claim(false)` at the end against it.
+    pub fn of(claim: impl Fn(bool) -> bool) -> Ends {
+        Ends {
+            at_best: claim(true),
+            at_worst: claim(false),
+        }
+    }
+}
+
+/// The verdict of a claim on timings whose runs are kept ([`Ends`]): not judged while `load`
+/// is above [`LOADED_PER_CORE`], nor while the two ends disagree (`undecided` says how); else
+/// what both ends say. The note gives `runs` (the runs in words) and the load.
+pub fn judge_ends(ends: Ends, runs: &str, undecided: &str, load: Option<Load>) -> TimedVerdict {
+    let load_words = load.map_or("load average unknown".to_string(), |l| l.in_words());
     let (holds, reason) = if let Some(l) = load.filter(Load::is_loaded) {
         (
             None,
@@ -239,19 +288,36 @@ pub fn judge(spread: &Spread, target: Target, load: Option<Load>, unit: &str) ->
                 l.per_core()
             ),
         )
-    } else if target.met_by(spread.min) != target.met_by(spread.max) {
-        (
-            None,
-            format!("not judged: the runs fall on both sides of {t}{unit}"),
-        )
+    } else if ends.at_best != ends.at_worst {
+        (None, format!("not judged: {undecided}"))
     } else {
-        (Some(target.met_by(spread.median)), String::new())
+        (Some(ends.at_worst), String::new())
     };
     let mut note = format!("{runs}; {load_words}");
     if !reason.is_empty() {
         note = format!("{note}; {reason}");
     }
     TimedVerdict { holds, note }
+}
+
+/// Of two timings (ms) with their runs kept: whether `a` is faster than `b`, taken at the end
+/// of the runs that favours "faster" (`favour`: `a`'s fastest run against `b`'s slowest) or
+/// at the end against it.
+pub fn faster(a: &Spread, b: &Spread, favour: bool) -> bool {
+    if favour {
+        a.min < b.max
+    } else {
+        a.max < b.min
+    }
+}
+
+/// The end of a spread a claim takes: its low end or its high end.
+pub fn end(spread: &Spread, high: bool) -> f64 {
+    if high {
+        spread.max
+    } else {
+        spread.min
+    }
 }
 
 /// The verdict of a claim judged on timings whose runs are not kept one by one (ratios of
@@ -397,6 +463,39 @@ mod tests {
             judge(&runs, Target::AtMost(36.2), load(0.2, 8), " ms").holds,
             Some(true)
         );
+    }
+
+    #[test]
+    fn a_claim_the_ends_of_its_runs_disagree_on_is_not_judged() {
+        let (gpu, cpu) = (
+            Spread::of(&[8.0, 9.0, 12.0]),
+            Spread::of(&[10.0, 11.0, 11.5]),
+        );
+        let ends = Ends::of(|favour| faster(&gpu, &cpu, favour));
+        assert_eq!(
+            ends,
+            Ends {
+                at_best: true,
+                at_worst: false
+            }
+        );
+        let v = judge_ends(ends, &gpu.in_words(" ms"), "the runs overlap", load(0.3, 2));
+        assert_eq!(v.holds, None);
+        assert!(
+            v.note.contains("not judged: the runs overlap"),
+            "{}",
+            v.note
+        );
+        assert!(v.note.contains("3 runs: 8.000-12.000 ms"), "{}", v.note);
+        // Runs apart: decided, and the same way whichever end is taken.
+        let slow = Spread::of(&[13.0, 14.0, 20.0]);
+        let ends = Ends::of(|favour| faster(&gpu, &slow, favour));
+        assert_eq!(judge_ends(ends, "", "", load(0.3, 2)).holds, Some(true));
+        let ends = Ends::of(|favour| faster(&slow, &gpu, favour));
+        assert_eq!(judge_ends(ends, "", "", load(0.3, 2)).holds, Some(false));
+        // A loaded machine is never judged, whatever the runs say.
+        assert_eq!(judge_ends(ends, "", "", load(9.0, 2)).holds, None);
+        assert_eq!((end(&gpu, true), end(&gpu, false)), (12.0, 8.0));
     }
 
     #[test]

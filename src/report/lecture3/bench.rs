@@ -22,7 +22,7 @@ use crate::lecture3::random_texture::statistics::{
 };
 use crate::lecture3::random_texture::{HybridTaus, RandomTexture};
 use crate::lecture3::HeightMap;
-use crate::report::timing::{wall_ms, Runs, Spread};
+use crate::report::timing::{wall_ms, Load, Runs, Spread};
 use crate::report::BenchOptions;
 use std::path::Path;
 use std::time::Instant;
@@ -110,6 +110,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         bar.set_message(format!("lecture 3: {name}"));
         bar
     };
+    let mut load = Load::now();
     let bar = stage("image pyramid");
     let sizes: &[u32] = if quick {
         &[64, 256]
@@ -130,6 +131,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     let bar = stage("pyramidal displacement mapping");
     let prefilter = super::prefilter::measure(opts, &map, runs)?;
     let displacement = displacement(opts, map, map_name, runs)?;
+    load = Load::worst(load, Load::now());
     bar.finish_and_clear();
     let bar = stage("light hierarchy");
     let light = light(opts, runs)?;
@@ -137,12 +139,14 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     bar.finish_and_clear();
     let bar = stage("function in a texture");
     let function = function(ctx, quick, runs)?;
+    load = Load::worst(load, Load::now());
     bar.finish_and_clear();
     let bar = stage("random numbers in a texture");
     let random = random(opts, if quick { 64 } else { 256 }, 16, 2007, runs)?;
     bar.finish_and_clear();
     let bar = stage("if removed with the depth buffer");
     let depth_mask = depth_mask(opts, quick, runs)?;
+    load = Load::worst(load, Load::now());
     bar.finish_and_clear();
     let bar = stage("octree on the GPU");
     let octree = super::octree::measure(opts, runs)?;
@@ -169,6 +173,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         gpu_timing: gpu_timing(ctx).into(),
         quick,
         runs: runs.in_words(),
+        load,
         pyramid,
         displacement,
         prefilter,

@@ -2,7 +2,7 @@
 
 use crate::lecture3::depth_mask::{MaskShape, RunCounter};
 use crate::lecture3::displacement::compare::Comparison;
-use crate::report::timing::Spread;
+use crate::report::timing::{Load, Spread};
 use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
@@ -19,6 +19,9 @@ pub struct Lecture3Results {
     /// How often each repeated timing ran (the median is kept; each `*_spread` beside a
     /// time gives its runs, median, min and max).
     pub runs: String,
+    /// The busiest the machine was while the techniques were timed (1-minute load average,
+    /// read after each timed technique): timing claims are not judged above one per core.
+    pub load: Option<Load>,
     pub pyramid: Vec<PyramidRow>,
     pub displacement: DisplacementRun,
     /// Technique 2's minification prefilter against the camera's distance.

@@ -1,8 +1,9 @@
 //! The paper's claims, each judged on the measured results.
 
 use super::bench::{Paper2Results, Variant};
+use crate::crowd::scene::RunStats;
 use crate::crowd::ModelKind;
-use crate::report::timing::judge_under_load;
+use crate::report::timing::{faster, judge_ends, judge_under_load, Ends, Spread};
 use crate::report::Claim;
 
 pub fn claims(results: &Paper2Results) -> Vec<Claim> {
@@ -64,38 +65,63 @@ pub fn single_draw(results: &Paper2Results) -> Claim {
 /// every larger measured n.
 pub fn crossover(results: &Paper2Results, baseline: Variant) -> Claim {
     let counts = results.counts();
-    let mut parts = Vec::new();
-    let mut holds = true;
-    for kind in ModelKind::ALL {
-        let faster: Vec<bool> = counts
+    // Where two-pass overtakes `baseline` for one model, with every measurement's frames at
+    // the end that favours two-pass (`favour`) or at the other end: the index of the first
+    // count from which it is faster at every larger count.
+    let from = |kind, favour| {
+        let faster_at: Vec<bool> = counts
             .iter()
             .map(|&n| {
-                let fps = |v| results.fps(kind, n, v);
-                fps(Variant::TwoPass)
-                    .zip(fps(baseline))
-                    .is_some_and(|(two_pass, other)| two_pass > other)
+                let frames = |v| Paper2Results::find(&results.table1, kind, n, v).map(frames);
+                frames(Variant::TwoPass)
+                    .zip(frames(baseline))
+                    .is_some_and(|(two_pass, other)| faster(&two_pass, &other, favour))
             })
             .collect();
-        match (0..counts.len()).find(|&i| faster[i..].iter().all(|&f| f)) {
-            Some(i) => {
-                parts.push(format!(
-                    "{}: two-pass faster from n = {} on",
-                    kind.name(),
-                    counts[i]
-                ));
-                holds &= i > 0 && counts[i] <= 16;
-            }
-            None => {
-                parts.push(format!(
-                    "{}: no crossover up to n = {}",
-                    kind.name(),
-                    counts.last().copied().unwrap_or(0)
-                ));
-                holds = false;
-            }
-        }
+        (0..counts.len()).find(|&i| faster_at[i..].iter().all(|&f| f))
+    };
+    let holds_at = |favour| {
+        ModelKind::ALL
+            .iter()
+            .all(|&kind| from(kind, favour).is_some_and(|i| i > 0 && counts[i] <= 16))
+    };
+    let mut parts = Vec::new();
+    for kind in ModelKind::ALL {
+        // The medians say where it crosses; the ends of the frames, whether that is decided.
+        let by_median = {
+            let faster_at: Vec<bool> = counts
+                .iter()
+                .map(|&n| {
+                    let fps = |v| results.fps(kind, n, v);
+                    fps(Variant::TwoPass)
+                        .zip(fps(baseline))
+                        .is_some_and(|(two_pass, other)| two_pass > other)
+                })
+                .collect();
+            (0..counts.len()).find(|&i| faster_at[i..].iter().all(|&f| f))
+        };
+        parts.push(match by_median {
+            Some(i) => format!("{}: two-pass faster from n = {} on", kind.name(), counts[i]),
+            None => format!(
+                "{}: no crossover up to n = {}",
+                kind.name(),
+                counts.last().copied().unwrap_or(0)
+            ),
+        });
     }
-    let verdict = judge_under_load(holds, results.table1_load);
+    let frame_counts: Vec<usize> = results.table1.iter().map(|r| r.frames).collect();
+    let runs = format!(
+        "medians of {}-{} interleaved timed frames per measurement, each judged with its \
+         fastest and slowest frame",
+        frame_counts.iter().min().unwrap_or(&0),
+        frame_counts.iter().max().unwrap_or(&0)
+    );
+    let verdict = judge_ends(
+        Ends::of(holds_at),
+        &runs,
+        "the frames of two-pass and of the baseline overlap where it would cross",
+        results.table1_load,
+    );
     Claim {
         claim: format!(
             "Two-pass (pixel-shader) skinning overtakes vertex-shader skinning ({}) once there \
@@ -112,6 +138,16 @@ pub fn crossover(results: &Paper2Results, baseline: Variant) -> Claim {
             verdict.note
         ),
         holds: verdict.holds,
+    }
+}
+
+/// A measurement's timed frames as runs (ms).
+fn frames(run: &RunStats) -> Spread {
+    Spread {
+        runs: run.frames,
+        median: run.frame_ms,
+        min: run.frame_ms_range[0],
+        max: run.frame_ms_range[1],
     }
 }
 
@@ -138,7 +174,12 @@ pub fn stage_costs(results: &Paper2Results) -> Option<Claim> {
             100.0 * w.pass2 / baseline
         ));
     }
-    let verdict = judge_under_load(holds, results.table1_load);
+    // The passes come from one profiled frame per configuration: one run, no spread.
+    let mut verdict = judge_under_load(holds, results.table1_load);
+    verdict.note = format!(
+        "one profiled frame per configuration, a single run; {}",
+        verdict.note
+    );
     Some(Claim {
         claim: "Skinning once in a pixel shader and drawing pre-skinned vertices costs the GPU \
                 less than skinning in the vertex shader while drawing"
@@ -152,4 +193,90 @@ pub fn stage_costs(results: &Paper2Results) -> Option<Claim> {
         ),
         holds: verdict.holds,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crowd::{LodPolicy, Method};
+    use crate::report::paper2::bench::Setup;
+    use crate::report::timing::Load;
+
+    /// One Table 1 measurement: `frames` frame times as (median, fastest, slowest) ms.
+    fn run(kind: ModelKind, n: usize, variant: Variant, [median, lo, hi]: [f64; 3]) -> RunStats {
+        let (method, batch) = match variant {
+            Variant::TwoPass => (Method::TwoPass, 0),
+            Variant::VertexShader => (Method::VertexShader, 64),
+            Variant::VertexShaderSingle => (Method::VertexShader, 1),
+        };
+        RunStats {
+            model: kind.name().into(),
+            method: method.name().into(),
+            vertex_shader_batch: batch,
+            characters: n,
+            frames: 5,
+            frame_ms: median,
+            frame_ms_range: [lo, hi],
+            fps: 1e3 / median,
+            ..RunStats::default()
+        }
+    }
+
+    /// Two-pass against the vertex shader at 1, 16 and 64 characters, both models alike:
+    /// `two_pass[i]` and `vs[i]` are the (median, fastest, slowest) frame times.
+    fn results(two_pass: [[f64; 3]; 3], vs: [[f64; 3]; 3]) -> Paper2Results {
+        let mut table1 = Vec::new();
+        for kind in ModelKind::ALL {
+            for (i, n) in [1, 16, 64].into_iter().enumerate() {
+                table1.push(run(kind, n, Variant::TwoPass, two_pass[i]));
+                table1.push(run(kind, n, Variant::VertexShader, vs[i]));
+            }
+        }
+        Paper2Results {
+            renderer: "test".into(),
+            quick: true,
+            size: [64, 64],
+            setup: Setup {
+                max_texture_size: 4096,
+                row_characters: 64,
+                lod_divisor: 1,
+                lod_policy: LodPolicy::default(),
+                sprite_policy: LodPolicy::with_sprites(),
+            },
+            models: Vec::new(),
+            table1,
+            lod_runs: Vec::new(),
+            sprite_runs: Vec::new(),
+            snapshots: Vec::new(),
+            then_and_now: Default::default(),
+            profile: None,
+            table1_load: Some(Load {
+                one_minute: 0.3,
+                cores: 2,
+            }),
+        }
+    }
+
+    #[test]
+    fn the_crossover_is_judged_on_the_ends_of_the_frames() {
+        let vs = [[1.0, 0.9, 1.1], [10.0, 9.5, 10.5], [40.0, 39.0, 41.0]];
+        // Two-pass slower at 1, faster from 16 on, every frame apart: holds.
+        let apart = [[2.0, 1.9, 2.1], [8.0, 7.5, 8.5], [20.0, 19.0, 21.0]];
+        let c = crossover(&results(apart, vs), Variant::VertexShader);
+        assert_eq!(c.holds, Some(true), "{}", c.measured);
+        assert!(c.measured.contains("from n = 16 on"), "{}", c.measured);
+        // The same medians, but at 16 the frames overlap: where it crosses is not decided.
+        let overlap = [[2.0, 1.9, 2.1], [8.0, 7.5, 11.0], [20.0, 19.0, 21.0]];
+        let c = crossover(&results(overlap, vs), Variant::VertexShader);
+        assert_eq!(c.holds, None, "{}", c.measured);
+        assert!(
+            c.measured.contains("not judged: the frames"),
+            "{}",
+            c.measured
+        );
+        // Slower at 64 in every frame: no, however the frames at 16 fall.
+        let late = [[2.0, 1.9, 2.1], [8.0, 7.5, 11.0], [50.0, 49.0, 51.0]];
+        let c = crossover(&results(late, vs), Variant::VertexShader);
+        assert_eq!(c.holds, Some(false), "{}", c.measured);
+    }
 }

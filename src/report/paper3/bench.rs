@@ -124,6 +124,8 @@ pub struct Measurement {
     /// The timed runs (after one warm-up run) and the spread of their product times.
     pub runs: usize,
     pub matmul_spread_ms: Spread,
+    /// The spread of the whole evaluation (every step) over the timed runs.
+    pub total_spread_ms: Spread,
     /// From the median product time.
     pub matmul_gflops: f64,
     /// From the fastest product time: the renderer's capability when the machine is shared.
@@ -410,6 +412,7 @@ fn measure_case(
         total_ms: times.total(),
         runs: runs.len(),
         matmul_spread_ms: Spread::of(&products),
+        total_spread_ms: Spread::of(&runs.iter().map(|r| r.times.total()).collect::<Vec<_>>()),
         matmul_gflops: flops / (times.matmul * 1e-3) / 1e9,
         best_matmul_gflops: flops / (fastest * 1e-3) / 1e9,
         times_ms: times,

@@ -18,9 +18,30 @@ pub fn software(results: &Paper3Results) -> bool {
 }
 
 fn twenty_fold(results: &Paper3Results, paper: &Paper3Table1) -> Claim {
-    let speedup = results.paper_row(Method::CpuPlain).total_ms
-        / results.paper_row(Method::GpuFaithful).total_ms;
-    let verdict = timing::judge_under_load(speedup >= paper.speedup_claimed, results.load);
+    let (cpu, gpu) = (
+        results.paper_row(Method::CpuPlain),
+        results.paper_row(Method::GpuFaithful),
+    );
+    let speedup = cpu.total_ms / gpu.total_ms;
+    // The speed-up from the runs' ends: the CPU's slowest over the GPU's fastest favours it.
+    let (cpu_runs, gpu_runs) = (&cpu.total_spread_ms, &gpu.total_spread_ms);
+    let ends = timing::Ends::of(|favour| {
+        timing::end(cpu_runs, favour) / timing::end(gpu_runs, !favour) >= paper.speedup_claimed
+    });
+    let runs = format!(
+        "CPU {}; GPU {}",
+        cpu_runs.in_words(" ms"),
+        gpu_runs.in_words(" ms")
+    );
+    let verdict = timing::judge_ends(
+        ends,
+        &runs,
+        &format!(
+            "the runs give speed-ups on both sides of {}x",
+            paper.speedup_claimed
+        ),
+        results.load,
+    );
     Claim {
         claim: "The GPU is about 20 times faster than CPU-only processing".into(),
         paper: format!(
@@ -34,7 +55,7 @@ fn twenty_fold(results: &Paper3Results, paper: &Paper3Table1) -> Claim {
             "CPU plain loop / GPU faithful (all steps) = {speedup:.2}x on {} ({})",
             results.renderer,
             if software(results) {
-                "not judged: a software renderer is not the GPU the claim is about".to_string()
+                format!("{runs}; not judged: a software renderer is not the GPU the claim is about")
             } else {
                 verdict.note
             }
