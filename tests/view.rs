@@ -472,4 +472,6 @@ fn lecture1_window_matches_headless() {
     }
     // Penetration depth has one buffer, the T cube faces, drawn over the scene's text.
     window_matches_headless("lecture1-penetration", &["lecture1", "penetration"], 2);
+    // The walking figure in the room, two steps along its walk.
+    window_matches_headless("lecture1-avatar-ccd", &["lecture1", "avatar-ccd"], 2);
 }

@@ -20,6 +20,7 @@ use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod avatar_ccd;
 mod penetration;
 
 /// The lecture-1 techniques.
@@ -59,6 +60,14 @@ pub enum Lecture1Command {
     /// & Manocha 2002): how far, and along which direction, B must move to touch A without
     /// overlap. Each OBJ object or group is a convex piece; a non-convex piece is refused.
     Penetration(penetration::PenetrationArgs),
+    /// Continuous collision of a walking figure of capsule links with a triangle environment
+    /// (a reconstruction of Kim, Redon, Lin, Manocha & Templeman 2007): swept capsule bounds,
+    /// a BVH, CULLIDE-style occlusion-query culling, exact distances and conservative
+    /// advancement; prints the first time of contact (keyframe k at time k; null when none),
+    /// the link and the contact point. K.json: {"keyframes": [{"root": [x, y, z], "angles":
+    /// {"left thigh": [rx, ry, rz], ...}}, ...]} (radians, R = Rx Ry Rz in the parent's
+    /// frame; links left out have zero angles).
+    AvatarCcd(avatar_ccd::AvatarCcdArgs),
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -145,6 +154,7 @@ pub fn run(command: &Lecture1Command, ctx: &Context, json: bool) -> anyhow::Resu
         Lecture1Command::DistanceField(a) => super::lecture1_fields::distance_field(a, ctx, json),
         Lecture1Command::SweptVolume(a) => super::lecture1_fields::swept_volume(a, ctx, json),
         Lecture1Command::Penetration(a) => penetration::run(a, ctx, json),
+        Lecture1Command::AvatarCcd(a) => avatar_ccd::run(a, ctx, json),
     }
 }
 

@@ -19,6 +19,7 @@
 //! predicate. [`weld`] decides which triangles are neighbours; [`knotted_tube`] is a scene
 //! that folds onto itself. Shaders: `glsl/lecture1/`.
 
+pub mod avatar_ccd;
 pub mod distance_field;
 pub mod knotted_tube;
 pub mod pairwise;

@@ -11,6 +11,7 @@
 //! `pub fn block(setting: &Setting) -> anyhow::Result<Block>`, its `mod` line, and its line
 //! in [`BLOCKS`].
 
+pub mod avatar_ccd;
 pub mod distance_field;
 mod fidelity;
 mod pairwise;
@@ -79,6 +80,7 @@ pub const BLOCKS: &[(&str, Measure)] = &[
     ("swept-volume", swept_volume::block),
     ("then-and-now", then_and_now::block),
     ("penetration", penetration::block),
+    ("avatar-ccd", avatar_ccd::block),
 ];
 
 /// Everything the section measured.

@@ -109,6 +109,7 @@ impl DemoSpec {
                 lecture1::Technique::Penetration => {
                     "classic-gpgpu lecture1 penetration A.obj B.obj --png t.png".into()
                 }
+                lecture1::Technique::AvatarCcd => "classic-gpgpu lecture1 avatar-ccd --json".into(),
             },
             DemoSpec::Lecture3 { technique } => {
                 format!("classic-gpgpu lecture3 {}", technique.name())

@@ -2,6 +2,7 @@
 //! each): the models with their colliding triangles in red, the pair texture and its
 //! hierarchical levels as insets, each level's texel probed against the CPU encoding.
 
+mod avatar_ccd;
 mod pairwise;
 mod penetration;
 mod self_collision;
@@ -24,6 +25,9 @@ pub enum Technique {
     /// Penetration depth by rasterized Minkowski sums: a cube circling in the corner of an L
     /// of two boxes, the six cube faces of the T buffer.
     Penetration,
+    /// Continuous collision for an avatar: a walking figure of capsule links stopping at its
+    /// first contact with the room's wall.
+    AvatarCcd,
 }
 
 impl Technique {
@@ -33,6 +37,7 @@ impl Technique {
             Technique::SelfCollision => "self-collision",
             Technique::Pairwise => "pairwise",
             Technique::Penetration => "penetration",
+            Technique::AvatarCcd => "avatar-ccd",
         }
     }
 
@@ -42,6 +47,7 @@ impl Technique {
             Technique::SelfCollision => Box::new(self_collision::SelfCollisionDemo::new(ctx)?),
             Technique::Pairwise => Box::new(pairwise::PairwiseDemo::new(ctx)?),
             Technique::Penetration => Box::new(penetration::PenetrationDemo::new(ctx)?),
+            Technique::AvatarCcd => Box::new(avatar_ccd::AvatarCcdDemo::new(ctx)?),
         })
     }
 }

@@ -1,0 +1,127 @@
+//! `classic-gpgpu lecture1 avatar-ccd [ENV.obj]`: the first time of contact of a walking
+//! figure of capsule links with a triangle environment (`src/lecture1/avatar_ccd/`).
+
+use anyhow::Context as _;
+use classic_gpgpu::gl::Context;
+use classic_gpgpu::lecture1::avatar_ccd::body::{Body, Keyframes};
+use classic_gpgpu::lecture1::avatar_ccd::environment::{room, Environment};
+use classic_gpgpu::lecture1::avatar_ccd::reference::{gap_at, sample, shapes};
+use classic_gpgpu::lecture1::avatar_ccd::{
+    visibility, AvatarCcd, Options, DEFAULT_STEPS, DEFAULT_TOLERANCE,
+};
+use classic_gpgpu::mesh::load_obj;
+use glam::DVec3;
+use serde_json::json;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct AvatarCcdArgs {
+    /// The environment (OBJ triangles) [default: the built-in room: a floor, a wall across
+    /// the path at z = 2.6, a bench and a pillar beside it].
+    pub environment: Option<PathBuf>,
+    /// The keyframes (JSON, see the command's description) [default: eight strides of 0.35
+    /// along +z from the origin, the pelvis 1.06 above the floor].
+    #[arg(long)]
+    pub keyframes: Option<PathBuf>,
+    /// A gap (distance less the link's radius) at most this is a contact (model units).
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    pub tolerance: f64,
+    /// Sub-intervals per keyframe interval (each with its own swept bounds).
+    #[arg(long, default_value_t = DEFAULT_STEPS)]
+    pub steps: usize,
+    /// Pixels per side of the visibility views.
+    #[arg(long, default_value_t = visibility::DEFAULT_RESOLUTION)]
+    pub resolution: u32,
+    /// Skip the GPU visibility culling (the BVH's survivors go to the exact tests).
+    #[arg(long)]
+    pub no_gpu: bool,
+    /// Also run the CPU reference (every link against every triangle at this many sampled
+    /// times per keyframe interval, parry3d's distances) and compare.
+    #[arg(long)]
+    pub check: Option<usize>,
+}
+
+pub fn run(args: &AvatarCcdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    let body = Body::walker();
+    let mesh = match &args.environment {
+        Some(path) => {
+            load_obj(path).with_context(|| format!("reading environment {}", path.display()))?
+        }
+        None => room(),
+    };
+    let env = Environment::new(&mesh).with_context(|| match &args.environment {
+        Some(p) => format!("environment {}", p.display()),
+        None => "the built-in room".into(),
+    })?;
+    let keyframes = match &args.keyframes {
+        Some(path) => Keyframes::load(&body, path)?,
+        None => Keyframes::walk(&body, DVec3::new(0.0, 1.06, 0.0), 8, 0.35),
+    };
+    let options = Options {
+        tolerance: args.tolerance,
+        steps: args.steps,
+        resolution: args.resolution,
+        gpu: !args.no_gpu,
+    };
+    let mut ccd = AvatarCcd::new(ctx, &options)?;
+    let result = ccd.run(&body, &keyframes, &env, &options)?;
+    let check = match args.check {
+        Some(n) => {
+            anyhow::ensure!(
+                (1..=1_000_000).contains(&n),
+                "--check takes 1 to 1000000 samples per keyframe interval, not {n}"
+            );
+            let sampled = sample(&body, &keyframes, &env, n, args.tolerance);
+            let gap_there = result
+                .time_of_contact
+                .map(|t| gap_at(&body, &keyframes, &shapes(&env), t).0);
+            Some(json!({
+                "samples_per_interval": n,
+                "first_within_tolerance": sampled.first_within_tolerance.map(|(t, _)| t),
+                "first_within_tolerance_link": sampled
+                    .first_within_tolerance
+                    .map(|(_, l)| body.links[l].name.clone()),
+                "first_overlap": sampled.first_overlap,
+                "min_gap": sampled.min_gap,
+                "reference_gap_at_time_of_contact": gap_there,
+            }))
+        }
+        None => None,
+    };
+    let renderer = ctx.info().renderer_line();
+    if json {
+        let mut report = serde_json::to_value(&result)?;
+        report["renderer"] = json!(renderer);
+        report["links"] = json!(body.links.len());
+        report["triangles"] = json!(env.triangles.len());
+        if let Some(c) = check {
+            report["reference"] = c;
+        }
+        println!("{}", serde_json::to_string(&report)?);
+        return Ok(());
+    }
+    println!("renderer: {renderer}");
+    println!(
+        "{} links, {} triangles, {} keyframes, {} sub-intervals examined",
+        body.links.len(),
+        env.triangles.len(),
+        keyframes.poses.len(),
+        result.counts.sub_intervals
+    );
+    match (result.time_of_contact, &result.link, result.contact_point) {
+        (Some(t), Some(link), Some(p)) => println!(
+            "first contact at time {t:.6} (keyframe intervals): {link} at ({:.4}, {:.4}, {:.4}), \
+             gap {:.2e} (tolerance {})",
+            p[0],
+            p[1],
+            p[2],
+            result.gap.unwrap_or(0.0),
+            result.tolerance
+        ),
+        _ => println!("no contact up to time {}", result.end_time),
+    }
+    if let Some(c) = check {
+        println!("reference: {c}");
+    }
+    Ok(())
+}
