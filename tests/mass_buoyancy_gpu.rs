@@ -30,7 +30,7 @@ fn flat_box_of_density_03_floats_level_at_draft_03_on_the_gpu() {
     let h = 0.25;
     let shape = Shape::new("box", &cuboid(Vec3::new(1.0, 1.0, h as f32), Vec3::ZERO)).unwrap();
     let mut solver = GpuSolver::new(&ctx, std::slice::from_ref(&shape), 1, RESOLUTION).unwrap();
-    let mut sim = Simulation::new(vec![shape], Water::default(), 0.01);
+    let mut sim = Simulation::new(vec![shape], Water::default().with_extra_damping(), 0.01);
     sim.add(
         0,
         300.0,
@@ -57,7 +57,7 @@ fn dense_box_sinks_and_light_sphere_floats_at_its_centre_on_the_gpu() {
         Shape::new("sphere", &uv_sphere(16, 32, |_| 0.5)).unwrap(),
     ];
     let mut solver = GpuSolver::new(&ctx, &shapes, 2, RESOLUTION).unwrap();
-    let mut sim = Simulation::new(shapes, Water::default(), 0.01);
+    let mut sim = Simulation::new(shapes, Water::default().with_extra_damping(), 0.01);
     sim.add(0, 1500.0, DVec3::new(-2.0, 0.0, 0.0), DQuat::IDENTITY);
     sim.add(1, 500.0, DVec3::new(2.0, 0.0, 0.1), DQuat::IDENTITY);
     settle(&mut sim, &mut solver, 600);

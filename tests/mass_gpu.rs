@@ -24,9 +24,11 @@ fn every_mass_shader_compiles() {
     let ctx = context();
     // The section 3.1 listing alone, as printed (a complete fragment shader).
     Program::new(&ctx, &[integrands::VERTEX], &[integrands::LISTING]).unwrap();
-    integrands::peel_program(&ctx).unwrap();
+    integrands::peel_program(&ctx, integrands::Integrands::All).unwrap();
+    integrands::peel_program(&ctx, integrands::Integrands::Eq4).unwrap();
     integrands::water_depth_program(&ctx).unwrap();
-    integrands::water_patch_program(&ctx).unwrap();
+    integrands::water_patch_program(&ctx, integrands::Integrands::All).unwrap();
+    integrands::water_patch_program(&ctx, integrands::Integrands::Eq4).unwrap();
     classic_gpgpu::mass::reduce::Accumulator::new(&ctx, 8, 8).unwrap();
     classic_gpgpu::mass::peel_end::PeelEnd::new(&ctx).unwrap();
     // The frame renderer's body, water and arrow programs.

@@ -469,6 +469,15 @@ pub struct BuoyancyArgs {
     /// Compute the submerged parts on the CPU (clip + Mirtich) instead of the GPU.
     #[arg(long)]
     pub cpu: bool,
+    /// Add a linear drag (2/s) and a rotational damping (1/s) to the paper's quadratic drag
+    /// (not in the paper: bodies settle in seconds instead of rocking on).
+    #[arg(long)]
+    pub extra_damping: bool,
+    /// Instead of one run: R rounds of --steps steps from the drop, the GPU solver and the
+    /// CPU solver in interleaved pairs of steps; print GPU/CPU steps per second (median
+    /// and spread over the rounds) and the load average.
+    #[arg(long, value_name = "R")]
+    pub race: Option<usize>,
     #[command(flatten)]
     pub peeling: PeelArgs,
     /// Print a per-pass table over all steps (GPU time by timestamp queries, wall time,
@@ -503,8 +512,14 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         }
     };
     let settings = args.peeling.settings()?;
+    if let Some(rounds) = args.race {
+        return race(args, ctx, rounds, settings, json_out);
+    }
     let mut sim = scene::paper_scene(args.bodies, args.dt).map_err(anyhow::Error::msg)?;
-    let mut warnings = scene::open_shape_warnings(&sim.shapes);
+    if args.extra_damping {
+        sim.water = sim.water.with_extra_damping();
+    }
+    let mut warnings: Vec<String> = Vec::new();
     let mut gpu = if args.cpu {
         None
     } else {
@@ -602,6 +617,11 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         "steps": args.steps,
         "resolution": args.resolution,
         "dt": args.dt,
+        "drag": if args.extra_damping {
+            "the paper's quadratic drag, plus a linear drag and a rotational damping"
+        } else {
+            "the paper's quadratic drag at the centre of buoyancy, at the body's velocity"
+        },
         "mean_step_ms": mean,
         "step_ms": step_ms,
         "steps_per_second": steps_per_s,
@@ -651,6 +671,45 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
             p.z,
             100.0 * b.submerged.volume / sim.shapes[b.shape].unit.volume
         );
+    }
+    Ok(())
+}
+
+/// `buoyancy --race R`: the GPU solver against the CPU one in interleaved pairs.
+fn race(
+    args: &BuoyancyArgs,
+    ctx: &Context,
+    rounds: usize,
+    settings: PeelSettings,
+    json_out: bool,
+) -> anyhow::Result<()> {
+    if rounds == 0 || rounds > 1000 {
+        bail!("--race {rounds}: must be between 1 and 1000 rounds");
+    }
+    if args.cpu || args.png_every.is_some() || args.profile {
+        bail!("--race runs both solvers and draws nothing: no --cpu, --png-every or --profile");
+    }
+    let setup = classic_gpgpu::mass::buoyancy::race::RaceSetup {
+        bodies: args.bodies,
+        resolution: args.resolution,
+        steps: args.steps,
+        rounds,
+        dt: args.dt,
+        extra_damping: args.extra_damping,
+    };
+    let race = classic_gpgpu::mass::buoyancy::race::run(ctx, setup, settings)
+        .map_err(anyhow::Error::msg)?;
+    if json_out {
+        let mut out = serde_json::to_value(&race)?;
+        out["renderer"] = json!(ctx.info().renderer_line());
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        println!("renderer        {}", ctx.info().renderer_line());
+        println!(
+            "scene           {} bodies at {}x{}, {} steps of {:.4} s from the drop",
+            args.bodies, args.resolution, args.resolution, args.steps, args.dt
+        );
+        println!("race            {}", race.in_words());
     }
     Ok(())
 }

@@ -17,6 +17,8 @@ pub const VERTEX: ShaderSource<'static> = shader!("glsl/mass/integrands.vert");
 pub const PRELUDE: ShaderSource<'static> = shader!("glsl/mass/peel_prelude.frag");
 /// The fragment shader of section 3.1, ported line for line.
 pub const LISTING: ShaderSource<'static> = shader!("cg_ports/mass_integrands.frag");
+/// Section 5.2's pass 1: eq. 4's four integrands alone (the listing's first target).
+pub const LISTING_EQ4: ShaderSource<'static> = shader!("glsl/mass/integrands_eq4.frag");
 /// Peel test + water test + the listing.
 pub const PEEL_MAIN: ShaderSource<'static> = shader!("glsl/mass/peel_main.frag");
 /// The fluid surface quad of one tile.
@@ -38,12 +40,43 @@ pub const CHANNELS: [&[&str]; TARGETS] = [
     &["Iyy", "Iyz", "Izz"],
 ];
 
+/// Which integrands the passes evaluate.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Integrands {
+    /// The ten of eq. 4 and 6 in three render targets: the section 3.1 listing (mass
+    /// properties).
+    #[default]
+    All,
+    /// Eq. 4's four (volume and first moments) in one target: what pass 1 of section 5.2
+    /// evaluates, all a buoyancy step needs (volume and centre of buoyancy).
+    Eq4,
+}
+
+impl Integrands {
+    /// The render targets the passes write.
+    pub fn targets(self) -> usize {
+        match self {
+            Integrands::All => TARGETS,
+            Integrands::Eq4 => 1,
+        }
+    }
+
+    /// The fragment program that evaluates them.
+    fn listing(self) -> ShaderSource<'static> {
+        match self {
+            Integrands::All => LISTING,
+            Integrands::Eq4 => LISTING_EQ4,
+        }
+    }
+}
+
 /// The program of the peel passes: the listing wrapped by the peel and water tests.
-pub fn peel_program(ctx: &Context) -> Result<Program, GlError> {
+pub fn peel_program(ctx: &Context, integrands: Integrands) -> Result<Program, GlError> {
     Program::new(
         ctx,
         &[VERTEX],
-        &[PRELUDE, LISTING, peel::PEEL_SNIPPET, PEEL_MAIN],
+        &[PRELUDE, integrands.listing(), peel::PEEL_SNIPPET, PEEL_MAIN],
     )
 }
 
@@ -53,8 +86,12 @@ pub fn water_depth_program(ctx: &Context) -> Result<Program, GlError> {
 }
 
 /// The program of the last pass of 5.2 (the fluid-surface patch `T_w`).
-pub fn water_patch_program(ctx: &Context) -> Result<Program, GlError> {
-    Program::new(ctx, &[WATER_VERTEX], &[PRELUDE, LISTING, WATER_PATCH])
+pub fn water_patch_program(ctx: &Context, integrands: Integrands) -> Result<Program, GlError> {
+    Program::new(
+        ctx,
+        &[WATER_VERTEX],
+        &[PRELUDE, integrands.listing(), WATER_PATCH],
+    )
 }
 
 /// A batch's bodies, posed and framed by the CPU, in one vertex and one index buffer, so

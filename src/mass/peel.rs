@@ -26,7 +26,7 @@
 
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
-use super::integrands::{self, Soup, TARGETS};
+use super::integrands::{self, Integrands, Soup};
 use super::peel_end::{self, PeelEnd};
 use super::reduce::{Accumulator, REDUCTION_PASS};
 use crate::gl::dump;
@@ -143,13 +143,16 @@ pub struct Peeler {
     /// the whole target (one body).
     block: Option<u32>,
     settings: PeelSettings,
+    /// Which integrands the passes evaluate (the ten of eq. 4 and 6, or eq. 4's four).
+    integrands: Integrands,
     /// When on, each peel's integrand targets are kept as floats (the viewer's insets and the
     /// dumps).
     capture: RefCell<Option<Vec<CapturedPeel>>>,
 }
 
 /// One peel's integrand targets read back: RGBA floats (the channels of
-/// [`integrands::CHANNELS`]), rows from the bottom, `width x height` of the whole target.
+/// [`integrands::CHANNELS`]), rows from the bottom, `width x height` of the whole target
+/// (one target when only eq. 4's integrands were evaluated).
 #[derive(Clone, Debug)]
 pub struct CapturedPeel {
     pub width: u32,
@@ -192,7 +195,8 @@ impl CapturedPeel {
 /// per channel, each channel on one scale for all the peels, and its exact values beside it as
 /// `peel<k>_target<i>.npy`.
 pub fn write_peel_pictures(dir: &Path, peels: &[CapturedPeel]) -> Result<(), GlError> {
-    for target in 0..TARGETS {
+    let targets = peels.first().map_or(0, |p| p.targets.len());
+    for target in 0..targets {
         let names = integrands::CHANNELS[target];
         let scales: Vec<Scale> = (0..names.len())
             .map(|c| CapturedPeel::scale(peels, target, c))
@@ -228,14 +232,15 @@ const WATER_PATCH_PASS: &str = "mass: pass n+1, fluid surface patch";
 const CLEAR_PASS: &str = "mass: clear a peel's targets";
 
 impl Peeler {
-    /// Targets of `width x height`, reduced per `block x block` tile (`None`: as a whole).
+    /// Targets of `width x height`, reduced per `block x block` tile (`None`: as a whole),
+    /// for the ten integrals of eq. 4 and 6.
     pub fn new(
         ctx: &Context,
         width: u32,
         height: u32,
         block: Option<u32>,
     ) -> Result<Peeler, GlError> {
-        Self::with_sum_format(ctx, width, height, block, TextureFormat::Rgba32F)
+        Peeler::with_integrands(ctx, width, height, block, Integrands::All)
     }
 
     /// The same with the running sums stored as `sum_format` ([`Accumulator::with_format`]).
@@ -246,11 +251,35 @@ impl Peeler {
         block: Option<u32>,
         sum_format: TextureFormat,
     ) -> Result<Peeler, GlError> {
-        let accumulator = Accumulator::with_format(ctx, width, height, sum_format)?;
+        Peeler::with(ctx, width, height, block, Integrands::All, sum_format)
+    }
+
+    /// [`Peeler::new`] evaluating `integrands` (eq. 4's four need one render target).
+    pub fn with_integrands(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        block: Option<u32>,
+        integrands: Integrands,
+    ) -> Result<Peeler, GlError> {
+        Peeler::with(ctx, width, height, block, integrands, TextureFormat::Rgba32F)
+    }
+
+    /// A peeler evaluating `integrands`, its running sums stored as `sum_format`.
+    pub fn with(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        block: Option<u32>,
+        integrands: Integrands,
+        sum_format: TextureFormat,
+    ) -> Result<Peeler, GlError> {
+        let targets = integrands.targets();
+        let accumulator = Accumulator::with(ctx, width, height, targets, sum_format)?;
         let layers = [
-            peel_layer(ctx, width, height, "mass: peel 1")?,
-            peel_layer(ctx, width, height, "mass: peels (even)")?,
-            peel_layer(ctx, width, height, "mass: peels (odd)")?,
+            peel_layer(ctx, width, height, targets, "mass: peel 1")?,
+            peel_layer(ctx, width, height, targets, "mass: peels (even)")?,
+            peel_layer(ctx, width, height, targets, "mass: peels (odd)")?,
         ];
         let water_depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
         let sums: Vec<&Texture> = accumulator.sums().iter().collect();
@@ -262,9 +291,9 @@ impl Peeler {
         )?;
         Ok(Peeler {
             ctx: ctx.clone(),
-            peel_program: integrands::peel_program(ctx)?,
+            peel_program: integrands::peel_program(ctx, integrands)?,
             water_depth_program: integrands::water_depth_program(ctx)?,
-            water_patch_program: integrands::water_patch_program(ctx)?,
+            water_patch_program: integrands::water_patch_program(ctx, integrands)?,
             water: Framebuffer::new(
                 ctx,
                 "mass: fluid surface depth T_dw",
@@ -282,6 +311,7 @@ impl Peeler {
             accumulator,
             block,
             settings: PeelSettings::default(),
+            integrands,
             capture: RefCell::new(None),
         })
     }
@@ -297,6 +327,11 @@ impl Peeler {
 
     pub fn settings(&self) -> PeelSettings {
         self.settings
+    }
+
+    /// Which integrands the passes evaluate.
+    pub fn integrands(&self) -> Integrands {
+        self.integrands
     }
 
     /// A profile scope named `name` around `work` (`gl::profile`; draws are recorded under
@@ -344,7 +379,7 @@ impl Peeler {
         if let Some(level) = water {
             self.water_patch_pass(jobs, level)?;
         }
-        let decode = |sums: &[[[f64; 4]; TARGETS]]| -> Vec<VolumeIntegrals> {
+        let decode = |sums: &[[[f64; 4]; integrands::TARGETS]]| -> Vec<VolumeIntegrals> {
             jobs.iter()
                 .map(|job| integrands::decode(sums[self.tile_index(job)], &job.framing))
                 .collect()
@@ -433,8 +468,9 @@ impl Peeler {
         {
             let mut slot = self.kept.borrow_mut();
             if slot.is_none() {
-                let first = peel_layer(&self.ctx, self.width, self.height, "mass: T_1")?;
-                let colors: Vec<Texture> = (0..TARGETS)
+                let targets = self.integrands.targets();
+                let first = peel_layer(&self.ctx, self.width, self.height, targets, "mass: T_1")?;
+                let colors: Vec<Texture> = (0..targets)
                     .map(|_| {
                         Texture::new_2d(&self.ctx, self.width, self.height, TextureFormat::Rgba32F)
                     })
@@ -453,8 +489,14 @@ impl Peeler {
             let kept = slot.as_mut().expect("made above");
             while kept.layers.len() <= layer {
                 let name = format!("mass: T_{}", kept.layers.len() + 1);
-                kept.layers
-                    .push(peel_layer(&self.ctx, self.width, self.height, &name)?);
+                let targets = self.integrands.targets();
+                kept.layers.push(peel_layer(
+                    &self.ctx,
+                    self.width,
+                    self.height,
+                    targets,
+                    &name,
+                )?);
             }
         }
         Ok(LayerTarget::Kept(Ref::map(self.kept.borrow(), |k| {
@@ -552,7 +594,8 @@ impl Peeler {
                 self.accumulator.add_peel(target.colors(), depth, &tiles)?;
             }
             if let Some(peels) = self.capture.borrow_mut().as_mut() {
-                let targets = target.colors()[..TARGETS]
+                let targets = target
+                    .colors()
                     .iter()
                     .map(|t| t.download_f32())
                     .collect::<Result<_, _>>()?;
@@ -685,11 +728,18 @@ impl std::ops::Deref for LayerTarget<'_> {
     }
 }
 
-/// Three RGBA32F integrand targets and the depth `T_d(k)` (32-bit float, as the peel test
-/// compares fragment depths with it exactly), with a stencil: pass 1's faces-down bit, the
-/// later passes' fragment counts ([`super::peel_end`]).
-fn peel_layer(ctx: &Context, width: u32, height: u32, name: &str) -> Result<Framebuffer, GlError> {
-    let colors: Vec<Texture> = (0..TARGETS)
+/// `targets` RGBA32F integrand targets (3, or 1 for eq. 4 alone) and the depth `T_d(k)`
+/// (32-bit float, as the peel test compares fragment depths with it exactly), with a
+/// stencil: pass 1's faces-down bit, the later passes' fragment counts
+/// ([`super::peel_end`]).
+fn peel_layer(
+    ctx: &Context,
+    width: u32,
+    height: u32,
+    targets: usize,
+    name: &str,
+) -> Result<Framebuffer, GlError> {
+    let colors: Vec<Texture> = (0..targets)
         .map(|_| Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F))
         .collect::<Result<_, _>>()?;
     let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32FStencil8)?;

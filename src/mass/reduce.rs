@@ -15,10 +15,13 @@
 use super::integrands::TARGETS;
 use crate::gl::reduce::passes_for;
 use crate::gl::{
-    Blend, Context, DrawState, Framebuffer, GlError, Program, Rect, Texture, TextureFormat,
+    Blend, Context, DrawState, Framebuffer, GlError, Program, Rect, ShaderSource, Texture,
+    TextureFormat,
 };
 use crate::shader;
 use glam::IVec2;
+use std::cell::RefCell;
+use std::collections::BTreeMap;
 
 /// The name of the reduction pass, whose sums are what the GPU path reads back.
 pub const REDUCTION_PASS: &str = "mass: sum reduction";
@@ -38,18 +41,41 @@ pub fn fan_ins(bits: u32) -> Vec<u32> {
 
 /// The running sums over peels, and the reduction.
 pub struct Accumulator {
+    ctx: Context,
+    /// How many integrand targets (3: eq. 4 and 6; 1: eq. 4).
+    targets: usize,
     program: Program,
-    /// sum0..2.
+    /// sum0..2 (or sum0 alone).
     target: Framebuffer,
-    reduce_program: Program,
+    /// The reduction program of each fan-in used so far (compiled in: made on first use).
+    reduce_programs: RefCell<BTreeMap<u32, Program>>,
     /// Half-size targets for the reduction's ping-pong (three RGBA32F each; every pass at
     /// least halves).
     ping_pong: [Framebuffer; 2],
 }
 
+/// The generated `#define` lines the accumulation and reduction shaders are compiled after.
+fn defines(targets: usize, fan_in: Option<u32>) -> String {
+    let mut s = format!("#define TARGETS {targets}\n");
+    if let Some(k) = fan_in {
+        s += &format!("#define FAN_IN {k}\n");
+    }
+    s
+}
+
+/// A rectangle program of `file` compiled after `defines`.
+fn program_with(ctx: &Context, defines: &str, file: ShaderSource) -> Result<Program, GlError> {
+    let header = ShaderSource {
+        name: "mass: target count and fan-in (generated)",
+        source: defines,
+    };
+    Program::rect(ctx, &[header, file])
+}
+
 impl Accumulator {
+    /// Running sums of the three targets of eq. 4 and 6.
     pub fn new(ctx: &Context, width: u32, height: u32) -> Result<Accumulator, GlError> {
-        Self::with_format(ctx, width, height, TextureFormat::Rgba32F)
+        Accumulator::with(ctx, width, height, TARGETS, TextureFormat::Rgba32F)
     }
 
     /// Running sums stored as `format`: RGBA16F is what a GeForce 7800 could blend into
@@ -61,30 +87,82 @@ impl Accumulator {
         height: u32,
         format: TextureFormat,
     ) -> Result<Accumulator, GlError> {
-        let sums: Vec<Texture> = (0..TARGETS)
+        Accumulator::with(ctx, width, height, TARGETS, format)
+    }
+
+    /// Running sums of `targets` (1 or 3) integrand targets.
+    pub fn with_targets(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        targets: usize,
+    ) -> Result<Accumulator, GlError> {
+        Accumulator::with(ctx, width, height, targets, TextureFormat::Rgba32F)
+    }
+
+    /// Running sums of `targets` (1 or 3) integrand targets, stored as `format`.
+    pub fn with(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        targets: usize,
+        format: TextureFormat,
+    ) -> Result<Accumulator, GlError> {
+        if targets != 1 && targets != TARGETS {
+            return Err(GlError::Invalid(format!(
+                "mass: {targets} integrand targets (1 or {TARGETS})"
+            )));
+        }
+        let sums: Vec<Texture> = (0..targets)
             .map(|_| Texture::new_2d(ctx, width, height, format))
             .collect::<Result<_, _>>()?;
         let all: Vec<&Texture> = sums.iter().collect();
         let half = |name| -> Result<Framebuffer, GlError> {
             let (w, h) = (width.div_ceil(2).max(1), height.div_ceil(2).max(1));
-            let t: Vec<Texture> = (0..TARGETS)
+            let t: Vec<Texture> = (0..targets)
                 .map(|_| Texture::new_2d(ctx, w, h, TextureFormat::Rgba32F))
                 .collect::<Result<_, _>>()?;
             Framebuffer::new(ctx, name, &t.iter().collect::<Vec<_>>(), None)
         };
         Ok(Accumulator {
-            program: Program::rect(ctx, &[shader!("glsl/mass/accumulate.frag")])?,
+            ctx: ctx.clone(),
+            targets,
+            program: program_with(
+                ctx,
+                &defines(targets, None),
+                shader!("glsl/mass/accumulate.frag"),
+            )?,
             target: Framebuffer::new(ctx, "mass: sums over peels", &all, None)?,
-            reduce_program: Program::rect(ctx, &[shader!("glsl/mass/reduce_sum.frag")])?,
+            reduce_programs: RefCell::new(BTreeMap::new()),
             ping_pong: [half("mass: reduction ping")?, half("mass: reduction pong")?],
         })
+    }
+
+    /// How many integrand targets it sums.
+    pub fn targets(&self) -> usize {
+        self.targets
+    }
+
+    /// The reduction program summing `fan_in x fan_in` blocks, compiled on first use.
+    fn reduce_program(&self, fan_in: u32) -> Result<std::cell::Ref<'_, Program>, GlError> {
+        if !self.reduce_programs.borrow().contains_key(&fan_in) {
+            let program = program_with(
+                &self.ctx,
+                &defines(self.targets, Some(fan_in)),
+                shader!("glsl/mass/reduce_sum.frag"),
+            )?;
+            self.reduce_programs.borrow_mut().insert(fan_in, program);
+        }
+        Ok(std::cell::Ref::map(self.reduce_programs.borrow(), |m| {
+            &m[&fan_in]
+        }))
     }
 
     pub fn clear(&self) -> Result<(), GlError> {
         self.target.clear_colors([0.0; 4])
     }
 
-    /// Adds one peel (`peel[0..3]` integrands) over the given tiles (the bodies that drew
+    /// Adds one peel (`peel[0..targets]` integrands) over the given tiles (the bodies that drew
     /// something in this peel; the rest of the target is left alone, which is most of it
     /// in the deep peels).
     pub fn add_peel(
@@ -98,17 +176,17 @@ impl Accumulator {
             blend: Some(Blend::Add),
             ..DrawState::default()
         })
-        .texture("u_peel_depth", depth)
-        .texture("u_peel0", &peel[0])
-        .texture("u_peel1", &peel[1])
-        .texture("u_peel2", &peel[2]);
+        .texture("u_peel_depth", depth);
+        for (k, texture) in peel.iter().take(self.targets).enumerate() {
+            pass.texture(&format!("u_peel{k}"), texture);
+        }
         for &tile in tiles {
             pass.draw_rect(tile)?;
         }
         Ok(())
     }
 
-    /// The running sums' three textures (the water patch adds into them).
+    /// The running sums' textures (the water patch adds into them).
     pub fn sums(&self) -> &[Texture] {
         self.target.colors()
     }
@@ -118,10 +196,11 @@ impl Accumulator {
         self.reduce_from(&self.target, block)
     }
 
-    /// The three sums of every `block x block` tile (row by row from the bottom), or of the
-    /// whole target when `block` is `None`, of `source` (three RGBA32F targets of the
-    /// accumulator's size): ping-pong passes of [`fan_ins`] that reduce the three targets
-    /// at once (MRT), then one small read per target.
+    /// The sums of every `block x block` tile (row by row from the bottom), or of the
+    /// whole target when `block` is `None`, of `source` (the accumulator's count of RGBA32F
+    /// targets, of its size): ping-pong passes of [`fan_ins`] that reduce the targets at
+    /// once (MRT), then one small read per target. Targets the accumulator does not sum
+    /// (eq. 6's, with one target) read as zero.
     pub fn reduce_from(
         &self,
         source_target: &Framebuffer,
@@ -141,13 +220,13 @@ impl Accumulator {
             } else {
                 &self.ping_pong[1 - index]
             };
-            let mut pass = self.ping_pong[index].pass(&self.reduce_program, REDUCTION_PASS)?;
+            let program = self.reduce_program(fan_in)?;
+            let mut pass = self.ping_pong[index].pass(&program, REDUCTION_PASS)?;
             pass.viewport(Rect::sized(out_w, out_h))
-                .texture("u_source0", source.color(0))
-                .texture("u_source1", source.color(1))
-                .texture("u_source2", source.color(2))
-                .uniform("u_source_size", IVec2::new(w as i32, h as i32))
-                .uniform("u_fan_in", fan_in as i32);
+                .uniform("u_source_size", IVec2::new(w as i32, h as i32));
+            for k in 0..self.targets {
+                pass.texture(&format!("u_source{k}"), source.color(k));
+            }
             pass.draw_full()?;
             (w, h) = (out_w, out_h);
             index = 1 - index;
@@ -157,11 +236,13 @@ impl Accumulator {
         } else {
             &self.ping_pong[1 - index]
         };
-        let per_target: Vec<Vec<f32>> = (0..TARGETS)
+        let per_target: Vec<Vec<f32>> = (0..self.targets)
             .map(|i| result.read_f32(i, Rect::sized(w, h)))
             .collect::<Result<_, _>>()?;
         let texel = |t: usize, k: usize| -> [f64; 4] {
-            std::array::from_fn(|c| per_target[t][4 * k + c] as f64)
+            per_target.get(t).map_or([0.0; 4], |sums| {
+                std::array::from_fn(|c| sums[4 * k + c] as f64)
+            })
         };
         Ok((0..(w * h) as usize)
             .map(|k| [texel(0, k), texel(1, k), texel(2, k)])

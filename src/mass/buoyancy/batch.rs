@@ -8,7 +8,7 @@ use super::forces::{Submerged, Water};
 use super::simulation::{Body, Shape, SubmergedSolver};
 use crate::gl::{profile, Context, GlError, Rect};
 use crate::mass::framing::Framing;
-use crate::mass::integrands::{Placement, Soup};
+use crate::mass::integrands::{Integrands, Placement, Soup};
 use crate::mass::peel::{Job, PeelSettings, Peeler};
 use glam::DVec3;
 
@@ -28,12 +28,26 @@ pub struct GpuSolver {
 }
 
 impl GpuSolver {
-    /// Targets for up to `capacity` bodies of `shapes` at `resolution` x `resolution` each.
+    /// Targets for up to `capacity` bodies of `shapes` at `resolution` x `resolution` each,
+    /// evaluating eq. 4's four integrands, as pass 1 of section 5.2 does: the volume and
+    /// the centre of buoyancy are all a step needs.
     pub fn new(
         ctx: &Context,
         shapes: &[Shape],
         capacity: usize,
         resolution: u32,
+    ) -> Result<GpuSolver, GlError> {
+        GpuSolver::with_integrands(ctx, shapes, capacity, resolution, Integrands::Eq4)
+    }
+
+    /// [`GpuSolver::new`] evaluating `integrands` (all ten, for pictures of every integrand
+    /// of each peel).
+    pub fn with_integrands(
+        ctx: &Context,
+        shapes: &[Shape],
+        capacity: usize,
+        resolution: u32,
+        integrands: Integrands,
     ) -> Result<GpuSolver, GlError> {
         let block = resolution.next_power_of_two();
         let columns = (capacity.max(1) as f64).sqrt().ceil() as u32;
@@ -46,7 +60,13 @@ impl GpuSolver {
             largest(|s| s.mesh.triangles.len()),
         )?;
         Ok(GpuSolver {
-            peeler: Peeler::new(ctx, columns * block, rows * block, Some(block))?,
+            peeler: Peeler::with_integrands(
+                ctx,
+                columns * block,
+                rows * block,
+                Some(block),
+                integrands,
+            )?,
             soup,
             resolution,
             block,

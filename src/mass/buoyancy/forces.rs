@@ -1,9 +1,13 @@
 //! The forces of section 5: gravity at the centre of mass, Archimedes' buoyant force
-//! `ρ_w g V` at the centre of buoyancy [eq. 7], a viscous drag at the centre of buoyancy
-//! proportional to the submerged volume and the squared velocity [5.3], plus a linear term
-//! and a rotational damping proportional to the submerged part. The quadratic drag alone
-//! lets small oscillations die out only as 1/t; real floating bodies also lose energy to
-//! the waves they radiate, which still water does not model, so the linear term stands in.
+//! `ρ_w g V` at the centre of buoyancy [eq. 7], and a viscous drag at the centre of buoyancy
+//! proportional to the submerged volume and the square of the body velocity [5.3] (the
+//! velocity of the centre of mass: "the body velocity"). That is all the paper models, and
+//! the default.
+//!
+//! An option adds a linear drag and a rotational damping proportional to the submerged
+//! part ([`Water::with_extra_damping`]): the quadratic drag alone lets small oscillations
+//! die out only as 1/t; real floating bodies also lose energy to the waves they radiate,
+//! which still water does not model, and the linear term stands in for that.
 
 use super::rigid_body::{RigidBody, Wrench};
 use glam::DVec3;
@@ -18,12 +22,38 @@ pub struct Water {
     pub density: f64,
     /// `g` (m/s²), acting along −z.
     pub gravity: f64,
-    /// Drag coefficient `c` (1/m): `F = −c ρ_w V_sub |v_B| v_B`.
+    /// Drag coefficient `c` (1/m): `F = −c ρ_w V_sub |v| v` at the centre of buoyancy, `v`
+    /// the velocity of the centre of mass.
     pub drag: f64,
-    /// Linear drag rate `k` (1/s): `F = −k ρ_w V_sub v_B`.
+    /// Linear drag rate `k` (1/s): `F = −k ρ_w V_sub v` (not in the paper: 0 unless
+    /// [`Water::with_extra_damping`]).
     pub linear_drag: f64,
-    /// Rotational damping rate (1/s) when fully submerged: `τ = −k (V_sub / V) I ω`.
+    /// Rotational damping rate (1/s) when fully submerged: `τ = −k (V_sub / V) I ω` (not
+    /// in the paper: 0 unless [`Water::with_extra_damping`]).
     pub angular_damping: f64,
+}
+
+/// The extra damping's linear drag rate (1/s).
+pub const EXTRA_LINEAR_DRAG: f64 = 2.0;
+/// The extra damping's rotational damping rate (1/s).
+pub const EXTRA_ANGULAR_DAMPING: f64 = 1.0;
+
+impl Water {
+    /// The same water with the linear drag and rotational damping the paper does not
+    /// model ([`EXTRA_LINEAR_DRAG`], [`EXTRA_ANGULAR_DAMPING`]): bodies settle in seconds
+    /// instead of rocking on.
+    pub fn with_extra_damping(self) -> Self {
+        Self {
+            linear_drag: EXTRA_LINEAR_DRAG,
+            angular_damping: EXTRA_ANGULAR_DAMPING,
+            ..self
+        }
+    }
+
+    /// Whether any damping beyond the paper's quadratic drag is on.
+    pub fn has_extra_damping(&self) -> bool {
+        self.linear_drag != 0.0 || self.angular_damping != 0.0
+    }
 }
 
 impl Default for Water {
@@ -33,8 +63,8 @@ impl Default for Water {
             density: 1000.0,
             gravity: 9.81,
             drag: 1.0,
-            linear_drag: 2.0,
-            angular_damping: 1.0,
+            linear_drag: 0.0,
+            angular_damping: 0.0,
         }
     }
 }
@@ -47,7 +77,8 @@ pub struct Submerged {
     pub center: DVec3,
 }
 
-/// Gravity + buoyancy + drag + damping on `body` of total volume `body_volume`.
+/// Gravity + buoyancy + drag (+ the optional damping) on `body` of total volume
+/// `body_volume`.
 pub fn wrench(body: &RigidBody, body_volume: f64, sub: Submerged, water: &Water) -> Wrench {
     let gravity = Wrench {
         force: DVec3::new(0.0, 0.0, -body.mass * water.gravity),
@@ -57,8 +88,10 @@ pub fn wrench(body: &RigidBody, body_volume: f64, sub: Submerged, water: &Water)
         return gravity;
     }
     let buoyant = DVec3::new(0.0, 0.0, water.density * water.gravity * sub.volume);
-    let v_b = body.point_velocity(sub.center);
-    let drag = -water.density * sub.volume * (water.drag * v_b.length() + water.linear_drag) * v_b;
+    // [5.3] "proportional to the submerged volume and the square of the body velocity",
+    // acting at the centre of buoyancy: the velocity of the body (its centre of mass).
+    let v = body.velocity;
+    let drag = -water.density * sub.volume * (water.drag * v.length() + water.linear_drag) * v;
     let fraction = (sub.volume / body_volume).clamp(0.0, 1.0);
     let damping = Wrench {
         force: DVec3::ZERO,

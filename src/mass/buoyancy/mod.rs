@@ -6,15 +6,17 @@
 //! |---|---|
 //! | n + 2 passes for all bodies, as tiles of one target | [`batch`] (on [`crate::mass::peel`]) |
 //! | the CPU reference: clip + Mirtich | [`analytic`] |
-//! | gravity, buoyancy [eq. 7], drag, damping | [`forces`] |
+//! | gravity, buoyancy [eq. 7], drag (optional damping) | [`forces`] |
 //! | rigid-body state and integrator | [`rigid_body`] |
 //! | the simulation loop | [`simulation`] |
 //! | the scene of 5.3 / Fig. 9 | [`scene`] |
 //! | frames as PNG (Fig. 9, 10) | [`render`] |
+//! | the GPU solver against the CPU one, interleaved | [`race`] |
 
 pub mod analytic;
 pub mod batch;
 pub mod forces;
+pub mod race;
 pub mod render;
 pub mod rigid_body;
 pub mod scene;

@@ -105,6 +105,19 @@ impl FrameRenderer {
         opengl::perspective(0.8, aspect, 0.1, 10.0 * extent) * view
     }
 
+    /// Draws the current state into the renderer's own target and waits until it is drawn:
+    /// one frame of an interactive run (the bodies with their force arrows, and the water).
+    pub fn draw_frame(&self, sim: &Simulation) -> Result<(), GlError> {
+        self.draw(sim, &self.target, Turn::default())?;
+        self.ctx.finish_all();
+        Ok(())
+    }
+
+    /// The size of the renderer's own target.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
     /// Draws the current state and writes it to `path`.
     pub fn write_png(&self, sim: &Simulation, path: &Path) -> Result<(), GlError> {
         self.draw(sim, &self.target, Turn::default())?;

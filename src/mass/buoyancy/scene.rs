@@ -6,12 +6,11 @@
 //! handle pierce the body), so neither its analytic mass properties nor its peels can be
 //! trusted (its GPU volume is 6.4% off the analytic one). The scene's teapot is therefore
 //! closed: Newell's lid, rim, body and Crow's bottom as one surface of revolution, the
-//! lid's edge joined to the rim, without the handle and spout. Shapes are checked for
-//! holes, and [`open_shape_warnings`] names any open one.
+//! lid's edge joined to the rim, without the handle and spout. The shapes are fixed and
+//! closed (a test checks it), so a run has no open shape to warn about.
 
 use super::forces::Water;
 use super::simulation::{Shape, Simulation};
-use crate::mass::surface;
 use crate::mesh::{self, Mesh};
 use glam::{DQuat, DVec2, DVec3, Vec3};
 
@@ -121,24 +120,6 @@ pub fn closed_teapot(around: usize, per_segment: usize) -> Mesh {
         triangles.push([ring(last, j), bottom, ring(last, j + 1)]);
     }
     Mesh::new(positions, triangles)
-}
-
-/// A warning for every shape whose surface has holes or inconsistent edges (its mass
-/// properties, analytic or by peeling, are then unreliable).
-pub fn open_shape_warnings(shapes: &[Shape]) -> Vec<String> {
-    shapes
-        .iter()
-        .filter_map(|s| {
-            let r = surface::check(&s.mesh);
-            (!r.is_closed()).then(|| {
-                format!(
-                    "shape {}: the mesh is open ({} open edges, {} inconsistent): its \
-                     buoyancy is unreliable",
-                    s.name, r.open_edges, r.inconsistent_edges
-                )
-            })
-        })
-        .collect()
 }
 
 /// `bodies` bodies (kinds in turn, ten rows of five per fifty) on a grid 3 m apart, dropped

@@ -5,7 +5,7 @@
 use crate::gl::profile::ProfileRow;
 use crate::gl::{profile, Context};
 use crate::mass::buoyancy::simulation::{AnalyticSolver, Simulation, SubmergedSolver};
-use crate::mass::buoyancy::{batch::GpuSolver, render::FrameRenderer, scene};
+use crate::mass::buoyancy::{batch::GpuSolver, race, render::FrameRenderer, scene};
 use crate::mass::gpu::GpuMass;
 use crate::mass::peel::{PeelOrder, PeelSettings};
 use crate::mass::{analytic, models, surface, MassProperties};
@@ -67,6 +67,8 @@ pub struct SpeedTargets {
     pub buoyancy_cpu_steps_per_second: f64,
     /// Target: at least this.
     pub buoyancy_target: f64,
+    /// The ratio's rounds: interleaved pairs of steps, a ratio per round, the load.
+    pub buoyancy_race: crate::mass::buoyancy::race::Race,
 }
 
 /// One paper object at every resolution.
@@ -139,12 +141,21 @@ pub struct BuoyancyRun {
     pub settle_steps: usize,
     pub mean_step_ms: f64,
     pub steps_per_second: f64,
+    /// Frames per second: a step and the drawing of the scene ([`BuoyancyRun::frame_size`]:
+    /// every body shaded, its gravity and buoyancy arrows, the water), one step per frame
+    /// (dt = 1/60 s): what the paper's 16 frames/s compares with.
+    pub frames_per_second: f64,
+    pub frame_size: (u32, u32),
+    /// Share of the frame time in the buoyancy computation (the paper: over 90%).
     pub buoyancy_share: f64,
+    /// Steps whose peeling stopped at the peel limit with fragments left, and the limit.
+    pub truncated_steps: usize,
+    pub max_peels_limit: usize,
     pub max_peels: usize,
     pub mean_peels: f64,
     pub cpu_solver_steps_per_second: f64,
-    /// Steps per second of each of `RATE_PARTS` (3) consecutive parts of the timed steps: the
-    /// runs the interactive-rate claim is judged on.
+    /// Frames per second of each of `RATE_PARTS` (3) consecutive parts of the timed frames:
+    /// the runs the interactive-rate claim is judged on.
     pub rate_runs: Spread,
     /// The machine's load when the timed steps ended.
     pub load: Option<Load>,
@@ -191,7 +202,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let peel_orders = peel_orders(opts.gl, &bunny, opts.runs(QUICK_RUNS))?;
     let profile_bunny_64 = profile_bunny(opts.gl, &bunny)?;
     let scene = measure_scene(opts, steps)?;
-    let targets = speed_targets(opts, &objects, &scene)?;
+    let targets = speed_targets(opts, &objects)?;
     Ok(Paper4Results {
         renderer: opts.gl.info().renderer_line(),
         quick: opts.quick,
@@ -255,12 +266,9 @@ fn profile_bunny(ctx: &Context, bunny: &Mesh) -> anyhow::Result<Vec<ProfileRow>>
 }
 
 /// The speed targets' ratios: the bunny at 64x64 against Mirtich (from the Fig. 5 rows), and the
-/// first steps of the 50-body scene (drop and plunge included) with each solver.
-fn speed_targets(
-    opts: &BenchOptions,
-    objects: &[ObjectRun],
-    scene: &SceneRuns,
-) -> anyhow::Result<SpeedTargets> {
+/// first steps of the 50-body scene (drop and plunge included), the two solvers in
+/// interleaved pairs ([`race`]).
+fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<SpeedTargets> {
     let bunny = objects
         .iter()
         .find(|o| o.object == "bunny")
@@ -271,17 +279,25 @@ fn speed_targets(
         .find(|r| r.resolution == 64)
         .map(|r| r.gpu_wall_ms / bunny.analytic_ms)
         .ok_or_else(|| anyhow::anyhow!("paper 4: no 64x64 run of the bunny"))?;
-    let steps = if opts.quick { 30 } else { 120 };
-    let rate = |run: &StepTimes| steps as f64 * 1e3 / run.step_ms[..steps].iter().sum::<f64>();
-    let (gpu_rate, cpu_rate) = (rate(&scene.gpu), rate(&scene.cpu));
+    let (steps, rounds) = if opts.quick { (30, 1) } else { (120, 3) };
+    let setup = race::RaceSetup {
+        bodies: 50,
+        resolution: 32,
+        steps,
+        rounds,
+        dt: 1.0 / 60.0,
+        extra_damping: false,
+    };
+    let race = race::run(opts.gl, setup, PeelSettings::default()).map_err(anyhow::Error::msg)?;
     Ok(SpeedTargets {
         mass_bunny_64_gpu_over_analytic: at64,
         mass_target: 5.0,
-        buoyancy_gpu_over_cpu: gpu_rate / cpu_rate,
+        buoyancy_gpu_over_cpu: race.gpu_over_cpu.median,
         buoyancy_steps: steps,
-        buoyancy_gpu_steps_per_second: gpu_rate,
-        buoyancy_cpu_steps_per_second: cpu_rate,
+        buoyancy_gpu_steps_per_second: race.gpu_steps_per_second,
+        buoyancy_cpu_steps_per_second: race.cpu_steps_per_second,
         buoyancy_target: 1.0,
+        buoyancy_race: race,
     })
 }
 
@@ -384,30 +400,32 @@ fn break_even(analytic_ms: f64, rows: &[ResolutionRow]) -> String {
     format!("GPU faster at every resolution (up to {last}x{last})")
 }
 
-/// The 50-body scene, run once with each solver from the drop: the GPU's timed steps
-/// (after the settling ones), the speed targets' first steps, the per-pass profile and
-/// the batching gain all come from these two runs.
+/// The 50-body scene, run once with each solver from the drop: the GPU's timed frames
+/// (after the settling steps; each a step and the scene drawn), the CPU solver's steps, the
+/// per-pass profile and the batching gain all come from these two runs.
 struct SceneRuns {
     run: BuoyancyRun,
-    gpu: StepTimes,
-    cpu: StepTimes,
     profile: Vec<ProfileRow>,
 }
 
-/// Every step of one run: wall clock of the step and of its buoyancy half (ms), peels.
+/// Every step of one run: wall clock of the step, of its buoyancy half and of the whole
+/// frame (the step and, when drawn, the scene's drawing) (ms), peels.
 #[derive(Default)]
 struct StepTimes {
     step_ms: Vec<f64>,
     buoyancy_ms: Vec<f64>,
+    frame_ms: Vec<f64>,
     peels: Vec<usize>,
 }
 
-/// `total` steps of the paper scene with `solver` (`peels` reads its last step's peels).
+/// `total` steps of the paper scene with `solver` (`peels` reads its last step's peels),
+/// each followed by a drawing of the scene by `draw` when given (one step per frame).
 fn run_scene<S: SubmergedSolver>(
     sim: &mut Simulation,
     solver: &mut S,
     total: usize,
     peels: impl Fn(&S) -> usize,
+    draw: Option<&FrameRenderer>,
     bar: &indicatif::ProgressBar,
 ) -> anyhow::Result<StepTimes> {
     let mut times = StepTimes::default();
@@ -419,11 +437,18 @@ fn run_scene<S: SubmergedSolver>(
         times.buoyancy_ms.push(start.elapsed().as_secs_f64() * 1e3);
         sim.apply(&subs);
         times.step_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        if let Some(renderer) = draw {
+            renderer.draw_frame(sim)?;
+        }
+        times.frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
         times.peels.push(peels(solver));
         bar.inc(1);
     }
     Ok(times)
 }
+
+/// The size of the frames drawn in the timed run (the CLI's `--png-every` frames).
+pub const FRAME_SIZE: (u32, u32) = (640, 400);
 
 /// The buoyancy scene: mean step time, the buoyancy share, peels, against the CPU solver.
 fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns> {
@@ -438,10 +463,18 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     bar.set_message("buoyancy, 50 bodies");
     let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
     let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
-    let gpu = run_scene(&mut sim, &mut solver, total, |s| s.last_peels, &bar)?;
+    let renderer = FrameRenderer::new(ctx, &sim.shapes, FRAME_SIZE.0, FRAME_SIZE.1)?;
+    let gpu = run_scene(
+        &mut sim,
+        &mut solver,
+        total,
+        |s| s.last_peels,
+        Some(&renderer),
+        &bar,
+    )?;
     let load = Load::now();
     let mut cpu_sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-    let cpu = run_scene(&mut cpu_sim, &mut AnalyticSolver, total, |_| 0, &bar)?;
+    let cpu = run_scene(&mut cpu_sim, &mut AnalyticSolver, total, |_| 0, None, &bar)?;
     bar.finish_and_clear();
     // Ten more steps, profiled per pass, of the bodies now in the water.
     profile::start(ctx);
@@ -451,6 +484,7 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     let profile = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
     let timed = |v: &[f64]| v[settle..].iter().sum::<f64>();
     let total_ms = timed(&gpu.step_ms);
+    let frames_ms = timed(&gpu.frame_ms);
     let batching = batching_gain(ctx, &sim, &mut solver, opts.runs(5))?;
     let frame = "buoyancy_frame.png";
     FrameRenderer::new(ctx, &sim.shapes, 800, 500)?.write_png(&sim, &opts.out_dir.join(frame))?;
@@ -462,23 +496,22 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
         settle_steps: settle,
         mean_step_ms: total_ms / steps as f64,
         steps_per_second: 1e3 * steps as f64 / total_ms,
-        buoyancy_share: timed(&gpu.buoyancy_ms) / total_ms,
+        frames_per_second: 1e3 * steps as f64 / frames_ms,
+        frame_size: FRAME_SIZE,
+        buoyancy_share: timed(&gpu.buoyancy_ms) / frames_ms,
+        truncated_steps: solver.truncated_steps,
+        max_peels_limit: PeelSettings::default().max_peels,
         max_peels: peels.iter().copied().max().unwrap_or(0),
         mean_peels: peels.iter().sum::<usize>() as f64 / steps as f64,
         cpu_solver_steps_per_second: 1e3 * steps as f64 / timed(&cpu.step_ms),
-        rate_runs: rate_runs(&gpu.step_ms[settle..]),
+        rate_runs: rate_runs(&gpu.frame_ms[settle..]),
         load,
         batched_ms: batching.batched.median,
         one_body_at_a_time_ms: batching.one_at_a_time.median,
         batching_runs: batching.batched.runs,
         frame: frame.into(),
     };
-    Ok(SceneRuns {
-        run,
-        gpu,
-        cpu,
-        profile,
-    })
+    Ok(SceneRuns { run, profile })
 }
 
 /// How many consecutive parts of the timed steps count as runs of the interactive rate.

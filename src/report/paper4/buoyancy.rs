@@ -15,9 +15,17 @@ pub fn table(results: &Paper4Results, paper: &published::Paper4) -> Table {
         header: ["measure", "ours", "paper"].map(String::from).to_vec(),
         rows: vec![
             row(
-                "steps per second",
-                format!("{:.1}", b.steps_per_second),
+                &format!(
+                    "frames per second: one step (dt = 1/60 s) and the scene drawn at {}x{}                      (shaded bodies, force arrows, water)",
+                    b.frame_size.0, b.frame_size.1
+                ),
+                format!("{:.1}", b.frames_per_second),
                 format!("{}", paper.buoyancy.frames_per_second),
+            ),
+            row(
+                "steps per second (the step alone, nothing drawn)",
+                format!("{:.1}", b.steps_per_second),
+                "-".into(),
             ),
             row(
                 "steps per second, CPU reference solver (clip + Mirtich)",
@@ -25,7 +33,7 @@ pub fn table(results: &Paper4Results, paper: &published::Paper4) -> Table {
                 "-".into(),
             ),
             row(
-                "share of step time in buoyancy",
+                "share of frame time in buoyancy",
                 format!("{:.0}%", 100.0 * b.buoyancy_share),
                 format!("over {:.0}%", 100.0 * paper.buoyancy.buoyancy_share),
             ),
@@ -49,6 +57,35 @@ pub fn table(results: &Paper4Results, paper: &published::Paper4) -> Table {
                         .replace(" or ", "-")
                 ),
             ),
+            row(
+                "steps whose peeling stopped at the peel limit with fragments left",
+                if b.truncated_steps == 0 {
+                    format!("none (limit {} peels)", b.max_peels_limit)
+                } else {
+                    format!(
+                        "{} of {}: their submerged parts miss the deeper layers (limit {} peels)",
+                        b.truncated_steps,
+                        b.settle_steps + b.steps,
+                        b.max_peels_limit
+                    )
+                },
+                "-".into(),
+            ),
+            race_row(results),
         ],
     }
+}
+
+/// The GPU solver against the CPU one, in interleaved pairs, with the ratio's spread and
+/// the load it was taken under.
+fn race_row(results: &Paper4Results) -> Vec<String> {
+    let r = &results.targets.buoyancy_race;
+    vec![
+        format!(
+            "GPU solver / CPU reference solver (clip + Mirtich), steps per second, first {}              steps from the drop, interleaved pairs",
+            r.setup.steps
+        ),
+        r.in_words(),
+        "-".into(),
+    ]
 }

@@ -84,7 +84,7 @@ fn interactive_buoyancy(results: &Paper4Results, paper: &published::Paper4) -> C
     judge_interactive(
         paper.buoyancy.bodies,
         paper.buoyancy.frames_per_second,
-        b.steps_per_second,
+        b.frames_per_second,
         &b.rate_runs,
         b.load,
         &results.renderer,
@@ -102,12 +102,13 @@ fn judge_interactive(
     load: Option<Load>,
     renderer: &str,
 ) -> Claim {
-    let verdict = timing::judge(runs, Target::AtLeast(fps), load, " steps/s");
+    let verdict = timing::judge(runs, Target::AtLeast(fps), load, " frames/s");
     Claim {
         claim: format!("interactive buoyancy of {bodies} bodies"),
         paper: format!("{fps} frames/s on a GeForce 7800 GTX"),
         measured: format!(
-            "{sps:.1} steps/s on {renderer}, judged against the paper's {fps} frames/s ({})",
+            "{sps:.1} frames/s on {renderer} (a step and the scene drawn per frame), judged \
+             against the paper's {fps} frames/s ({})",
             verdict.note
         ),
         holds: verdict.holds,

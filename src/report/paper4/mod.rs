@@ -80,7 +80,8 @@ fn summary(opts: &BenchOptions, results: &Paper4Results) -> String {
          Times are medians ({}) after a warm-up, on {}: a software rasterizer runs the \
          'GPU' passes on the CPU, so the ratios are not the paper's. The buoyancy scene is the 50 \
          bodies of section 5.3 at 32x32 per body, all bodies as tiles of one target, timed after \
-         60 steps that bring them into the water; the scene's teapot is a closed one (Newell's \
+         60 steps that bring them into the water, one step per frame and each frame drawn \
+         off-screen (what the paper's frames/s compares with); the scene's teapot is a closed one (Newell's \
          profile turned about z, no handle or spout), since Newell's surface is open. Peels \
          are added into running sums by default; the paper's order (keep the n layers, then \
          reduce each) is run beside it and agrees to fp32 rounding. On a software renderer the GL layer raises \

@@ -32,7 +32,14 @@ impl BuoyancyDemo {
             anyhow::bail!("--resolution {resolution}: must be between 4 and 128 in the viewer");
         }
         let sim = scene::paper_scene(bodies, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-        let solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), resolution)?;
+        // All ten integrands, so that the insets can show every channel of each peel (Fig. 10).
+        let solver = GpuSolver::with_integrands(
+            ctx,
+            &sim.shapes,
+            sim.bodies.len(),
+            resolution,
+            crate::mass::integrands::Integrands::All,
+        )?;
         solver.peeler().set_capture(true);
         let renderer = FrameRenderer::new(ctx, &sim.shapes, 16, 16)?;
         Ok(BuoyancyDemo {
