@@ -86,13 +86,15 @@ fn the_quick_section_agrees_with_brute_force_and_writes_its_figures() {
         .iter()
         .map(|t| t["caption"].as_str().unwrap())
         .collect();
-    assert_eq!(tables.len(), 7, "{tables:?}");
+    assert_eq!(tables.len(), 9, "{tables:?}");
     for start in [
         "Where each wins",
         "Then and now",
         "Distance field",
         "Swept volume",
         "Penetration depth",
+        "Continuous collision for an avatar (a reconstruction)",
+        "Continuous collision for an avatar: the reported time",
     ] {
         assert!(
             tables.iter().any(|c| c.starts_with(start)),
