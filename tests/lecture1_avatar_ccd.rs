@@ -201,7 +201,8 @@ fn the_visibility_culling_keeps_every_touching_pair() {
     };
     let mut touching_pairs = 0;
     let mut pruned = 0;
-    for _ in 0..20 {
+    // 100 random scenes: about 25 touching pairs, every one of which must survive.
+    for _ in 0..100 {
         let links: Vec<Capsule> = (0..4)
             .map(|_| {
                 let a = DVec3::new(next(), next(), next());
@@ -268,9 +269,9 @@ fn the_swept_bound_holds_every_sampled_pose() {
 }
 
 #[test]
-#[ignore = "one random case differs from parry3d by 2.6e-4 (ours smaller); not yet explained"]
-fn segment_triangle_distance_matches_parry() {
+fn segment_triangle_distance_is_reached_and_is_the_minimum() {
     use parry3d::math::{Pose as PPose, Vector};
+    use parry3d::query::PointQuery;
     use parry3d::shape::{Capsule as PCapsule, Triangle};
     let mut seed = 11u64;
     let mut next = move || {
@@ -281,6 +282,7 @@ fn segment_triangle_distance_matches_parry() {
     };
     let v = |p: DVec3| Vector::new(p.x as f32, p.y as f32, p.z as f32);
     let round = |p: DVec3| p.as_vec3().as_dvec3();
+    let mut worst_gjk = 0.0f64;
     for _ in 0..2000 {
         let a = round(DVec3::new(next(), next(), next()));
         let b = round(DVec3::new(next(), next(), next()));
@@ -295,13 +297,71 @@ fn segment_triangle_distance_matches_parry() {
         )
         .unwrap()
         .distance as f64;
+        // Our closest points lie on the segment and in the triangle, so our distance is one
+        // the two sets reach: it can never be below the true one.
+        assert!(((ours.on_segment - ours.on_triangle).length() - ours.distance).abs() < 1e-12);
+        assert!(
+            on_segment(ours.on_segment, a, b),
+            "{:?} not on {a} {b}",
+            ours.on_segment
+        );
+        assert!(
+            in_triangle(ours.on_triangle, t),
+            "{:?} not in {t:?}",
+            ours.on_triangle
+        );
+        // And equal to an independent minimum: the distance from the segment's point at s to
+        // the triangle (parry3d's closed-form projection) is convex in s, so a ternary search
+        // over s finds the segment's distance.
+        let tri = Triangle::new(v(t[0]), v(t[1]), v(t[2]));
+        let at = |s: f64| tri.distance_to_local_point(v(a + s * (b - a)), true) as f64;
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..100 {
+            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+            if at(m1) <= at(m2) {
+                hi = m2;
+            } else {
+                lo = m1;
+            }
+        }
+        let reference = at(0.5 * (lo + hi)).min(at(0.0)).min(at(1.0));
+        assert!(
+            (ours.distance - reference).abs() < 1e-5,
+            "segment {a} {b}, triangle {t:?}: ours {}, ternary search {reference}",
+            ours.distance
+        );
+        // parry3d's own capsule-triangle distance (fp32 GJK) is only an upper bound here:
+        // its iteration stops within its tolerance, above the true distance.
         let expected = (ours.distance - radius).max(0.0);
         assert!(
-            (expected - theirs).abs() < SLACK,
+            expected < theirs + SLACK,
             "segment {a} {b}, triangle {t:?}: ours {expected}, parry3d {theirs}"
         );
-        assert!(((ours.on_segment - ours.on_triangle).length() - ours.distance).abs() < 1e-12);
+        worst_gjk = worst_gjk.max(theirs - expected);
     }
+    assert!(
+        worst_gjk < 1e-2,
+        "parry3d's GJK {worst_gjk} above the distance"
+    );
+}
+
+/// `p` on the segment `a`-`b` (to within f64 rounding).
+fn on_segment(p: DVec3, a: DVec3, b: DVec3) -> bool {
+    let ab = b - a;
+    let s = (p - a).dot(ab) / ab.length_squared();
+    (-1e-9..=1.0 + 1e-9).contains(&s) && (a + s * ab - p).length() < 1e-9
+}
+
+/// `p` in the triangle `t` (to within f64 rounding): in its plane, barycentrics >= 0.
+fn in_triangle(p: DVec3, t: [DVec3; 3]) -> bool {
+    let (e0, e1, d) = (t[1] - t[0], t[2] - t[0], p - t[0]);
+    let (d00, d01, d11) = (e0.dot(e0), e0.dot(e1), e1.dot(e1));
+    let (d20, d21) = (d.dot(e0), d.dot(e1));
+    let denom = d00 * d11 - d01 * d01;
+    let v = (d11 * d20 - d01 * d21) / denom;
+    let w = (d00 * d21 - d01 * d20) / denom;
+    let plane = (t[0] + v * e0 + w * e1 - p).length();
+    v >= -1e-9 && w >= -1e-9 && v + w <= 1.0 + 1e-9 && plane < 1e-9
 }
 
 #[test]

@@ -262,7 +262,14 @@ impl Peeler {
         block: Option<u32>,
         integrands: Integrands,
     ) -> Result<Peeler, GlError> {
-        Peeler::with(ctx, width, height, block, integrands, TextureFormat::Rgba32F)
+        Peeler::with(
+            ctx,
+            width,
+            height,
+            block,
+            integrands,
+            TextureFormat::Rgba32F,
+        )
     }
 
     /// A peeler evaluating `integrands`, its running sums stored as `sum_format`.
