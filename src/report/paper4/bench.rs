@@ -84,6 +84,8 @@ pub struct ObjectRun {
     pub analytic: AnalyticReference,
     /// Median wall clock of Mirtich's method (ms).
     pub analytic_ms: f64,
+    /// The runs behind `analytic_ms`.
+    pub analytic_runs: Spread,
     pub resolutions: Vec<ResolutionRow>,
     /// Where the GPU wall time meets the analytic time (see `break_even`).
     pub break_even: String,
@@ -108,6 +110,8 @@ pub struct ResolutionRow {
     pub gpu_ms: f64,
     /// Median wall clock of one call.
     pub gpu_wall_ms: f64,
+    /// The runs behind `gpu_wall_ms`.
+    pub gpu_wall_runs: Spread,
     /// Relative errors of the three principal moments (eigenvalues of the inertia tensor
     /// about the centre of mass), ascending.
     pub principal_relative_error: [f64; 3],
@@ -321,7 +325,8 @@ fn measure_object(
         max: runs.max.max(5),
         ..runs
     };
-    let analytic_ms = wall_ms(analytic_runs, || analytic::volume_integrals(&mesh)).median;
+    let analytic_spread = wall_ms(analytic_runs, || analytic::volume_integrals(&mesh));
+    let analytic_ms = analytic_spread.median;
     let mut rows = Vec::new();
     for &n in resolutions {
         let gpu = GpuMass::new(ctx, n)?;
@@ -331,12 +336,12 @@ fn measure_object(
         let (gp, wp) = (got.principal_moments(), exact.principal_moments());
         let principal_relative_error = std::array::from_fn(|k| ((gp[k] - wp[k]) / wp[k]).abs());
         let mut timer = Vec::new();
-        let wall = median_ms(runs, || {
+        let wall = Spread::of(&runs.run(|_| -> anyhow::Result<f64> {
             let start = Instant::now();
             let r = gpu.integrate(&mesh, None, None)?;
             timer.push(r.gpu_ms);
             Ok(start.elapsed().as_secs_f64() * 1e3)
-        })?;
+        })?);
         rows.push(ResolutionRow {
             resolution: n,
             peels: first.peels,
@@ -347,7 +352,8 @@ fn measure_object(
                 izz,
             },
             gpu_ms: Spread::of(&timer).median,
-            gpu_wall_ms: wall,
+            gpu_wall_ms: wall.median,
+            gpu_wall_runs: wall,
             principal_relative_error,
         });
     }
@@ -369,6 +375,7 @@ fn measure_object(
             principal_moments: exact.principal_moments().to_array(),
         },
         analytic_ms,
+        analytic_runs: analytic_spread,
         break_even: break_even(analytic_ms, &rows),
         resolutions: rows,
     })
