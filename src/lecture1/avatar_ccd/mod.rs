@@ -25,7 +25,7 @@
 //! 5. [`exact`]: the segment–triangle distance in f64 against each survivor's swept radius.
 //! 6. [`advance`]: conservative advancement to the first time a gap is within the tolerance.
 //!
-//! [`reference`] is brute force over densely sampled times with parry3d's distances.
+//! [`reference`](mod@reference) is brute force over densely sampled times with parry3d's distances.
 //! Shaders: `glsl/lecture1/avatar_visibility.*`.
 
 pub mod advance;

@@ -10,7 +10,7 @@
 //! triangle's region (its screen rectangle in a slice grown by the clamp distance, or the whole
 //! slice without a clamp), GL_MIN blending into an R32F target, one readback per slice
 //! ([`slices`]); and the compute-shader counterpart ([`compute`], OpenGL 4.3, one invocation
-//! per voxel over every triangle). [`reference`] is brute force on the CPU in f64.
+//! per voxel over every triangle). [`reference`](mod@reference) is brute force on the CPU in f64.
 //!
 //! The grid ([`Grid`]) is a cube of `n^3` voxels over the mesh's bounding box grown by a
 //! margin, centred on the box; values are indexed `[z][y][x]` (x fastest).

@@ -22,7 +22,7 @@
 //!    (the technical report names "object-space walking"; ours enumerates the boundary
 //!    features the bound leaves).
 //!
-//! [`reference`] is the CPU reference (exact for one convex sum; the same per-ray exits for a
+//! [`reference`](mod@reference) is the CPU reference (exact for one convex sum; the same per-ray exits for a
 //! union) and [`compute`] the OpenGL 4.3 counterpart of step 3; [`scenes`] are model pairs
 //! with known depths. Shaders:
 //! `glsl/lecture1/penetration_*`.

@@ -8,7 +8,7 @@
 //! instead of a distance mesh (a polygonal approximation of the distance function with a
 //! bounded error), each site draws one rectangle over the whole domain and every fragment
 //! computes its exact distance to the site and writes it to `gl_FragDepth` ([`raster`],
-//! `glsl/lecture1/voronoi_site.vert` and `voronoi_site.frag`). [`reference`] is brute force
+//! `glsl/lecture1/voronoi_site.vert` and `voronoi_site.frag`). [`reference`](mod@reference) is brute force
 //! per pixel in f64.
 //!
 //! Ties: sites are drawn in id order and the depth test is LESS, so where two sites' depths

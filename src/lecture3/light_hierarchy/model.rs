@@ -113,7 +113,7 @@ const FIT_MARGIN: f32 = 1.02;
 
 /// A spot light at `eye` aimed at `target` whose square frustum just holds every vertex of
 /// `model` (the widest angle of a vertex from the axis, horizontally or vertically, plus
-/// [`FIT_MARGIN`]); `target` should lie inside the model's bounds.
+/// a 2% margin); `target` should lie inside the model's bounds.
 pub fn fitted_light(eye: Vec3, target: Vec3, model: &[Triangle]) -> View {
     let mut light = View {
         eye,

@@ -17,7 +17,7 @@
 //!
 //! Steps, one file each: [`grid`] (points to a voxel grid, the tiled layout), [`levels`] (the
 //! occupancy pyramid on the CPU and by reduction passes on the GPU), [`cast`] (the GPU ray
-//! casts, octree and flat), [`reference`] (the CPU octree traversal and flat DDA in f64, and the
+//! casts, octree and flat), [`reference`](mod@reference) (the CPU octree traversal and flat DDA in f64, and the
 //! per-pixel comparison).
 
 pub mod cast;
