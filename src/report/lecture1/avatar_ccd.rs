@@ -107,13 +107,14 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         caption: format!(
             "Continuous collision for an avatar (a reconstruction): a {}-link walking figure \
              through a {}-triangle room, {} keyframes, tolerance 1e-3, on {}: where the time \
-             goes (ms, wall clock, one run each, machine shared; the visibility passes also \
-             by GL timer queries) and what each stage keeps (summed over the sub-intervals \
+             goes (ms, wall clock, one run each, {}; the visibility passes also by GL \
+             timer queries) and what each stage keeps (summed over the sub-intervals \
              examined)",
             body.links.len(),
             env.triangles.len(),
             keyframes.poses.len(),
-            setting.renderer
+            setting.renderer,
+            load.map_or("load average unknown".to_string(), |l| l.in_words())
         ),
         header: [
             "sub-intervals per keyframe",
