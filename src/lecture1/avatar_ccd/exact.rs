@@ -6,46 +6,14 @@
 
 use glam::DVec3;
 
+pub use crate::lecture1::distance_field::point_triangle::closest_on_triangle;
+
 /// The distance and the closest points (on the segment, on the triangle).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Nearest {
     pub distance: f64,
     pub on_segment: DVec3,
     pub on_triangle: DVec3,
-}
-
-/// The closest point to `p` on segment `a b` (a point when `a == b`).
-fn closest_on_segment(p: DVec3, a: DVec3, b: DVec3) -> DVec3 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    a + t * ab
-}
-
-/// The closest point to `p` on the triangle (of any area).
-pub fn closest_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> DVec3 {
-    let n = (b - a).cross(c - a);
-    let n2 = n.length_squared();
-    let inside = n2 > 0.0
-        && (b - a).cross(p - a).dot(n) >= 0.0
-        && (c - b).cross(p - b).dot(n) >= 0.0
-        && (a - c).cross(p - c).dot(n) >= 0.0;
-    if inside {
-        return p - n * ((p - a).dot(n) / n2);
-    }
-    [(a, b), (b, c), (c, a)]
-        .iter()
-        .map(|&(u, v)| closest_on_segment(p, u, v))
-        .min_by(|x, y| {
-            (*x - p)
-                .length_squared()
-                .total_cmp(&(*y - p).length_squared())
-        })
-        .unwrap_or(a)
 }
 
 /// The closest points of segments `p0 p1` and `q0 q1` (Ericson, Real-Time Collision
