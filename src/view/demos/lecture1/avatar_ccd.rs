@@ -4,13 +4,13 @@
 //! keyframe interval along it until the first time of contact, where it stops with the link
 //! in contact drawn red.
 
-use crate::collide::snapshot::{self, Orbit, SnapshotModel};
-use crate::gl::{Context, Framebuffer, Rect, Texture, TextureFormat};
+use crate::collide::snapshot::SnapshotModel;
+use crate::gl::Context;
 use crate::lecture1::avatar_ccd::body::{Body, Capsule, Keyframes};
 use crate::lecture1::avatar_ccd::environment::{room, Environment};
 use crate::lecture1::avatar_ccd::{AvatarCcd, Contact, Options};
 use crate::mesh::Mesh;
-use crate::view::{overlay, Canvas, Demo, ViewState};
+use crate::view::{Canvas, Demo, ViewState};
 use glam::{DVec3, Vec3};
 
 /// Time (keyframe intervals) the figure moves per step.
@@ -132,27 +132,7 @@ impl Demo for AvatarCcdDemo {
             colliding: &[],
             cap_boxes: Vec::new(),
         };
-        let rect = canvas.below_text();
-        if rect.w < 16 || rect.h < 16 {
-            return Ok(());
-        }
-        let ctx = canvas.context();
-        let colour = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Rgba8)?;
-        let depth = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Depth32F)?;
-        let target = Framebuffer::new(ctx, "avatar scene", &[&colour], Some(&depth))?;
-        target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
-        target.clear_depth_stencil(1.0, 0)?;
-        let orbit = Orbit {
-            yaw: view.yaw,
-            pitch: view.pitch,
-            zoom: view.zoom * 0.9,
-        };
-        snapshot::draw(&avatar, &environment, &target, orbit)?;
-        let mut pixels = target.read_u8(0, Rect::sized(rect.w, rect.h))?;
-        for px in pixels.chunks_exact_mut(4) {
-            px[3] = 255;
-        }
-        overlay::draw_image(canvas, &pixels, rect.w, rect.h, (rect.x, rect.y))?;
+        super::draw_models(canvas, (&avatar, &environment), canvas.below_text(), view)?;
         Ok(())
     }
 

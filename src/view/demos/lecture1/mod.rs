@@ -97,25 +97,38 @@ fn draw_scene(
     let strip = inset::strip_rect(canvas, insets.len());
     let free = canvas.below_text();
     let rect = Rect::new(0, strip.h, free.w, free.h.saturating_sub(strip.h));
-    if rect.w >= 16 && rect.h >= 16 {
-        let ctx = canvas.context();
-        let colour = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Rgba8)?;
-        let depth = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Depth32F)?;
-        let target = Framebuffer::new(ctx, "lecture 1 scene", &[&colour], Some(&depth))?;
-        target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
-        target.clear_depth_stencil(1.0, 0)?;
-        let orbit = Orbit {
-            yaw: view.yaw,
-            pitch: view.pitch,
-            zoom: view.zoom * 0.9,
-        };
-        snapshot::draw(x, y, &target, orbit)?;
-        let mut pixels = target.read_u8(0, Rect::sized(rect.w, rect.h))?;
-        for px in pixels.chunks_exact_mut(4) {
-            px[3] = 255;
-        }
-        overlay::draw_image(canvas, &pixels, rect.w, rect.h, (rect.x, rect.y))?;
-    }
+    draw_models(canvas, (x, y), rect, view)?;
     inset::draw_picture(canvas, insets, strip)?;
+    Ok(())
+}
+
+/// The two models drawn into `rect` of the canvas, orbited as the view says (nothing where
+/// the rectangle is too small to show them).
+pub(super) fn draw_models(
+    canvas: &Canvas,
+    (x, y): (&SnapshotModel, &SnapshotModel),
+    rect: Rect,
+    view: &ViewState,
+) -> anyhow::Result<()> {
+    if rect.w < 16 || rect.h < 16 {
+        return Ok(());
+    }
+    let ctx = canvas.context();
+    let colour = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Rgba8)?;
+    let depth = Texture::new_2d(ctx, rect.w, rect.h, TextureFormat::Depth32F)?;
+    let target = Framebuffer::new(ctx, "lecture 1 scene", &[&colour], Some(&depth))?;
+    target.clear_color(0, [0.05, 0.05, 0.07, 1.0])?;
+    target.clear_depth_stencil(1.0, 0)?;
+    let orbit = Orbit {
+        yaw: view.yaw,
+        pitch: view.pitch,
+        zoom: view.zoom * 0.9,
+    };
+    snapshot::draw(x, y, &target, orbit)?;
+    let mut pixels = target.read_u8(0, Rect::sized(rect.w, rect.h))?;
+    for px in pixels.chunks_exact_mut(4) {
+        px[3] = 255;
+    }
+    overlay::draw_image(canvas, &pixels, rect.w, rect.h, (rect.x, rect.y))?;
     Ok(())
 }
