@@ -19,8 +19,8 @@ use super::aabb::Aabb;
 use super::stream_setup::AabbStream;
 use super::tri_test::{triangles_intersect, Predicate};
 use crate::gl::{
-    Compare, Context, DepthTest, DrawState, Framebuffer, GlError, MeshBuffers, OcclusionQuery,
-    Primitive, Program, Texture, TextureFormat,
+    Compare, Context, DrawState, Framebuffer, GlError, MeshBuffers, OcclusionQuery, Primitive,
+    Program, Texture, TextureFormat,
 };
 use crate::mesh::Mesh;
 use crate::shader;
@@ -245,7 +245,7 @@ impl Cullide {
         {
             let mut pass = self.target.pass(&self.program, "CULLIDE occluders")?;
             pass.uniform("u_mvp", mvp)
-                .state(depth_only(Compare::Less, true));
+                .state(DrawState::depth_only(Compare::Less, true));
             pass.draw_element_ranges(
                 occluder.buffers.vertex_array(),
                 Primitive::Triangles,
@@ -256,7 +256,7 @@ impl Cullide {
             .target
             .pass(&self.program, "CULLIDE visibility queries")?;
         pass.uniform("u_mvp", mvp)
-            .state(depth_only(Compare::GreaterEqual, false));
+            .state(DrawState::depth_only(Compare::GreaterEqual, false));
         // One query per candidate, all issued before any is read.
         pass.draw_elements_counted(
             tested.buffers.vertex_array(),
@@ -273,15 +273,6 @@ impl Cullide {
             .filter(|&(_, s)| s > 0)
             .map(|(r, _)| r.clone())
             .collect())
-    }
-}
-
-/// Depth test `func`, depth writes as `write` says, no colour: both CULLIDE passes.
-fn depth_only(func: Compare, write: bool) -> DrawState {
-    DrawState {
-        depth: Some(DepthTest { func, write }),
-        color_write: false,
-        ..DrawState::default()
     }
 }
 

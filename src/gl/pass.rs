@@ -170,6 +170,18 @@ impl Default for DrawState {
     }
 }
 
+impl DrawState {
+    /// Depth test `func`, depth writes as `write` says, no colour: a depth or occlusion pass
+    /// (CULLIDE's two passes, the avatar's visibility culling).
+    pub fn depth_only(func: Compare, write: bool) -> DrawState {
+        DrawState {
+            depth: Some(DepthTest { func, write }),
+            color_write: false,
+            ..DrawState::default()
+        }
+    }
+}
+
 /// Primitive types for mesh draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Primitive {

@@ -17,7 +17,7 @@
 use super::body::Capsule;
 use super::sweep_bound::capsule_box;
 use crate::gl::{
-    query::time_gpu, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, MeshBuffers,
+    query::time_gpu, Compare, Context, DrawState, Framebuffer, GlError, MeshBuffers,
     OcclusionQuery, Primitive, Program, Texture, TextureFormat,
 };
 use crate::shader;
@@ -190,7 +190,7 @@ impl VisibilityCuller {
                 .target
                 .pass(&self.program, "avatar visibility occluders")?;
             pass.uniform("u_mvp", mvp)
-                .state(depth_only(Compare::Less, true));
+                .state(DrawState::depth_only(Compare::Less, true));
             let ranges: Vec<(usize, usize)> = occluders
                 .iter()
                 .map(|&k| index_range(&occluder[k]))
@@ -201,7 +201,7 @@ impl VisibilityCuller {
             .target
             .pass(&self.program, "avatar visibility queries")?;
         pass.uniform("u_mvp", mvp)
-            .state(depth_only(Compare::GreaterEqual, false));
+            .state(DrawState::depth_only(Compare::GreaterEqual, false));
         let ranges: Vec<(usize, usize)> = candidates
             .iter()
             .map(|&k| index_range(&tested[k]))
@@ -221,15 +221,6 @@ impl VisibilityCuller {
             .filter(|&(_, s)| s > 0)
             .map(|(&k, _)| k)
             .collect())
-    }
-}
-
-/// Depth test `func`, depth writes as `write` says, no colour.
-fn depth_only(func: Compare, write: bool) -> DrawState {
-    DrawState {
-        depth: Some(DepthTest { func, write }),
-        color_write: false,
-        ..DrawState::default()
     }
 }
 
