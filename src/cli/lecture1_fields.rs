@@ -289,9 +289,11 @@ pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow
             "renderer": renderer(ctx),
             "resolution": swept.grid.n,
             "volume": s.volume,
-            "euler_characteristic": s.euler_characteristic,
-            "watertight": s.watertight,
-            "non_manifold_edges": s.non_manifold_edges,
+            "euler_characteristic": s.topology.euler_characteristic,
+            "genus": s.topology.genus,
+            "manifold": s.topology.is_manifold(),
+            "watertight": s.watertight(),
+            "topology": s.topology,
             "vertices": s.mesh.positions.len(),
             "triangles": s.mesh.triangles.len(),
             "poses": args.poses,
@@ -318,19 +320,27 @@ pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow
     }
     println!("renderer: {}", renderer(ctx));
     println!(
-        "swept volume at {}^3: volume {}, Euler characteristic {} ({}, {} non-manifold \
-         edges), {} triangles, written to {}",
+        "swept volume at {}^3: volume {}, {}, {} triangles, written to {}",
         swept.grid.n,
         s.volume,
-        s.euler_characteristic,
-        if s.watertight {
-            "watertight"
-        } else {
-            "not watertight"
-        },
-        s.non_manifold_edges,
+        describe_topology(&s.topology),
         s.mesh.triangles.len(),
         args.out.display()
     );
     Ok(())
+}
+
+/// `V - E + F` and the genus for a manifold surface, else what stops it being one.
+fn describe_topology(t: &swept_volume::topology::Topology) -> String {
+    match (t.euler_characteristic, t.genus) {
+        (Some(chi), Some(genus)) => format!(
+            "a closed 2-manifold of {} component(s), V - E + F = {chi}, genus {genus}",
+            t.components
+        ),
+        _ => format!(
+            "not a closed 2-manifold ({} boundary, {} misoriented, {} non-manifold edges, {} \
+             non-manifold vertices): no Euler characteristic",
+            t.boundary_edges, t.misoriented_edges, t.non_manifold_edges, t.non_manifold_vertices
+        ),
+    }
 }
