@@ -66,8 +66,9 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         caption: format!(
             "Swept volume of a unit cube translated by 1.5 (exact volume {EXACT}) on {}: \
              where the time goes (ms; field passes by GL timer queries, the rest wall clock; \
-             one run each, machine shared) and the volume's error",
-            setting.renderer
+             one run each, {}) and the volume's error",
+            setting.renderer,
+            load.map_or("load average unknown".to_string(), |l| l.in_words())
         ),
         header: [
             "N",
