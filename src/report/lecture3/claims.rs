@@ -685,7 +685,10 @@ mod tests {
         let rows = [better.clone(), grazing_worse];
         assert_eq!(prefilter_quality(&rows, false).holds, Some(true));
         assert_eq!(prefilter_quality(&rows, true).holds, Some(false));
-        assert_eq!(prefilter_quality(&[better.clone()], true).holds, None);
+        assert_eq!(
+            prefilter_quality(std::slice::from_ref(&better), true).holds,
+            None
+        );
         // Speed: more steps fail whatever the timings; fewer steps with disjoint quiet runs hold.
         let slower = prefilter_row(1, (0.10, 0.06), (14.0, 15.0));
         assert_eq!(
