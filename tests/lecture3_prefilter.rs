@@ -10,8 +10,8 @@
 
 use classic_gpgpu::lecture3::displacement::compare::{compare_prefiltered, Comparison};
 use classic_gpgpu::lecture3::displacement::prefilter::{
-    cpu_prefiltered, cpu_supersampled, image_error, shown_of_rgba8, stop_level, supersampled,
-    Prefilter, Shown,
+    cpu_prefiltered, cpu_supersampled, image_error, may_act, shown_of_rgba8, stop_level,
+    supersampled, Prefilter, Shown,
 };
 use classic_gpgpu::lecture3::displacement::{Camera, DisplacementRenderer, Method, Pixel, Surface};
 use classic_gpgpu::lecture3::HeightMap;
@@ -154,6 +154,8 @@ fn far_away_the_prefilter_takes_fewer_steps_and_close_up_it_changes_nothing() {
     // Close up (every footprint under 2 patches) the two traversals draw the same image.
     let near = camera_near(renderer.surface());
     assert_eq!(prefiltered_pixels(renderer.surface(), &near), 0);
+    // The renderer skips drawing the shading pyramid there, and only there.
+    assert!(!may_act(&near, renderer.surface()) && may_act(&camera, renderer.surface()));
     assert_eq!(
         render(&renderer, &near, Method::Pyramid).0,
         render(&renderer, &near, Method::Prefiltered).0

@@ -53,6 +53,25 @@ pub fn footprint_per_unit(camera: &Camera, surface: &Surface) -> f32 {
     2.0 * (0.5 * camera.fov_y).tan() / camera.height as f32 * surface.world_to_grid().x
 }
 
+/// Whether some pixel of `camera` may stop above level 0: a ray enters the box at a point of
+/// the box, so no nearer than the box's farthest corner, and its footprint there is under 2
+/// patches when that corner's is (with a margin of 1% over fp32 rounding).
+pub fn may_act(camera: &Camera, surface: &Surface) -> bool {
+    let eye = camera.eye.as_dvec3();
+    let size = surface.size.as_dvec3();
+    let farthest = (0..8)
+        .map(|k| {
+            let corner = DVec3::new(
+                size.x * (k & 1) as f64,
+                size.y * (k >> 1 & 1) as f64,
+                size.z * (k >> 2) as f64,
+            );
+            (corner - eye).length()
+        })
+        .fold(0.0, f64::max);
+    1.01 * farthest * footprint_per_unit(camera, surface) as f64 >= 2.0
+}
+
 /// The stop level for a footprint of `footprint` patches: the largest L <= `top` with
 /// `2^L <= footprint`.
 pub fn stop_level(footprint: f64, top: u32) -> u32 {

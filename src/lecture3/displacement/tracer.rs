@@ -266,14 +266,15 @@ impl DisplacementRenderer {
     }
 
     /// Draws one frame into `target` (its size must be the camera's). A prefiltered frame
-    /// first draws the shading pyramid toward the camera.
+    /// first draws the shading pyramid toward the camera, where some pixel may stop above
+    /// level 0.
     pub fn render(
         &self,
         target: &FrameTarget,
         camera: &Camera,
         method: Method,
     ) -> Result<(), GlError> {
-        if method == Method::Prefiltered {
+        if method == Method::Prefiltered && super::prefilter::may_act(camera, &self.surface) {
             self.shading
                 .draw(&self.surface, &self.heights, camera.eye)?;
         }
