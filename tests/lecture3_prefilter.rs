@@ -10,8 +10,8 @@
 
 use classic_gpgpu::lecture3::displacement::compare::{compare_prefiltered, Comparison};
 use classic_gpgpu::lecture3::displacement::prefilter::{
-    cpu_prefiltered, cpu_supersampled, image_error, shown_of_rgba8, stop_level, supersampled,
-    Prefilter, Shown,
+    cpu_prefiltered, cpu_supersampled, image_error, may_act, shown_of_rgba8, stop_level,
+    supersampled, Prefilter, Shown,
 };
 use classic_gpgpu::lecture3::displacement::{Camera, DisplacementRenderer, Method, Pixel, Surface};
 use classic_gpgpu::lecture3::HeightMap;
@@ -154,6 +154,8 @@ fn far_away_the_prefilter_takes_fewer_steps_and_close_up_it_changes_nothing() {
     // Close up (every footprint under 2 patches) the two traversals draw the same image.
     let near = camera_near(renderer.surface());
     assert_eq!(prefiltered_pixels(renderer.surface(), &near), 0);
+    // The renderer skips drawing the shading pyramid there, and only there.
+    assert!(!may_act(&near, renderer.surface()) && may_act(&camera, renderer.surface()));
     assert_eq!(
         render(&renderer, &near, Method::Pyramid).0,
         render(&renderer, &near, Method::Prefiltered).0
@@ -164,49 +166,52 @@ fn camera_near(surface: &Surface) -> Camera {
     camera(surface, 1.2, 225.0, 50.0, 96)
 }
 
-/// Quality, the abstract's claim, where it holds: seen steeply (70 degrees) and far away, where
-/// each pixel covers many patches, the prefiltered frame is closer to the supersampled
-/// unfiltered image (8x8 rays per pixel) than the unfiltered frame (one ray per pixel) is, by
-/// at least `MARGIN` of the unfiltered error; on the GPU and by the CPU reference of the same
-/// rule (exact f64 traces of every sub-pixel ray and of the rule, shaded alike), which agree to
-/// `AGREE` (8-bit colours, and the few pixels whose hit fp32 moves across a checker edge).
+/// Quality, the abstract's claim: seen at 35 and 70 degrees, from a middle and a far distance, where each pixel covers many patches, the prefiltered frame (shaded as
+/// the facets facing the eye) is closer to the supersampled unfiltered image (8x8 rays per
+/// pixel) than the unfiltered frame (one ray per pixel) is, by at least `MARGIN` of the
+/// unfiltered error; on the GPU and by the CPU reference of the same rule (exact f64 traces of
+/// every sub-pixel ray and of the rule, shaded alike), which agree to `AGREE` (8-bit colours,
+/// and the few pixels whose hit fp32 moves across a checker edge).
 ///
-/// At lower elevations it does not hold (the report's claim row says so, with its numbers):
-/// the mean normal weights every facet under a node alike, while a pixel sees the facets that
-/// face the camera; shading each prefiltered pixel with the mean shading of the facets its
-/// sub-pixel rays hit brings its error below the unfiltered frame's at 40 degrees too, so the
-/// shading, not the prefiltered surface, is what errs there.
+/// At a grazing 15 degrees it does not hold at the middle distance (the report's grazing claim
+/// row gives the numbers): the weights count facets hidden behind others.
 #[test]
-fn seen_steeply_from_far_away_the_prefiltered_frame_is_closer_to_the_supersampled_image() {
-    const MARGIN: f64 = 0.1;
+fn from_far_away_the_prefiltered_frame_is_closer_to_the_supersampled_image() {
+    const MARGIN: f64 = 0.3;
     const AGREE: f64 = 0.01;
     let ctx = context();
     for (map, distance) in [(rough_map(129, 3), 7.0), (rough_map(129, 4), 12.0)] {
         let surface = Surface::new(map, 0.3).unwrap();
         let renderer = DisplacementRenderer::new(&ctx, surface).unwrap();
-        let camera = camera(renderer.surface(), distance, 225.0, 70.0, 48);
-        let acting = prefiltered_pixels(renderer.surface(), &camera);
-        assert!(acting > 100, "{acting} pixels stop above level 0");
-        let reference = supersampled(&renderer, &camera, 8).unwrap();
-        let plain = image_error(&render(&renderer, &camera, Method::Pyramid).0, &reference);
-        let filtered = image_error(
-            &render(&renderer, &camera, Method::Prefiltered).0,
-            &reference,
-        );
-        let surface = renderer.surface();
-        let cpu_reference = cpu_supersampled(surface, &camera, 8);
-        let cpu_plain = image_error(&cpu_supersampled(surface, &camera, 1), &cpu_reference);
-        let cpu_filtered = image_error(&cpu_prefiltered(surface, &camera), &cpu_reference);
-        let what = format!(
-            "distance {distance}: GPU unfiltered {plain:.4} prefiltered {filtered:.4}; CPU \
-             unfiltered {cpu_plain:.4} prefiltered {cpu_filtered:.4}"
-        );
-        eprintln!("{what}");
-        assert!(filtered <= (1.0 - MARGIN) * plain, "{what}");
-        assert!(cpu_filtered <= (1.0 - MARGIN) * cpu_plain, "{what}");
-        assert!(
-            (plain - cpu_plain).abs() <= AGREE && (filtered - cpu_filtered).abs() <= AGREE,
-            "{what}"
-        );
+        for elevation in [35.0, 70.0] {
+            let camera = camera(renderer.surface(), distance, 225.0, elevation, 64);
+            let acting = prefiltered_pixels(renderer.surface(), &camera);
+            assert!(
+                acting > 100,
+                "elevation {elevation}: {acting} pixels stop above level 0"
+            );
+            let reference = supersampled(&renderer, &camera, 8).unwrap();
+            let plain = image_error(&render(&renderer, &camera, Method::Pyramid).0, &reference);
+            let filtered = image_error(
+                &render(&renderer, &camera, Method::Prefiltered).0,
+                &reference,
+            );
+            let surface = renderer.surface();
+            let cpu_reference = cpu_supersampled(surface, &camera, 8);
+            let cpu_plain = image_error(&cpu_supersampled(surface, &camera, 1), &cpu_reference);
+            let cpu_filtered = image_error(&cpu_prefiltered(surface, &camera), &cpu_reference);
+            let what = format!(
+                "distance {distance}, elevation {elevation}: GPU unfiltered {plain:.4} \
+                 prefiltered {filtered:.4}; CPU unfiltered {cpu_plain:.4} prefiltered \
+                 {cpu_filtered:.4}"
+            );
+            eprintln!("{what}");
+            assert!(filtered <= (1.0 - MARGIN) * plain, "{what}");
+            assert!(cpu_filtered <= (1.0 - MARGIN) * cpu_plain, "{what}");
+            assert!(
+                (plain - cpu_plain).abs() <= AGREE && (filtered - cpu_filtered).abs() <= AGREE,
+                "{what}"
+            );
+        }
     }
 }

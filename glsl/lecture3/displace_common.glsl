@@ -88,9 +88,9 @@ float patch_first_hit(vec4 h, vec3 start, vec3 step, float len) {
 
 // Writes the hit at parameter tau shown with `surface_n` where it is on the surface: its grid
 // position, statistics, a shaded colour (that normal, or the wall's, under one directional
-// light, on a checkerboard of 8x8 patches) and its depth. The shading is linear in the normal
-// (where it faces the light), so a prefiltered normal shorter than 1 (the mean of the unit
-// normals under a node) shades as the mean of its unit normals' shadings.
+// light, on a checkerboard of 8x8 patches) and its depth. A prefiltered hit's normal is an
+// effective one: the light's direction times the mean lit cosine of the facets it stands for,
+// so that its shading is their mean shading.
 void write_shaded(Ray r, float tau, bool wall, float iterations, vec3 surface_n) {
     vec3 g = r.o + tau * r.d;
     o_hit = vec4(g, tau);
@@ -107,7 +107,7 @@ void write_shaded(Ray r, float tau, bool wall, float iterations, vec3 surface_n)
     o_normal = vec4(n, 0.0);
     ivec2 square = ivec2(floor(g.xy / 8.0));
     vec3 albedo = ((square.x + square.y) & 1) == 0 ? vec3(0.85, 0.75, 0.6) : vec3(0.55, 0.6, 0.75);
-    vec3 light = normalize(vec3(0.4, 0.3, 0.85));
+    vec3 light = light_direction();
     o_colour = vec4(albedo * (0.25 + 0.75 * max(dot(n, light), 0.0)), 1.0);
     vec4 clip = u_view_projection * vec4(g / u_world_to_grid, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;

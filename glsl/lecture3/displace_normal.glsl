@@ -12,3 +12,8 @@ vec3 patch_normal(vec4 h, vec2 st, float side) {
     vec2 slope = vec2(dhds, dhdt) * u_world_to_grid.xy / u_world_to_grid.z;
     return normalize(vec3(-slope, 1.0));
 }
+
+// The direction toward the one directional light (world).
+vec3 light_direction() {
+    return normalize(vec3(0.4, 0.3, 0.85));
+}

@@ -18,8 +18,9 @@ uniform float u_footprint;    // the pixel's footprint in patches per unit of ra
 uniform sampler2D u_means;    // mean pyramid of the height samples, as an atlas
 uniform int u_mean_x[16];     // where each of its levels starts in the atlas
 uniform int u_mean_y[16];
-uniform sampler2D u_normals;  // mean pyramid of the patches' mean unit normals (xyz), as an
-                              // atlas laid out as the bound pyramid's (u_level_x, u_level_y)
+uniform sampler2D u_shading;  // per node the mean projected-area weight toward the eye and
+                              // the mean weighted lit cosine (rg), as an atlas laid out as
+                              // the bound pyramid's (u_level_x, u_level_y)
 
 // The stop level of a ray entering the box at t_in: the coarsest level <= top whose nodes,
 // 2^L patches wide, are no wider than the footprint there.
@@ -53,21 +54,23 @@ vec4 prefiltered_corners(ivec2 node, int level, float bound) {
     return min(h, vec4(bound));
 }
 
-// Normal pyramid node m of `level`, clamped to the nodes that cover patches.
-vec3 normal_node(ivec2 m, int level) {
+// Shading pyramid node m of `level`, clamped to the nodes that cover patches.
+vec2 shading_node(ivec2 m, int level) {
     ivec2 valid = (u_patches + ((1 << level) - 1)) >> level; // ceil(patches / 2^level)
     m = clamp(m, ivec2(0), valid - 1);
-    return texelFetch(u_normals, ivec2(u_level_x[level], u_level_y[level]) + m, 0).xyz;
+    return texelFetch(u_shading, ivec2(u_level_x[level], u_level_y[level]) + m, 0).rg;
 }
 
-// The prefiltered normal at grid point g on `level`: the level's mean normals interpolated
-// bilinearly between node centres (node n's centre at (n + 1/2) 2^level), constant beyond the
-// outer centres. Its length stays what the means give.
+// The effective normal at grid point g on `level`: the shading pyramid's (weight, weighted lit
+// cosine) interpolated bilinearly between node centres (node n's centre at (n + 1/2) 2^level),
+// constant beyond the outer centres; the light's direction times their ratio, the visible
+// facets' mean lit cosine (0 where none faces the eye).
 vec3 prefiltered_normal(vec2 g, int level) {
     vec2 p = g / float(1 << level) - 0.5;
     ivec2 n = ivec2(floor(p));
     vec2 f = p - vec2(n);
-    vec3 bottom = mix(normal_node(n, level), normal_node(n + ivec2(1, 0), level), f.x);
-    vec3 top = mix(normal_node(n + ivec2(0, 1), level), normal_node(n + ivec2(1, 1), level), f.x);
-    return mix(bottom, top, f.y);
+    vec2 bottom = mix(shading_node(n, level), shading_node(n + ivec2(1, 0), level), f.x);
+    vec2 top = mix(shading_node(n + ivec2(0, 1), level), shading_node(n + ivec2(1, 1), level), f.x);
+    vec2 ws = mix(bottom, top, f.y);
+    return (ws.x > 0.0 ? ws.y / ws.x : 0.0) * light_direction();
 }

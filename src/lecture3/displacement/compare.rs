@@ -22,8 +22,8 @@
 //!
 //! A prefiltered frame ([`super::prefilter`]) is judged the same way against the exact tracer
 //! of the field its pixel's rule selects (the prefiltered field of the stop level, shaded with
-//! the level's mean normals); pixels whose stop level fp32 rounding could change are
-//! ill-conditioned.
+//! the shading of the facets facing the eye, [`super::visible_shading`]); pixels whose stop
+//! level fp32 rounding could change are ill-conditioned.
 
 use super::camera::Camera;
 use super::exact::{box_interval, trace, Hit};

@@ -10,7 +10,8 @@
 //! a node's bound, climb one level after leaving a node, in `displace_pyramid.frag`), the
 //! closed-form patch intersection ([`patch`]), the box the map is laid on and its side walls
 //! ([`surface`]), and the minification prefilter ([`prefilter`]: the footprint rule, the
-//! prefiltered surface from the mean pyramid, shaded with the mean normals of [`normals`]).
+//! prefiltered surface from the mean pyramid, shaded as the facets facing the eye,
+//! [`visible_shading`]).
 //!
 //! Steps, one file each: [`surface`] (the box and grid space), [`camera`] (the orbiting
 //! camera and pixel rays), [`bounds`] (the bound pyramid), [`patch`] (the finest step),
@@ -23,12 +24,12 @@ pub mod bounds;
 pub mod camera;
 pub mod compare;
 pub mod exact;
-pub mod normals;
 pub mod patch;
 pub mod prefilter;
 pub mod shading;
 pub mod surface;
 pub mod tracer;
+pub mod visible_shading;
 
 pub use camera::Camera;
 pub use surface::Surface;

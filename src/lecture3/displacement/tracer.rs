@@ -5,8 +5,8 @@
 
 use super::bounds::BoundPyramidBuilder;
 use super::camera::Camera;
-use super::normals::NormalPyramidBuilder;
 use super::surface::Surface;
+use super::visible_shading::VisibleShadingPyramid;
 use crate::gl::{
     Compare, Context, DepthTest, DrawState, Face, Framebuffer, GlError, Pass, Primitive, Program,
     Rect, Texture, TextureFormat,
@@ -62,8 +62,9 @@ pub struct DisplacementRenderer {
     bounds_atlas: PyramidAtlas,
     /// The mean pyramid of the height samples (the prefilter's surfaces).
     means_atlas: PyramidAtlas,
-    /// The mean pyramid of the patches' unit normals (the prefilter's shading).
-    normals_atlas: PyramidAtlas,
+    /// The shading pyramid toward the eye (the prefilter's shading), drawn for each
+    /// prefiltered frame.
+    shading: VisibleShadingPyramid,
     pyramid_program: Program,
     relief_program: Program,
 }
@@ -85,7 +86,7 @@ pub enum Pixel {
         tau: f64,
         wall: bool,
         /// The normal the pixel is shaded with (world; a wall's is horizontal; a prefiltered
-        /// one may be shorter than 1).
+        /// hit's is the effective one of [`super::visible_shading`], shorter than 1).
         normal: DVec3,
         iterations: u32,
     },
@@ -183,11 +184,11 @@ impl DisplacementRenderer {
             BoundPyramidBuilder::new(ctx)?.build(&heights, surface.patches(), Extreme::Max)?;
         let bounds_atlas = AtlasBuilder::new(ctx)?.atlas(&bounds.texture)?;
         let means_atlas = super::prefilter::mean_atlas(ctx, map)?;
-        let normals_atlas = NormalPyramidBuilder::new(ctx)?.build(&surface, &heights)?;
+        let shading = VisibleShadingPyramid::new(ctx, &surface)?;
         // The traversal reads both with the bound pyramid's offsets (both span the patches).
-        if normals_atlas.offsets != bounds_atlas.offsets {
+        if shading.atlas.offsets != bounds_atlas.offsets {
             return Err(
-                GlError::Invalid("the normal and bound atlases differ in layout".into()).into(),
+                GlError::Invalid("the shading and bound atlases differ in layout".into()).into(),
             );
         }
         let vertex = [shader!("glsl/lecture3/displace_box.vert")];
@@ -222,7 +223,7 @@ impl DisplacementRenderer {
             bounds,
             bounds_atlas,
             means_atlas,
-            normals_atlas,
+            shading,
         })
     }
 
@@ -264,13 +265,19 @@ impl DisplacementRenderer {
         4 * (wp + hp + 2) as i32 * (self.bounds.levels() as i32 + 1)
     }
 
-    /// Draws one frame into `target` (its size must be the camera's).
+    /// Draws one frame into `target` (its size must be the camera's). A prefiltered frame
+    /// first draws the shading pyramid toward the camera, where some pixel may stop above
+    /// level 0.
     pub fn render(
         &self,
         target: &FrameTarget,
         camera: &Camera,
         method: Method,
     ) -> Result<(), GlError> {
+        if method == Method::Prefiltered && super::prefilter::may_act(camera, &self.surface) {
+            self.shading
+                .draw(&self.surface, &self.heights, camera.eye)?;
+        }
         let fb = &target.framebuffer;
         fb.clear_colors([0.0; 4])?;
         fb.clear_depth_stencil(1.0, 0)?;
@@ -285,7 +292,7 @@ impl DisplacementRenderer {
             Method::Pyramid | Method::Prefiltered => pass
                 .texture("u_bounds", &self.bounds_atlas.texture)
                 .texture("u_means", &self.means_atlas.texture)
-                .texture("u_normals", &self.normals_atlas.texture)
+                .texture("u_shading", &self.shading.atlas.texture)
                 .uniform("u_mean_x", &self.means_atlas.offsets_x()[..])
                 .uniform("u_mean_y", &self.means_atlas.offsets_y()[..])
                 .uniform("u_prefilter", (method == Method::Prefiltered) as i32)

@@ -37,13 +37,14 @@ pub fn rows() -> Vec<Fidelity> {
         Fidelity::new(
             "a mipmap-like prefilter at minification",
             "VRST 2006 abstract (minification)",
-            "src/lecture3/displacement/{prefilter,normals}.rs, \
+            "src/lecture3/displacement/{prefilter,visible_shading}.rs, \
              glsl/lecture3/displace_prefilter.glsl",
             "reconstruction (the construction is not given): the descent stops at the level of \
              the pixel's footprint where the ray enters the box; there a bilinear patch per \
              node from the mean pyramid of the heights, clamped under the node's bound, shaded \
-             with the mean of the unit normals below it (not normalised, as Toksvig's mipmapped \
-             normals)",
+             as the facets about the hit that face the eye, each weighted by its area projected \
+             toward the eye (a mean pyramid of those weights and weighted lit cosines, drawn \
+             for each view; self-occlusion ignored)",
         ),
         Fidelity::new(
             "linear + binary search (relief mapping) as the artifact-prone comparison",

@@ -71,10 +71,12 @@ fn finite(x: f64) -> anyhow::Result<f64> {
     Ok(x)
 }
 
-/// One camera distance.
+/// One camera distance at one elevation.
 #[derive(Clone, Debug, Serialize)]
 pub struct PrefilterRow {
     pub distance: f32,
+    /// Degrees above the map's plane.
+    pub elevation: f32,
     /// The largest stop level of the view's pixels (0: the prefilter changes nothing).
     pub max_level: u32,
     pub quality: PrefilterQuality,
@@ -95,7 +97,14 @@ pub fn distances(quick: bool) -> &'static [f32] {
     }
 }
 
-/// The sweep on `map` at elevation 35 degrees.
+/// The elevations of the sweep (degrees): the report's view, seen steeply, and grazing.
+pub const ELEVATIONS: [f32; 3] = [35.0, 70.0, 15.0];
+
+/// The elevations below which a view counts as grazing.
+pub const GRAZING: f32 = 20.0;
+
+/// The sweep on `map` at each of [`ELEVATIONS`]. A prefiltered frame's time includes drawing
+/// its shading pyramid toward the camera.
 pub fn measure(
     opts: &BenchOptions,
     map: &HeightMap,
@@ -105,14 +114,15 @@ pub fn measure(
     let image = if opts.quick { 64 } else { 128 };
     let renderer = DisplacementRenderer::new(ctx, Surface::new(map.clone(), DEPTH)?)?;
     let target = renderer.target(image, image)?;
-    distances(opts.quick)
+    ELEVATIONS
         .iter()
-        .map(|&distance| {
+        .flat_map(|&elevation| distances(opts.quick).iter().map(move |&d| (d, elevation)))
+        .map(|(distance, elevation)| {
             let camera = Camera::orbit(
                 renderer.surface().centre(),
                 distance,
                 225.0,
-                35.0,
+                elevation,
                 image,
                 image,
             );
@@ -130,6 +140,7 @@ pub fn measure(
             let prefiltered = time(Method::Prefiltered)?;
             Ok(PrefilterRow {
                 distance,
+                elevation,
                 max_level: reference.max_level(),
                 quality,
                 unfiltered_ms: unfiltered.median,
@@ -148,13 +159,15 @@ pub fn table(results: &Lecture3Results) -> Table {
     Table {
         caption: format!(
             "2. The minification prefilter as the camera moves away: RMS difference (RGB in \
-             0..1) from {0}x{0} unfiltered rays per pixel averaged, frame time and steps per \
-             hit pixel, without and with the prefilter; {image}x{image} pixels, elevation 35 \
-             degrees, {1}; on {2}. The last column judges the prefiltered frame against the \
-             CPU reference of the same rule (pixels counted by what differs).",
+             0..1) from {0}x{0} unfiltered rays per pixel averaged, frame time (GL timer \
+             query; the prefiltered frame's includes drawing its shading pyramid toward the \
+             camera) and steps per hit pixel, without and with the prefilter; {image}x{image} \
+             pixels, {1}; on {2}. The last column judges the prefiltered frame against the CPU \
+             reference of the same rule (pixels counted by what differs).",
             SUPERSAMPLES, d.map, results.renderer
         ),
         header: [
+            "elevation",
             "distance",
             "deepest stop level",
             "error, unfiltered",
@@ -173,6 +186,7 @@ pub fn table(results: &Lecture3Results) -> Table {
             .map(|r| {
                 let c = &r.comparison;
                 vec![
+                    format!("{:.0}", r.elevation),
                     format!("{:.1}", r.distance),
                     r.max_level.to_string(),
                     format!("{:.4}", r.quality.unfiltered_error),
