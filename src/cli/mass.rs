@@ -3,6 +3,7 @@
 use anyhow::{bail, Context as _};
 use classic_gpgpu::gl::{profile, Context};
 use classic_gpgpu::mass::assemble::MassProperties;
+use classic_gpgpu::mass::buoyancy::compute::ComputeSolver;
 use classic_gpgpu::mass::buoyancy::simulation::{self, SubmergedSolver};
 use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene};
 use classic_gpgpu::mass::compute::ComputeMass;
@@ -36,7 +37,8 @@ pub struct MassArgs {
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
     /// The paper's peeling passes (classic) or one compute pass over the triangles with a
-    /// shared-memory reduction (compute, OpenGL 4.3; whole bodies, so no --below or --dump).
+    /// shared-memory reduction (compute, OpenGL 4.3; with --below each triangle is clipped to
+    /// the plane in the pass; no --dump).
     #[arg(long, value_enum, default_value_t)]
     pub formulation: super::Formulation,
     #[command(flatten)]
@@ -250,16 +252,20 @@ fn compute_mass(
     ctx: &Context,
     mesh: &classic_gpgpu::mesh::Mesh,
 ) -> anyhow::Result<(GpuResult, f64)> {
-    if args.below.is_some() || args.dump.is_some() || args.profile {
+    if args.dump.is_some() || args.profile {
         bail!(
-            "--below, --dump and --profile need the classic formulation (the compute formulation \
-             integrates whole bodies in one dispatch: no integrand images, no passes to profile)"
+            "--dump and --profile need the classic formulation (the compute formulation \
+             integrates the bodies in one dispatch: no integrand images, no passes to profile)"
         );
     }
     let compute = ComputeMass::new(ctx).context("setting up the compute pass")?;
-    compute.integrate(&[mesh])?;
+    let integrate = || match args.below {
+        Some(level) => compute.integrate_below(&[mesh], level),
+        None => compute.integrate(&[mesh]),
+    };
+    integrate()?;
     let start = Instant::now();
-    let result = compute.integrate(&[mesh])?;
+    let result = integrate()?;
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
     let framing = Framing::fit(mesh, args.resolution).map_err(anyhow::Error::msg)?;
     Ok((
@@ -469,6 +475,11 @@ pub struct BuoyancyArgs {
     /// Compute the submerged parts on the CPU (clip + Mirtich) instead of the GPU.
     #[arg(long)]
     pub cpu: bool,
+    /// The submerged parts by the paper's n + 2 passes (classic) or by one compute pass that
+    /// clips every body's triangles against the water plane (compute, OpenGL 4.3); the
+    /// forces and the rigid-body step are the same.
+    #[arg(long, value_enum, default_value_t)]
+    pub formulation: super::Formulation,
     /// Add a linear drag (2/s) and a rotational damping (1/s) to the paper's quadratic drag
     /// (not in the paper: bodies settle in seconds instead of rocking on).
     #[arg(long)]
@@ -520,7 +531,15 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         sim.water = sim.water.with_extra_damping();
     }
     let mut warnings: Vec<String> = Vec::new();
-    let mut gpu = if args.cpu {
+    let compute = args.formulation == super::Formulation::Compute;
+    if compute && args.cpu {
+        bail!("--cpu and --formulation compute: choose one solver");
+    }
+    let mut compute_solver = match compute {
+        true => Some(ComputeSolver::new(ctx).context("setting up the compute pass")?),
+        false => None,
+    };
+    let mut gpu = if args.cpu || compute {
         None
     } else {
         let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)
@@ -559,6 +578,12 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
                     .map_err(anyhow::Error::msg)?;
                 peels.push(solver.last_peels);
                 subs
+            }
+            None if compute_solver.is_some() => {
+                let solver = compute_solver.as_mut().expect("checked");
+                solver
+                    .submerged(&sim.shapes, &sim.bodies, &sim.water)
+                    .map_err(anyhow::Error::msg)?
             }
             None => cpu_span("buoyancy: CPU solver (clip + Mirtich)", &mut || {
                 simulation::AnalyticSolver.submerged(&sim.shapes, &sim.bodies, &sim.water)
@@ -612,7 +637,14 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         .collect();
     let out = json!({
         "renderer": ctx.info().renderer_line(),
-        "solver": if args.cpu { "cpu (clip + Mirtich)" } else { "gpu (n+2 passes, tiles)" },
+        "solver": if args.cpu {
+            "cpu (clip + Mirtich)"
+        } else if compute {
+            "gpu compute (clip in the kernel, one dispatch)"
+        } else {
+            "gpu (n+2 passes, tiles)"
+        },
+        "formulation": args.formulation.name(),
         "bodies": sim.bodies.len(),
         "steps": args.steps,
         "resolution": args.resolution,
@@ -683,6 +715,11 @@ fn race(
     settings: PeelSettings,
     json_out: bool,
 ) -> anyhow::Result<()> {
+    if args.formulation == super::Formulation::Compute {
+        bail!(
+            "--race runs the classic formulation against the CPU solver: no --formulation compute"
+        );
+    }
     if rounds == 0 || rounds > 1000 {
         bail!("--race {rounds}: must be between 1 and 1000 rounds");
     }
