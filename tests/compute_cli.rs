@@ -182,3 +182,47 @@ fn crowd_compute_reports_its_formulation() {
     let out = classic_gpgpu(&["crowd", "--formulation", "compute", "--skin-batch", "2"]);
     assert!(!out.status.success());
 }
+
+#[test]
+fn buoyancy_compute_follows_the_cpu_solver_and_the_classic_one() {
+    let (_, compute) = compute_context();
+    let args = ["--json", "buoyancy", "--bodies", "3", "--steps", "12"];
+    let classic = json_of(&args);
+    assert_eq!(classic["formulation"], "classic");
+    let cpu = json_of(&[&args[..], &["--cpu"]].concat());
+    // One solver at a time.
+    let out = classic_gpgpu(&[&args[..], &["--cpu", "--formulation", "compute"]].concat());
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--cpu") && err.contains("--formulation compute"),
+        "{err}"
+    );
+    let Some(now) = compute_json(
+        &[&args[..], &["--formulation", "compute"]].concat(),
+        compute,
+    ) else {
+        return;
+    };
+    assert_eq!(now["formulation"], "compute");
+    let position = |v: &serde_json::Value, k: usize| -> Vec<f64> {
+        (0..3)
+            .map(|i| v["state"][k]["position"][i].as_f64().unwrap())
+            .collect()
+    };
+    let distance = |a: Vec<f64>, b: Vec<f64>| -> f64 {
+        a.iter()
+            .zip(&b)
+            .map(|(x, y)| (x - y).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    for k in 0..3 {
+        // fp32 sums against the CPU's f64 clip (1e-4 m after 12 steps, see
+        // tests/mass_buoyancy_compute.rs); the classic 32x32 tiles within 5 cm.
+        let d = distance(position(&now, k), position(&cpu, k));
+        assert!(d <= 1e-4, "body {k}: compute {d} m from the CPU run");
+        let d = distance(position(&now, k), position(&classic, k));
+        assert!(d <= 0.05, "body {k}: compute {d} m from the classic run");
+    }
+}

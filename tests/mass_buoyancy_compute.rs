@@ -197,3 +197,55 @@ fn below_4_3_the_compute_solver_is_a_clear_error_and_the_classic_one_runs() {
         );
     }
 }
+
+/// The buoyancy then-and-now table states which formulation is faster only as the runs and
+/// the load allow ([`classic_gpgpu::report::timing::judge_ends`]), never from the medians alone.
+#[test]
+fn the_then_and_now_timing_is_judged_with_the_load() {
+    use classic_gpgpu::report::then_and_now::{StageRow, ThenAndNow};
+    use classic_gpgpu::report::timing::{Load, Spread};
+    let table = ThenAndNow {
+        workload: "a step".into(),
+        unavailable: None,
+        stages: vec![StageRow::new("step", Some(10.0), Some(2.0), Some(5.0))],
+        same_answer: Some(true),
+        verdict: "What each needs.".into(),
+    };
+    let classic = Spread::of(&[9.0, 10.0, 11.0]);
+    let compute = Spread::of(&[1.5, 2.0, 2.5]);
+    let load = |one_minute| {
+        Some(Load {
+            one_minute,
+            cores: 2,
+        })
+    };
+    let loaded = table
+        .table_judged("llvmpipe", &classic, &compute, load(9.0))
+        .caption;
+    assert!(loaded.contains("not judged: machine loaded"), "{loaded}");
+    assert!(loaded.contains("load average 9.00 on 2 cores"), "{loaded}");
+    assert!(!loaded.contains("Measured here"), "{loaded}");
+    let quiet = table
+        .table_judged("llvmpipe", &classic, &compute, load(0.5))
+        .caption;
+    assert!(quiet.contains("compute is faster than classic"), "{quiet}");
+    assert!(quiet.contains("classic 3 runs: 9.000-11.000 ms"), "{quiet}");
+    let slow = Spread::of(&[12.0, 13.0, 14.0]);
+    let quiet = table
+        .table_judged("llvmpipe", &classic, &slow, load(0.5))
+        .caption;
+    assert!(
+        quiet.contains("compute is not faster than classic"),
+        "{quiet}"
+    );
+    let overlapping = Spread::of(&[1.0, 12.0]);
+    let quiet = table
+        .table_judged("llvmpipe", &classic, &overlapping, load(0.5))
+        .caption;
+    assert!(
+        quiet.contains("not judged: the two formulations' runs overlap"),
+        "{quiet}"
+    );
+    // The unjudged table keeps its ratio of medians.
+    assert!(table.table("llvmpipe").caption.contains("Measured here"));
+}

@@ -535,9 +535,10 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     if compute && args.cpu {
         bail!("--cpu and --formulation compute: choose one solver");
     }
-    let mut compute_solver = match compute {
-        true => Some(ComputeSolver::new(ctx).context("setting up the compute pass")?),
-        false => None,
+    let mut compute_solver = if compute {
+        Some(ComputeSolver::new(ctx).context("setting up the compute pass")?)
+    } else {
+        None
     };
     let mut gpu = if args.cpu || compute {
         None
@@ -571,21 +572,18 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     }
     for step in 0..args.steps {
         let start = Instant::now();
-        let subs = match gpu.as_mut() {
-            Some(solver) => {
+        let subs = match (gpu.as_mut(), compute_solver.as_mut()) {
+            (Some(solver), _) => {
                 let subs = solver
                     .submerged(&sim.shapes, &sim.bodies, &sim.water)
                     .map_err(anyhow::Error::msg)?;
                 peels.push(solver.last_peels);
                 subs
             }
-            None if compute_solver.is_some() => {
-                let solver = compute_solver.as_mut().expect("checked");
-                solver
-                    .submerged(&sim.shapes, &sim.bodies, &sim.water)
-                    .map_err(anyhow::Error::msg)?
-            }
-            None => cpu_span("buoyancy: CPU solver (clip + Mirtich)", &mut || {
+            (None, Some(solver)) => solver
+                .submerged(&sim.shapes, &sim.bodies, &sim.water)
+                .map_err(anyhow::Error::msg)?,
+            (None, None) => cpu_span("buoyancy: CPU solver (clip + Mirtich)", &mut || {
                 simulation::AnalyticSolver.submerged(&sim.shapes, &sim.bodies, &sim.water)
             })
             .map_err(anyhow::Error::msg)?,

@@ -82,9 +82,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<BuoyancyThenAndNow> {
         sim.step(&mut AnalyticSolver).map_err(anyhow::Error::msg)?;
     }
     let mut classic = GpuSolver::new(ctx, &sim.shapes, bodies, 32)?;
-    let mut compute = match ctx.has_compute() {
-        true => Some(ComputeSolver::new(ctx)?),
-        false => None,
+    let mut compute = if ctx.has_compute() {
+        Some(ComputeSolver::new(ctx)?)
+    } else {
+        None
     };
     let triangles: usize = sim
         .bodies
