@@ -90,7 +90,7 @@ impl ThenAndNow {
         };
         self.table_ending(
             renderer,
-            format!(" Per {}: {said} ({}).", frame.stage, verdict.note),
+            format!(" Timing of '{}': {said} ({}).", frame.stage, verdict.note),
         )
     }
 

@@ -125,12 +125,13 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<BuoyancyThenAndNow> {
     let workload = format!(
         "the submerged integrals of the {bodies} bodies of section 5.3 ({triangles} triangles, \
          {cut} cut by the water plane) after {settle} steps from the drop, classic at 32x32 per \
-         body ({peels} peels), {}; worst submerged volume against the CPU solver, as a fraction \
+         body ({peels} peels), {}, each solver's whole call (posing, upload, passes, \
+         read-back) by wall clock; worst submerged volume against the CPU solver, as a fraction \
          of the body's volume: classic {classic_volume_error:.1e}{}",
         runs.in_words(),
         compute_volume_error.map_or(String::new(), |e| format!(", compute {e:.1e}"))
     );
-    let stage = "step's submerged parts of every body (classic: n + 2 passes in tiles; \
+    let stage = "one step's submerged parts of every body (classic: n + 2 passes in tiles; \
                  compute: one clipping dispatch and reduction; CPU: clip + Mirtich)";
     let some = |s: &Spread| (s.runs > 0).then_some(s.median);
     let stages = vec![StageRow::new(
