@@ -729,19 +729,22 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         print!("{}", profile_text(table, &format!("{} steps", args.steps)));
     }
     println!("renderer        {}", ctx.info().renderer_line());
+    // Tiles and peels are the classic GPU solver's; the compute and CPU solvers have none.
+    let (tiles, deepest) = match peels.iter().max() {
+        Some(n) if gpu.is_some() => (
+            format!(", {r}x{r} per body", r = args.resolution),
+            format!(", deepest peel {n}"),
+        ),
+        _ => (String::new(), String::new()),
+    };
     println!(
-        "scene           {} bodies, {} steps of {:.4} s, {}x{} per body, {}",
+        "scene           {} bodies, {} steps of {:.4} s{tiles}, {}",
         sim.bodies.len(),
         args.steps,
         args.dt,
-        args.resolution,
-        args.resolution,
         out["solver"].as_str().unwrap_or("")
     );
-    println!(
-        "per step        {mean:.2} ms ({steps_per_s:.1} steps/s), deepest peel {}",
-        peels.iter().max().unwrap_or(&0)
-    );
+    println!("per step        {mean:.2} ms ({steps_per_s:.1} steps/s){deepest}");
     println!(
         "{:>4} {:>8} {:>8} {:>28} {:>10}",
         "body", "shape", "density", "position", "submerged"
