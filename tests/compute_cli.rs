@@ -48,7 +48,7 @@ fn collide_scene_same_pairs_in_both_formulations() {
 }
 
 #[test]
-fn mass_compute_matches_the_analytic_volume_and_refuses_below() {
+fn mass_compute_matches_the_analytic_volume_whole_and_below_a_plane() {
     let (_, compute) = compute_context();
     let classic = json_of(&["--json", "mass", "torus"]);
     assert_eq!(classic["formulation"], "classic");
@@ -68,11 +68,44 @@ fn mass_compute_matches_the_analytic_volume_and_refuses_below() {
         now["analytic"]["volume"].as_f64().unwrap(),
     );
     assert!((v - exact).abs() <= 1e-5 * exact, "{v} vs {exact}");
-    let out = classic_gpgpu(&["mass", "torus", "--formulation", "compute", "--below", "0"]);
+    // Below a plane through the torus (tilted by the paper object's pose or not, the plane
+    // cuts it): the compute run clips in the kernel and gives the clipped solid's volume and
+    // centre, as the classic run does within its resolution error.
+    let below = ["--json", "mass", "torus", "--below", "0.1"];
+    let classic_below = json_of(&below);
+    let now = json_of(&[&below[..], &["--formulation", "compute"]].concat());
+    assert_eq!(now["below"], 0.1);
+    let (v, exact) = (
+        now["volume"].as_f64().unwrap(),
+        now["analytic"]["volume"].as_f64().unwrap(),
+    );
+    assert!(
+        exact > 0.0 && (v - exact).abs() <= 1e-5 * exact,
+        "{v} vs {exact}"
+    );
+    let c = classic_below["volume"].as_f64().unwrap();
+    assert!((c - v).abs() <= 0.05 * v, "classic {c} vs compute {v}");
+    for k in 0..3 {
+        let (g, w) = (
+            now["center_of_mass"][k].as_f64().unwrap(),
+            now["analytic"]["center_of_mass"][k].as_f64().unwrap(),
+        );
+        assert!((g - w).abs() <= 1e-5, "centre {k}: {g} vs {w}");
+    }
+    // --dump still needs the classic formulation's images.
+    let dump = std::env::temp_dir().join(format!("compute_cli_dump_{}", std::process::id()));
+    let out = classic_gpgpu(&[
+        "mass",
+        "torus",
+        "--formulation",
+        "compute",
+        "--dump",
+        dump.to_str().unwrap(),
+    ]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("--below") && err.contains("classic formulation"),
+        err.contains("--dump") && err.contains("classic formulation"),
         "{err}"
     );
 }
@@ -148,4 +181,48 @@ fn crowd_compute_reports_its_formulation() {
     }
     let out = classic_gpgpu(&["crowd", "--formulation", "compute", "--skin-batch", "2"]);
     assert!(!out.status.success());
+}
+
+#[test]
+fn buoyancy_compute_follows_the_cpu_solver_and_the_classic_one() {
+    let (_, compute) = compute_context();
+    let args = ["--json", "buoyancy", "--bodies", "3", "--steps", "12"];
+    let classic = json_of(&args);
+    assert_eq!(classic["formulation"], "classic");
+    let cpu = json_of(&[&args[..], &["--cpu"]].concat());
+    // One solver at a time.
+    let out = classic_gpgpu(&[&args[..], &["--cpu", "--formulation", "compute"]].concat());
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--cpu") && err.contains("--formulation compute"),
+        "{err}"
+    );
+    let Some(now) = compute_json(
+        &[&args[..], &["--formulation", "compute"]].concat(),
+        compute,
+    ) else {
+        return;
+    };
+    assert_eq!(now["formulation"], "compute");
+    let position = |v: &serde_json::Value, k: usize| -> Vec<f64> {
+        (0..3)
+            .map(|i| v["state"][k]["position"][i].as_f64().unwrap())
+            .collect()
+    };
+    let distance = |a: Vec<f64>, b: Vec<f64>| -> f64 {
+        a.iter()
+            .zip(&b)
+            .map(|(x, y)| (x - y).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    for k in 0..3 {
+        // fp32 sums against the CPU's f64 clip (1e-4 m after 12 steps, see
+        // tests/mass_buoyancy_compute.rs); the classic 32x32 tiles within 5 cm.
+        let d = distance(position(&now, k), position(&cpu, k));
+        assert!(d <= 1e-4, "body {k}: compute {d} m from the CPU run");
+        let d = distance(position(&now, k), position(&classic, k));
+        assert!(d <= 0.05, "body {k}: compute {d} m from the classic run");
+    }
 }

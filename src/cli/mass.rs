@@ -3,6 +3,7 @@
 use anyhow::{bail, Context as _};
 use classic_gpgpu::gl::{profile, Context};
 use classic_gpgpu::mass::assemble::MassProperties;
+use classic_gpgpu::mass::buoyancy::compute::ComputeSolver;
 use classic_gpgpu::mass::buoyancy::simulation::{self, SubmergedSolver};
 use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene};
 use classic_gpgpu::mass::compute::ComputeMass;
@@ -37,7 +38,8 @@ pub struct MassArgs {
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
     /// The paper's peeling passes (classic) or one compute pass over the triangles with a
-    /// shared-memory reduction (compute, OpenGL 4.3; whole bodies, so no --below or --dump).
+    /// shared-memory reduction (compute, OpenGL 4.3; with --below each triangle is clipped to
+    /// the plane in the pass; no --dump).
     #[arg(long, value_enum, default_value_t)]
     pub formulation: super::Formulation,
     #[command(flatten)]
@@ -268,15 +270,19 @@ fn compute_mass(
     ctx: &Context,
     mesh: &classic_gpgpu::mesh::Mesh,
 ) -> anyhow::Result<(GpuResult, (Spread, Spread))> {
-    if args.below.is_some() || args.dump.is_some() || args.profile {
+    if args.dump.is_some() || args.profile {
         bail!(
-            "--below, --dump and --profile need the classic formulation (the compute formulation \
-             integrates whole bodies in one dispatch: no integrand images, no passes to profile)"
+            "--dump and --profile need the classic formulation (the compute formulation \
+             integrates the bodies in one dispatch: no integrand images, no passes to profile)"
         );
     }
     let compute = ComputeMass::new(ctx).context("setting up the compute pass")?;
-    let result = compute.integrate(&[mesh])?;
-    let timings = timed_runs(|| Ok(compute.integrate(&[mesh])?.gpu_ms))?;
+    let integrate = || match args.below {
+        Some(level) => compute.integrate_below(&[mesh], level),
+        None => compute.integrate(&[mesh]),
+    };
+    let result = integrate()?;
+    let timings = timed_runs(|| Ok(integrate()?.gpu_ms))?;
     let framing = Framing::fit(mesh, args.resolution).map_err(anyhow::Error::msg)?;
     Ok((
         GpuResult {
@@ -525,6 +531,11 @@ pub struct BuoyancyArgs {
     /// Compute the submerged parts on the CPU (clip + Mirtich) instead of the GPU.
     #[arg(long)]
     pub cpu: bool,
+    /// The submerged parts by the paper's n + 2 passes (classic) or by one compute pass that
+    /// clips every body's triangles against the water plane (compute, OpenGL 4.3); the
+    /// forces and the rigid-body step are the same.
+    #[arg(long, value_enum, default_value_t)]
+    pub formulation: super::Formulation,
     /// Add a linear drag (2/s) and a rotational damping (1/s) to the paper's quadratic drag
     /// (not in the paper: bodies settle in seconds instead of rocking on).
     #[arg(long)]
@@ -576,7 +587,16 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         sim.water = sim.water.with_extra_damping();
     }
     let mut warnings: Vec<String> = Vec::new();
-    let mut gpu = if args.cpu {
+    let compute = args.formulation == super::Formulation::Compute;
+    if compute && args.cpu {
+        bail!("--cpu and --formulation compute: choose one solver");
+    }
+    let mut compute_solver = if compute {
+        Some(ComputeSolver::new(ctx).context("setting up the compute pass")?)
+    } else {
+        None
+    };
+    let mut gpu = if args.cpu || compute {
         None
     } else {
         let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)
@@ -608,15 +628,18 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     }
     for step in 0..args.steps {
         let start = Instant::now();
-        let subs = match gpu.as_mut() {
-            Some(solver) => {
+        let subs = match (gpu.as_mut(), compute_solver.as_mut()) {
+            (Some(solver), _) => {
                 let subs = solver
                     .submerged(&sim.shapes, &sim.bodies, &sim.water)
                     .map_err(anyhow::Error::msg)?;
                 peels.push(solver.last_peels);
                 subs
             }
-            None => cpu_span("buoyancy: CPU solver (clip + Mirtich)", &mut || {
+            (None, Some(solver)) => solver
+                .submerged(&sim.shapes, &sim.bodies, &sim.water)
+                .map_err(anyhow::Error::msg)?,
+            (None, None) => cpu_span("buoyancy: CPU solver (clip + Mirtich)", &mut || {
                 simulation::AnalyticSolver.submerged(&sim.shapes, &sim.bodies, &sim.water)
             })
             .map_err(anyhow::Error::msg)?,
@@ -668,7 +691,14 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         .collect();
     let out = json!({
         "renderer": ctx.info().renderer_line(),
-        "solver": if args.cpu { "cpu (clip + Mirtich)" } else { "gpu (n+2 passes, tiles)" },
+        "solver": if args.cpu {
+            "cpu (clip + Mirtich)"
+        } else if compute {
+            "gpu compute (clip in the kernel, one dispatch)"
+        } else {
+            "gpu (n+2 passes, tiles)"
+        },
+        "formulation": args.formulation.name(),
         "bodies": sim.bodies.len(),
         "steps": args.steps,
         "resolution": args.resolution,
@@ -699,19 +729,22 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         print!("{}", profile_text(table, &format!("{} steps", args.steps)));
     }
     println!("renderer        {}", ctx.info().renderer_line());
+    // Tiles and peels are the classic GPU solver's; the compute and CPU solvers have none.
+    let (tiles, deepest) = match peels.iter().max() {
+        Some(n) if gpu.is_some() => (
+            format!(", {r}x{r} per body", r = args.resolution),
+            format!(", deepest peel {n}"),
+        ),
+        _ => (String::new(), String::new()),
+    };
     println!(
-        "scene           {} bodies, {} steps of {:.4} s, {}x{} per body, {}",
+        "scene           {} bodies, {} steps of {:.4} s{tiles}, {}",
         sim.bodies.len(),
         args.steps,
         args.dt,
-        args.resolution,
-        args.resolution,
         out["solver"].as_str().unwrap_or("")
     );
-    println!(
-        "per step        {mean:.2} ms ({steps_per_s:.1} steps/s), deepest peel {}",
-        peels.iter().max().unwrap_or(&0)
-    );
+    println!("per step        {mean:.2} ms ({steps_per_s:.1} steps/s){deepest}");
     println!(
         "{:>4} {:>8} {:>8} {:>28} {:>10}",
         "body", "shape", "density", "position", "submerged"
@@ -739,6 +772,11 @@ fn race(
     settings: PeelSettings,
     json_out: bool,
 ) -> anyhow::Result<()> {
+    if args.formulation == super::Formulation::Compute {
+        bail!(
+            "--race runs the classic formulation against the CPU solver: no --formulation compute"
+        );
+    }
     if rounds == 0 || rounds > 1000 {
         bail!("--race {rounds}: must be between 1 and 1000 rounds");
     }

@@ -29,6 +29,7 @@
 //! | closed forms for tests | [`closed_form`] |
 //! | the whole method for one body | [`gpu`] |
 //! | the GPU path's CPU reference | [`cpu_reference`] |
+//! | then and now: one compute pass over the triangles (below a plane: clipped in the kernel) | [`compute`] |
 //! | the paper's test objects [Table 1], OBJ files | [`models`] |
 //! | buoyancy (section 5) | [`buoyancy`] |
 

@@ -3,6 +3,7 @@
 //! at hand. Each section measures its own workload (`paperN/then_and_now.rs`); this file holds
 //! the shared result type and the table.
 
+use super::timing::{self, Load, Spread};
 use super::Table;
 use serde::Serialize;
 
@@ -56,6 +57,60 @@ impl ThenAndNow {
 
     /// The table: per stage and per frame, classic vs compute vs CPU, and the ratio.
     pub fn table(&self, renderer: &str) -> Table {
+        self.table_ending(renderer, self.frame_ratio())
+    }
+
+    /// [`ThenAndNow::table`] with the frame's comparison judged on the runs of the two
+    /// formulations and the machine's load ([`timing::judge_ends`]: not judged while the
+    /// machine is loaded or the runs overlap) instead of stated from the medians.
+    pub fn table_judged(
+        &self,
+        renderer: &str,
+        classic: &Spread,
+        compute: &Spread,
+        load: Option<Load>,
+    ) -> Table {
+        let Some(frame) = self.stages.last() else {
+            return self.table_ending(renderer, String::new());
+        };
+        let verdict = timing::judge_ends(
+            timing::Ends::of(|favour| timing::faster(compute, classic, favour)),
+            &format!(
+                "classic {}; compute {}",
+                classic.in_words(" ms"),
+                compute.in_words(" ms")
+            ),
+            "the two formulations' runs overlap",
+            load,
+        );
+        let said = match verdict.holds {
+            Some(true) => "compute is faster than classic",
+            Some(false) => "compute is not faster than classic",
+            None => "which formulation is faster",
+        };
+        self.table_ending(
+            renderer,
+            format!(" Timing of '{}': {said} ({}).", frame.stage, verdict.note),
+        )
+    }
+
+    /// The measured ratio of the last stage from its medians, as a closing sentence.
+    fn frame_ratio(&self) -> String {
+        if let Some(frame) = self.stages.last() {
+            if let (Some(a), Some(b)) = (frame.classic_ms, frame.compute_ms) {
+                if a > 0.0 && b > 0.0 {
+                    return format!(
+                        " Measured here, per {}: compute takes {:.2}x the classic time.",
+                        frame.stage,
+                        b / a
+                    );
+                }
+            }
+        }
+        String::new()
+    }
+
+    fn table_ending(&self, renderer: &str, ending: String) -> Table {
         let ms = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
         let rows = self
             .stages
@@ -95,17 +150,7 @@ impl ThenAndNow {
             }
         }
         caption += &self.verdict;
-        if let Some(frame) = self.stages.last() {
-            if let (Some(a), Some(b)) = (frame.classic_ms, frame.compute_ms) {
-                if a > 0.0 && b > 0.0 {
-                    caption += &format!(
-                        " Measured here, per {}: compute takes {:.2}x the classic time.",
-                        frame.stage,
-                        b / a
-                    );
-                }
-            }
-        }
+        caption += &ending;
         Table {
             caption,
             header: [

@@ -6,6 +6,7 @@
 //! |---|---|
 //! | n + 2 passes for all bodies, as tiles of one target | [`batch`] (on [`crate::mass::peel`]) |
 //! | the CPU reference: clip + Mirtich | [`analytic`] |
+//! | the compute formulation: clip in the kernel, one dispatch | [`compute`] |
 //! | gravity, buoyancy [eq. 7], drag (optional damping) | [`forces`] |
 //! | rigid-body state and integrator | [`rigid_body`] |
 //! | the simulation loop | [`simulation`] |
@@ -15,6 +16,7 @@
 
 pub mod analytic;
 pub mod batch;
+pub mod compute;
 pub mod forces;
 pub mod race;
 pub mod render;

@@ -28,6 +28,8 @@ pub struct Paper4Results {
     pub fig10_peels: usize,
     /// Classic vs compute vs CPU: the 2007 formulation beside today's compute shaders.
     pub then_and_now: crate::report::then_and_now::ThenAndNow,
+    /// The same for the buoyancy step's submerged integrals (section 5.2).
+    pub then_and_now_buoyancy: super::then_and_now_buoyancy::BuoyancyThenAndNow,
     /// The two orders of peels and sums, side by side on the bunny at 64x64.
     pub peel_orders: Vec<PeelOrderRun>,
     /// The project's speed targets on llvmpipe, as ratios measured in this run.
@@ -213,6 +215,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         buoyancy: scene.run,
         fig10_peels: buoyant_bunny_peels(opts)?,
         then_and_now: super::then_and_now::measure(opts)?,
+        then_and_now_buoyancy: super::then_and_now_buoyancy::measure(opts)?,
         peel_orders,
         targets,
         profile_bunny_64,

@@ -15,6 +15,7 @@ pub mod period;
 mod speed;
 mod table1;
 mod then_and_now;
+pub mod then_and_now_buoyancy;
 
 pub use bench::{BuoyancyRun, ObjectRun, Paper4Results, PeelOrderRun, ResolutionRow, SpeedTargets};
 
@@ -50,6 +51,7 @@ impl Paper for Paper4 {
                 break_even::table(results),
                 buoyancy::table(results, paper),
                 results.then_and_now.table(&results.renderer),
+                results.then_and_now_buoyancy.table(&results.renderer),
                 speed::targets(results),
                 speed::peel_orders(results),
                 speed::profile(
