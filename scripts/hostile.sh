@@ -59,6 +59,7 @@ WRITERS=(
     "view-screenshot|file|v.png|view --headless --frames 1 --size 64x48 --screenshot OUT --force mass cube"
     "learn-png|dir|lesson|learn texture-is-array --png OUT --force"
     "mesh-generate|file|t.obj|mesh generate torus --out OUT --force"
+    "reproduce|dir|report|reproduce --quick --only blocks --out OUT --force"
 )
 
 # Is FILE a whole output of its kind?

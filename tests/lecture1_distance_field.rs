@@ -8,7 +8,8 @@ use classic_gpgpu::lecture1::distance_field::point_triangle::point_triangle;
 use classic_gpgpu::lecture1::distance_field::reference::brute_force;
 use classic_gpgpu::lecture1::distance_field::slices::SliceRasterizer;
 use classic_gpgpu::lecture1::distance_field::{DistanceField, Grid};
-use classic_gpgpu::lecture1::voronoi::raster::VoronoiRasterizer;
+use classic_gpgpu::lecture1::voronoi::mesh::{cone_sides, error_bound};
+use classic_gpgpu::lecture1::voronoi::raster::{Method, VoronoiRasterizer};
 use classic_gpgpu::lecture1::voronoi::reference::{brute_force as voronoi_cpu, compare};
 use classic_gpgpu::lecture1::voronoi::{Domain, Site, Sites};
 use classic_gpgpu::mesh::Mesh;
@@ -277,6 +278,95 @@ fn voronoi_equals_brute_force() {
 }
 
 #[test]
+fn cone_sides_are_the_fewest_within_the_error() {
+    for (radius, error) in [(100.0, 0.5), (724.0, 0.25), (30.0, 2.0), (1.0, 0.1)] {
+        let k = cone_sides(radius, error).unwrap();
+        assert!(
+            error_bound(radius, k) <= error * (1.0 + 1e-12),
+            "{radius} {error} {k}"
+        );
+        if k > 3 {
+            assert!(error_bound(radius, k - 1) > error, "{radius} {error} {k}");
+        }
+    }
+    assert!(cone_sides(10.0, 0.0).is_err());
+    assert!(cone_sides(10.0, f64::NAN).is_err());
+}
+
+/// The diagram by distance meshes within `error_pixels`, against brute force and against the
+/// exact per-fragment path; the largest distance error in pixels and the bound.
+fn check_meshes(sites: &[Site], domain: Domain, n: usize, error_pixels: f64) -> (f64, f64) {
+    let ctx = context();
+    let raster = VoronoiRasterizer::new(&ctx).unwrap();
+    let (meshed, _) = raster
+        .diagram_by(sites, domain, n, Method::Mesh { error_pixels })
+        .unwrap();
+    let (exact, _) = raster.diagram(sites, domain, n).unwrap();
+    let pixel = domain.pixel(n);
+    // The bound is what was asked, in input units.
+    assert!(meshed.mesh_error > 0.0 && meshed.mesh_error <= error_pixels * pixel * (1.0 + 1e-9));
+    let agreement = compare(&meshed, sites);
+    assert!(agreement.agrees(), "{agreement:?}");
+    // One-sided: a mesh lies above the distance function (its facets are chords of a convex
+    // cone), never below it by more than fp32 rounding.
+    let rounding = exact.tolerance();
+    let cpu = voronoi_cpu(sites, domain, n, exact.depth_range);
+    let mut largest: f64 = 0.0;
+    for i in 0..n * n {
+        let (m, d) = (meshed.distance[i] as f64, cpu.distance[i] as f64);
+        let fp32 = meshed.tolerance() - meshed.mesh_error;
+        assert!(m >= d - fp32, "pixel {i}: {m} below {d}");
+        assert!(
+            m <= d + meshed.mesh_error + fp32,
+            "pixel {i}: {m} above {d}"
+        );
+        let e = exact.distance[i] as f64;
+        assert!((m - e).abs() <= meshed.mesh_error + meshed.tolerance() + rounding);
+        largest = largest.max(m - d);
+    }
+    (largest / pixel, meshed.mesh_error / pixel)
+}
+
+#[test]
+fn voronoi_meshes_stay_within_their_bound() {
+    let sites = random_sites(12, 5);
+    let domain = Domain {
+        min: [0.0, 0.0],
+        size: 10.0,
+    };
+    let (fine, fine_bound) = check_meshes(&sites, domain, 48, 0.05);
+    let (coarse, coarse_bound) = check_meshes(&sites, domain, 48, 3.0);
+    eprintln!("mesh error: {fine:.4} px (bound {fine_bound:.4}), {coarse:.4} px (bound {coarse_bound:.4})");
+    assert!(fine <= fine_bound + 0.01 && coarse <= coarse_bound + 0.01);
+    // The coarse cones are visibly faceted: the error is a real part of its bound, so the
+    // meshes, not exact distances, drew the diagram. (The bound holds out to the farthest
+    // corner of the domain, `r (1 / cos(π/k) - 1)` at r = R; a pixel's nearest site is much
+    // nearer, here about a fifth of R.)
+    assert!(coarse > 0.1 * coarse_bound, "{coarse} of {coarse_bound}");
+    assert!(coarse > fine);
+}
+
+#[test]
+fn voronoi_meshes_at_extreme_scales() {
+    let sites = random_sites(7, 4);
+    for (scale, offset) in [(1e-4, 0.0), (1e4, 0.0), (1.0, 1e4)] {
+        let moved: Vec<Site> = sites
+            .iter()
+            .map(|s| match *s {
+                Site::Point(p) => Site::Point(p.map(|v| v * scale + offset)),
+                Site::Segment(s) => Site::Segment(s.map(|p| p.map(|v| v * scale + offset))),
+                Site::Triangle(t) => Site::Triangle(t.map(|p| p.map(|v| v * scale + offset))),
+            })
+            .collect();
+        let domain = Domain {
+            min: [offset, offset],
+            size: 10.0 * scale,
+        };
+        check_meshes(&moved, domain, 24, 0.5);
+    }
+}
+
+#[test]
 fn voronoi_ties_go_to_the_smaller_id() {
     // Sites 0 and 2 are the same point, 1 and 3 the same triangle, 4 overlaps 1: where they
     // tie exactly (the same distance computed the same way), the smaller id wins.
@@ -381,6 +471,29 @@ fn voronoi_command_reports_and_refuses() {
     ]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("bad_sites.json"));
+    // Hoff's distance meshes from the command: the bound is stated and met.
+    let mut meshed = args.to_vec();
+    meshed.extend(["--force", "--method", "mesh", "--mesh-error", "0.25"]);
+    let report = json_of(&meshed);
+    assert_eq!(report["method"], "mesh");
+    let bound = report["mesh_error_bound"].as_f64().unwrap();
+    let pixel = report["domain"]["size"].as_f64().unwrap() / 24.0;
+    assert!(
+        bound > 0.0 && bound <= 0.25 * pixel * (1.0 + 1e-9),
+        "{bound}"
+    );
+    assert_eq!(report["agreement"]["wrong"], 0);
+    // --mesh-error without the mesh method, or not positive: refused.
+    let mut exact = args.to_vec();
+    exact.extend(["--force", "--mesh-error", "0.5"]);
+    let out = classic_gpgpu(&exact);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--mesh-error"));
+    meshed.pop();
+    meshed.push("0");
+    let out = classic_gpgpu(&meshed);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--mesh-error"));
     assert!(Sites::parse(r#"{"sites": []}"#).is_err());
     assert!(Sites::parse(
         r#"{"sites": [{"point": [1, 1]}], "domain": {"min": [0, 0], "size": 0}}"#

@@ -179,6 +179,54 @@ fn tetrahedra_match_parry_and_the_cpu_t_buffer() {
     assert_t_buffers_agree(&minkowski_sums(&a, &b).unwrap(), &r, "tetrahedra");
 }
 
+/// A pixel's ray through an edge shared by two back faces, one of whose other vertices
+/// projects 400 pixels outside its cube face (found by a random search at N = 32). GL 3.3
+/// section 3.6.1 requires exactly one of the two triangles to produce that fragment; softpipe
+/// (Mesa 22.3) produces neither, so its T stays 0 there. The query must still be right: the
+/// bound's point is checked against every sum in f64, and then every ray whose T lies inside
+/// a sum takes its exit in f64, so the T buffer agrees everywhere and the bound is as tight as
+/// without the loss.
+#[test]
+fn a_pixel_centre_on_a_long_shared_edge_is_still_right() {
+    let ctx = context();
+    let query = PenetrationQuery::new(&ctx).unwrap();
+    let a_mesh = tetrahedron([
+        Vec3::new(0.5754197, 0.3569799, 0.34134808),
+        Vec3::new(0.34646365, 0.88578206, 0.5717152),
+        Vec3::new(1.7797859, 0.5593571, 1.086653),
+        Vec3::new(1.7902366, 1.8637482, 0.80537117),
+    ]);
+    let b_mesh = tetrahedron([
+        Vec3::new(0.117673494, 0.81997633, 1.985052),
+        Vec3::new(0.17743684, 1.8961915, 1.0865502),
+        Vec3::new(1.4144318, 0.8770681, 0.023955368),
+        Vec3::new(1.1495664, 0.9844303, 0.6012149),
+    ]);
+    let (a, b) = (pieces("A", &[a_mesh]), pieces("B", &[b_mesh]));
+    let (exact, normal) = exact_convex(&a, &b);
+    let r = run(&query, &a, &b, 32);
+    assert!((r.depth - exact).abs() < 1e-5, "{} vs {exact}", r.depth);
+    let direction = DVec3::from_array(r.direction.unwrap());
+    assert!(direction.dot(normal) > 0.999, "{direction} {normal}");
+    assert!(r.upper_bound <= face_bound(exact, 32, r.scale));
+    let sums = minkowski_sums(&a, &b).unwrap();
+    let unit: Vec<Polytope> = sums.iter().map(|s| scaled(s, 1.0 / r.scale)).collect();
+    let cpu = t_buffer(&rounded_to_f32(&unit), 32);
+    let differ = r
+        .exits
+        .as_ref()
+        .unwrap()
+        .iter()
+        .zip(&cpu)
+        .filter(|(g, c)| ((**g as f64 / r.scale) - **c as f64).abs() > 1e-4)
+        .count();
+    assert_eq!(
+        differ, 0,
+        "texels differ (corrected: {})",
+        r.bound_corrected
+    );
+}
+
 /// An L of two overlapping boxes (tall in z) and a small cube near its inner corner: the
 /// nearest way out is over the re-entrant corner, a crease between the two sums, at
 /// 0.15 √2 along (1, 1, 0) / √2.

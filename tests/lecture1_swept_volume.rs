@@ -8,8 +8,9 @@
 use classic_gpgpu::lecture1::swept_volume::classify::segment_meets_triangle;
 use classic_gpgpu::lecture1::swept_volume::path::{Keyframe, Path3};
 use classic_gpgpu::lecture1::swept_volume::primitives::{edges, primitives};
+use classic_gpgpu::lecture1::swept_volume::topology::analyse;
 use classic_gpgpu::lecture1::swept_volume::{sweep, Options, SweptVolume};
-use classic_gpgpu::mesh::generate::cube;
+use classic_gpgpu::mesh::generate::{cube, torus_closed, uv_sphere};
 use classic_gpgpu::mesh::Mesh;
 use common::{classic_gpgpu, context, json_of};
 use glam::{DQuat, DVec3, Vec3};
@@ -111,8 +112,15 @@ fn converges(mesh: &Mesh, v: DVec3, resolutions: [usize; 2]) {
             swept.surface.volume
         );
         assert!(
-            swept.surface.watertight,
+            swept.surface.watertight(),
             "n = {n}: the surface is not watertight"
+        );
+        // A convex model along a straight line sweeps a convex solid: a sphere's topology.
+        assert_eq!(
+            swept.surface.topology.euler_characteristic,
+            Some(2),
+            "n = {n}: {:?}",
+            swept.surface.topology
         );
         assert!(error <= bound, "n = {n}: error {error} above {bound}");
         errors.push(error);
@@ -136,6 +144,100 @@ fn a_translated_tetrahedron_converges_to_its_hull() {
     converges(&tetrahedron(), DVec3::new(0.8, 0.5, 0.3), [20, 48]);
 }
 
+/// The swept surface's topology: `V - E + F` and the genus, checked to be a manifold.
+fn euler_and_genus(mesh: &Mesh, path: &Path3, n: usize, poses: usize) -> (i64, i64) {
+    let swept = run(mesh, path, n, poses);
+    let t = &swept.surface.topology;
+    assert!(t.is_manifold(), "n = {n}: {t:?}");
+    assert_eq!(t.components, 1, "{t:?}");
+    (t.euler_characteristic.unwrap(), t.genus.unwrap())
+}
+
+#[test]
+fn a_sphere_along_a_line_sweeps_a_sphere_topologically() {
+    let sphere = uv_sphere(0.5, 12, 8);
+    let path = translation(DVec3::new(1.0, 0.4, 0.2));
+    assert_eq!(euler_and_genus(&sphere, &path, 28, 2), (2, 0));
+}
+
+#[test]
+fn a_ring_moved_along_its_axis_sweeps_a_torus() {
+    // Major radius 1, tube radius 0.3: the hole (radius 0.7) stays open, many voxels wide.
+    let ring = torus_closed(1.0, 0.3, 24, 8);
+    let path = translation(DVec3::new(0.1, 0.0, 0.5));
+    assert_eq!(euler_and_genus(&ring, &path, 36, 2), (0, 1));
+}
+
+#[test]
+fn a_cube_around_a_closed_loop_sweeps_a_solid_torus() {
+    // A cube of edge 0.5 carried around a circle of radius 1.5 and back to its start: its
+    // boundary is a torus.
+    let frames: Vec<Keyframe> = (0..=12)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 12.0;
+            keyframe(1.5 * DVec3::new(a.cos(), a.sin(), 0.0), DQuat::IDENTITY)
+        })
+        .collect();
+    let path = Path3::new(&frames).unwrap();
+    assert_eq!(euler_and_genus(&cube(0.5), &path, 40, 25), (0, 1));
+}
+
+#[test]
+fn topology_is_reported_only_for_a_manifold() {
+    // A closed sphere and torus: 2 and 0.
+    let s = uv_sphere(1.0, 8, 5);
+    let t = analyse(&s.triangles, s.positions.len());
+    assert_eq!((t.euler_characteristic, t.genus), (Some(2), Some(0)));
+    let r = torus_closed(1.0, 0.3, 8, 5);
+    let t = analyse(&r.triangles, r.positions.len());
+    assert_eq!((t.euler_characteristic, t.genus), (Some(0), Some(1)));
+    // Two cubes apart: two spheres, V - E + F = 4, genus 0.
+    let two = |shift: Vec3, share: bool| {
+        let a = cube(1.0);
+        let mut positions = a.positions.clone();
+        let offset = positions.len() as u32;
+        positions.extend(a.positions.iter().map(|p| *p + shift));
+        let mut triangles = a.triangles.clone();
+        triangles.extend(a.triangles.iter().map(|t| t.map(|v| v + offset)));
+        if share {
+            // Weld the second cube's corner 0 (at -0.5 + shift) onto the first's corner 7.
+            let corner = |i: u32| (offset + i, 7);
+            let (from, to) = corner(0);
+            for t in &mut triangles {
+                for v in t.iter_mut() {
+                    if *v == from {
+                        *v = to;
+                    }
+                }
+            }
+        }
+        analyse(&triangles, positions.len())
+    };
+    let apart = two(Vec3::splat(3.0), false);
+    assert_eq!(apart.components, 2);
+    assert_eq!(
+        (apart.euler_characteristic, apart.genus),
+        (Some(4), Some(0))
+    );
+    // Touching at one vertex: every edge still has two triangles, but the vertex's
+    // triangles make two fans, so no Euler characteristic is given.
+    let pinched = two(Vec3::splat(1.0), true);
+    assert_eq!(pinched.non_manifold_edges, 0);
+    assert_eq!(pinched.non_manifold_vertices, 1);
+    assert!(!pinched.is_manifold());
+    assert_eq!(pinched.euler_characteristic, None);
+    // Three triangles on one edge, an open surface, a flipped triangle: none is a manifold.
+    let fin = [[0, 1, 2], [1, 0, 3], [0, 1, 4]];
+    assert_eq!(analyse(&fin, 5).non_manifold_edges, 1);
+    let mut open = s.triangles.clone();
+    open.pop();
+    assert!(analyse(&open, s.positions.len()).boundary_edges > 0);
+    let mut flipped = s.triangles.clone();
+    flipped[0].swap(1, 2);
+    let t = analyse(&flipped, s.positions.len());
+    assert!(t.misoriented_edges > 0 && t.euler_characteristic.is_none());
+}
+
 #[test]
 fn a_quarter_turn_sweeps_a_cylinder() {
     // A unit cube turning a quarter turn about the z axis through its centre sweeps the disk
@@ -152,7 +254,8 @@ fn a_quarter_turn_sweeps_a_cylinder() {
     let exact = std::f64::consts::FRAC_PI_2;
     let error = (swept.surface.volume - exact).abs() / exact;
     assert!(error < 0.03, "volume {} vs {exact}", swept.surface.volume);
-    assert!(swept.surface.watertight);
+    assert!(swept.surface.watertight());
+    assert_eq!(swept.surface.topology.euler_characteristic, Some(2));
     assert!(swept.primitives.ruled_triangles > 0);
 }
 
@@ -276,6 +379,8 @@ fn swept_volume_command_reports_and_refuses() {
     let report = json_of(&args);
     assert_eq!(report["resolution"], 24);
     assert_eq!(report["euler_characteristic"], 2);
+    assert_eq!(report["genus"], 0);
+    assert_eq!(report["manifold"], true);
     let volume = report["volume"].as_f64().unwrap();
     // The written mesh encloses the reported volume.
     let written = classic_gpgpu::mesh::load_obj(&out).unwrap();
@@ -328,9 +433,14 @@ fn report_blocks_render() {
     };
     let field = distance_field::block(&setting).unwrap();
     let rows = field.results.as_array().unwrap();
+    // Exact methods at fp32 rounding, distance meshes within their tessellation bound.
+    for r in rows {
+        let bound = r["tessellation_bound"].as_f64().map_or(1e-3, |b| b + 1e-2);
+        assert!(r["max_error_voxels"].as_f64().unwrap() < bound, "{r}");
+    }
     assert!(rows
         .iter()
-        .all(|r| r["max_error_voxels"].as_f64().unwrap() < 1e-3));
+        .any(|r| r["tessellation_bound"].as_f64().is_some()));
     let swept = swept_volume::block(&setting).unwrap();
     let errors: Vec<f64> = swept
         .results

@@ -51,8 +51,20 @@ fn mass_json_has_every_documented_field() {
     );
     assert!((v["analytic"]["inertia"][2][2].as_f64().unwrap() - 16.0).abs() < 1e-4);
     assert_eq!(v["center_of_mass"].as_array().unwrap().len(), 3);
-    assert!(v["timings_ms"]["gpu"].as_f64().is_some());
-    assert!(v["timings_ms"]["analytic"].as_f64().is_some());
+    // Timed as the report times: the median of at least 3 runs after an untimed one,
+    // with the spread and the load beside it.
+    for key in ["gpu", "gpu_wall", "analytic"] {
+        let runs = &v["timings_ms"]["runs"][key];
+        let (min, median, max) = (
+            runs["min"].as_f64().unwrap(),
+            runs["median"].as_f64().unwrap(),
+            runs["max"].as_f64().unwrap(),
+        );
+        assert!(runs["runs"].as_u64().unwrap() >= 3, "{key}: {runs}");
+        assert!(0.0 < min && min <= median && median <= max, "{key}: {runs}");
+        assert_eq!(v["timings_ms"][key].as_f64(), Some(median), "{key}");
+    }
+    assert!(v["timings_ms"]["load"]["cores"].as_u64().unwrap() >= 1);
     assert!(v["framing"]["pixel_size"].as_f64().unwrap() > 0.0);
     assert_eq!(v["analytic"]["reliable"], true);
 }

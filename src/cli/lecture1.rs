@@ -51,8 +51,9 @@ pub enum Lecture1Command {
     DistanceField(DistanceFieldArgs),
     /// The swept volume of a model moving along a path (Kim, Varadhan, Lin & Manocha 2003, a
     /// reconstruction): ruled surfaces and posed faces, their distance field, a flood fill
-    /// from the border, the outer boundary by surface nets. PATH.json: [{"translation": [x,
-    /// y, z], "rotation": [w, x, y, z]}, ...], keyframes equally spaced in time, translation
+    /// from the border, the outer boundary by marching tetrahedra (a closed 2-manifold: its
+    /// Euler characteristic and genus). PATH.json: [{"translation": [x, y, z], "rotation":
+    /// [w, x, y, z]}, ...], keyframes equally spaced in time, translation
     /// interpolated linearly and rotation by slerp; a rotation that is not a unit quaternion
     /// (within 1e-6) is refused.
     SweptVolume(SweptVolumeArgs),

@@ -10,7 +10,8 @@ use classic_gpgpu::lecture1::distance_field::compute::ComputeField;
 use classic_gpgpu::lecture1::distance_field::slices::SliceRasterizer;
 use classic_gpgpu::lecture1::distance_field::{reference as field_reference, Grid};
 use classic_gpgpu::lecture1::swept_volume::{self, path::Path3, Options, DEFAULT_POSES};
-use classic_gpgpu::lecture1::voronoi::raster::VoronoiRasterizer;
+use classic_gpgpu::lecture1::voronoi::mesh::DEFAULT_ERROR_PIXELS;
+use classic_gpgpu::lecture1::voronoi::raster::{Method, VoronoiRasterizer};
 use classic_gpgpu::lecture1::voronoi::{reference as voronoi_reference, Sites};
 use classic_gpgpu::mesh::{load_obj, write_obj, Mesh};
 use serde_json::json;
@@ -31,9 +32,26 @@ pub struct VoronoiArgs {
     /// c = 0 the nearest site's id, c = 1 its distance.
     #[arg(long)]
     pub npy: Option<PathBuf>,
+    /// How each site's distance reaches the depth buffer: `mesh`, Hoff's distance meshes
+    /// (cones and tents, depth interpolated, within --mesh-error of the distance); `exact`,
+    /// the exact distance per fragment through gl_FragDepth.
+    #[arg(long, value_enum, default_value_t = VoronoiMethod::Exact)]
+    pub method: VoronoiMethod,
+    /// The distance meshes' tessellation error, pixels: the cones get the fewest sides that
+    /// keep every distance within it (only with --method mesh).
+    #[arg(long)]
+    pub mesh_error: Option<f64>,
     /// Overwrite existing output files.
     #[arg(long)]
     pub force: bool,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VoronoiMethod {
+    /// The exact distance per fragment (gl_FragDepth).
+    Exact,
+    /// Hoff's bounded-error distance meshes.
+    Mesh,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,12 +133,26 @@ pub fn voronoi(args: &VoronoiArgs, ctx: &Context, json: bool) -> anyhow::Result<
         );
     }
     anyhow::ensure!(args.resolution >= 1, "--resolution must be at least 1");
+    let method = match (args.method, args.mesh_error) {
+        (VoronoiMethod::Exact, None) => Method::Exact,
+        (VoronoiMethod::Exact, Some(_)) => {
+            anyhow::bail!("--mesh-error applies to --method mesh only")
+        }
+        (VoronoiMethod::Mesh, error) => {
+            let error_pixels = error.unwrap_or(DEFAULT_ERROR_PIXELS);
+            anyhow::ensure!(
+                error_pixels.is_finite() && error_pixels > 0.0,
+                "--mesh-error must be a positive number of pixels, not {error_pixels}"
+            );
+            Method::Mesh { error_pixels }
+        }
+    };
     let sites = Sites::load(&args.sites)?;
     let domain = sites.domain()?;
     let n = args.resolution;
     let rasterizer = VoronoiRasterizer::new(ctx)?;
     let start = Instant::now();
-    let (diagram, timings) = rasterizer.diagram(&sites.sites, domain, n)?;
+    let (diagram, timings) = rasterizer.diagram_by(&sites.sites, domain, n, method)?;
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
     let agreement = voronoi_reference::compare(&diagram, &sites.sites);
     anyhow::ensure!(
@@ -168,6 +200,8 @@ pub fn voronoi(args: &VoronoiArgs, ctx: &Context, json: bool) -> anyhow::Result<
             "sites": sites.sites.len(),
             "domain": domain,
             "pixel_counts": counts,
+            "method": match method { Method::Exact => "exact", Method::Mesh { .. } => "mesh" },
+            "mesh_error_bound": diagram.mesh_error,
             "agreement": agreement,
             "tie_rule": "equal fp32 depth (distance / depth range): the smaller site id wins",
             "timings_ms": {"site_pass_gpu": timings.pass_ms, "readback": timings.readback_ms,
@@ -289,9 +323,11 @@ pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow
             "renderer": renderer(ctx),
             "resolution": swept.grid.n,
             "volume": s.volume,
-            "euler_characteristic": s.euler_characteristic,
-            "watertight": s.watertight,
-            "non_manifold_edges": s.non_manifold_edges,
+            "euler_characteristic": s.topology.euler_characteristic,
+            "genus": s.topology.genus,
+            "manifold": s.topology.is_manifold(),
+            "watertight": s.watertight(),
+            "topology": s.topology,
             "vertices": s.mesh.positions.len(),
             "triangles": s.mesh.triangles.len(),
             "poses": args.poses,
@@ -318,19 +354,27 @@ pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow
     }
     println!("renderer: {}", renderer(ctx));
     println!(
-        "swept volume at {}^3: volume {}, Euler characteristic {} ({}, {} non-manifold \
-         edges), {} triangles, written to {}",
+        "swept volume at {}^3: volume {}, {}, {} triangles, written to {}",
         swept.grid.n,
         s.volume,
-        s.euler_characteristic,
-        if s.watertight {
-            "watertight"
-        } else {
-            "not watertight"
-        },
-        s.non_manifold_edges,
+        describe_topology(&s.topology),
         s.mesh.triangles.len(),
         args.out.display()
     );
     Ok(())
+}
+
+/// `V - E + F` and the genus for a manifold surface, else what stops it being one.
+fn describe_topology(t: &swept_volume::topology::Topology) -> String {
+    match (t.euler_characteristic, t.genus) {
+        (Some(chi), Some(genus)) => format!(
+            "a closed 2-manifold of {} component(s), V - E + F = {chi}, genus {genus}",
+            t.components
+        ),
+        _ => format!(
+            "not a closed 2-manifold ({} boundary, {} misoriented, {} non-manifold edges, {} \
+             non-manifold vertices): no Euler characteristic",
+            t.boundary_edges, t.misoriented_edges, t.non_manifold_edges, t.non_manifold_vertices
+        ),
+    }
 }

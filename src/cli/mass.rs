@@ -10,6 +10,7 @@ use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::{GpuMass, GpuResult};
 use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings, DEFAULT_MAX_PEELS};
 use classic_gpgpu::mass::{analytic, clip, models, surface};
+use classic_gpgpu::report::timing::{Load, Runs, Spread};
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -148,18 +149,19 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         .map_err(|e| anyhow::anyhow!("model '{}': {e}", args.model))?;
 
     let model = || format!("model '{}'", args.model);
-    let (result, gpu_wall_ms, profile) = match args.formulation {
+    let (result, timings, profile) = match args.formulation {
         super::Formulation::Classic => {
             let settings = args.peeling.settings()?;
             let gpu = GpuMass::with_settings(ctx, args.resolution, settings)
                 .context("setting up the GPU passes")?;
-            // The first run compiles and allocates on the driver side; time the second.
-            gpu.integrate(&mesh, args.below, None).with_context(model)?;
-            let start = Instant::now();
+            // The first run compiles llvmpipe's shader variants and allocates on the driver
+            // side: untimed (it also writes the dumps), then the report's runs policy.
             let result = gpu
                 .integrate(&mesh, args.below, args.dump.as_deref())
                 .with_context(model)?;
-            let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+            let (gpu_runs, wall) =
+                timed_runs(|| Ok(gpu.integrate(&mesh, args.below, None)?.gpu_ms))
+                    .with_context(model)?;
             let profile = if args.profile {
                 profile::start(ctx);
                 gpu.integrate(&mesh, args.below, None)?;
@@ -167,20 +169,37 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
             } else {
                 None
             };
-            (result, wall_ms, profile)
+            (result, (gpu_runs, wall), profile)
         }
         super::Formulation::Compute => {
-            let (result, wall_ms) = compute_mass(args, ctx, &mesh).with_context(model)?;
-            (result, wall_ms, None)
+            let (result, timings) = compute_mass(args, ctx, &mesh).with_context(model)?;
+            (result, timings, None)
         }
     };
-
-    let start = Instant::now();
     let exact = match args.below {
         Some(z) => analytic::volume_integrals(&clip::below_plane(&mesh, z as f32)),
         None => analytic::volume_integrals(&mesh),
     };
-    let analytic_ms = start.elapsed().as_secs_f64() * 1e3;
+    // Mirtich's method takes a millisecond or less: five runs at least, as the report.
+    let analytic_runs = Runs {
+        min: 5,
+        max: 5.max(Runs::PAPER.max),
+        ..Runs::PAPER
+    };
+    let analytic = Spread::of(&analytic_runs.run(|_| -> anyhow::Result<f64> {
+        let start = Instant::now();
+        match args.below {
+            Some(z) => analytic::volume_integrals(&clip::below_plane(&mesh, z as f32)),
+            None => analytic::volume_integrals(&mesh),
+        };
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    })?);
+    let timings = Timings {
+        gpu: timings.0,
+        gpu_wall: timings.1,
+        analytic,
+        load: Load::now(),
+    };
 
     let got = MassProperties::from_integrals(&result.integrals, args.density);
     let want = MassProperties::from_integrals(&exact, args.density);
@@ -242,8 +261,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         result: &result,
         got,
         want,
-        gpu_wall_ms,
-        analytic_ms,
+        timings,
         warnings,
         profile,
     };
@@ -270,7 +288,7 @@ fn compute_mass(
     args: &MassArgs,
     ctx: &Context,
     mesh: &classic_gpgpu::mesh::Mesh,
-) -> anyhow::Result<(GpuResult, f64)> {
+) -> anyhow::Result<(GpuResult, (Spread, Spread))> {
     if args.below.is_some() || args.dump.is_some() || args.profile {
         bail!(
             "--below, --dump and --profile need the classic formulation (the compute formulation \
@@ -278,10 +296,8 @@ fn compute_mass(
         );
     }
     let compute = ComputeMass::new(ctx).context("setting up the compute pass")?;
-    compute.integrate(&[mesh])?;
-    let start = Instant::now();
     let result = compute.integrate(&[mesh])?;
-    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let timings = timed_runs(|| Ok(compute.integrate(&[mesh])?.gpu_ms))?;
     let framing = Framing::fit(mesh, args.resolution).map_err(anyhow::Error::msg)?;
     Ok((
         GpuResult {
@@ -293,8 +309,38 @@ fn compute_mass(
             framing,
             gpu_ms: result.gpu_ms,
         },
-        wall_ms,
+        timings,
     ))
+}
+
+/// `integrate` (returning its GPU ms) timed as the report times it ([`Runs::PAPER`]: 3
+/// runs, up to 5 within a second), after the caller's untimed first run: (GPU ms, wall ms).
+fn timed_runs(
+    mut integrate: impl FnMut() -> anyhow::Result<f64>,
+) -> anyhow::Result<(Spread, Spread)> {
+    let mut gpu = Vec::new();
+    let wall = Runs::PAPER.run(|_| -> anyhow::Result<f64> {
+        let start = Instant::now();
+        gpu.push(integrate()?);
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    })?;
+    Ok((Spread::of(&gpu), Spread::of(&wall)))
+}
+
+/// "9.812 ms (median of 5 runs, 9.501-10.420)".
+fn runs_text(s: &Spread) -> String {
+    format!(
+        "{:.3} ms (median of {} runs, {:.3}-{:.3})",
+        s.median, s.runs, s.min, s.max
+    )
+}
+
+/// The CLI's timings: medians and spreads of the runs, and the load average they ran at.
+struct Timings {
+    gpu: Spread,
+    gpu_wall: Spread,
+    analytic: Spread,
+    load: Option<Load>,
 }
 
 /// The profile table under a heading.
@@ -316,8 +362,7 @@ struct MassOutput<'a> {
     result: &'a GpuResult,
     got: MassProperties,
     want: MassProperties,
-    gpu_wall_ms: f64,
-    analytic_ms: f64,
+    timings: Timings,
     warnings: Vec<String>,
     /// `--profile`: the table of the profiled run.
     profile: Option<profile::ProfileTable>,
@@ -373,9 +418,15 @@ impl MassOutput<'_> {
                 "pixel_size": f.pixel_size(),
             },
             "timings_ms": {
-                "gpu": self.result.gpu_ms,
-                "gpu_wall": self.gpu_wall_ms,
-                "analytic": self.analytic_ms,
+                "gpu": self.timings.gpu.median,
+                "gpu_wall": self.timings.gpu_wall.median,
+                "analytic": self.timings.analytic.median,
+                "runs": {
+                    "gpu": self.timings.gpu,
+                    "gpu_wall": self.timings.gpu_wall,
+                    "analytic": self.timings.analytic,
+                },
+                "load": self.timings.load,
             },
             "warnings": self.warnings,
             "profile": self.profile,
@@ -448,9 +499,14 @@ impl MassOutput<'_> {
         } else {
             "the dispatch to glFinish"
         };
+        let t = &self.timings;
+        s += &format!("time, GPU       {} by {gpu_clock}\n", runs_text(&t.gpu));
+        s += &format!("time, GPU wall  {}\n", runs_text(&t.gpu_wall));
+        s += &format!("time, analytic  {}\n", runs_text(&t.analytic));
         s += &format!(
-            "time (ms)       GPU {:.3} ({gpu_clock}), {:.3} wall; analytic {:.3}\n",
-            self.result.gpu_ms, self.gpu_wall_ms, self.analytic_ms
+            "timed           after one untimed run; {}\n",
+            t.load
+                .map_or("load average unknown".into(), |l| l.in_words())
         );
         if self.classic() {
             s += &format!(

@@ -372,17 +372,18 @@ fn is_zero_area([a, b, c]: [Vec3; 3]) -> bool {
     (b - a).cross(c - a).length() <= ZERO_AREA_RELATIVE * longest
 }
 
-struct UnionFind {
+/// Union-find over vertex ids (path halving).
+pub(crate) struct UnionFind {
     parent: Vec<u32>,
 }
 
 impl UnionFind {
-    fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         Self {
             parent: (0..n as u32).collect(),
         }
     }
-    fn find(&mut self, mut v: u32) -> u32 {
+    pub(crate) fn find(&mut self, mut v: u32) -> u32 {
         while self.parent[v as usize] != v {
             let grand = self.parent[self.parent[v as usize] as usize];
             self.parent[v as usize] = grand;
@@ -390,7 +391,7 @@ impl UnionFind {
         }
         v
     }
-    fn union(&mut self, a: u32, b: u32) {
+    pub(crate) fn union(&mut self, a: u32, b: u32) {
         let (ra, rb) = (self.find(a), self.find(b));
         if ra != rb {
             self.parent[ra.max(rb) as usize] = ra.min(rb);

@@ -101,7 +101,8 @@ pub struct Penetration {
     /// The smallest T over all pixels (the rasterized bound).
     pub rasterized_bound: f64,
     /// Whether the rasterized bound's point lay inside a sum (a fragment the renderer lost),
-    /// so that the bound below is the CPU's exit along the same ray instead.
+    /// so that every ray whose T lay inside a sum took the CPU's exit along it instead, and
+    /// the bound below is the smallest T after that.
     pub bound_corrected: bool,
     /// The upper bound the refinement starts from, and its pixel's direction.
     pub upper_bound: f64,
@@ -190,25 +191,46 @@ impl PenetrationQuery {
         // The unit frame: a power of two, so that scaling is exact.
         let scale = 2f64.powi(reach.log2().ceil() as i32);
         let unit: Vec<Polytope> = kept.iter().map(|s| scaled(s, 1.0 / scale)).collect();
-        let (nearest, passes, gpu_ms, exits) = match options.formulation {
-            Formulation::Classic => self.classic(&unit, options)?,
-            Formulation::Compute => self.compute(&unit, options)?,
+        let (mut nearest, passes, gpu_ms, mut exits) = self.closest_point(&unit, options)?;
+        // The bound's point must lie outside every sum's interior. A renderer that loses a
+        // fragment leaves T too small on its ray (GL 3.3, section 3.6.1, asks exactly one of
+        // two triangles sharing an edge to cover a pixel centre on it; softpipe can give
+        // neither): then every ray whose T still lies inside a sum takes its exit in f64, and
+        // the bound is the smallest T of all.
+        let inside = |t: f32, pixel: usize| {
+            let point = cube_map::direction_of(pixel, options.resolution) * (t as f64 * scale);
+            kept.iter().any(|s| s.depth_of(point) < -tolerance)
         };
         let rasterized_bound = nearest.0 as f64 * scale;
+        let bound_corrected = overlap && inside(nearest.0, nearest.1);
+        if bound_corrected {
+            let mut all = match exits.take() {
+                Some(t) => t,
+                None => {
+                    let keep = Options {
+                        keep_exits: true,
+                        ..*options
+                    };
+                    self.closest_point(&unit, &keep)?
+                        .3
+                        .ok_or_else(|| anyhow::anyhow!("the T buffer was not kept"))?
+                }
+            };
+            for (pixel, t) in all.iter_mut().enumerate() {
+                if inside(*t, pixel) {
+                    let ray = cube_map::direction_of(pixel, options.resolution);
+                    *t = (reference::union_exit(&kept, ray, 0.0) / scale) as f32;
+                }
+            }
+            nearest = smallest(&all).ok_or_else(|| anyhow::anyhow!("an empty T buffer"))?;
+            exits = options.keep_exits.then_some(all);
+        }
+        let upper_bound = nearest.0 as f64 * scale;
         let bound_direction = cube_map::direction_of(nearest.1, options.resolution);
         anyhow::ensure!(
-            rasterized_bound.is_finite(),
-            "the closest-point query gave a non-finite upper bound ({rasterized_bound})"
+            upper_bound.is_finite(),
+            "the closest-point query gave a non-finite upper bound ({upper_bound})"
         );
-        // The bound's point must lie outside every sum's interior; if a renderer lost a
-        // fragment there (T too small), the exit along the same ray, in f64, is the bound.
-        let point = bound_direction * rasterized_bound;
-        let bound_corrected = overlap && kept.iter().any(|s| s.depth_of(point) < -tolerance);
-        let upper_bound = if bound_corrected {
-            reference::union_exit(&kept, bound_direction, 0.0)
-        } else {
-            rasterized_bound
-        };
         let refinement = if overlap {
             refine::refine(&kept, upper_bound, bound_direction, tolerance)
         } else {
@@ -249,6 +271,14 @@ impl PenetrationQuery {
         })
     }
 
+    /// Step 3 in the chosen formulation.
+    fn closest_point(&self, unit: &[Polytope], options: &Options) -> anyhow::Result<Outcome> {
+        match options.formulation {
+            Formulation::Classic => self.classic(unit, options),
+            Formulation::Compute => self.compute(unit, options),
+        }
+    }
+
     /// The classic passes: (smallest T, its pixel), passes, GPU ms, T if kept.
     fn classic(&self, unit: &[Polytope], options: &Options) -> anyhow::Result<Outcome> {
         let buffers = SumBuffers::new(&self.ctx, unit)?;
@@ -280,14 +310,18 @@ impl PenetrationQuery {
             }
         };
         let (exits, ms) = compute.exits(unit, options.resolution)?;
-        let (pixel, t) = exits
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.total_cmp(b.1))
-            .map(|(k, t)| (k, *t))
-            .ok_or_else(|| anyhow::anyhow!("an empty T buffer"))?;
-        Ok(((t, pixel), 0, ms, options.keep_exits.then_some(exits)))
+        let nearest = smallest(&exits).ok_or_else(|| anyhow::anyhow!("an empty T buffer"))?;
+        Ok((nearest, 0, ms, options.keep_exits.then_some(exits)))
     }
+}
+
+/// The smallest T and its pixel.
+fn smallest(exits: &[f32]) -> Option<(f32, usize)> {
+    exits
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .map(|(k, t)| (*t, k))
 }
 
 /// (smallest T, its pixel), passes, GPU ms, T if kept.

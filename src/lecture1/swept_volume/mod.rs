@@ -14,8 +14,8 @@
 //!    ([`super::distance_field::slices`]), clamped near the surface;
 //! 4. [`classify`]: a flood fill from the grid's border (not fast marching) into outside
 //!    voxels, the rest inside, as a signed field;
-//! 5. [`extract`]: the zero level by surface nets (a maintained crate), its volume and Euler
-//!    characteristic; no topological refinement.
+//! 5. [`extract`]: the zero level by marching tetrahedra, a closed 2-manifold, its volume,
+//!    and ([`topology`]) its Euler characteristic and genus; no topological refinement.
 //!
 //! The grid is the cube around every posed primitive grown by a margin of at least four voxels
 //! ([`margin_for`]), so that the border is outside.
@@ -24,6 +24,7 @@ pub mod classify;
 pub mod extract;
 pub mod path;
 pub mod primitives;
+pub mod topology;
 
 use super::distance_field::slices::SliceRasterizer;
 use super::distance_field::{FieldTimings, Grid};
@@ -74,7 +75,7 @@ pub struct SweepTimings {
     pub field_wall_ms: f64,
     /// Flood fill (CPU).
     pub classify_ms: f64,
-    /// Surface nets, volume, Euler characteristic (CPU).
+    /// Marching tetrahedra, volume, topology (CPU).
     pub extract_ms: f64,
 }
 

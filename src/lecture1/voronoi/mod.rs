@@ -3,19 +3,23 @@
 //! using graphics hardware", SIGGRAPH 1999 (`lecture1-sources.md`, section 5).
 //!
 //! What the sources confirm: every site's distance function is rendered over the planar grid
-//! and the depth test keeps the nearest site, its id in the colour buffer and its distance in
-//! the depth buffer. What is ours (a reconstruction, as the sources suggest for OpenGL 3.3):
-//! instead of a distance mesh (a polygonal approximation of the distance function with a
-//! bounded error), each site draws one rectangle over the whole domain and every fragment
-//! computes its exact distance to the site and writes it to `gl_FragDepth` ([`raster`],
-//! `glsl/lecture1/voronoi_site.vert` and `voronoi_site.frag`). [`reference`](mod@reference) is brute force
-//! per pixel in f64.
+//! as a distance mesh (a polygonal approximation with a bounded error) and the depth test
+//! keeps the nearest site, its id in the colour buffer and its distance in the depth buffer.
+//! Two methods ([`raster::Method`]):
+//! - `mesh`: the distance meshes ([`mesh`]: cones, tents and flat tops, the number of cone
+//!   sides chosen from the asked error), `glsl/lecture1/voronoi_mesh.vert` and `.frag`;
+//! - `exact` (ours, for OpenGL 3.3): each site draws one rectangle over the whole domain and
+//!   every fragment computes its exact distance to the site and writes it to `gl_FragDepth`
+//!   (`glsl/lecture1/voronoi_site.vert` and `voronoi_site.frag`).
+//!
+//! [`reference`](mod@reference) is brute force per pixel in f64.
 //!
 //! Ties: sites are drawn in id order and the depth test is LESS, so where two sites' depths
 //! are equal (the same fp32 value of distance / depth range) the site with the smaller id
 //! keeps the pixel; the reference takes the smallest id among exactly equal f64 distances.
 //! The two can differ only where the distances agree within [`Diagram::tolerance`].
 
+pub mod mesh;
 pub mod raster;
 pub mod reference;
 pub mod sites;
@@ -33,6 +37,9 @@ pub struct Diagram {
     pub distance: Vec<f32>,
     /// The depth values are distance / depth_range (input units).
     pub depth_range: f64,
+    /// The distance meshes' tessellation bound (input units; 0 when exact): the distance is
+    /// at most this much above the true one.
+    pub mesh_error: f64,
 }
 
 impl Diagram {
@@ -48,9 +55,16 @@ impl Diagram {
     }
 
     /// How far two distances may differ and still be a tie (input units): fp32 on coordinates
-    /// of at most a few thousand pixels (1e-4 pixel), and four steps of the fp32 depth
-    /// value (2^-22 of the depth range).
+    /// of at most a few thousand pixels (1e-4 pixel), four steps of the fp32 depth value
+    /// (2^-22 of the depth range), and the distance meshes' tessellation bound with the fp32
+    /// interpolation across their triangles (2^-18 of the depth range, the triangles spanning
+    /// it).
     pub fn tolerance(&self) -> f64 {
-        1e-4 * self.domain.pixel(self.n) + self.depth_range * 2f64.powi(-22)
+        let meshed = if self.mesh_error > 0.0 {
+            self.mesh_error + self.depth_range * 2f64.powi(-18)
+        } else {
+            0.0
+        };
+        1e-4 * self.domain.pixel(self.n) + self.depth_range * 2f64.powi(-22) + meshed
     }
 }

@@ -1,12 +1,18 @@
-//! The diagram on the GPU (OpenGL 3.3): one instanced draw, instance `i` covering the domain
-//! for site `i`; each fragment's exact distance to its site goes to `gl_FragDepth` (scaled
-//! into [0, 1] by the depth range) and the depth test (LESS, sites in id order) keeps the
-//! nearest. The colour target (RGBA32F) holds the site id and the distance.
+//! The diagram on the GPU (OpenGL 3.3), by either method:
+//! - exact: one instanced draw, instance `i` covering the domain for site `i`; each
+//!   fragment's exact distance to its site goes to `gl_FragDepth` (scaled into [0, 1] by the
+//!   depth range);
+//! - mesh: Hoff's distance meshes ([`super::mesh`]), one draw of every site's triangles, the
+//!   depth interpolated from the vertices' distances.
+//!
+//! Either way the depth test (LESS, sites in id order) keeps the nearest, and the colour
+//! target (RGBA32F) holds the site id and the distance.
 
+use super::mesh::{self, DistanceMeshes};
 use super::{Diagram, Domain, Site};
 use crate::gl::{
-    query::time_gpu, Compare, Context, DepthTest, DrawState, Framebuffer, GlError, Primitive,
-    Program, Rect, Texture, TextureFormat,
+    query::time_gpu, Buffer, BufferUsage, Compare, Context, DepthTest, DrawState, Framebuffer,
+    GlError, Primitive, Program, Rect, Texture, TextureFormat, VertexArray,
 };
 use crate::shader;
 use glam::DVec2;
@@ -19,12 +25,27 @@ pub struct VoronoiTimings {
     pub pass_ms: f64,
     /// Wall-clock time of the readback, ms.
     pub readback_ms: f64,
+    /// Triangles drawn: two per site's rectangle, or the distance meshes' triangles.
+    pub triangles: usize,
+    /// Wall-clock time of building and uploading the sites' texture or meshes, the targets'
+    /// creation included, ms.
+    pub upload_ms: f64,
 }
 
-/// The site program of one context.
+/// How each site's distance reaches the depth buffer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// The exact distance per fragment, written to `gl_FragDepth`.
+    Exact,
+    /// Hoff's distance meshes within this many pixels of the distance.
+    Mesh { error_pixels: f64 },
+}
+
+/// The site programs of one context.
 pub struct VoronoiRasterizer {
     ctx: Context,
     program: Program,
+    mesh_program: Program,
 }
 
 impl VoronoiRasterizer {
@@ -36,15 +57,31 @@ impl VoronoiRasterizer {
                 &[shader!("glsl/lecture1/voronoi_site.vert")],
                 &[shader!("glsl/lecture1/voronoi_site.frag")],
             )?,
+            mesh_program: Program::new(
+                ctx,
+                &[shader!("glsl/lecture1/voronoi_mesh.vert")],
+                &[shader!("glsl/lecture1/voronoi_mesh.frag")],
+            )?,
         })
     }
 
-    /// The diagram of `sites` over `domain` at `n x n` pixels.
+    /// The diagram of `sites` over `domain` at `n x n` pixels, exact per fragment.
     pub fn diagram(
         &self,
         sites: &[Site],
         domain: Domain,
         n: usize,
+    ) -> anyhow::Result<(Diagram, VoronoiTimings)> {
+        self.diagram_by(sites, domain, n, Method::Exact)
+    }
+
+    /// The diagram of `sites` over `domain` at `n x n` pixels by `method`.
+    pub fn diagram_by(
+        &self,
+        sites: &[Site],
+        domain: Domain,
+        n: usize,
+        method: Method,
     ) -> anyhow::Result<(Diagram, VoronoiTimings)> {
         anyhow::ensure!(!sites.is_empty(), "no site given");
         let limits = &self.ctx.info().limits;
@@ -56,30 +93,64 @@ impl VoronoiRasterizer {
             "the resolution must be 1 to {side} on this renderer, not {n}"
         );
         let pixel = domain.pixel(n);
-        let depth_range = depth_range(sites, domain);
-        let texture = site_texture(&self.ctx, sites, domain, pixel)?;
+        let reach = depth_range(sites, domain);
+        let upload = Instant::now();
+        let meshes = match method {
+            Method::Exact => None,
+            Method::Mesh { error_pixels } => {
+                Some(mesh::build(sites, domain, n, reach, error_pixels)?)
+            }
+        };
+        // The mesh's rim lies beyond the reach: its depth must stay below the cleared 1.
+        let depth_range = meshes
+            .as_ref()
+            .map_or(reach, |m| m.rim * pixel * (1.0 + 1e-6));
         let colour = Texture::new_2d(&self.ctx, n as u32, n as u32, TextureFormat::Rgba32F)?;
         let depth = Texture::new_2d(&self.ctx, n as u32, n as u32, TextureFormat::Depth32F)?;
         let framebuffer = Framebuffer::new(&self.ctx, "voronoi", &[&colour], Some(&depth))?;
         let mut timings = VoronoiTimings::default();
-        let ((), ms) = time_gpu(&self.ctx, || {
-            framebuffer.clear_color(0, [-1.0, 0.0, 0.0, 0.0])?;
-            framebuffer.clear_depth_stencil(1.0, 0)?;
-            let mut pass = framebuffer.pass(&self.program, "voronoi sites")?;
-            pass.state(DrawState {
-                depth: Some(DepthTest {
-                    func: Compare::Less,
-                    write: true,
-                }),
-                ..DrawState::default()
-            })
-            .texture("u_sites", &texture.texture)
-            .uniform("u_per_row", texture.per_row as i32)
-            .uniform("u_depth_scale", (pixel / depth_range) as f32)
-            .uniform("u_pixel", pixel as f32);
-            pass.draw_attributeless(Primitive::TriangleStrip, 4, sites.len())
-        })?;
+        let depth_test = DrawState {
+            depth: Some(DepthTest {
+                func: Compare::Less,
+                write: true,
+            }),
+            ..DrawState::default()
+        };
+        let ((), ms) = match &meshes {
+            None => {
+                let texture = site_texture(&self.ctx, sites, domain, pixel)?;
+                timings.upload_ms = upload.elapsed().as_secs_f64() * 1e3;
+                time_gpu(&self.ctx, || {
+                    framebuffer.clear_color(0, [-1.0, 0.0, 0.0, 0.0])?;
+                    framebuffer.clear_depth_stencil(1.0, 0)?;
+                    let mut pass = framebuffer.pass(&self.program, "voronoi sites")?;
+                    pass.state(depth_test)
+                        .texture("u_sites", &texture.texture)
+                        .uniform("u_per_row", texture.per_row as i32)
+                        .uniform("u_depth_scale", (pixel / depth_range) as f32)
+                        .uniform("u_pixel", pixel as f32);
+                    pass.draw_attributeless(Primitive::TriangleStrip, 4, sites.len())
+                })?
+            }
+            Some(m) => {
+                let vertices = mesh_vertices(&self.ctx, m)?;
+                timings.upload_ms = upload.elapsed().as_secs_f64() * 1e3;
+                time_gpu(&self.ctx, || {
+                    framebuffer.clear_color(0, [-1.0, 0.0, 0.0, 0.0])?;
+                    framebuffer.clear_depth_stencil(1.0, 0)?;
+                    let mut pass = framebuffer.pass(&self.mesh_program, "voronoi meshes")?;
+                    pass.state(depth_test)
+                        .uniform("u_size", glam::Vec2::splat(n as f32))
+                        .uniform("u_depth_scale", (pixel / depth_range) as f32)
+                        .uniform("u_pixel", pixel as f32);
+                    pass.draw_arrays(&vertices, Primitive::Triangles, 0, m.vertices.len())
+                })?
+            }
+        };
         timings.pass_ms = ms;
+        timings.triangles = meshes
+            .as_ref()
+            .map_or(2 * sites.len(), |m| m.vertices.len() / 3);
         let start = Instant::now();
         let texels = framebuffer.read_f32(0, Rect::sized(n as u32, n as u32))?;
         timings.readback_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -102,10 +173,19 @@ impl VoronoiRasterizer {
                 site,
                 distance,
                 depth_range,
+                mesh_error: meshes.as_ref().map_or(0.0, |m| m.error_bound * pixel),
             },
             timings,
         ))
     }
+}
+
+/// The meshes' vertices in a vertex array (attribute 0, four floats).
+fn mesh_vertices(ctx: &Context, meshes: &DistanceMeshes) -> anyhow::Result<VertexArray> {
+    let buffer = Buffer::from_slice(ctx, &meshes.vertices, BufferUsage::Static)?;
+    let mut vertices = VertexArray::new(ctx)?;
+    vertices.float_attribute(0, &buffer, 4, 16, 0, 0)?;
+    Ok(vertices)
 }
 
 /// The largest distance from the domain to a site (input units): no site is farther from a

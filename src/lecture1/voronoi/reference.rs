@@ -21,6 +21,7 @@ pub fn brute_force(sites: &[Site], domain: Domain, n: usize, depth_range: f64) -
         site,
         distance,
         depth_range,
+        mesh_error: 0.0,
     }
 }
 

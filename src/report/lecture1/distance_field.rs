@@ -20,6 +20,8 @@ pub struct FieldRow {
     pub resolution: usize,
     /// Largest |GPU - CPU| over the grid, in voxels (spacing units).
     pub max_error_voxels: f64,
+    /// The tessellation bound of Hoff's distance meshes (pixels); `None` for exact methods.
+    pub tessellation_bound: Option<f64>,
     pub timings: FieldTimings,
 }
 
@@ -56,6 +58,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             formulation: "classic (slices, GL_MIN)".into(),
             resolution: n,
             max_error_voxels: largest_difference(&field, &cpu),
+            tessellation_bound: None,
             timings,
         });
         if let Some(c) = &compute {
@@ -65,20 +68,28 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                 formulation: "compute (one invocation per voxel)".into(),
                 resolution: n,
                 max_error_voxels: largest_difference(&field, &cpu),
+                tessellation_bound: None,
                 timings,
             });
         }
     }
+    rows.extend(voronoi_rows(
+        ctx,
+        if setting.opts.quick { 64 } else { 256 },
+    )?);
     let load = Load::now();
     bar.finish_and_clear();
     let table = Table {
         caption: format!(
             "Distance field of a torus ({} triangles), unclamped, on {}: where the time goes \
              (ms; slice passes by GL timer queries, compute by glFinish wall clock, readback \
-             and upload by wall clock; one run each, machine shared) and the largest \
-             difference from brute force in f64, in voxels",
+             and upload by wall clock; one run each, {}) and the largest difference from \
+             brute force in f64, in voxels; the Voronoi rows (2D, {VORONOI_SITES} random \
+             points, segments and triangles, N x N pixels, measured in the same run) in \
+             pixels, with Hoff's distance meshes within {MESH_ERROR_PIXELS} pixel",
             mesh.triangles.len(),
-            setting.renderer
+            setting.renderer,
+            load.map_or("load average unknown".to_string(), |l| l.in_words())
         ),
         header: [
             "formulation",
@@ -86,8 +97,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             "passes ms",
             "readback ms",
             "upload ms",
-            "rectangles drawn",
-            "max error (voxels)",
+            "triangles drawn",
+            "max error (voxels or pixels)",
         ]
         .map(String::from)
         .to_vec(),
@@ -134,7 +145,9 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         load,
         summary: "The unsigned distance field of a mesh, rasterized slice by slice with exact \
                   per-fragment distances (a reconstruction in DiFi's style), equals brute force \
-                  to fp32 rounding at every resolution."
+                  to fp32 rounding at every resolution. In 2D, Hoff's distance meshes (cones \
+                  and tents, the depth interpolated) stay within their tessellation bound of \
+                  the exact per-fragment diagram."
             .into(),
         tables: vec![table],
         figures: vec![Figure {
@@ -145,4 +158,68 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         }],
         ..Block::default()
     })
+}
+
+/// Sites of the 2D rows.
+const VORONOI_SITES: usize = 30;
+/// The distance meshes' tessellation error in the 2D rows, pixels.
+const MESH_ERROR_PIXELS: f64 = 0.5;
+
+/// The 2D generalized Voronoi diagram of random sites at `n x n`, exact per fragment and by
+/// Hoff's distance meshes, each against brute force (distances in pixels).
+fn voronoi_rows(ctx: &crate::gl::Context, n: usize) -> anyhow::Result<Vec<FieldRow>> {
+    use crate::lecture1::voronoi::raster::{Method, VoronoiRasterizer};
+    use crate::lecture1::voronoi::{reference, Domain, Site};
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+    let mut p = || [rng.gen_range(0.0..10.0), rng.gen_range(0.0..10.0)];
+    let sites: Vec<Site> = (0..VORONOI_SITES)
+        .map(|i| match i % 3 {
+            0 => Site::Point(p()),
+            1 => Site::Segment([p(), p()]),
+            _ => Site::Triangle([p(), p(), p()]),
+        })
+        .collect();
+    let domain = Domain {
+        min: [0.0, 0.0],
+        size: 10.0,
+    };
+    let raster = VoronoiRasterizer::new(ctx)?;
+    let cpu = reference::brute_force(&sites, domain, n, 1.0);
+    let methods = [
+        ("voronoi 2D, exact per fragment", Method::Exact),
+        (
+            "voronoi 2D, Hoff's distance meshes",
+            Method::Mesh {
+                error_pixels: MESH_ERROR_PIXELS,
+            },
+        ),
+    ];
+    let mut rows = Vec::new();
+    for (name, method) in methods {
+        // An untimed first run (shader compilation), then the measured one.
+        raster.diagram_by(&sites, domain, n, method)?;
+        let (diagram, t) = raster.diagram_by(&sites, domain, n, method)?;
+        let pixel = domain.pixel(n);
+        let error = diagram
+            .distance
+            .iter()
+            .zip(&cpu.distance)
+            .map(|(&g, &c)| (g as f64 - c as f64).abs())
+            .fold(0.0, f64::max)
+            / pixel;
+        rows.push(FieldRow {
+            formulation: name.into(),
+            resolution: n,
+            max_error_voxels: error,
+            tessellation_bound: (diagram.mesh_error > 0.0).then_some(diagram.mesh_error / pixel),
+            timings: FieldTimings {
+                passes_ms: t.pass_ms,
+                readback_ms: t.readback_ms,
+                upload_ms: t.upload_ms,
+                triangles_drawn: t.triangles as u64,
+            },
+        });
+    }
+    Ok(rows)
 }

@@ -1,5 +1,5 @@
 //! Swept volumes in the report: where the time goes (primitives, the GPU distance field's
-//! passes and readback, the flood fill, surface nets) and how the volume's error against the
+//! passes and readback, the flood fill, marching tetrahedra) and how the volume's error against the
 //! exact swept volume falls with the resolution, for a cube translated by 1.5 (exact volume
 //! 2.5: a convex polytope under translation sweeps its hull with its moved copy).
 
@@ -21,7 +21,8 @@ pub struct SweepRow {
     pub resolution: usize,
     pub volume: f64,
     pub relative_error: f64,
-    pub euler_characteristic: i64,
+    /// `None` when the surface is not a closed 2-manifold.
+    pub euler_characteristic: Option<i64>,
     pub watertight: bool,
     pub timings: SweepTimings,
 }
@@ -54,8 +55,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             resolution: n,
             volume: swept.surface.volume,
             relative_error: (swept.surface.volume - EXACT).abs() / EXACT,
-            euler_characteristic: swept.surface.euler_characteristic,
-            watertight: swept.surface.watertight,
+            euler_characteristic: swept.surface.topology.euler_characteristic,
+            watertight: swept.surface.watertight(),
             timings: swept.timings,
         });
     }
@@ -65,8 +66,9 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         caption: format!(
             "Swept volume of a unit cube translated by 1.5 (exact volume {EXACT}) on {}: \
              where the time goes (ms; field passes by GL timer queries, the rest wall clock; \
-             one run each, machine shared) and the volume's error",
-            setting.renderer
+             one run each, {}) and the volume's error",
+            setting.renderer,
+            load.map_or("load average unknown".to_string(), |l| l.in_words())
         ),
         header: [
             "N",
@@ -74,7 +76,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             "field passes",
             "field readback",
             "flood fill",
-            "surface nets",
+            "marching tetrahedra",
             "volume",
             "relative error",
             "V - E + F",
@@ -93,7 +95,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                     format!("{:.2}", r.timings.extract_ms),
                     format!("{:.4}", r.volume),
                     format!("{:.2e}", r.relative_error),
-                    r.euler_characteristic.to_string(),
+                    r.euler_characteristic
+                        .map_or("not a manifold".into(), |chi| chi.to_string()),
                 ]
             })
             .collect(),
@@ -119,13 +122,13 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         load,
         summary: "Swept volumes (a reconstruction of Kim et al. 2003): ruled quads and posed \
                   faces, their distance field on the GPU, a flood fill from the border and \
-                  surface nets; the volume approaches the exact one as the grid is refined."
+                  marching tetrahedra (a closed 2-manifold); the volume approaches the exact one as the grid is refined."
             .into(),
         tables: vec![table],
         figures: vec![Figure {
             file: file.into(),
-            caption: "Swept volume: relative volume error against N (surface nets round the \
-                      sharp edges off, about a voxel's square per unit of edge length)"
+            caption: "Swept volume: relative volume error against N (marching tetrahedra round \
+                      the sharp edges off, about a voxel's square per unit of edge length)"
                 .into(),
         }],
         ..Block::default()

@@ -57,8 +57,6 @@ pub struct PeelOrderRun {
 pub struct SpeedTargets {
     /// `mass bunny --resolution 64`: GPU wall clock over Mirtich's analytic time.
     pub mass_bunny_64_gpu_over_analytic: f64,
-    /// Target: at most this.
-    pub mass_target: f64,
     /// Buoyancy, 50 bodies at 32x32 over the first `buoyancy_steps` steps (drop and
     /// plunge included): GPU solver steps/s over the CPU reference solver's.
     pub buoyancy_gpu_over_cpu: f64,
@@ -295,7 +293,6 @@ fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<S
     let race = race::run(opts.gl, setup, PeelSettings::default()).map_err(anyhow::Error::msg)?;
     Ok(SpeedTargets {
         mass_bunny_64_gpu_over_analytic: at64,
-        mass_target: 5.0,
         buoyancy_gpu_over_cpu: race.gpu_over_cpu.median,
         buoyancy_steps: steps,
         buoyancy_gpu_steps_per_second: race.gpu_steps_per_second,
