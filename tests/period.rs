@@ -58,7 +58,7 @@ fn table_loads_every_value_has_a_source() {
             if !row.sourced {
                 let s = row.source.to_lowercase();
                 assert!(
-                    s.contains("not stated") || s.contains("assumption"),
+                    s.contains("not found in the sources searched"),
                     "{} {}: {}",
                     gpu.name,
                     row.limit,
@@ -321,10 +321,12 @@ fn compute_shaders_are_refused() {
 
 #[test]
 fn occlusion_counts_are_checked_against_the_counter_width() {
-    // 32 bits: a count of 2^32 could not have been held; 2^32 - 1 could.
-    g70().check_occlusion_count((1 << 32) - 1).unwrap();
+    // The ARB_occlusion_query floor for a 4096 x 4096 viewport, ceil(log2(4096^2 x 2)) = 25
+    // bits: a count of 2^25 could not have been held; 2^25 - 1 could.
+    assert_eq!(g70().occlusion_query_counter_bits.value, 25);
+    g70().check_occlusion_count((1 << 25) - 1).unwrap();
     refused(
-        g70().check_occlusion_count(1 << 32),
+        g70().check_occlusion_count(1 << 25),
         "GeForce 7800 GTX",
         "occlusion_query_counter_bits",
     );
@@ -435,27 +437,40 @@ fn cli_period_collide_fits_and_finds_every_pair() {
 }
 
 #[test]
-fn cli_period_mass_is_refused_at_float_depth() {
+fn cli_period_mass_and_buoyancy_peel_at_24_bits() {
     let out = common::classic_gpgpu(&["mass", "cube", "--resolution", "16", "--period"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("GeForce 7800 GTX"), "{stderr}");
+    let out = common::classic_gpgpu(&[
+        "buoyancy", "--period", "--steps", "2", "--bodies", "4", "--json",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    // Too many tiles for the chip's 4096 x 4096 target: the error names that limit first.
+    let out = common::classic_gpgpu(&[
+        "buoyancy",
+        "--period",
+        "--steps",
+        "1",
+        "--bodies",
+        "5000",
+        "--resolution",
+        "64",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{stderr}");
+    let error = stderr
+        .lines()
+        .find(|l| l.starts_with("error:"))
+        .unwrap_or("");
     assert!(
-        stderr.contains("GeForce 7800 GTX")
-            && stderr.contains("texture_formats")
-            && stderr.contains("DEPTH32F_STENCIL8"),
+        error.contains("--bodies 5000 at --resolution 64")
+            && error.contains("4096x4096")
+            && error.contains("max_texture_size"),
         "{stderr}"
     );
     assert!(!stderr.contains("panicked"), "{stderr}");
-}
-
-/// The G70 profile with float depth added (the one limit the mass pipeline's depth
-/// peeling is refused on), so that the summing steps meet the chip's other limits.
-fn g70_with_float_depth() -> &'static classic_gpgpu::gl::PeriodGpu {
-    let mut gpu = g70().clone();
-    gpu.texture_formats
-        .value
-        .extend(["DEPTH32F_STENCIL8".into(), "DEPTH_COMPONENT32F".into()]);
-    Box::leak(Box::new(gpu))
 }
 
 #[test]
@@ -463,6 +478,7 @@ fn mass_sums_fp32_blending_refused_kept_layers_fit_fp16_sums_close_to_fp32() {
     use classic_gpgpu::mass::assemble::MassProperties;
     use classic_gpgpu::mass::gpu::GpuMass;
     use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings};
+    use classic_gpgpu::mass::peel_depth::PeelDepth;
     let ctx = context();
     let mesh = classic_gpgpu::mesh::uv_sphere(1.0, 24, 12);
     let resolution = 32;
@@ -476,14 +492,15 @@ fn mass_sums_fp32_blending_refused_kept_layers_fit_fp16_sums_close_to_fp32() {
         Ok(MassProperties::from_integrals(&r.integrals, 1.0))
     };
     let today = run(PeelOrder::RunningSums, TextureFormat::Rgba32F).unwrap();
-    // The chip itself: no float depth for the peels.
     ctx.set_period(Some(g70()));
+    // The chip itself: no float depth for the peels; they take 24-bit depth instead.
     refused(
-        run(PeelOrder::KeepLayers, TextureFormat::Rgba32F),
+        GpuMass::with_depth(&ctx, resolution, TextureFormat::Rgba32F, PeelDepth::Float32),
         "GeForce 7800 GTX",
         "texture_formats",
     );
-    ctx.set_period(Some(g70_with_float_depth()));
+    let gpu = GpuMass::with_sum_format(&ctx, resolution, TextureFormat::Rgba16F).unwrap();
+    assert_eq!(gpu.peeler().depth(), PeelDepth::Fixed24);
     refused(
         run(PeelOrder::RunningSums, TextureFormat::Rgba32F),
         "GeForce 7800 GTX",
@@ -570,8 +587,8 @@ fn report_period_blocks_of_papers_1_2_and_4() {
     );
     assert_eq!(p2.comparisons.len(), 2);
 
-    // Paper 4: float-depth peeling refused, fp32 blended sums refused, the paper's order
-    // and fp16 sums the period's way.
+    // Paper 4: float-depth peeling refused and 24-bit peeling the period's way, fp32 blended
+    // sums refused, the paper's order and fp16 sums the period's way.
     let p4 = paper4::period::measure(&opts).unwrap();
     let verdict = |needle: &str| {
         p4.steps
@@ -583,12 +600,13 @@ fn report_period_blocks_of_papers_1_2_and_4() {
     let peel = verdict("32-bit float depth");
     assert_eq!(peel.verdict, Verdict::Refused);
     assert!(peel.detail.contains("texture_formats"), "{peel:?}");
+    assert_eq!(verdict("24-bit depth").verdict, Verdict::PeriodsWay);
     let blended = verdict("fp32 additive blending");
     assert_eq!(blended.verdict, Verdict::Refused);
     assert!(blended.detail.contains("float_blending"), "{blended:?}");
     assert_eq!(verdict("the paper's order").verdict, Verdict::PeriodsWay);
     assert_eq!(verdict("fp16").verdict, Verdict::PeriodsWay);
-    assert_eq!(p4.comparisons.len(), 4);
+    assert_eq!(p4.comparisons.len(), 6);
     for c in &p4.comparisons {
         assert!(c.period.ends_with('%'), "{c:?}");
     }

@@ -111,6 +111,27 @@ fn check_resolution(ctx: &Context, resolution: u32) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Every body's tile (`resolution` rounded up to a power of two, for the reduction) in one
+/// render target no larger than the context allows (the renderer's, or the period GPU's).
+fn check_tiles_fit(ctx: &Context, bodies: usize, resolution: u32) -> anyhow::Result<()> {
+    let max = ctx.max_texture_size() as u64;
+    let tile = resolution.next_power_of_two() as u64;
+    let per_side = max / tile;
+    if (bodies as u64) > per_side * per_side {
+        let whose = match ctx.period() {
+            Some(gpu) => format!("the {}'s (period limit max_texture_size)", gpu.name),
+            None => "the renderer's".to_string(),
+        };
+        bail!(
+            "--bodies {bodies} at --resolution {resolution}: every body's {tile}x{tile} tile must \
+             fit one render target of at most {max}x{max} texels ({whose}), which holds \
+             {} tiles; use fewer --bodies or a lower --resolution",
+            per_side * per_side
+        );
+    }
+    Ok(())
+}
+
 /// `classic-gpgpu mass`.
 pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
     args.peeling.period.apply(ctx, 4);
@@ -599,13 +620,9 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     let mut gpu = if args.cpu || compute {
         None
     } else {
-        let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)
-            .with_context(|| {
-                format!(
-                    "--bodies {} at --resolution {}: every body's tile must fit one render target",
-                    args.bodies, args.resolution
-                )
-            })?;
+        check_tiles_fit(ctx, args.bodies, args.resolution)?;
+        // Any other refusal (a period limit, the renderer) names its own limit.
+        let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), args.resolution)?;
         solver.set_settings(settings)?;
         Some(solver)
     };

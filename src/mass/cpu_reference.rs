@@ -6,6 +6,7 @@
 
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
+use super::peel_depth::{self, PeelDepth};
 use crate::mesh::Mesh;
 use glam::DVec3;
 
@@ -22,6 +23,17 @@ struct Crossing {
 /// crossings above the water are discarded and the water patch is added where the first
 /// crossing below it faces down).
 pub fn integrate(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> VolumeIntegrals {
+    integrate_at(mesh, framing, water, PeelDepth::Float32)
+}
+
+/// [`integrate`] as peels compared at `depth` find the crossings: at 24 bits, crossings in
+/// one depth step are one layer ([`peel_depth::keep_distinct_steps`]).
+pub fn integrate_at(
+    mesh: &Mesh,
+    framing: &Framing,
+    water: Option<f64>,
+    depth: PeelDepth,
+) -> VolumeIntegrals {
     let crossings = crossings_per_pixel(mesh, framing);
     let n = framing.resolution;
     let water_local = water.map(|level| level - framing.center.z);
@@ -33,6 +45,13 @@ pub fn integrate(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> VolumeIn
             let mut hits = crossings[(j * n + i) as usize].clone();
             if let Some(level) = water_local {
                 hits.retain(|h| h.z <= level);
+            }
+            if depth == PeelDepth::Fixed24 {
+                let heights: Vec<f64> = hits.iter().map(|h| h.z).collect();
+                let kept = peel_depth::keep_distinct_steps(framing, &heights);
+                hits = kept.into_iter().map(|k| hits[k]).collect();
+            }
+            if let Some(level) = water_local {
                 let first_below = hits.iter().max_by(|a, b| a.z.total_cmp(&b.z));
                 if first_below.is_some_and(|h| h.sign < 0.0) {
                     hits.push(Crossing {
@@ -62,6 +81,27 @@ pub fn layers(mesh: &Mesh, framing: &Framing, water: Option<f64>) -> usize {
         .map(|hits| hits.iter().filter(|h| h.z <= level).count())
         .max()
         .unwrap_or(0)
+}
+
+/// The pixels where two surface crossings (below `water` when given) lie within `steps`
+/// steps of a 24-bit depth buffer: the only pixels where peels at 24 bits and in float
+/// can differ ([`peel_depth`]).
+pub fn close_crossings(mesh: &Mesh, framing: &Framing, water: Option<f64>, steps: f64) -> usize {
+    let level = water.map(|l| l - framing.center.z).unwrap_or(f64::INFINITY);
+    crossings_per_pixel(mesh, framing)
+        .iter()
+        .filter(|hits| {
+            let mut depths: Vec<f64> = hits
+                .iter()
+                .filter(|h| h.z <= level)
+                .map(|h| peel_depth::window_depth(framing, h.z))
+                .collect();
+            depths.sort_by(f64::total_cmp);
+            depths
+                .windows(2)
+                .any(|w| (w[1] - w[0]) * peel_depth::STEPS_24 < steps)
+        })
+        .count()
 }
 
 /// Eq. 4 and 6 summed per peel, like the paper's order (`PeelOrder::KeepLayers`): entry k

@@ -12,6 +12,7 @@ use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::{Placement, Soup};
 use super::peel::{Job, PeelSettings, Peeler};
+use super::peel_depth::PeelDepth;
 use crate::gl::{profile, query, Context, GlError, Rect, TextureFormat};
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -58,6 +59,22 @@ impl GpuMass {
     ) -> Result<GpuMass, GlError> {
         Ok(GpuMass {
             peeler: Peeler::with_sum_format(ctx, resolution, resolution, None, sum_format)?,
+            soup: Soup::new(ctx)?,
+            resolution,
+        })
+    }
+
+    /// Running sums stored as `sum_format` and peel depths as `depth` (24-bit: the period's
+    /// way, [`crate::mass::peel_depth`]), whatever the context's profile.
+    pub fn with_depth(
+        ctx: &Context,
+        resolution: u32,
+        sum_format: TextureFormat,
+        depth: PeelDepth,
+    ) -> Result<GpuMass, GlError> {
+        let (n, all) = (resolution, super::integrands::Integrands::All);
+        Ok(GpuMass {
+            peeler: Peeler::with_depth(ctx, n, n, None, all, sum_format, depth)?,
             soup: Soup::new(ctx)?,
             resolution,
         })

@@ -4,9 +4,8 @@
 
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
-use crate::gl::{
-    peel, Buffer, BufferUsage, Context, GlError, Program, Rect, ShaderSource, VertexArray,
-};
+use super::peel_depth::PeelDepth;
+use crate::gl::{Buffer, BufferUsage, Context, GlError, Program, Rect, ShaderSource, VertexArray};
 use crate::shader;
 use glam::DVec3;
 use std::cell::RefCell;
@@ -73,11 +72,19 @@ impl Integrands {
 
 /// The program of the peel passes: the listing wrapped by the peel and water tests.
 pub fn peel_program(ctx: &Context, integrands: Integrands) -> Result<Program, GlError> {
-    Program::new(
-        ctx,
-        &[VERTEX],
-        &[PRELUDE, integrands.listing(), peel::PEEL_SNIPPET, PEEL_MAIN],
-    )
+    peel_program_at(ctx, integrands, PeelDepth::Float32)
+}
+
+/// [`peel_program`] with the peel test for peel depths stored as `depth`.
+pub fn peel_program_at(
+    ctx: &Context,
+    integrands: Integrands,
+    depth: PeelDepth,
+) -> Result<Program, GlError> {
+    let (test, after) = depth.peel_test();
+    let mut parts = vec![PRELUDE, integrands.listing(), test, PEEL_MAIN];
+    parts.extend(after);
+    Program::new(ctx, &[VERTEX], &parts)
 }
 
 /// The program of pass 0 of 5.2 (the fluid surface's depth `T_dw`).

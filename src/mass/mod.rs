@@ -21,6 +21,7 @@
 //! | framing: orthographic view of the body | [`framing`] |
 //! | integrands (the section 3.1 listing) | [`integrands`] |
 //! | depth peeling [3.2] | [`peel`] |
+//! | depth peeling at the period's 24 bits | [`peel_depth`] |
 //! | reduction and accumulation over peels [3.3] | [`reduce`] |
 //! | volume, centre of mass, inertia [eq. 4-6] | [`assemble`] |
 //! | Mirtich's analytic baseline | [`analytic`] |
@@ -46,6 +47,7 @@ pub mod integrals;
 pub mod integrands;
 pub mod models;
 pub mod peel;
+pub mod peel_depth;
 pub mod peel_end;
 pub mod pieces;
 pub mod reduce;

@@ -27,6 +27,7 @@
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::{self, Integrands, Soup};
+use super::peel_depth::PeelDepth;
 use super::peel_end::{self, PeelEnd};
 use super::reduce::{Accumulator, REDUCTION_PASS};
 use crate::gl::dump;
@@ -145,6 +146,8 @@ pub struct Peeler {
     settings: PeelSettings,
     /// Which integrands the passes evaluate (the ten of eq. 4 and 6, or eq. 4's four).
     integrands: Integrands,
+    /// How the peel depths are stored and compared.
+    depth: PeelDepth,
     /// When on, each peel's integrand targets are kept as floats (the viewer's insets and the
     /// dumps).
     capture: RefCell<Option<Vec<CapturedPeel>>>,
@@ -272,7 +275,9 @@ impl Peeler {
         )
     }
 
-    /// A peeler evaluating `integrands`, its running sums stored as `sum_format`.
+    /// A peeler evaluating `integrands`, its running sums stored as `sum_format`, its peel
+    /// depths as the context allows ([`PeelDepth::for_context`]: 24-bit under a period GPU
+    /// without float depth).
     pub fn with(
         ctx: &Context,
         width: u32,
@@ -281,14 +286,29 @@ impl Peeler {
         integrands: Integrands,
         sum_format: TextureFormat,
     ) -> Result<Peeler, GlError> {
+        let depth = PeelDepth::for_context(ctx);
+        Peeler::with_depth(ctx, width, height, block, integrands, sum_format, depth)
+    }
+
+    /// [`Peeler::with`] with the peel depths stored and compared as `depth`.
+    pub fn with_depth(
+        ctx: &Context,
+        width: u32,
+        height: u32,
+        block: Option<u32>,
+        integrands: Integrands,
+        sum_format: TextureFormat,
+        depth: PeelDepth,
+    ) -> Result<Peeler, GlError> {
         let targets = integrands.targets();
         let accumulator = Accumulator::with(ctx, width, height, targets, sum_format)?;
+        let layer = |name| peel_layer(ctx, width, height, targets, depth, name);
         let layers = [
-            peel_layer(ctx, width, height, targets, "mass: peel 1")?,
-            peel_layer(ctx, width, height, targets, "mass: peels (even)")?,
-            peel_layer(ctx, width, height, targets, "mass: peels (odd)")?,
+            layer("mass: peel 1")?,
+            layer("mass: peels (even)")?,
+            layer("mass: peels (odd)")?,
         ];
-        let water_depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32F)?;
+        let water_depth = Texture::new_2d(ctx, width, height, depth.water_format())?;
         let sums: Vec<&Texture> = accumulator.sums().iter().collect();
         let water_patch_target = Framebuffer::new(
             ctx,
@@ -298,7 +318,7 @@ impl Peeler {
         )?;
         Ok(Peeler {
             ctx: ctx.clone(),
-            peel_program: integrands::peel_program(ctx, integrands)?,
+            peel_program: integrands::peel_program_at(ctx, integrands, depth)?,
             water_depth_program: integrands::water_depth_program(ctx)?,
             water_patch_program: integrands::water_patch_program(ctx, integrands)?,
             water: Framebuffer::new(
@@ -319,6 +339,7 @@ impl Peeler {
             block,
             settings: PeelSettings::default(),
             integrands,
+            depth,
             capture: RefCell::new(None),
         })
     }
@@ -339,6 +360,11 @@ impl Peeler {
     /// Which integrands the passes evaluate.
     pub fn integrands(&self) -> Integrands {
         self.integrands
+    }
+
+    /// How the peel depths are stored and compared.
+    pub fn depth(&self) -> PeelDepth {
+        self.depth
     }
 
     /// A profile scope named `name` around `work` (`gl::profile`; draws are recorded under
@@ -476,7 +502,8 @@ impl Peeler {
             let mut slot = self.kept.borrow_mut();
             if slot.is_none() {
                 let targets = self.integrands.targets();
-                let first = peel_layer(&self.ctx, self.width, self.height, targets, "mass: T_1")?;
+                let (w, h, depth) = (self.width, self.height, self.depth);
+                let first = peel_layer(&self.ctx, w, h, targets, depth, "mass: T_1")?;
                 let colors: Vec<Texture> = (0..targets)
                     .map(|_| {
                         Texture::new_2d(&self.ctx, self.width, self.height, TextureFormat::Rgba32F)
@@ -502,6 +529,7 @@ impl Peeler {
                     self.width,
                     self.height,
                     targets,
+                    self.depth,
                     &name,
                 )?);
             }
@@ -736,20 +764,21 @@ impl std::ops::Deref for LayerTarget<'_> {
 }
 
 /// `targets` RGBA32F integrand targets (3, or 1 for eq. 4 alone) and the depth `T_d(k)`
-/// (32-bit float, as the peel test compares fragment depths with it exactly), with a
-/// stencil: pass 1's faces-down bit, the later passes' fragment counts
-/// ([`super::peel_end`]).
+/// (32-bit float, as the peel test compares fragment depths with it exactly, or the
+/// period's 24-bit: [`PeelDepth`]), with a stencil: pass 1's faces-down bit, the later
+/// passes' fragment counts ([`super::peel_end`]).
 fn peel_layer(
     ctx: &Context,
     width: u32,
     height: u32,
     targets: usize,
+    depth: PeelDepth,
     name: &str,
 ) -> Result<Framebuffer, GlError> {
     let colors: Vec<Texture> = (0..targets)
         .map(|_| Texture::new_2d(ctx, width, height, TextureFormat::Rgba32F))
         .collect::<Result<_, _>>()?;
-    let depth = Texture::new_2d(ctx, width, height, TextureFormat::Depth32FStencil8)?;
+    let depth = Texture::new_2d(ctx, width, height, depth.layer_format())?;
     Framebuffer::new(ctx, name, &colors.iter().collect::<Vec<_>>(), Some(&depth))
 }
 

@@ -39,6 +39,9 @@ pub trait Paper {
     const ID: &'static str;
     /// The section's heading in the report.
     const TITLE: &'static str;
+    /// The paper whose GPU the section's period block runs under (`--period`), if it has
+    /// one (`gl::period::for_paper`).
+    const PERIOD_PAPER: Option<u8> = None;
     /// What the section's `*-bench` command can change beyond [`BenchArgs`]; `reproduce` runs
     /// with the defaults.
     type Options: clap::Args + Default;
@@ -70,6 +73,12 @@ pub struct BenchArgs<O: clap::Args> {
     /// while the runs take under a second in all].
     #[arg(long, value_parser = timing::parse_runs)]
     pub runs: Option<usize>,
+    /// Add the section's period block, as `reproduce --period` does: each step of the
+    /// paper's path run under the limits of the paper's own GPU (the profile `--period`
+    /// puts the paper's command under), and its results at that GPU's precision. Papers 1
+    /// to 4 only.
+    #[arg(long)]
+    pub period: bool,
     #[command(flatten)]
     pub options: O,
 }
@@ -254,6 +263,20 @@ pub fn bench_command<P: Paper>(
     default_out: &str,
     json: bool,
 ) -> anyhow::Result<()> {
+    if args.period {
+        let Some(paper) = P::PERIOD_PAPER else {
+            anyhow::bail!(
+                "--period: section {} names no period GPU (only papers 1 to 4 do)",
+                P::ID
+            );
+        };
+        let gpu = crate::gl::period::for_paper(paper);
+        eprintln!(
+            "period: the period block runs under the limits of the {} ({}), paper {paper}'s GPU",
+            gpu.name, gpu.chip
+        );
+        period::set_requested(true);
+    }
     let out_dir = args.out.as_deref().unwrap_or(Path::new(default_out));
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let opts = BenchOptions {

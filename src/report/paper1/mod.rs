@@ -79,6 +79,7 @@ impl Default for Paper1Args {
 pub struct Paper1;
 
 impl Paper for Paper1 {
+    const PERIOD_PAPER: Option<u8> = Some(1);
     const ID: &'static str = "paper1";
     const TITLE: &'static str =
         "Paper 1: collision detection with streaming AABBs (Zhang & Kim 2007)";

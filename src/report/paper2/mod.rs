@@ -33,6 +33,7 @@ use crate::crowd::ModelKind;
 pub struct Paper2;
 
 impl Paper for Paper2 {
+    const PERIOD_PAPER: Option<u8> = Some(2);
     const ID: &'static str = "paper2";
     const TITLE: &'static str = "Paper 2: Kang & Han 2006, real-time animation of large crowds";
     type Options = NoOptions;

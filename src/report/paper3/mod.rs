@@ -26,6 +26,7 @@ use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 pub struct Paper3;
 
 impl Paper for Paper3 {
+    const PERIOD_PAPER: Option<u8> = Some(3);
     const ID: &'static str = "paper3";
     const TITLE: &'static str = "Paper 3: Oh & Jung 2004, GPU implementation of neural networks";
     type Options = NoOptions;

@@ -1,56 +1,56 @@
 //! Paper 4 on its own GPU, the GeForce 7800 GTX. The chip had no float depth, so depth
-//! peeling as built here (32-bit float depth with stencil) is refused at once; the rest of
-//! the path is then run under every other limit of the chip (the same profile with float
-//! depth added, and named so), in the paper's order (n layers kept and each reduced, no
-//! blending) and with running sums blended at fp16 (the only float blending the chip had),
-//! beside today's fp32 running sums, all against Mirtich's analytic integrals.
+//! peeling as built for today (32-bit float depth with stencil) is refused; the period's way
+//! peels against 24-bit depth, comparing depths in whole steps of 2^-24 of the depth range
+//! (`mass::peel_depth`). Under the chip's profile the peels are summed in the paper's order
+//! (n layers kept and each reduced, no blending) or with running sums blended at fp16 (the
+//! only float blending the chip had), beside today's fp32 depth and fp32 running sums, all
+//! against Mirtich's analytic integrals; 24-bit depth alone (fp32 sums, outside the
+//! profile) shows what the depth format changes by itself.
 
-use crate::gl::{period, PeriodGpu, TextureFormat};
+use crate::gl::{period, TextureFormat};
 use crate::mass::assemble::MassProperties;
+use crate::mass::framing::Framing;
 use crate::mass::gpu::GpuMass;
 use crate::mass::peel::{PeelOrder, PeelSettings};
-use crate::mass::{analytic, clip, models};
+use crate::mass::peel_depth::PeelDepth;
+use crate::mass::{analytic, clip, cpu_reference, models};
 use crate::report::period::{under, PeriodResults, Verdict};
 use crate::report::BenchOptions;
-use std::sync::OnceLock;
-
-/// The G70 profile with 32-bit float depth added: the one limit step 1 is refused on,
-/// lifted (and named) so that the other limits are checked on the rest of the path.
-fn g70_with_float_depth() -> &'static PeriodGpu {
-    static GPU: OnceLock<PeriodGpu> = OnceLock::new();
-    GPU.get_or_init(|| {
-        let mut gpu = period::for_paper(4).clone();
-        gpu.name = format!("{} with float depth added", gpu.name);
-        gpu.texture_formats.value.extend([
-            "DEPTH32F_STENCIL8".to_string(),
-            "DEPTH_COMPONENT32F".to_string(),
-        ]);
-        gpu
-    })
-}
 
 /// The object, the water level for the submerged part, and the resolution.
 const MODEL: &str = "torus";
 const LEVEL: f32 = 0.1;
 
-/// How a run sums its peels.
+/// How a run peels and sums.
 #[derive(Clone, Copy)]
 struct Way {
     order: PeelOrder,
     sums: TextureFormat,
+    depth: PeelDepth,
 }
 
 const TODAY: Way = Way {
     order: PeelOrder::RunningSums,
     sums: TextureFormat::Rgba32F,
+    depth: PeelDepth::Float32,
 };
-const KEEP_LAYERS: Way = Way {
+const DEPTH_24_ALONE: Way = Way {
+    depth: PeelDepth::Fixed24,
+    ..TODAY
+};
+const FLOAT_DEPTH_KEPT: Way = Way {
+    order: PeelOrder::KeepLayers,
+    ..TODAY
+};
+const KEEP_LAYERS_24: Way = Way {
     order: PeelOrder::KeepLayers,
     sums: TextureFormat::Rgba32F,
+    depth: PeelDepth::Fixed24,
 };
-const FP16_SUMS: Way = Way {
+const FP16_SUMS_24: Way = Way {
     order: PeelOrder::RunningSums,
     sums: TextureFormat::Rgba16F,
+    depth: PeelDepth::Fixed24,
 };
 
 /// Mass properties of the whole body and of its part below `LEVEL`.
@@ -60,7 +60,7 @@ fn run(
     resolution: u32,
     way: Way,
 ) -> anyhow::Result<[MassProperties; 2]> {
-    let mut gpu = GpuMass::with_sum_format(ctx, resolution, way.sums)?;
+    let mut gpu = GpuMass::with_depth(ctx, resolution, way.sums, way.depth)?;
     gpu.set_settings(PeelSettings {
         order: way.order,
         ..PeelSettings::default()
@@ -78,7 +78,6 @@ fn error(got: &MassProperties, want: &MassProperties) -> f64 {
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<PeriodResults> {
     let ctx = opts.gl;
     let g70 = period::for_paper(4);
-    let lifted = g70_with_float_depth();
     let resolution = if opts.quick { 32 } else { 64 };
     let mesh = models::load(MODEL).map_err(anyhow::Error::msg)?;
     let analytic = [
@@ -86,39 +85,47 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<PeriodResults> {
         analytic::volume_integrals(&clip::below_plane(&mesh, LEVEL)),
     ]
     .map(|i| MassProperties::from_integrals(&i, 1.0));
+    let framing = Framing::fit(&mesh, resolution).map_err(anyhow::Error::msg)?;
+    let waters = [None, Some(LEVEL as f64)];
+    let [merged_whole, merged_below] =
+        waters.map(|w| cpu_reference::close_crossings(&mesh, &framing, w, 1.0));
     let mut out = PeriodResults::new(g70);
 
-    let peeling = under(ctx, g70, || run(ctx, &mesh, resolution, KEEP_LAYERS));
+    let float_depth = under(ctx, g70, || run(ctx, &mesh, resolution, FLOAT_DEPTH_KEPT));
     out.step_from(
-        "depth peeling with 32-bit float depth and a stencil bit (Sec. 3.2, 5.2)",
-        &peeling,
+        "depth peeling with 32-bit float depth and a stencil bit (Sec. 3.2, 5.2), as built today",
+        &float_depth,
         "fits",
     );
-    if peeling.is_err() {
-        out.step(
-            "depth peeling, the period's way",
-            Verdict::Refused,
-            "not built here: the chip peeled against a 24-bit depth buffer, which needs the \
-             peel test to compare depths at 24 bits; the steps below are run under every \
-             other limit of the chip (float depth added to its profile)",
-        );
+    let keep = under(ctx, g70, || run(ctx, &mesh, resolution, KEEP_LAYERS_24));
+    match &keep {
+        Ok(_) => out.step(
+            "depth peeling, the period's way: 24-bit depth with stencil, each fragment compared \
+             with the previous layer in whole steps of 2^-24 of the depth range",
+            Verdict::PeriodsWay,
+            format!(
+                "surfaces within one step of each other are one layer (the farther is lost); \
+                 the CPU model finds {merged_whole} such pixels of {MODEL} at \
+                 {resolution}x{resolution}, {merged_below} below the water"
+            ),
+        ),
+        Err(_) => out.step_from("depth peeling at 24 bits", &keep, ""),
     }
-    let fp32_sums = under(ctx, lifted, || run(ctx, &mesh, resolution, TODAY));
+    let blended = under(ctx, g70, || run(ctx, &mesh, resolution, DEPTH_24_ALONE));
     out.step_from(
         "running sums of the peels by fp32 additive blending (this project's default)",
-        &fp32_sums,
+        &blended,
         "fits",
     );
-    let keep = under(ctx, lifted, || run(ctx, &mesh, resolution, KEEP_LAYERS));
     match &keep {
         Ok(_) => out.step(
             "the paper's order: the n layers T_1..T_n and T_w kept and each reduced (Sec. 3.3, 5.2)",
             Verdict::PeriodsWay,
-            "no blending: every draw checked under the chip's other limits",
+            "no blending: every draw checked under the chip's limits",
         ),
         Err(_) => out.step_from("the paper's order", &keep, ""),
     }
-    let fp16 = under(ctx, lifted, || run(ctx, &mesh, resolution, FP16_SUMS));
+    let fp16 = under(ctx, g70, || run(ctx, &mesh, resolution, FP16_SUMS_24));
     match &fp16 {
         Ok(_) => out.step(
             "running sums blended at fp16 (RGBA16F), the float blending the chip had",
@@ -138,6 +145,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<PeriodResults> {
     );
 
     let today = run(ctx, &mesh, resolution, TODAY)?;
+    let depth_alone = run(ctx, &mesh, resolution, DEPTH_24_ALONE);
     for (k, what) in ["whole body", "part below z = 0.1 (buoyancy)"]
         .into_iter()
         .enumerate()
@@ -147,14 +155,25 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<PeriodResults> {
             Err(e) => format!("refused: {e:#}"),
         };
         let today_error = error(&today[k], &analytic[k]);
+        let merged = [merged_whole, merged_below][k];
+        let depth_why = format!(
+            "24-bit depth changes which fragments a peel keeps only where two surfaces lie \
+             within one step (2^-24 of the depth range) of each other: {merged} such pixels \
+             here, so the sums are the float peels' own"
+        );
         for (way, result, why) in [
             (
-                "kept layers, fp32",
-                &keep,
-                "the same sums in another order: fp32 rounding only",
+                "24-bit depth alone (fp32 running sums, outside the profile)",
+                &depth_alone,
+                depth_why.as_str(),
             ),
             (
-                "running sums at fp16",
+                "on the chip: 24-bit depth, kept layers",
+                &keep,
+                "24-bit depth as above, and the same sums in another order: fp32 rounding only",
+            ),
+            (
+                "on the chip: 24-bit depth, running sums at fp16",
                 &fp16,
                 "each blended addition rounds the running sum to 11 significant bits (up to \
                  2^-10 relative, the rounding being the driver's), small beside the grid's own \
@@ -175,7 +194,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<PeriodResults> {
                     "{MODEL} {what} at {resolution}x{resolution}: largest error of mass and \
                      moments against the analytic method, {way}"
                 ),
-                format!("{today_error:.3}% (running sums, fp32)"),
+                format!("{today_error:.3}% (float depth, running sums, fp32)"),
                 row(result),
                 change,
             );
