@@ -18,12 +18,4 @@ void main()
     // Passes 1..n of 5.2: fragments above the fluid surface are discarded.
     if (gl_FragCoord.z < texelFetch(u_water_depth, ivec2(gl_FragCoord.xy), 0).r) discard;
     integrands();
-    // A sliver the rasterizer turned over (its vertices snapped to the sub-pixel grid) faces
-    // the other way than its n_z, and overlaps its neighbours there: counted with the facing
-    // it was drawn with, the fold it makes with them adds up to nothing, as in the snapped
-    // closed surface every pixel's layers alternate in and out. (The integrands are linear in
-    // sign(n_z).)
-    if (n_z != 0.0 && gl_FrontFacing != (n_z > 0.0)) {
-        for (int i = 0; i < FragData.length(); ++i) FragData[i] = -FragData[i];
-    }
 }
