@@ -195,19 +195,6 @@ impl SubmergedSolver for GpuSolver {
         let batch = run().map_err(|e| e.to_string())?;
         self.last_peels = batch.peels;
         self.truncated_steps += batch.truncated as usize;
-        Ok(batch
-            .integrals
-            .iter()
-            .map(|i| {
-                if i.v > 0.0 {
-                    Submerged {
-                        volume: i.v,
-                        center: i.centroid(),
-                    }
-                } else {
-                    Submerged::default()
-                }
-            })
-            .collect())
+        Ok(batch.integrals.iter().map(Submerged::of).collect())
     }
 }

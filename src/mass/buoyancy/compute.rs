@@ -58,19 +58,6 @@ impl SubmergedSolver for ComputeSolver {
             .integrate_bodies(&parts, Some(water.level), Moments::First)
             .map_err(|e| format!("buoyancy (compute): {e}"))?;
         self.last_gpu_ms = result.gpu_ms;
-        Ok(result
-            .integrals
-            .iter()
-            .map(|i| {
-                if i.v > 0.0 {
-                    Submerged {
-                        volume: i.v,
-                        center: i.centroid(),
-                    }
-                } else {
-                    Submerged::default()
-                }
-            })
-            .collect())
+        Ok(result.integrals.iter().map(Submerged::of).collect())
     }
 }

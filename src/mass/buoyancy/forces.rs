@@ -77,6 +77,21 @@ pub struct Submerged {
     pub center: DVec3,
 }
 
+impl Submerged {
+    /// From the integrals of the part below the water: nothing when no volume is below
+    /// (the centroid of nothing is not a point).
+    pub fn of(integrals: &crate::mass::VolumeIntegrals) -> Submerged {
+        if integrals.v > 0.0 {
+            Submerged {
+                volume: integrals.v,
+                center: integrals.centroid(),
+            }
+        } else {
+            Submerged::default()
+        }
+    }
+}
+
 /// Gravity + buoyancy + drag (+ the optional damping) on `body` of total volume
 /// `body_volume`.
 pub fn wrench(body: &RigidBody, body_volume: f64, sub: Submerged, water: &Water) -> Wrench {
