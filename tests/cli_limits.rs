@@ -23,17 +23,11 @@ fn refused(args: &[&str]) -> String {
     err
 }
 
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("cli-limits-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// usize::MAX of anything is more than any machine holds: refused at once, naming the option
 /// and the limit, instead of aborting in the allocator or growing without output.
 #[test]
 fn counts_beyond_memory_are_refused_before_allocating() {
-    let dir = temp_dir("counts");
+    let dir = common::temp_dir("cli-limits", "counts");
     let out = dir.join("net.json");
     let out = out.to_str().unwrap();
     // Outputs are checked for their format first, so the mesh goes to an .obj name.
@@ -142,7 +136,7 @@ fn a_threshold_that_is_not_a_finite_number_is_refused() {
 /// such, with what to do, instead of the decoder's "format not supported".
 #[test]
 fn a_jpeg_image_is_refused_naming_the_format() {
-    let dir = temp_dir("jpeg");
+    let dir = common::temp_dir("cli-limits", "jpeg");
     let jpeg = dir.join("page.jpg");
     let mut bytes = vec![0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x10];
     bytes.extend_from_slice(b"JFIF\0\x01\x01\0\0\x01\0\x01\0\0");
@@ -173,7 +167,7 @@ fn a_jpeg_image_is_refused_naming_the_format() {
 /// Values far from 1 are printed in scientific notation, not as 30-digit fixed point.
 #[test]
 fn mass_prints_huge_values_in_scientific_notation() {
-    let dir = temp_dir("mass");
+    let dir = common::temp_dir("cli-limits", "mass");
     let obj = dir.join("big.obj");
     std::fs::write(
         &obj,

@@ -8,15 +8,9 @@ use glam::{Affine3A, Quat, Vec3};
 
 mod common;
 
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("collide-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
-    let dir = temp_dir("pairs");
+    let dir = common::temp_dir("collide-cli", "pairs");
     let a = mesh::torus_with_triangles(1.0, 0.33, 500);
     let b = a.transformed(&Affine3A::from_rotation_translation(
         Quat::from_rotation_x(1.4),
@@ -80,7 +74,7 @@ fn collide_json_lists_exactly_the_brute_force_pairs_and_dumps_fig6() {
 
 #[test]
 fn bad_inputs_fail_with_a_message_naming_them() {
-    let dir = temp_dir("bad");
+    let dir = common::temp_dir("collide-cli", "bad");
     let empty = dir.join("empty.obj");
     std::fs::write(&empty, "# nothing\n").unwrap();
     let good = dir.join("good.obj");
@@ -112,7 +106,7 @@ fn collide_scene_and_bench_print_json() {
         "--json",
     ]);
     assert_eq!(v["frames"].as_array().unwrap().len(), 2);
-    let dir = temp_dir("bench");
+    let dir = common::temp_dir("collide-cli", "bench");
     let v = json_of(&[
         "collide-bench",
         "--quick",
@@ -158,7 +152,7 @@ fn collide_scene_and_bench_print_json() {
 /// is the paper's float test, which at this scale reports pairs that do not touch.
 #[test]
 fn the_default_predicate_is_exact_far_from_unit_scale() {
-    let dir = temp_dir("scale");
+    let dir = common::temp_dir("collide-cli", "scale");
     let scale = Affine3A::from_scale(Vec3::splat(1e25));
     let a = mesh::torus_with_triangles(1.0, 0.33, 600).transformed(&scale);
     let b = mesh::torus_with_triangles(1.0, 0.33, 600).transformed(

@@ -16,13 +16,6 @@ const LESSONS: [&str; 5] = [
     "compute-reduction",
 ];
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("learn-advanced-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 fn print_run(run: &learn::LessonRun) {
     println!("{} on {}: passed {}", run.id, run.renderer, run.passed);
     for c in &run.checks {
@@ -40,7 +33,7 @@ fn print_run(run: &learn::LessonRun) {
 #[test]
 fn every_lesson_passes_against_the_cpu() {
     let ctx = common::context();
-    let pictures = temp_dir("pictures");
+    let pictures = common::temp_dir("learn-advanced", "pictures");
     for id in LESSONS {
         let lesson = learn::find(id).unwrap();
         let opts = LessonOptions {
@@ -104,7 +97,7 @@ fn solutions_pass_and_templates_fail() {
             assert!(solved.passed, "{id} solution {}", exercise.number);
             assert!(solved.hint.is_none());
 
-            let dir = temp_dir(&format!("{id}-{}", exercise.number));
+            let dir = common::temp_dir("learn-advanced", &format!("{id}-{}", exercise.number));
             let learner = dir.join(exercise.shader);
             std::fs::create_dir_all(learner.parent().unwrap()).unwrap();
             std::fs::write(&learner, &template_text).unwrap();
@@ -158,7 +151,7 @@ fn page_ids(page: &Path) -> Vec<String> {
 #[test]
 fn the_guide_builds_and_every_link_and_picture_resolves() {
     let ctx = common::context();
-    let dir = temp_dir("guide").join("guide");
+    let dir = common::temp_dir("learn-advanced", "guide").join("guide");
     let written = classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
     assert!(written.lessons.len() >= LESSONS.len());
     for id in LESSONS {
@@ -200,7 +193,7 @@ fn the_guide_builds_and_every_link_and_picture_resolves() {
     // Written again into its own folder: fine. A folder of someone else's: refused, unless
     // forced, and nothing in it lost.
     classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
-    let theirs = temp_dir("guide-theirs");
+    let theirs = common::temp_dir("learn-advanced", "guide-theirs");
     std::fs::write(theirs.join("notes.txt"), "mine").unwrap();
     let err = classic_gpgpu::report::guide::write_guide(&ctx, &theirs, false).unwrap_err();
     assert!(err.to_string().contains("--force"), "{err}");
@@ -233,7 +226,7 @@ fn the_guide_renders_in_headless_chromium() {
         return;
     };
     let ctx = common::context();
-    let root = temp_dir("guide-chromium");
+    let root = common::temp_dir("learn-advanced", "guide-chromium");
     let dir = root.join("guide");
     let written = classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
     let checker = root.join("check.html");

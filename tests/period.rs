@@ -374,19 +374,13 @@ fn the_gpu_stores_fp16_as_the_model_rounds() {
     }
 }
 
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("period-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn cli_period_collide_fits_and_finds_every_pair() {
     use classic_gpgpu::collide::brute_force::all_pairs;
     use classic_gpgpu::collide::Predicate;
     use classic_gpgpu::mesh;
     use glam::{Affine3A, Quat, Vec3};
-    let dir = temp_dir("collide");
+    let dir = common::temp_dir("period-cli", "collide");
     let a = mesh::torus_with_triangles(1.0, 0.33, 300);
     let b = a.transformed(&Affine3A::from_rotation_translation(
         Quat::from_rotation_x(1.4),

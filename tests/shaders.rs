@@ -12,14 +12,6 @@ use classic_gpgpu::view::{Canvas, DemoSpec, ViewState};
 use common::{classic_gpgpu, context, json_of};
 use std::path::{Path, PathBuf};
 
-/// A fresh, empty folder for one test.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("classic-gpgpu-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// Every file under glsl/ and cg_ports/ compiles on this context, with what its header says
 /// comes before it; snippets (`*.glsl`) and preludes without a `main()` are compiled inside
 /// every file that names them, and each snippet must be named by one. 4.3 stages are
@@ -182,7 +174,7 @@ fn glsl_list_names_every_file() {
 /// command fails, naming it) unless --force.
 #[test]
 fn glsl_export_writes_every_file_and_keeps_existing_ones() {
-    let dir = temp_dir("export");
+    let dir = common::temp_dir("shaders", "export");
     let out = classic_gpgpu(&["glsl", "export", dir.to_str().unwrap()]);
     assert!(
         out.status.success(),
@@ -227,7 +219,7 @@ fn glsl_export_writes_every_file_and_keeps_existing_ones() {
 /// where it has one, its solution where not.
 #[test]
 fn glsl_export_of_the_exercises_puts_templates_in_place_of_solutions() {
-    let dir = temp_dir("export-exercises");
+    let dir = common::temp_dir("shaders", "export-exercises");
     let summary = json_of(&[
         "glsl",
         "export",
@@ -298,7 +290,7 @@ fn line_of(path: &Path, text: &str) -> usize {
 
 #[test]
 fn glsl_dir_shaders_change_the_result_and_errors_name_the_file_on_disk() {
-    let dir = temp_dir("glsl-dir");
+    let dir = common::temp_dir("shaders", "glsl-dir");
     let args = ["mass", "cube", "--resolution", "16", "--json"];
     let plain = json_of(&args);
     let volume = plain["volume"].as_f64().unwrap();
@@ -343,7 +335,7 @@ fn glsl_dir_shaders_change_the_result_and_errors_name_the_file_on_disk() {
 #[test]
 fn the_viewer_reloads_edited_shaders_and_keeps_the_last_good_demo() {
     let ctx = context();
-    let dir = temp_dir("live");
+    let dir = common::temp_dir("shaders", "live");
     ctx.set_glsl_dir(Some(dir.clone()));
     let spec = DemoSpec::Mass {
         model: "cube".into(),

@@ -7,6 +7,17 @@ use glam::Vec3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// A fresh, empty folder for test `name` of suite `suite`, unique to this process.
+pub fn temp_dir(suite: &str, name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "classic-gpgpu-{suite}-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// The renderer named by `CLASSIC_GPGPU_RENDERER` (see README), with GL errors and
 /// framebuffer completeness checked after every pass.
 pub fn context() -> Context {
