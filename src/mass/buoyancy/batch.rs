@@ -106,12 +106,7 @@ impl GpuSolver {
         level: f64,
     ) -> Result<Job<'a>, GlError> {
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        let world: Vec<DVec3> = shape
-            .mesh
-            .positions
-            .iter()
-            .map(|p| body.rigid.to_world(p.as_dvec3()))
-            .collect();
+        let world = body.rigid.posed(&shape.mesh.positions);
         for &w in &world {
             lo = lo.min(w);
             hi = hi.max(w);

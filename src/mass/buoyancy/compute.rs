@@ -40,13 +40,7 @@ impl SubmergedSolver for ComputeSolver {
     ) -> Result<Vec<Submerged>, String> {
         let posed: Vec<Vec<DVec3>> = bodies
             .iter()
-            .map(|b| {
-                let mesh = &shapes[b.shape].mesh;
-                mesh.positions
-                    .iter()
-                    .map(|p| b.rigid.to_world(p.as_dvec3()))
-                    .collect()
-            })
+            .map(|b| b.rigid.posed(&shapes[b.shape].mesh.positions))
             .collect();
         let parts: Vec<compute::Body> = bodies
             .iter()

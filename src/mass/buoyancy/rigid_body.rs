@@ -59,6 +59,11 @@ impl RigidBody {
         self.position + self.orientation * p
     }
 
+    /// Body-frame points (a mesh's vertices) in world coordinates, in f64.
+    pub fn posed(&self, points: &[glam::Vec3]) -> Vec<DVec3> {
+        points.iter().map(|p| self.to_world(p.as_dvec3())).collect()
+    }
+
     /// Velocity of the material point at world position `p`.
     pub fn point_velocity(&self, p: DVec3) -> DVec3 {
         self.velocity + self.angular_velocity.cross(p - self.position)
