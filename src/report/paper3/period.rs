@@ -262,7 +262,7 @@ fn steps(net: &Network, r300: &period::PeriodGpu, photo: &PhotoAtFp24) -> Vec<St
             "Texture W and the 1D bias texture (R32F)",
             Verdict::Fits,
             format!(
-                "at most {widest} texels a side (the 121-30-1 detector); the R300 made R32F \
+                "at most {widest} texels a side (the 121-30-1 detector); the R300 allocated R32F \
                  textures up to {max} a side"
             ),
         ),
