@@ -72,11 +72,11 @@ pub struct ReproduceArgs {
     /// while the runs take under a second in all].
     #[arg(long, value_parser = super::timing::parse_runs)]
     pub runs: Option<usize>,
-    /// Add to papers 1, 2 and 4 (and 3) a "period" block: each step of the paper's path run
-    /// under the limits of the paper's own GPU (fits, the period's way, or refused with the
-    /// limit named), and the results at that GPU's precision beside today's.
+    /// Leave out the "period" block that papers 1 to 4 carry by default: each step of the
+    /// paper's path run under the limits of the paper's own GPU (fits, the period's way, or
+    /// refused with the limit named), and the results at that GPU's precision beside today's.
     #[arg(long)]
-    pub period: bool,
+    pub no_period: bool,
 }
 
 /// Run the stages and write the report to `args.out`; returns the report.
@@ -85,7 +85,7 @@ pub fn reproduce(
     args: &ReproduceArgs,
     progress: MultiProgress,
 ) -> anyhow::Result<Report> {
-    super::period::set_requested(args.period);
+    super::period::set_requested(!args.no_period);
     let all = stages();
     let chosen = chosen_stages(&all, &args.only)?;
     report_folder::check_out(&args.out, args.force)?;
