@@ -77,8 +77,12 @@ pub struct BenchArgs<O: clap::Args> {
     /// `reproduce`): each step of the paper's path run under the limits of the paper's own
     /// GPU (the profile `--period` puts the paper's command under), and its results at that
     /// GPU's precision.
-    #[arg(long)]
+    #[arg(long, overrides_with = "period")]
     pub no_period: bool,
+    /// Keep the section's period block (the default for papers 1 to 4; the last of --period
+    /// and --no-period wins).
+    #[arg(long, overrides_with = "no_period")]
+    pub period: bool,
     #[command(flatten)]
     pub options: O,
 }
@@ -266,6 +270,10 @@ pub fn bench_command<P: Paper>(
     match (P::PERIOD_PAPER, args.no_period) {
         (None, true) => anyhow::bail!(
             "--no-period: section {} has no period block (only papers 1 to 4 do)",
+            P::ID
+        ),
+        (None, false) if args.period => anyhow::bail!(
+            "--period: section {} has no period block (only papers 1 to 4 do)",
             P::ID
         ),
         (Some(paper), false) => {

@@ -75,8 +75,11 @@ pub struct ReproduceArgs {
     /// Leave out the "period" block that papers 1 to 4 carry by default: each step of the
     /// paper's path run under the limits of the paper's own GPU (fits, the period's way, or
     /// refused with the limit named), and the results at that GPU's precision beside today's.
-    #[arg(long)]
+    #[arg(long, overrides_with = "period")]
     pub no_period: bool,
+    /// Keep the period blocks (the default; the last of --period and --no-period wins).
+    #[arg(long, overrides_with = "no_period")]
+    pub period: bool,
 }
 
 /// Run the stages and write the report to `args.out`; returns the report.
