@@ -66,12 +66,24 @@ pub fn footprint_per_unit(camera: &Camera, surface: &Surface) -> f32 {
 }
 
 /// Whether some pixel of `camera` may stop above level 0: a ray enters the box at a point of
-/// the box, so no nearer than the box's farthest corner, and its footprint there is under 2
+/// the box, so no farther than the box's farthest corner, and its footprint there is under 2
 /// patches when that corner's is (with a margin of 1% over fp32 rounding).
 pub fn may_act(camera: &Camera, surface: &Surface) -> bool {
+    1.01 * farthest_corner(camera, surface) * footprint_per_unit(camera, surface) as f64 >= 2.0
+}
+
+/// The deepest stop level a pixel of `camera` may have (at most `top`): that of the footprint
+/// at the box's farthest corner, with the same 1% margin as [`may_act`].
+pub fn deepest_stop_level(camera: &Camera, surface: &Surface, top: u32) -> u32 {
+    let footprint = farthest_corner(camera, surface) * footprint_per_unit(camera, surface) as f64;
+    stop_level(1.01 * footprint, top)
+}
+
+/// The distance from `camera`'s eye to the box's farthest corner (world).
+fn farthest_corner(camera: &Camera, surface: &Surface) -> f64 {
     let eye = camera.eye.as_dvec3();
     let size = surface.size.as_dvec3();
-    let farthest = (0..8)
+    (0..8)
         .map(|k| {
             let corner = DVec3::new(
                 size.x * (k & 1) as f64,
@@ -80,8 +92,7 @@ pub fn may_act(camera: &Camera, surface: &Surface) -> bool {
             );
             (corner - eye).length()
         })
-        .fold(0.0, f64::max);
-    1.01 * farthest * footprint_per_unit(camera, surface) as f64 >= 2.0
+        .fold(0.0, f64::max)
 }
 
 /// The stop level for a footprint of `footprint` patches: the largest L <= `top` with

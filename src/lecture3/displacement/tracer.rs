@@ -279,7 +279,13 @@ impl DisplacementRenderer {
     /// Draws the prefilter's shading pyramid toward `camera` (what a prefiltered frame does
     /// first, where some pixel may stop above level 0).
     pub fn draw_shading(&self, camera: &Camera) -> Result<(), GlError> {
-        self.shading.draw(&self.surface, &self.heights, camera.eye)
+        let top = self.bounds.levels() - 1;
+        self.shading.draw(
+            &self.surface,
+            &self.heights,
+            camera.eye,
+            super::prefilter::deepest_stop_level(camera, &self.surface, top),
+        )
     }
 
     /// Draws one frame into `target` (its size must be the camera's). A prefiltered frame
