@@ -28,12 +28,6 @@ void main() {
     int stop = stop_level(box.x, u_top); // 0 without the prefilter
     bool in_entry_cell = true;
     for (int it = 0; it < u_max_iterations; ++it) {
-        // The prefilter meets each patch on its coarsest covered node: where the parent is
-        // covered too (the ray climbed into a covered region), go up to it first.
-        if (level < stop && covers(r, cell >> (level + 1), level + 1, box.x)) {
-            level += 1;
-            continue;
-        }
         ivec2 node = cell >> level;
         ivec2 first_cell = node << level;
         ivec2 last_cell = min(((node + 1) << level) - 1, u_patches - 1);
@@ -102,6 +96,10 @@ void main() {
         cell = next;
         in_entry_cell = false;
         level = min(level + 1, u_top);
+        // The prefilter meets each patch on its coarsest covered node: where the parent is
+        // covered too, go up to it before reading anything here. (Only after leaving a node
+        // can that be: a descent comes from a parent that is not covered.)
+        while (level < stop && covers(r, cell >> (level + 1), level + 1, box.x)) level += 1;
     }
     write_unfinished(float(u_max_iterations));
 }
