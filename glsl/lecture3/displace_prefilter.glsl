@@ -3,14 +3,17 @@
 // the minification prefilter (reconstructed; src/lecture3/displacement/prefilter.rs).
 // Compiled after: glsl/lecture3/pixel_ray.glsl, glsl/lecture3/displace_normal.glsl
 // Compiled after: glsl/lecture3/displace_common.glsl
-// Where a pixel's footprint covers many patches the traversal stops at the level whose nodes
-// are no wider than the footprint and meets a prefiltered surface there: one bilinear patch
+// Where a pixel's footprint covers many patches the traversal stops at a node the footprint
+// covers: no wider than it, and no wider across the ray, its height range seen from the side
+// included (a node with tall thin walls is not covered, as the rays that pass it see the walls'
+// sides and tops, not their mean). There it meets a prefiltered surface: one bilinear patch
 // per node, its corners the mean of the height samples about each corner (four nodes of the
-// mean pyramid), clamped under the node's bound so that the max pyramid still bounds it. A hit
-// on it is shaded with the level's prefiltered normal: the mean of the unit normals of the
-// patches about the hit (the normal pyramid, bilinear between node centres), not normalised.
+// mean pyramid), clamped under the node's bound so that the max pyramid still bounds it. Every
+// hit of such a pixel is shaded at the level of its footprint with the facets facing the eye
+// (the shading pyramid, bilinear between node centres).
 
 uniform sampler2D u_bounds;   // max pyramid of the patch bounds, as an atlas
+uniform sampler2D u_lows;     // min pyramid of the patch bounds (patch minima), same layout
 uniform int u_level_x[16];    // where each level starts in the atlas
 uniform int u_level_y[16];
 uniform int u_prefilter;      // 0: trace the finest patches; 1: stop at the footprint's level
@@ -32,6 +35,19 @@ int stop_level(float t_in, int top) {
         if (float(1 << k) <= footprint) level = k;
     }
     return level;
+}
+
+// Whether the footprint covers node `node` of `level`, for a ray entering the box at t_in: the
+// node's extent on the plane perpendicular to the ray (its width foreshortened by the ray's
+// elevation, plus its height range seen from the side, in patches) no wider than the footprint
+// there; its width across the ray (the level) is no wider either, as level <= stop says.
+bool covers(Ray r, ivec2 node, int level, float t_in) {
+    ivec2 at = ivec2(u_level_x[level], u_level_y[level]) + node;
+    float range = texelFetch(u_bounds, at, 0).r - texelFetch(u_lows, at, 0).r;
+    float sin_e = abs(r.d.z / u_world_to_grid.z); // the world ray is a unit vector
+    float cos_e = sqrt(max(1.0 - sin_e * sin_e, 0.0));
+    float relief = range * u_world_to_grid.x / u_world_to_grid.z;
+    return float(1 << level) * sin_e + relief * cos_e <= t_in * u_footprint;
 }
 
 // Mean pyramid node m of `level`, clamped to the nodes that cover height samples.

@@ -9,8 +9,8 @@
 // whole; otherwise the ray advances to where it reaches the node's bound (never past a
 // surface) and descends. At level 0 the ray is intersected with the node's bilinear patch.
 // After leaving a node the traversal climbs one level, so empty space is crossed in large
-// steps. With the prefilter on (displace_prefilter.glsl) the descent stops at the level of
-// the pixel's footprint and meets that level's prefiltered patch instead. (The fragment stage
+// steps. With the prefilter on (displace_prefilter.glsl) the descent stops at the nodes the
+// pixel's footprint covers and meets their prefiltered patches instead. (The fragment stage
 // is pixel_ray.glsl, displace_normal.glsl, displace_common.glsl, displace_prefilter.glsl, then this file.)
 
 uniform int u_top;            // the top level (one node)
@@ -62,7 +62,7 @@ void main() {
                 cell = moved;
             }
         }
-        if (!skip && level == stop) {
+        if (!skip && (level == 0 || (level <= stop && covers(r, node, level, box.x)))) {
             // The finest level (or the prefilter's): the ray against this node's bilinear
             // patch, the map's own at level 0, the prefiltered one above.
             float side = float(1 << level);
@@ -76,11 +76,11 @@ void main() {
                 // through a side: not where it was moved down to a node's bound plane and a
                 // flat patch at that very height starts there (u = 0 as well).
                 bool wall = in_entry_cell && t == box.x && u == 0.0 && enters_through_side(r);
-                if (level == 0) {
+                if (stop == 0) {
                     write_hit(r, t + u, wall, float(it + 1));
                 } else {
                     vec2 g = r.o.xy + (t + u) * r.d.xy;
-                    write_shaded(r, t + u, wall, float(it + 1), prefiltered_normal(g, level));
+                    write_shaded(r, t + u, wall, float(it + 1), prefiltered_normal(g, stop));
                 }
                 return;
             }
@@ -103,6 +103,10 @@ void main() {
         cell = next;
         in_entry_cell = false;
         level = min(level + 1, u_top);
+        // The prefilter meets each patch on its coarsest covered node: where the parent is
+        // covered too, go up to it before reading anything here. (Only after leaving a node
+        // can that be: a descent comes from a parent that is not covered.)
+        while (level < stop && covers(r, cell >> (level + 1), level + 1, box.x)) level += 1;
     }
     write_unfinished(float(u_max_iterations));
 }

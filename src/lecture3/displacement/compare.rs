@@ -21,13 +21,14 @@
 //! kind are ill-conditioned as well.
 //!
 //! A prefiltered frame ([`super::prefilter`]) is judged the same way against the exact tracer
-//! of the field its pixel's rule selects (the prefiltered field of the stop level, shaded with
-//! the shading of the facets facing the eye, [`super::visible_shading`]); pixels whose stop
-//! level fp32 rounding could change are ill-conditioned.
+//! of the field its pixel's rule makes (each patch on the prefiltered patch of its cut node,
+//! shaded with the stop level's shading of the facets facing the eye,
+//! [`super::visible_shading`]); pixels whose stop level, or the cut of a patch on their way,
+//! fp32 rounding could change are ill-conditioned.
 
 use super::camera::Camera;
 use super::exact::{box_interval, trace, Hit};
-use super::prefilter::{level_is_borderline, stop_level, LevelField, Prefilter};
+use super::prefilter::{LevelField, Prefilter, Traced};
 use super::shading;
 use super::surface::Surface;
 use super::tracer::{Frame, Pixel};
@@ -343,26 +344,21 @@ fn reference(
     // Silhouette pixels: rasterisation and the analytic box may disagree there.
     match box_interval(eye * scale, dir * scale, wp as f64, hp as f64) {
         Some((t0, t1)) if t1 - t0 > SLACK => {
-            let (level, level_borderline) = prefilter.map_or((0, false), |p| {
-                let footprint = p.footprint_at(t0);
-                (
-                    stop_level(footprint, p.top),
-                    level_is_borderline(footprint, p.top),
-                )
-            });
-            let field = prefilter
-                .filter(|_| level > 0)
-                .map(|p| &p.levels[level as usize]);
-            let traced = |offset| match field {
-                Some(f) => f.trace(surface, eye, dir, offset),
-                None => trace(surface, eye, dir, offset),
+            let traced = |offset| match prefilter {
+                Some(p) => p.trace_ray(surface, eye, dir, t0, offset),
+                None => Traced {
+                    level: 0,
+                    hit: trace(surface, eye, dir, offset),
+                    borderline: false,
+                },
             };
+            let (exact, raised, lowered) = (traced(0.0), traced(DELTA), traced(-DELTA));
             Some(Reference {
-                exact: traced(0.0),
-                raised: traced(DELTA),
-                lowered: traced(-DELTA),
-                level,
-                level_borderline,
+                exact: exact.hit,
+                raised: raised.hit,
+                lowered: lowered.hit,
+                level: exact.level,
+                level_borderline: exact.borderline || raised.borderline || lowered.borderline,
             })
         }
         _ => None,

@@ -9,9 +9,9 @@
 //! pyramid over patch bounds ([`bounds`]), the traversal rule (descend where the ray reaches
 //! a node's bound, climb one level after leaving a node, in `displace_pyramid.frag`), the
 //! closed-form patch intersection ([`patch`]), the box the map is laid on and its side walls
-//! ([`surface`]), and the minification prefilter ([`prefilter`]: the footprint rule, the
-//! prefiltered surface from the mean pyramid, shaded as the facets facing the eye,
-//! [`visible_shading`]).
+//! ([`surface`]), and the minification prefilter ([`prefilter`]: the footprint rule and the
+//! nodes it covers, the prefiltered surface from the mean pyramid, shaded as the facets facing
+//! the eye, [`visible_shading`]).
 //!
 //! Steps, one file each: [`surface`] (the box and grid space), [`camera`] (the orbiting
 //! camera and pixel rays), [`bounds`] (the bound pyramid), [`patch`] (the finest step),

@@ -24,8 +24,8 @@ use serde::Serialize;
 pub enum Method {
     /// Top-down traversal of the max pyramid, exact bilinear intersection at the finest level.
     Pyramid,
-    /// The same traversal with the minification prefilter: it stops at the level of the
-    /// pixel's footprint and meets the prefiltered surface there ([`super::prefilter`]).
+    /// The same traversal with the minification prefilter: it stops at the nodes the pixel's
+    /// footprint covers and meets the prefiltered surface there ([`super::prefilter`]).
     Prefiltered,
     /// Relief mapping: equal linear steps along the ray, then binary search.
     Relief {
@@ -62,6 +62,10 @@ pub struct DisplacementRenderer {
     bounds_atlas: PyramidAtlas,
     /// The mean pyramid of the height samples (the prefilter's surfaces).
     means_atlas: PyramidAtlas,
+    /// The min pyramid of the patch bounds (each node's lowest point), laid out as the bound
+    /// atlas: with it, each node's height range (the prefilter's test of what a footprint
+    /// covers).
+    lows_atlas: PyramidAtlas,
     /// The shading pyramid toward the eye (the prefilter's shading), drawn for each
     /// prefiltered frame.
     shading: VisibleShadingPyramid,
@@ -183,10 +187,16 @@ impl DisplacementRenderer {
         let bounds =
             BoundPyramidBuilder::new(ctx)?.build(&heights, surface.patches(), Extreme::Max)?;
         let bounds_atlas = AtlasBuilder::new(ctx)?.atlas(&bounds.texture)?;
+        // The lowest point of each node, for the prefilter's test of what a footprint covers.
+        let lows =
+            BoundPyramidBuilder::new(ctx)?.build(&heights, surface.patches(), Extreme::Min)?;
+        let lows_atlas = AtlasBuilder::new(ctx)?.atlas(&lows.texture)?;
         let means_atlas = super::prefilter::mean_atlas(ctx, map)?;
         let shading = VisibleShadingPyramid::new(ctx, &surface)?;
         // The traversal reads both with the bound pyramid's offsets (both span the patches).
-        if shading.atlas.offsets != bounds_atlas.offsets {
+        if shading.atlas.offsets != bounds_atlas.offsets
+            || lows_atlas.offsets != bounds_atlas.offsets
+        {
             return Err(
                 GlError::Invalid("the shading and bound atlases differ in layout".into()).into(),
             );
@@ -223,6 +233,7 @@ impl DisplacementRenderer {
             bounds,
             bounds_atlas,
             means_atlas,
+            lows_atlas,
             shading,
         })
     }
@@ -265,6 +276,18 @@ impl DisplacementRenderer {
         4 * (wp + hp + 2) as i32 * (self.bounds.levels() as i32 + 1)
     }
 
+    /// Draws the prefilter's shading pyramid toward `camera` (what a prefiltered frame does
+    /// first, where some pixel may stop above level 0).
+    pub fn draw_shading(&self, camera: &Camera) -> Result<(), GlError> {
+        let top = self.bounds.levels() - 1;
+        self.shading.draw(
+            &self.surface,
+            &self.heights,
+            camera.eye,
+            super::prefilter::deepest_stop_level(camera, &self.surface, top),
+        )
+    }
+
     /// Draws one frame into `target` (its size must be the camera's). A prefiltered frame
     /// first draws the shading pyramid toward the camera, where some pixel may stop above
     /// level 0.
@@ -275,8 +298,7 @@ impl DisplacementRenderer {
         method: Method,
     ) -> Result<(), GlError> {
         if method == Method::Prefiltered && super::prefilter::may_act(camera, &self.surface) {
-            self.shading
-                .draw(&self.surface, &self.heights, camera.eye)?;
+            self.draw_shading(camera)?;
         }
         let fb = &target.framebuffer;
         fb.clear_colors([0.0; 4])?;
@@ -292,6 +314,7 @@ impl DisplacementRenderer {
             Method::Pyramid | Method::Prefiltered => pass
                 .texture("u_bounds", &self.bounds_atlas.texture)
                 .texture("u_means", &self.means_atlas.texture)
+                .texture("u_lows", &self.lows_atlas.texture)
                 .texture("u_shading", &self.shading.atlas.texture)
                 .uniform("u_mean_x", &self.means_atlas.offsets_x()[..])
                 .uniform("u_mean_y", &self.means_atlas.offsets_y()[..])

@@ -239,7 +239,8 @@ fn prefilter_quality(rows: &[PrefilterRow], grazing: bool) -> Claim {
         } else {
             format!(
                 "RMS error against {0}x{0} unfiltered rays per pixel averaged, unfiltered -> \
-                 prefiltered: {measured}",
+                 prefiltered (prefiltered patches only on the nodes a pixel's footprint \
+                 covers, their height range seen from the side included): {measured}",
                 acting[0].quality.samples
             )
         },
@@ -270,13 +271,14 @@ fn prefilter_speed(rows: &[PrefilterRow], load: Option<Load>) -> Claim {
         .map(|r| {
             format!(
                 "{:.0} degrees, distance {:.1}: steps per hit pixel {:.1} -> {:.1}, unfiltered {}, \
-                 prefiltered {}",
+                 prefiltered {} (of which drawing the shading pyramid toward the camera {})",
                 r.elevation,
                 r.distance,
                 r.quality.unfiltered_steps,
                 r.quality.prefiltered_steps,
                 r.unfiltered_spread.in_words(" ms"),
-                r.prefiltered_spread.in_words(" ms")
+                r.prefiltered_spread.in_words(" ms"),
+                r.shading_spread.in_words(" ms")
             )
         })
         .collect::<Vec<_>>()
@@ -293,7 +295,11 @@ fn prefilter_speed(rows: &[PrefilterRow], load: Option<Load>) -> Claim {
         measured: if acting.is_empty() {
             "no distance of the sweep is far enough for the prefilter to act".into()
         } else {
-            format!("unfiltered -> prefiltered: {}", verdict.note)
+            format!(
+                "unfiltered -> prefiltered: {}{}",
+                verdict.note,
+                why_slower(&acting)
+            )
         },
         holds: if acting.is_empty() {
             None
@@ -302,6 +308,38 @@ fn prefilter_speed(rows: &[PrefilterRow], load: Option<Load>) -> Claim {
         } else {
             verdict.holds
         },
+    }
+}
+
+/// Why prefiltered frames are slower where they are, from the medians: the steps they save,
+/// or drawing the shading pyramid for each view (empty where none is slower).
+fn why_slower(acting: &[&PrefilterRow]) -> String {
+    let slower: Vec<&&PrefilterRow> = acting
+        .iter()
+        .filter(|r| r.prefiltered_ms > r.unfiltered_ms)
+        .collect();
+    if slower.is_empty() {
+        return String::new();
+    }
+    let traversal_faster = slower
+        .iter()
+        .all(|r| r.prefiltered_ms - r.shading_ms < r.unfiltered_ms);
+    if traversal_faster {
+        format!(
+            ". Where the prefiltered frame is slower ({} of {} views), its traversal alone (its \
+             time less the shading pyramid's) is faster: drawing the shading pyramid for each \
+             view (one pass over the patches, the mean pyramid's passes, the atlas copies) costs \
+             more than the steps save",
+            slower.len(),
+            acting.len()
+        )
+    } else {
+        format!(
+            ". Where the prefiltered frame is slower ({} of {} views), its traversal alone (its \
+             time less the shading pyramid's) is not faster either at some view",
+            slower.len(),
+            acting.len()
+        )
     }
 }
 
@@ -656,6 +694,8 @@ mod tests {
             unfiltered_spread: Spread::default(),
             prefiltered_ms: 1.0,
             prefiltered_spread: Spread::default(),
+            shading_ms: 0.5,
+            shading_spread: Spread::default(),
             comparison: Default::default(),
         }
     }
@@ -710,6 +750,21 @@ mod tests {
             ..timed
         };
         assert_eq!(prefilter_speed(&[overlapping], None).holds, None);
+        // Why a slower prefiltered frame is slower: the shading pyramid, or the traversal.
+        let pyramid_costs = PrefilterRow {
+            unfiltered_ms: 1.0,
+            prefiltered_ms: 1.2,
+            shading_ms: 0.5,
+            ..better.clone()
+        };
+        assert!(why_slower(&[&pyramid_costs])
+            .contains("its traversal alone (its time less the shading pyramid's) is faster"));
+        let traversal_costs = PrefilterRow {
+            shading_ms: 0.1,
+            ..pyramid_costs.clone()
+        };
+        assert!(why_slower(&[&pyramid_costs, &traversal_costs]).contains("not faster"));
+        assert!(why_slower(&[&better]).is_empty());
     }
 
     #[test]

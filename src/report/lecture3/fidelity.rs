@@ -39,12 +39,14 @@ pub fn rows() -> Vec<Fidelity> {
             "VRST 2006 abstract (minification)",
             "src/lecture3/displacement/{prefilter,visible_shading}.rs, \
              glsl/lecture3/displace_prefilter.glsl",
-            "reconstruction (the construction is not given): the descent stops at the level of \
-             the pixel's footprint where the ray enters the box; there a bilinear patch per \
-             node from the mean pyramid of the heights, clamped under the node's bound, shaded \
-             as the facets about the hit that face the eye, each weighted by its area projected \
-             toward the eye (a mean pyramid of those weights and weighted lit cosines, drawn \
-             for each view; self-occlusion ignored)",
+            "reconstruction (the construction is not given): the descent stops at the nodes \
+             the pixel's footprint (where the ray enters the box) covers, the node's height \
+             range seen from the side included (min and max pyramids); there a bilinear patch \
+             per node from the mean pyramid of the heights, clamped under the node's bound; \
+             every hit of the pixel shaded at its footprint's level as the facets about the hit \
+             that face the eye, each weighted by its area projected toward the eye (a mean \
+             pyramid of those weights and weighted lit cosines, drawn for each view; \
+             self-occlusion ignored)",
         ),
         Fidelity::new(
             "linear + binary search (relief mapping) as the artifact-prone comparison",

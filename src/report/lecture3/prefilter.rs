@@ -6,7 +6,9 @@
 use super::bench::{gpu_ms_warm, DEPTH};
 use super::results::Lecture3Results;
 use crate::lecture3::displacement::compare::{Comparison, ReferenceImage};
-use crate::lecture3::displacement::prefilter::{image_error, shown_of_rgba8, supersampled};
+use crate::lecture3::displacement::prefilter::{
+    image_error, may_act, shown_of_rgba8, supersampled,
+};
 use crate::lecture3::displacement::{Camera, DisplacementRenderer, Frame, Method, Pixel, Surface};
 use crate::lecture3::HeightMap;
 use crate::report::timing::{Runs, Spread};
@@ -84,6 +86,10 @@ pub struct PrefilterRow {
     pub unfiltered_spread: Spread,
     pub prefiltered_ms: f64,
     pub prefiltered_spread: Spread,
+    /// Of the prefiltered frame's time, drawing its shading pyramid toward the camera (0 where
+    /// no pixel stops above level 0: it is not drawn).
+    pub shading_ms: f64,
+    pub shading_spread: Spread,
     /// The prefiltered frame against the CPU reference of the same rule.
     pub comparison: Comparison,
 }
@@ -138,6 +144,11 @@ pub fn measure(
             };
             let unfiltered = time(Method::Pyramid)?;
             let prefiltered = time(Method::Prefiltered)?;
+            let shading = if may_act(&camera, renderer.surface()) {
+                gpu_ms_warm(ctx, runs, || Ok(renderer.draw_shading(&camera)?))?
+            } else {
+                Spread::default()
+            };
             Ok(PrefilterRow {
                 distance,
                 elevation,
@@ -147,6 +158,8 @@ pub fn measure(
                 unfiltered_spread: unfiltered,
                 prefiltered_ms: prefiltered.median,
                 prefiltered_spread: prefiltered,
+                shading_ms: shading.median,
+                shading_spread: shading,
                 comparison,
             })
         })
@@ -174,6 +187,7 @@ pub fn table(results: &Lecture3Results) -> Table {
             "error, prefiltered",
             "ms, unfiltered",
             "ms, prefiltered",
+            "ms, of which the shading pyramid",
             "steps, unfiltered",
             "steps, prefiltered",
             "vs CPU: wrong surface / outside tolerance / kind / normal / colour",
@@ -193,6 +207,7 @@ pub fn table(results: &Lecture3Results) -> Table {
                     format!("{:.4}", r.quality.prefiltered_error),
                     format!("{:.2}", r.unfiltered_ms),
                     format!("{:.2}", r.prefiltered_ms),
+                    format!("{:.2}", r.shading_ms),
                     format!("{:.1}", r.quality.unfiltered_steps),
                     format!("{:.1}", r.quality.prefiltered_steps),
                     format!(
