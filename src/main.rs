@@ -267,6 +267,12 @@ fn info(global: &Global) -> anyhow::Result<()> {
         "uniforms        vertex {}, fragment {} components",
         l.max_vertex_uniform_components, l.max_fragment_uniform_components
     );
+    let facing = match ctx.fragment_facing()? {
+        gl::FragmentFacing::FollowsWinding => "follows the winding",
+        gl::FragmentFacing::Reversed => "the opposite of the winding",
+        gl::FragmentFacing::Unusable => "unusable (the same for both windings)",
+    };
+    println!("gl_FrontFacing  {facing}");
     Ok(())
 }
 

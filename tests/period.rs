@@ -112,6 +112,19 @@ fn formats_the_chip_did_not_have_are_refused() {
     );
     Texture::new_2d(&ctx, 8, 8, TextureFormat::Depth24Stencil8).unwrap();
     Texture::new_2d(&ctx, 8, 8, TextureFormat::Rgba16F).unwrap();
+    // The G70's texture unit had no two-component fp32 and no one-component fp16 format
+    // (nouveau's NV40 format table); the R300's had both.
+    for format in [TextureFormat::Rg32F, TextureFormat::R16F] {
+        ctx.set_period(Some(g70()));
+        let text = refused(
+            Texture::new_2d(&ctx, 8, 8, format),
+            "GeForce 7800 GTX",
+            "texture_formats",
+        );
+        assert!(text.contains(format.name()), "{text}");
+        ctx.set_period(Some(r300()));
+        Texture::new_2d(&ctx, 8, 8, format).unwrap();
+    }
 }
 
 #[test]
@@ -129,6 +142,14 @@ fn a_fifth_render_target_is_refused() {
         "max_draw_buffers",
     );
     assert!(text.contains("5 render targets"), "{text}");
+    // The R300 also wrote four at most.
+    ctx.set_period(Some(r300()));
+    Framebuffer::new(&ctx, "four", &all[..4], None).unwrap();
+    refused(
+        Framebuffer::new(&ctx, "five", &all, None),
+        "ATI RADEON 9700 PRO",
+        "max_draw_buffers",
+    );
 }
 
 /// Adds `values` one after another into a 1x1 target of `format` by blending.
@@ -263,6 +284,15 @@ fn fp32_linear_filtering_is_refused_and_fp16_filtering_matches_the_cpu() {
             );
         }
     }
+    // The R300 filtered no float texture, 16-bit ones included; nearest reads fit.
+    ctx.set_period(Some(r300()));
+    refused(
+        sample(&ctx, &fp16, &uvs),
+        "ATI RADEON 9700 PRO",
+        "float_filtering",
+    );
+    fp16.set_filter(Filter::Nearest);
+    sample(&ctx, &fp16, &uvs).unwrap();
 }
 
 #[test]
@@ -607,4 +637,91 @@ fn report_period_blocks_of_papers_1_2_and_4() {
     for block in [&p1, &p2, &p4] {
         assert_eq!(block.tables().len(), 2);
     }
+}
+
+#[test]
+fn report_period_block_of_paper_3_has_the_shape_of_the_others() {
+    use classic_gpgpu::report::period::Verdict;
+    use classic_gpgpu::report::{paper2, paper3};
+    let ctx = context();
+    let dir = common::temp_dir("period", "paper3-block");
+    let opts = classic_gpgpu::report::BenchOptions {
+        out_dir: dir.clone(),
+        ..bench_options(&ctx)
+    };
+    // The first rows of text.png are enough for the shape (the report's --quick takes 24).
+    let photo = image::open(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/mlp/text.png"))
+        .unwrap()
+        .to_luma8();
+    let photo = image::imageops::crop_imm(&photo, 0, 0, photo.width(), 4).to_image();
+    let p3 = paper3::period::measure(&opts, &photo).unwrap();
+    assert_eq!(p3.block.gpu, "ATI RADEON 9700 PRO");
+    // Every step ran under the R300's limits; the split products and the 24-bit arithmetic
+    // are the period's way.
+    let verdicts: Vec<Verdict> = p3.block.steps.iter().map(|s| s.verdict).collect();
+    assert!(
+        !verdicts.contains(&Verdict::Refused),
+        "{:?}",
+        p3.block.steps
+    );
+    for needle in ["Matrix product", "Arithmetic"] {
+        let step = p3.block.steps.iter().find(|s| s.step.contains(needle));
+        assert_eq!(
+            step.map(|s| s.verdict),
+            Some(Verdict::PeriodsWay),
+            "{needle}"
+        );
+    }
+    assert_eq!(p3.block.comparisons.len(), 5);
+    let class = &p3.block.comparisons[1];
+    assert!(
+        class.change.contains(&p3.photo.changed_pixels.to_string())
+            || (p3.photo.changed_pixels == 0 && class.change.starts_with("none")),
+        "{class:?}"
+    );
+    // The same two tables, with the same columns, as papers 1, 2 and 4.
+    let p2 = paper2::period::measure(&opts).unwrap();
+    let (t3, t2) = (paper3::period::tables(&p3), p2.tables());
+    assert_eq!(t3.len(), 2);
+    for (a, b) in t3.iter().zip(&t2) {
+        assert_eq!(a.header, b.header);
+        assert!(a.caption.starts_with("Period: ") && a.caption.contains("RADEON 9700"));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn cli_report_carries_the_period_block_unless_no_period() {
+    let section = |extra: &[&str]| -> serde_json::Value {
+        let dir = common::temp_dir("period-cli", &format!("crowd-bench{}", extra.len()));
+        let out_dir = dir.to_str().unwrap().to_string();
+        let args = [
+            &["crowd-bench", "--quick", "--json", "--out", &out_dir][..],
+            extra,
+        ]
+        .concat();
+        let v = common::json_of(&args);
+        std::fs::remove_dir_all(&dir).ok();
+        v
+    };
+    let period_tables = |v: &serde_json::Value| {
+        v["tables"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|t| t["caption"].as_str().unwrap().starts_with("Period: "))
+            .count()
+    };
+    let with = section(&[]);
+    assert_eq!(with["results"]["period"]["gpu"], "GeForce 7800 GTX");
+    assert_eq!(period_tables(&with), 2);
+    let without = section(&["--no-period"]);
+    assert!(without["results"].get("period").is_none(), "{without}");
+    assert_eq!(period_tables(&without), 0);
+    // A section with no period GPU says so rather than ignoring the flag.
+    let out = common::classic_gpgpu(&["lecture3-bench", "--quick", "--no-period"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("has no period block"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
 }

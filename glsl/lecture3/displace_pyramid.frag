@@ -47,10 +47,17 @@ void main() {
             if (t_plane >= t_exit) {
                 skip = true; // above the bound all the way across: nothing here
             } else {
-                // Advance to the bound, still inside this node (clamped against rounding).
-                t = t_plane;
+                // Advance to the bound, still inside this node (clamped against rounding),
+                // and never back along the ray: rounding can put the bound's crossing a hair
+                // before t, or its cell behind the current one, and going back to a cell the
+                // ray has left would loop (seen on an NVIDIA GPU).
+                t = max(t, t_plane);
                 ivec2 at = ivec2(floor(r.o.xy + t * r.d.xy));
                 ivec2 moved = clamp(at, first_cell, last_cell);
+                for (int k = 0; k < 2; ++k) {
+                    if (r.d[k] > 0.0) moved[k] = max(moved[k], cell[k]);
+                    if (r.d[k] < 0.0) moved[k] = min(moved[k], cell[k]);
+                }
                 in_entry_cell = in_entry_cell && moved == cell;
                 cell = moved;
             }

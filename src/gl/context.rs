@@ -172,6 +172,8 @@ pub(super) struct Inner {
     pub(super) profile: std::cell::RefCell<Option<Box<super::profile::State>>>,
     /// `--glsl-dir`: shader files found here replace the compiled-in ones ([`Context::set_glsl_dir`]).
     glsl_dir: std::cell::RefCell<Option<std::path::PathBuf>>,
+    /// What `gl_FrontFacing` says here, once probed ([`Context::fragment_facing`]).
+    pub(super) facing: Cell<Option<super::facing::FragmentFacing>>,
     platform: Platform,
 }
 
@@ -366,6 +368,7 @@ impl Context {
                 extra,
                 profile: std::cell::RefCell::new(None),
                 glsl_dir: std::cell::RefCell::new(None),
+                facing: Cell::new(None),
                 platform: platform_state,
             }),
         };

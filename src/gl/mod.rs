@@ -25,6 +25,7 @@ mod buffer;
 pub mod compute;
 mod context;
 pub mod dump;
+mod facing;
 pub mod feedback;
 mod finite;
 mod framebuffer;
@@ -50,6 +51,7 @@ pub use compute::{
     memory_barrier, time_finished, Barrier, ComputeProgram, Dispatch, COMPUTE_VERSION,
 };
 pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
+pub use facing::FragmentFacing;
 pub use finite::ensure_finite;
 pub use framebuffer::{Framebuffer, Rect};
 pub use mesh_buffers::MeshBuffers;

@@ -573,6 +573,9 @@ impl Peeler {
         self.peel_end.set_tiles(&tiles, (self.width, self.height))?;
         let mut active: Vec<bool> = vec![true; groups.len()];
         let water_depth = self.water.depth().expect("T_dw has a depth attachment");
+        // Counting each fragment with the facing it was drawn with needs a renderer whose
+        // gl_FrontFacing says it.
+        let facing_sign = self.ctx.fragment_facing()?.sign();
         let max = self.settings.max_peels;
         for layer in 0..=max {
             let previous = self.layer_depth(if layer == 0 { 1 } else { layer - 1 })?;
@@ -595,7 +598,8 @@ impl Peeler {
                 pass.state(peel_state(layer == 0))
                     .texture("u_peel_depth", &previous)
                     .texture("u_water_depth", water_depth)
-                    .uniform("u_peel_layer", layer as i32);
+                    .uniform("u_peel_layer", layer as i32)
+                    .uniform("u_facing_sign", facing_sign);
                 let ranges: Vec<(usize, usize)> = drawing.iter().map(|&g| groups[g]).collect();
                 pass.draw_elements_counted(&soup.vertices, Primitive::Triangles, &ranges, counted)?;
                 if layer > 0 {

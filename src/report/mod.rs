@@ -39,8 +39,8 @@ pub trait Paper {
     const ID: &'static str;
     /// The section's heading in the report.
     const TITLE: &'static str;
-    /// The paper whose GPU the section's period block runs under (`--period`), if it has
-    /// one (`gl::period::for_paper`).
+    /// The paper whose GPU the section's period block runs under, if it has one
+    /// (`gl::period::for_paper`).
     const PERIOD_PAPER: Option<u8> = None;
     /// What the section's `*-bench` command can change beyond [`BenchArgs`]; `reproduce` runs
     /// with the defaults.
@@ -73,11 +73,15 @@ pub struct BenchArgs<O: clap::Args> {
     /// while the runs take under a second in all].
     #[arg(long, value_parser = timing::parse_runs)]
     pub runs: Option<usize>,
-    /// Add the section's period block, as `reproduce --period` does: each step of the
-    /// paper's path run under the limits of the paper's own GPU (the profile `--period`
-    /// puts the paper's command under), and its results at that GPU's precision. Papers 1
-    /// to 4 only.
-    #[arg(long)]
+    /// Leave out the section's period block (papers 1 to 4 carry one by default, as in
+    /// `reproduce`): each step of the paper's path run under the limits of the paper's own
+    /// GPU (the profile `--period` puts the paper's command under), and its results at that
+    /// GPU's precision.
+    #[arg(long, overrides_with = "period")]
+    pub no_period: bool,
+    /// Keep the section's period block (the default for papers 1 to 4; the last of --period
+    /// and --no-period wins).
+    #[arg(long, overrides_with = "no_period")]
     pub period: bool,
     #[command(flatten)]
     pub options: O,
@@ -263,20 +267,26 @@ pub fn bench_command<P: Paper>(
     default_out: &str,
     json: bool,
 ) -> anyhow::Result<()> {
-    if args.period {
-        let Some(paper) = P::PERIOD_PAPER else {
-            anyhow::bail!(
-                "--period: section {} names no period GPU (only papers 1 to 4 do)",
-                P::ID
+    match (P::PERIOD_PAPER, args.no_period) {
+        (None, true) => anyhow::bail!(
+            "--no-period: section {} has no period block (only papers 1 to 4 do)",
+            P::ID
+        ),
+        (None, false) if args.period => anyhow::bail!(
+            "--period: section {} has no period block (only papers 1 to 4 do)",
+            P::ID
+        ),
+        (Some(paper), false) => {
+            let gpu = crate::gl::period::for_paper(paper);
+            eprintln!(
+                "period: the period block runs under the limits of the {} ({}), paper \
+                 {paper}'s GPU (--no-period leaves it out)",
+                gpu.name, gpu.chip
             );
-        };
-        let gpu = crate::gl::period::for_paper(paper);
-        eprintln!(
-            "period: the period block runs under the limits of the {} ({}), paper {paper}'s GPU",
-            gpu.name, gpu.chip
-        );
-        period::set_requested(true);
+        }
+        _ => {}
     }
+    period::set_requested(!args.no_period);
     let out_dir = args.out.as_deref().unwrap_or(Path::new(default_out));
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let opts = BenchOptions {

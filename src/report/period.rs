@@ -1,7 +1,8 @@
 //! The "period" block of a paper's section: which steps of the paper's main path fit the
 //! GPU the paper ran on (`gl::period`), which needed the period's way, which it refuses, and
-//! the results at the period's precision beside today's. `reproduce --period` (and
-//! `--period` on a `*-bench` command) asks for it; each paper's section reads
+//! the results at the period's precision beside today's. Every report carries it (it adds
+//! little to a section's time: the blocks run small, fixed scenes); `reproduce --no-period`
+//! (and `--no-period` on a `*-bench` command) leaves it out. Each paper's section reads
 //! [`requested`] and adds [`PeriodResults::tables`].
 
 use super::Table;
@@ -9,9 +10,9 @@ use crate::gl::{Context, PeriodGpu};
 use serde::Serialize;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-static REQUESTED: AtomicBool = AtomicBool::new(false);
+static REQUESTED: AtomicBool = AtomicBool::new(true);
 
-/// Ask every section run from now on for its period block (`--period`).
+/// Ask every section run from now on for its period block, or not (`--no-period`).
 pub fn set_requested(on: bool) {
     REQUESTED.store(on, Ordering::Relaxed);
 }

@@ -72,10 +72,13 @@ pub struct ReproduceArgs {
     /// while the runs take under a second in all].
     #[arg(long, value_parser = super::timing::parse_runs)]
     pub runs: Option<usize>,
-    /// Add to papers 1, 2 and 4 (and 3) a "period" block: each step of the paper's path run
-    /// under the limits of the paper's own GPU (fits, the period's way, or refused with the
-    /// limit named), and the results at that GPU's precision beside today's.
-    #[arg(long)]
+    /// Leave out the "period" block that papers 1 to 4 carry by default: each step of the
+    /// paper's path run under the limits of the paper's own GPU (fits, the period's way, or
+    /// refused with the limit named), and the results at that GPU's precision beside today's.
+    #[arg(long, overrides_with = "period")]
+    pub no_period: bool,
+    /// Keep the period blocks (the default; the last of --period and --no-period wins).
+    #[arg(long, overrides_with = "no_period")]
     pub period: bool,
 }
 
@@ -85,7 +88,7 @@ pub fn reproduce(
     args: &ReproduceArgs,
     progress: MultiProgress,
 ) -> anyhow::Result<Report> {
-    super::period::set_requested(args.period);
+    super::period::set_requested(!args.no_period);
     let all = stages();
     let chosen = chosen_stages(&all, &args.only)?;
     report_folder::check_out(&args.out, args.force)?;

@@ -40,7 +40,9 @@ pub struct Paper3Results {
     /// Where the time of this run went, pass by pass.
     pub profile: Option<crate::gl::profile::ProfileTable>,
     /// The detector at the paper's board's precision and under its limits, beside fp32.
-    pub period: super::period::PeriodResults,
+    /// The period block (absent with `--no-period`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period: Option<super::period::PeriodResults>,
 }
 
 impl Paper3Results {
@@ -228,9 +230,11 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         }
     }
     bar.finish_and_clear();
-    let period = {
+    let period = if crate::report::period::requested() {
         let _scope = crate::gl::profile::scope(ctx, "period: text.png at fp24 (R300)");
-        super::period::measure(opts, &photo)?
+        Some(super::period::measure(opts, &photo)?)
+    } else {
+        None
     };
     let detection = match detection {
         Some(detection) => detection,

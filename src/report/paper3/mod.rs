@@ -10,7 +10,7 @@ mod claims;
 mod fidelity;
 mod fig2;
 mod gflops;
-mod period;
+pub mod period;
 mod profile;
 mod table1;
 mod targets;
@@ -42,7 +42,7 @@ impl Paper for Paper3 {
         let paper = &Published::get()?.paper3.table1;
         let mut figures = fig2::figures();
         figures.push(gflops::figure(opts, results)?);
-        figures.push(period::figure(&results.period));
+        figures.extend(results.period.as_ref().map(period::figure));
         Ok(Section {
             summary: summary(results),
             tables: vec![
@@ -51,10 +51,9 @@ impl Paper for Paper3 {
                 fig2::table(results),
                 targets::table(results),
                 results.then_and_now.table(&results.renderer),
-                period::results_table(&results.period, &results.renderer),
-                period::steps_table(&results.period),
             ]
             .into_iter()
+            .chain(results.period.iter().flat_map(period::tables))
             .chain(profile::table(results))
             .collect(),
             claims: claims::claims(results, paper),

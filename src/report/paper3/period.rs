@@ -2,8 +2,10 @@
 //! same batches, once in today's fp32 and once as the ATI RADEON 9700 PRO (R300) would have:
 //! its 24-bit fragment arithmetic emulated at every step (`mlp::fp24`), its limits enforced by
 //! the GL layer (`gl::period`), each product split into passes of at most
-//! [`RADEON_9700_INPUTS_PER_PASS`] inputs. One table sets the outputs, the detection mask and
-//! the error against labelled windows side by side; the other says which step fits the R300.
+//! [`RADEON_9700_INPUTS_PER_PASS`] inputs. The two tables have the shape of the other papers'
+//! period blocks (`report::period`): one says which step fits the R300 and which took the
+//! period's way, the other sets the outputs, the detection mask and the error against labelled
+//! windows beside today's.
 
 use super::bench::FIG2A_FILE;
 use crate::gl::{period, Context, GlError};
@@ -12,6 +14,7 @@ use crate::mlp::fp24::{error_bound_fp24, forward_fp24, Precision};
 use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 use crate::mlp::train::{evaluate, window_set};
 use crate::mlp::{Formulation, GpuMlp, Network};
+use crate::report::period::{Comparison, Step, Verdict};
 use crate::report::{BenchOptions, Figure, Table};
 use anyhow::Context as _;
 use image::GrayImage;
@@ -24,15 +27,15 @@ pub const PERIOD_MASK_FILE: &str = "paper3_period_fp24_mask.png";
 /// Rows of text.png classified under `--quick` (the whole photograph otherwise).
 const QUICK_ROWS: u32 = 24;
 
-/// What the period run measured.
+/// What the period run measured: the block every paper's section carries (the board, each
+/// step's verdict, the results beside today's), and the measurements behind it.
 #[derive(Clone, Debug, Serialize)]
 pub struct PeriodResults {
-    /// The board, "ATI RADEON 9700 PRO".
-    pub gpu: String,
+    #[serde(flatten)]
+    pub block: crate::report::period::PeriodResults,
     pub inputs_per_pass: usize,
     pub photo: PhotoAtFp24,
     pub labelled: LabelledAtFp24,
-    pub steps: Vec<StepFit>,
 }
 
 /// text.png (or its first rows under `--quick`) at fp32 and at fp24.
@@ -65,14 +68,6 @@ pub struct LabelledAtFp24 {
     /// from it relative to its bound, and what that output allows (twice `error_bound_fp24`).
     pub max_diff_vs_cpu_model: f32,
     pub allowed_vs_cpu_model: f32,
-}
-
-/// One step of paper 3 against the R300's limits.
-#[derive(Clone, Debug, Serialize)]
-pub struct StepFit {
-    pub step: String,
-    pub needs: String,
-    pub r300: String,
 }
 
 /// Seed of the labelled windows: other synthetic images than the detector's training (seed 1).
@@ -152,10 +147,14 @@ pub fn measure(opts: &BenchOptions, photo: &GrayImage) -> anyhow::Result<PeriodR
         labelled.max_diff_vs_cpu_model,
         labelled.allowed_vs_cpu_model
     );
-    Ok(PeriodResults {
+    let block = crate::report::period::PeriodResults {
         gpu: r300.name.clone(),
-        inputs_per_pass: RADEON_9700_INPUTS_PER_PASS,
         steps: steps(&net, r300, &photo_result),
+        comparisons: comparisons(&photo_result, &labelled),
+    };
+    Ok(PeriodResults {
+        block,
+        inputs_per_pass: RADEON_9700_INPUTS_PER_PASS,
         photo: photo_result,
         labelled,
     })
@@ -234,9 +233,10 @@ fn write_mask(
         .with_context(|| format!("writing {PERIOD_MASK_FILE}"))
 }
 
-/// Each step of the faithful passes, what it asks of the GPU in this run, and the R300's
-/// limit; the run above went through the GL layer under those limits, so each fitted.
-fn steps(net: &Network, r300: &period::PeriodGpu, photo: &PhotoAtFp24) -> Vec<StepFit> {
+/// Each step of the faithful passes: what it asks of the GPU in this run against the R300's
+/// limit. The fp24 run above went through the GL layer under those limits, so each step ran;
+/// the split products and the 24-bit arithmetic are the period's way, the rest fits as built.
+fn steps(net: &Network, r300: &period::PeriodGpu, photo: &PhotoAtFp24) -> Vec<Step> {
     let max = r300.max_texture_size.value;
     let widest = net
         .layers()
@@ -248,133 +248,153 @@ fn steps(net: &Network, r300: &period::PeriodGpu, photo: &PhotoAtFp24) -> Vec<St
     let per_tile = pixels.min(max as usize);
     let passes: Vec<String> = photo.product_passes.iter().map(|p| p.to_string()).collect();
     let blended = if r300.float_blending.value.is_empty() {
-        "no float target is blended".to_string()
+        "the R300 blended no float target".to_string()
     } else {
-        format!("blends {}", r300.float_blending.value.join(", "))
+        format!("the R300 blended {}", r300.float_blending.value.join(", "))
+    };
+    let step = |step: &str, verdict: Verdict, detail: String| Step {
+        step: step.into(),
+        verdict,
+        detail,
     };
     vec![
-        StepFit {
-            step: "Texture W and the 1D bias texture (R32F)".into(),
-            needs: format!("at most {widest} texels a side (the 121-30-1 detector)"),
-            r300: format!("textures up to {max} a side; R32F allocated"),
-        },
-        StepFit {
-            step: "Texture X: input vectors accumulated per texture".into(),
-            needs: format!(
-                "{pixels} vectors in {} tile(s) of at most {per_tile}",
+        step(
+            "Texture W and the 1D bias texture (R32F)",
+            Verdict::Fits,
+            format!(
+                "at most {widest} texels a side (the 121-30-1 detector); the R300 allocated R32F \
+                 textures up to {max} a side"
+            ),
+        ),
+        step(
+            "Texture X: input vectors accumulated per texture",
+            Verdict::Fits,
+            format!(
+                "{pixels} vectors in {} tile(s) of at most {per_tile}; the R300's textures \
+                 were at most {max} wide",
                 photo.fp24_tiles
             ),
-            r300: format!("textures up to {max} wide"),
-        },
-        StepFit {
-            step: "Matrix product W x X".into(),
-            needs: format!(
-                "{} pass(es) per layer of at most {} inputs, the running sum read from the \
-                 previous target (ping-pong), never blended",
+        ),
+        step(
+            "Matrix product W x X",
+            Verdict::PeriodsWay,
+            format!(
+                "{} pass(es) per layer of at most {} inputs (our estimate of what the board's \
+                 ps_2_0 programs held; today one pass), the running sum read back from the \
+                 previous target, never blended: {blended}",
                 passes.join(" + "),
                 RADEON_9700_INPUTS_PER_PASS
             ),
-            r300: format!("{blended}; ps_2_0 length (our estimate of 15 inputs per pass)"),
-        },
-        StepFit {
-            step: "Bias + sigmoid".into(),
-            needs: "one pass, texture W x X and the bias texture read at texel centres".into(),
-            r300: "float textures read unfiltered only (nearest)".into(),
-        },
-        StepFit {
-            step: "Layer chaining through render targets".into(),
-            needs: "one R32F colour target per pass".into(),
-            r300: format!(
-                "{} colour targets; float targets written, not blended",
+        ),
+        step(
+            "Bias + sigmoid",
+            Verdict::Fits,
+            "one pass reading W x X and the bias texture at texel centres (nearest), the only \
+             way the R300 read float textures"
+                .into(),
+        ),
+        step(
+            "Layer chaining through render targets",
+            Verdict::Fits,
+            format!(
+                "one R32F colour target per pass; the R300 wrote up to {} float targets, \
+                 unblended",
                 r300.max_draw_buffers.value
             ),
-        },
-        StepFit {
-            step: "Arithmetic".into(),
-            needs: "fp32 today".into(),
-            r300: format!(
-                "{}-bit floats in the fragment pipeline: emulated by rounding every step",
+        ),
+        step(
+            "Arithmetic",
+            Verdict::PeriodsWay,
+            format!(
+                "{}-bit floats in the fragment pipeline (16-bit mantissa, 7-bit exponent), \
+                 emulated by rounding every intermediate result; today fp32",
                 r300.fragment_float_bits.value
             ),
-        },
+        ),
     ]
 }
 
-/// The results at fp24 beside fp32.
-pub fn results_table(results: &PeriodResults, renderer: &str) -> Table {
-    let p = &results.photo;
-    let l = &results.labelled;
+/// The results at fp24 beside fp32, each with by how much and why it changes.
+fn comparisons(p: &PhotoAtFp24, l: &LabelledAtFp24) -> Vec<Comparison> {
     let pixels = (p.width * p.rows) as usize;
     let share = |n: usize| format!("{n} ({:.2}%)", 100.0 * n as f64 / pixels as f64);
     let percent = |v: f64| format!("{:.2}%", 100.0 * v);
-    Table {
-        caption: format!(
-            "Period: the text detector at the {}'s 24-bit fragment arithmetic (emulated: each \
-             step rounded to a 16-bit mantissa and 7-bit exponent) beside fp32, under its \
-             limits, {} inputs per product pass; text.png {} x {}{}, and {} labelled synthetic \
-             windows the detector was not trained on; {renderer}",
-            results.gpu,
-            results.inputs_per_pass,
-            p.width,
-            p.rows,
-            if p.cropped { " (its first rows)" } else { "" },
-            l.windows
+    let photo = format!(
+        "text.png, {} x {}{}",
+        p.width,
+        p.rows,
+        if p.cropped { " (its first rows)" } else { "" }
+    );
+    let rounding = "each step rounded to 17 significant bits instead of 24";
+    let compare = |result: String, today: String, period: String, change: String| Comparison {
+        result,
+        today,
+        period,
+        change,
+    };
+    vec![
+        compare(
+            format!("{photo}: detector outputs"),
+            "reference".into(),
+            format!(
+                "max |diff| {:.3e}, mean {:.3e}",
+                p.max_abs_diff, p.mean_abs_diff
+            ),
+            format!(
+                "{rounding}; the outputs move by at most {:.1e}",
+                p.max_abs_diff
+            ),
         ),
-        header: ["quantity", "fp32", "fp24 (R300)", "difference"]
-            .map(String::from)
-            .to_vec(),
-        rows: vec![
-            vec![
-                "text.png outputs".into(),
-                "-".into(),
-                "-".into(),
-                format!("max {:.3e}, mean {:.3e}", p.max_abs_diff, p.mean_abs_diff),
-            ],
-            vec![
-                "text.png pixels called text".into(),
-                share(p.fp32_text_pixels),
-                share(p.fp24_text_pixels),
-                format!("{} pixel(s) change class", p.changed_pixels),
-            ],
-            vec![
-                "labelled windows: accuracy".into(),
-                percent(l.fp32_accuracy),
-                percent(l.fp24_accuracy),
-                format!("{:+.3} points", 100.0 * (l.fp24_accuracy - l.fp32_accuracy)),
-            ],
-            vec![
-                "labelled windows: mean squared error against the labels".into(),
-                format!("{:.6}", l.fp32_mse),
-                format!("{:.6}", l.fp24_mse),
-                format!("{:+.2e}", l.fp24_mse - l.fp32_mse),
-            ],
-            vec![
-                "GPU at fp24 against the CPU model of the same rounding".into(),
-                "-".into(),
-                format!("max {:.2e}", l.max_diff_vs_cpu_model),
-                format!("allowed {:.2e}", l.allowed_vs_cpu_model),
-            ],
-        ],
-    }
+        compare(
+            format!("{photo}: pixels called text (output > {THRESHOLD})"),
+            share(p.fp32_text_pixels),
+            share(p.fp24_text_pixels),
+            if p.changed_pixels == 0 {
+                "none: no output lies close enough to the threshold for the rounding to move \
+                 it across"
+                    .into()
+            } else {
+                format!(
+                    "{} pixel(s) change class: outputs within the rounding's reach of the \
+                     threshold cross it (red in the figure)",
+                    p.changed_pixels
+                )
+            },
+        ),
+        compare(
+            format!("{} labelled windows: accuracy", l.windows),
+            percent(l.fp32_accuracy),
+            percent(l.fp24_accuracy),
+            format!(
+                "{:+.3} points ({rounding})",
+                100.0 * (l.fp24_accuracy - l.fp32_accuracy)
+            ),
+        ),
+        compare(
+            format!(
+                "{} labelled windows: mean squared error against the labels",
+                l.windows
+            ),
+            format!("{:.6}", l.fp32_mse),
+            format!("{:.6}", l.fp24_mse),
+            format!("{:+.2e} ({rounding})", l.fp24_mse - l.fp32_mse),
+        ),
+        compare(
+            "GPU at fp24 against the CPU model of the same rounding (src/mlp/fp24.rs)".into(),
+            "-".into(),
+            format!("max |diff| {:.2e}", l.max_diff_vs_cpu_model),
+            format!(
+                "within the {:.2e} the rounding allows (twice its error bound): the shaders \
+                 round as the model does",
+                l.allowed_vs_cpu_model
+            ),
+        ),
+    ]
 }
 
-/// Which steps fit the R300.
-pub fn steps_table(results: &PeriodResults) -> Table {
-    Table {
-        caption: format!(
-            "Period: paper 3's steps on the {} (limits from assets/period_gpus.toml, enforced by \
-             the GL layer during the fp24 run above: every step ran, none needed another way)",
-            results.gpu
-        ),
-        header: ["step", "this run needs", "R300 limit"]
-            .map(String::from)
-            .to_vec(),
-        rows: results
-            .steps
-            .iter()
-            .map(|s| vec![s.step.clone(), s.needs.clone(), s.r300.clone()])
-            .collect(),
-    }
+/// The steps table and the results table, as every paper's period block has them.
+pub fn tables(results: &PeriodResults) -> Vec<Table> {
+    results.block.tables()
 }
 
 pub fn figure(results: &PeriodResults) -> Figure {
@@ -383,7 +403,7 @@ pub fn figure(results: &PeriodResults) -> Figure {
         caption: format!(
             "Period: {} classified at the {}'s 24-bit precision (black = text), red where the \
              class differs from fp32 ({} pixel(s))",
-            FIG2A_FILE, results.gpu, results.photo.changed_pixels
+            FIG2A_FILE, results.block.gpu, results.photo.changed_pixels
         ),
     }
 }
