@@ -131,7 +131,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
     bar.finish_and_clear();
     let table = Table {
         caption: format!(
-            "Swept volumes of three motions with exact volumes on {}: where the time goes \
+            "Swept volumes of three motions with known volumes (on {}): where the time goes \
              (ms; field passes by GL timer queries, the rest wall clock; one run each, {}) and \
              the volume's error",
             setting.renderer,
