@@ -148,21 +148,21 @@ fn neighbour(at: [usize; 3], axis: usize, step: i64, n: usize) -> Option<[usize;
 }
 
 /// The primitives of non-zero area, each listed in the coarse cells near it.
-struct Buckets {
+pub struct Buckets {
     triangles: Vec<[DVec3; 3]>,
     cells: Vec<Vec<u32>>,
     per_axis: usize,
 }
 
 impl Buckets {
-    fn new(grid: &Grid, mesh: &Mesh) -> Buckets {
+    pub fn new(grid: &Grid, mesh: &Mesh) -> Buckets {
         let per_axis = grid.n.div_ceil(BUCKET);
         let mut cells = vec![Vec::new(); per_axis * per_axis * per_axis];
         let mut triangles = Vec::new();
         let cell_side = BUCKET as f64 * grid.spacing;
-        // A cell's centre to its corner, plus the one voxel a tested segment reaches beyond
-        // the voxel it starts from.
-        let reach = 0.5 * 3f64.sqrt() * cell_side + grid.spacing;
+        // A cell's centre to its corner, plus how far a tested segment reaches beyond the
+        // voxel it starts from: a cube's diagonal (the extraction's tetrahedra use them).
+        let reach = 0.5 * 3f64.sqrt() * cell_side + 3f64.sqrt() * grid.spacing;
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|v| mesh.positions[v as usize].as_dvec3());
             let normal = (b - a).cross(c - a);
@@ -208,11 +208,19 @@ impl Buckets {
     /// Where the segment `p q` (from voxel `from`) first meets a primitive, as a fraction
     /// of its length (f64 ray-triangle intersection); `None` if it meets none.
     fn first_hit(&self, p: DVec3, q: DVec3, from: [usize; 3]) -> Option<f64> {
+        self.first_crossing(p, q, from).map(|(t, _)| t)
+    }
+
+    /// [`Buckets::first_hit`] and the unit normal of the primitive met there (either way
+    /// round). `p` and `q` may be any two corners of one grid cube, `from` being `p`'s voxel.
+    pub fn first_crossing(&self, p: DVec3, q: DVec3, from: [usize; 3]) -> Option<(f64, DVec3)> {
         let [cx, cy, cz] = from.map(|c| c / BUCKET);
         self.cells[(cz * self.per_axis + cy) * self.per_axis + cx]
             .iter()
-            .filter_map(|&t| segment_hit(p, q, self.triangles[t as usize]))
-            .reduce(f64::min)
+            .map(|&t| self.triangles[t as usize])
+            .filter_map(|tri| segment_hit(p, q, tri).map(|t| (t, tri)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(t, [a, b, c])| (t, (b - a).cross(c - a).normalize()))
     }
 }
 

@@ -11,8 +11,15 @@
 //! sample (the signed field never is) is a closed 2-manifold when the border is outside.
 //! One vertex per crossed edge, shared by every tetrahedron around that edge, keeps it
 //! connected.
+//!
+//! Where the crossings lie: given the primitives, each crossed edge's vertex is where the edge,
+//! walked from its outside sample, first meets one (exact for every surface, where the
+//! signed field's linear interpolation is exact only for a plane), with that primitive's
+//! normal; sharp edges and corners then get their own vertices ([`super::features`]).
 
 use super::super::distance_field::Grid;
+use super::classify::Buckets;
+use super::features;
 use super::topology::{self, Topology};
 use crate::mesh::Mesh;
 use glam::{DVec3, IVec3};
@@ -28,6 +35,9 @@ pub struct Surface {
     /// Counts, manifoldness, and the Euler characteristic and genus where they mean
     /// something.
     pub topology: Topology,
+    /// Vertices placed on sharp edges and corners, and edges flipped to join them.
+    pub feature_vertices: usize,
+    pub feature_flips: usize,
 }
 
 impl Surface {
@@ -54,8 +64,14 @@ const TETRAHEDRA: [[usize; 4]; 6] = [
 /// the surface by far less than the field's own error).
 const END_SLACK: f64 = 1e-3;
 
-/// The zero level of `signed` (`[z][y][x]` on `grid`, negative inside, never zero).
-pub fn extract(grid: &Grid, signed: &[f32]) -> anyhow::Result<Surface> {
+/// The zero level of `signed` (`[z][y][x]` on `grid`, negative inside, never zero); with
+/// `primitives`, its vertices where the grid's edges meet them and its sharp features kept,
+/// else by linear interpolation of `signed`.
+pub fn extract(
+    grid: &Grid,
+    signed: &[f32],
+    primitives: Option<&Buckets>,
+) -> anyhow::Result<Surface> {
     let n = grid.n;
     anyhow::ensure!(
         signed.len() == grid.len(),
@@ -69,8 +85,10 @@ pub fn extract(grid: &Grid, signed: &[f32]) -> anyhow::Result<Surface> {
     let mut march = March {
         grid,
         signed,
+        primitives,
         vertices: HashMap::new(),
         lattice: Vec::new(),
+        normals: Vec::new(),
         triangles: Vec::new(),
     };
     for z in 0..n - 1 {
@@ -80,6 +98,16 @@ pub fn extract(grid: &Grid, signed: &[f32]) -> anyhow::Result<Surface> {
             }
         }
     }
+    let is_feature: Vec<bool> = march.normals.iter().map(Option::is_none).collect();
+    let feature_vertices = match primitives {
+        Some(_) => march.lattice.len() - march.vertices.len(),
+        None => 0,
+    };
+    let feature_flips = if feature_vertices > 0 {
+        features::flip_towards_features(&mut march.triangles, &is_feature)
+    } else {
+        0
+    };
     let volume = march.volume();
     anyhow::ensure!(volume.is_finite(), "the extracted volume is not finite");
     let positions = march
@@ -93,6 +121,8 @@ pub fn extract(grid: &Grid, signed: &[f32]) -> anyhow::Result<Surface> {
         mesh,
         volume,
         topology,
+        feature_vertices,
+        feature_flips,
     })
 }
 
@@ -100,10 +130,14 @@ pub fn extract(grid: &Grid, signed: &[f32]) -> anyhow::Result<Surface> {
 struct March<'a> {
     grid: &'a Grid,
     signed: &'a [f32],
+    primitives: Option<&'a Buckets>,
     /// The vertex on each crossed edge, by its samples' indices (smaller first).
     vertices: HashMap<(usize, usize), u32>,
     /// Vertex positions in voxel units from the grid's origin.
     lattice: Vec<DVec3>,
+    /// Each vertex's outward unit normal when it lies on a primitive; `None` for a feature
+    /// vertex or one placed by interpolation.
+    normals: Vec<Option<DVec3>>,
     triangles: Vec<[u32; 3]>,
 }
 
@@ -144,32 +178,52 @@ impl March<'_> {
             ([], _) | (_, []) => {}
             ([a], [b, c, d]) | ([b, c, d], [a]) => {
                 let (a, b, c, d) = (*a, *b, *c, *d);
-                self.triangle([(a, b), (a, c), (a, d)], inside[0], outside[0]);
+                self.polygon(&[(a, b), (a, c), (a, d)], inside[0], outside[0]);
             }
             ([a, b], [c, d]) => {
                 let (a, b, c, d) = (*a, *b, *c, *d);
                 // The crossings on a-c, a-d, b-d, b-c form a cycle.
-                self.triangle([(a, c), (a, d), (b, d)], a, c);
-                self.triangle([(a, c), (b, d), (b, c)], a, c);
+                self.polygon(&[(a, c), (a, d), (b, d), (b, c)], a, c);
             }
             _ => unreachable!("four corners"),
         }
     }
 
-    /// The triangle through the crossings of three edges, facing from the inside corner
-    /// `inner` towards the outside corner `outer`. Its orientation is decided on the edges'
-    /// midpoints in exact integers: moving each crossing along its own edge never turns a
-    /// triangle of a tetrahedron over, and the midpoints' plane separates the inside corners
-    /// from the outside ones.
-    fn triangle(&mut self, edges: [(IVec3, IVec3); 3], inner: IVec3, outer: IVec3) {
-        let mid = edges.map(|(p, q)| (p + q).as_i64vec3());
+    /// The polygon through the crossings of a cycle of three or four edges, facing from the
+    /// inside corner `inner` towards the outside corner `outer`: a fan from its first vertex,
+    /// or around its feature vertex when it has one. Its orientation is decided on the first
+    /// three edges' midpoints in exact integers: moving each crossing along its own edge
+    /// never turns a triangle of a tetrahedron over, and the midpoints' plane separates the
+    /// inside corners from the outside ones.
+    fn polygon(&mut self, edges: &[(IVec3, IVec3)], inner: IVec3, outer: IVec3) {
+        let mid: Vec<_> = edges.iter().map(|&(p, q)| (p + q).as_i64vec3()).collect();
         let normal = (mid[1] - mid[0]).cross(mid[2] - mid[0]);
         let towards_outside = normal.dot((outer - inner).as_i64vec3());
-        let mut ids = edges.map(|(p, q)| self.vertex(p, q));
+        let mut ids: Vec<u32> = edges.iter().map(|&(p, q)| self.vertex(p, q)).collect();
         if towards_outside < 0 {
-            ids.swap(1, 2);
+            ids.reverse();
         }
-        self.triangles.push(ids);
+        let k = ids.len();
+        match self.feature_vertex(&ids) {
+            Some(f) => (0..k).for_each(|i| self.triangles.push([f, ids[i], ids[(i + 1) % k]])),
+            None => (1..k - 1).for_each(|i| self.triangles.push([ids[0], ids[i], ids[i + 1]])),
+        }
+    }
+
+    /// A vertex where the tangent planes of the polygon `ids` meet, when they meet at a sharp
+    /// angle within a voxel's diagonal of its crossings (else the plain polygon is kept).
+    fn feature_vertex(&mut self, ids: &[u32]) -> Option<u32> {
+        let normals: Option<Vec<DVec3>> = ids.iter().map(|&i| self.normals[i as usize]).collect();
+        let points: Vec<DVec3> = ids.iter().map(|&i| self.lattice[i as usize]).collect();
+        let point = features::feature_point(&points, &normals?)?;
+        let centre = points.iter().copied().sum::<DVec3>() / points.len() as f64;
+        if (point - centre).length() > 3f64.sqrt() {
+            return None;
+        }
+        let id = self.lattice.len() as u32;
+        self.lattice.push(point);
+        self.normals.push(None);
+        Some(id)
     }
 
     /// The vertex where the field crosses zero on the edge `p q` (linear interpolation).
@@ -180,12 +234,37 @@ impl March<'_> {
             return id;
         }
         let (vp, vq) = (self.value(p) as f64, self.value(q) as f64);
-        let t = (vp / (vp - vq)).clamp(END_SLACK, 1.0 - END_SLACK);
-        let at = p.as_dvec3() + t * (q - p).as_dvec3();
+        let (at, normal) = match self.crossing(p, q) {
+            Some(hit) => hit,
+            None => {
+                let t = (vp / (vp - vq)).clamp(END_SLACK, 1.0 - END_SLACK);
+                (p.as_dvec3() + t * (q - p).as_dvec3(), None)
+            }
+        };
         let id = self.lattice.len() as u32;
         self.lattice.push(at);
+        self.normals.push(normal);
         self.vertices.insert(key, id);
         id
+    }
+
+    /// Where the edge `p q` (one sample outside, one inside), walked from its outside sample,
+    /// first meets a primitive (lattice units), with that primitive's normal turned to face
+    /// the outside sample.
+    fn crossing(&self, p: IVec3, q: IVec3) -> Option<(DVec3, Option<DVec3>)> {
+        let primitives = self.primitives?;
+        let (outer, inner) = if self.value(p) > 0.0 { (p, q) } else { (q, p) };
+        let point = |c: IVec3| self.grid.point(c.x as usize, c.y as usize, c.z as usize);
+        let from = outer.to_array().map(|c| c as usize);
+        let (t, normal) = primitives.first_crossing(point(outer), point(inner), from)?;
+        let t = t.clamp(END_SLACK, 1.0 - END_SLACK);
+        let step = (inner - outer).as_dvec3();
+        let outward = if normal.dot(step) > 0.0 {
+            -normal
+        } else {
+            normal
+        };
+        Some((outer.as_dvec3() + t * step, Some(outward)))
     }
 
     /// The enclosed volume from the lattice positions (f64), mesh units.

@@ -14,14 +14,17 @@
 //!    ([`super::distance_field::slices`]), clamped near the surface;
 //! 4. [`classify`]: a flood fill from the grid's border (not fast marching) into outside
 //!    voxels, the rest inside, as a signed field;
-//! 5. [`extract`]: the zero level by marching tetrahedra, a closed 2-manifold, its volume,
-//!    and ([`topology`]) its Euler characteristic and genus; no topological refinement.
+//! 5. [`extract`]: the zero level by marching tetrahedra, its vertices where the grid's edges
+//!    meet the primitives, sharp edges kept ([`features`], after Kobbelt et al. 2001), a
+//!    closed 2-manifold, its volume, and ([`topology`]) its Euler characteristic and genus;
+//!    no topological refinement.
 //!
 //! The grid is the cube around every posed primitive grown by a margin of at least four voxels
 //! ([`margin_for`]), so that the border is outside.
 
 pub mod classify;
 pub mod extract;
+pub mod features;
 pub mod path;
 pub mod primitives;
 pub mod topology;
@@ -145,7 +148,8 @@ pub fn sweep(
          for this grid (or not closed); raise the resolution"
     );
     let start = Instant::now();
-    let surface = extract::extract(&grid, &signed)?;
+    let buckets = classify::Buckets::new(&grid, &primitives.mesh);
+    let surface = extract::extract(&grid, &signed, Some(&buckets))?;
     timings.extract_ms = start.elapsed().as_secs_f64() * 1e3;
     Ok(SweptVolume {
         surface,
