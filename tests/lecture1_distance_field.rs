@@ -346,6 +346,41 @@ fn voronoi_meshes_stay_within_their_bound() {
     assert!(coarse > fine);
 }
 
+/// Where a mesh crosses the target's edge it is cut. Cut by the renderer, softpipe left pixel
+/// centres on the inner edge of the clipper's fan (from a cone's apex to a corner of the
+/// target) uncovered by both halves, here at 61 pixels (a point's pixel won by a segment
+/// 0.18 farther), and set up the plane of a cut sliver far off (at 63 pixels the auto domain's
+/// triangle came out below its distance); these sites and resolutions hit both.
+#[test]
+fn voronoi_meshes_cover_every_pixel_where_cut() {
+    let sites = [
+        Site::Point([2.0, 2.0]),
+        Site::Point([7.0, 7.0]),
+        Site::Point([5.0, 5.0]),
+        Site::Segment([[5.0, 1.0], [8.0, 3.0]]),
+        Site::Triangle([[1.0, 6.0], [3.0, 9.0], [4.0, 5.0]]),
+    ];
+    let domain = Domain {
+        min: [0.0, 0.0],
+        size: 10.0,
+    };
+    for n in [60, 61, 62] {
+        for error in [0.1, 0.5] {
+            check_meshes(&sites, domain, n, error);
+        }
+    }
+    let sliver = random_sites(5, 18);
+    let domain = Sites {
+        domain: None,
+        sites: sliver.clone(),
+    }
+    .domain()
+    .unwrap();
+    for error in [0.1, 0.5, 2.0] {
+        check_meshes(&sliver, domain, 63, error);
+    }
+}
+
 #[test]
 fn voronoi_meshes_at_extreme_scales() {
     let sites = random_sites(7, 4);

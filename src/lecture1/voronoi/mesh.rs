@@ -19,15 +19,26 @@
 //! and at most `R (1 / cos(π/k) - 1)` above it within the disk. `k` is the smallest with that
 //! bound under the asked error `ε`: `k = ⌈π / acos(R / (R + ε))⌉`. A pixel's mesh distance
 //! is therefore in `[d, d + ε]`, and the site it keeps is within `ε` of the nearest.
+//!
+//! Every triangle is cut to the target's square here ([`clip`]), so the rasterizer never
+//! clips one. Cut by the renderer, a triangle crossing two sides of the viewport becomes a
+//! fan whose inner edge runs from a cone's apex to a corner of the target, and softpipe
+//! leaves pixel centres lying on that edge uncovered by both halves (a row of them, won by a
+//! farther site); it also sets up the plane of a cut sliver far off. Here a cut polygon is
+//! drawn as two overlapping fans, so no pixel centre depends on an inner edge, and without
+//! slivers; overlap is harmless, every piece lying above the distance within the bound.
 
 use super::{Domain, Site};
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 /// The default tessellation error, pixels.
 pub const DEFAULT_ERROR_PIXELS: f64 = 0.5;
 
 /// The fewest cone sides (a triangle already covers its centre's neighbourhood).
 const MIN_SIDES: usize = 3;
+
+/// The narrowest cut triangle drawn, pixels (its smallest height).
+const SLIVER: f64 = 0.125;
 
 /// The meshes of a set of sites.
 #[derive(Clone, Debug)]
@@ -94,6 +105,7 @@ pub fn build(
         let corners: Vec<DVec2> = site.corners().iter().map(|&c| (c - min) / pixel).collect();
         let mut piece = Piece {
             out: &mut out.vertices,
+            size: n as f64,
             site: id as f32,
         };
         for &c in &corners {
@@ -123,13 +135,37 @@ pub fn build(
 /// The triangles of one site.
 struct Piece<'a> {
     out: &'a mut Vec<[f32; 4]>,
+    /// The target's side, pixels.
+    size: f64,
     site: f32,
 }
 
 impl Piece<'_> {
+    /// The triangle's part inside the target, as a fan; its depth is planar, so the cut
+    /// points' depths are interpolated along the cut edges.
     fn triangle(&mut self, corners: [(DVec2, f64); 3]) {
-        for (p, d) in corners {
-            self.out.push([p.x as f32, p.y as f32, d as f32, self.site]);
+        let polygon = clip(
+            corners.map(|(p, d)| DVec3::new(p.x, p.y, d)).to_vec(),
+            self.size,
+        );
+        // A fan from the first corner; a cut polygon also a second fan from the next corner,
+        // so a pixel centre on an inner edge of one fan lies inside a triangle of the other.
+        // There a sliver (narrower than `SLIVER` pixels, cut off by a side near a corner or
+        // a vertex) is left out: the other fan covers it, and the plane softpipe sets up
+        // from three nearly collinear corners is off by far more than fp32 rounding.
+        let m = polygon.len();
+        let fans = if m > 3 { 2 } else { 1 };
+        for first in 0..fans {
+            for k in 1..m.saturating_sub(1) {
+                let t = [first, first + k, first + k + 1].map(|i| polygon[i % m]);
+                if fans == 2 && narrowest(t) < SLIVER {
+                    continue;
+                }
+                for p in t {
+                    self.out
+                        .push([p.x as f32, p.y as f32, p.z as f32, self.site]);
+                }
+            }
         }
     }
 
@@ -157,5 +193,62 @@ impl Piece<'_> {
             self.triangle([(a, 0.0), (b, 0.0), (b2, rim)]);
             self.triangle([(a, 0.0), (b2, rim), (a2, rim)]);
         }
+    }
+}
+
+/// The part of the polygon (x, y in pixels, depth) inside the square `[0, size]^2`
+/// (Sutherland and Hodgman, one side at a time). A cut point is interpolated from the cut
+/// edge's endpoints taken in a fixed order, so the polygons on either side of a shared edge
+/// get the same point, bit for bit.
+pub fn clip(mut polygon: Vec<DVec3>, size: f64) -> Vec<DVec3> {
+    // Each side as (axis, bound, keep below the bound).
+    for (axis, bound, below) in [
+        (0, 0.0, false),
+        (0, size, true),
+        (1, 0.0, false),
+        (1, size, true),
+    ] {
+        let inside = |p: DVec3| {
+            if below {
+                p[axis] <= bound
+            } else {
+                p[axis] >= bound
+            }
+        };
+        let mut kept = Vec::with_capacity(polygon.len() + 1);
+        for (i, &p) in polygon.iter().enumerate() {
+            let q = polygon[(i + 1) % polygon.len()];
+            if inside(p) {
+                kept.push(p);
+            }
+            if inside(p) != inside(q) {
+                let (a, b) = if (p.x, p.y, p.z) < (q.x, q.y, q.z) {
+                    (p, q)
+                } else {
+                    (q, p)
+                };
+                let t = (bound - a[axis]) / (b[axis] - a[axis]);
+                let mut cut = a + (b - a) * t;
+                cut[axis] = bound;
+                kept.push(cut);
+            }
+        }
+        polygon = kept;
+        if polygon.len() < 3 {
+            return Vec::new();
+        }
+    }
+    polygon
+}
+
+/// A triangle's smallest height (x, y only).
+fn narrowest([a, b, c]: [DVec3; 3]) -> f64 {
+    let (a, b, c) = (a.truncate(), b.truncate(), c.truncate());
+    let twice_area = (b - a).perp_dot(c - a).abs();
+    let longest = (b - a).length().max((c - b).length()).max((a - c).length());
+    if longest == 0.0 {
+        0.0
+    } else {
+        twice_area / longest
     }
 }
