@@ -189,14 +189,7 @@ fn a_turning_cube_converges_to_its_sampled_sweep() {
     // ruled quads of its vertical edges join them, so the sampled sweep is exactly the
     // regular 4 (K - 1)-gon on that circle times the height: (K - 1) sin(pi / (2 (K - 1))).
     let k = 9;
-    let path = Path3::new(&[
-        keyframe(DVec3::ZERO, DQuat::IDENTITY),
-        keyframe(
-            DVec3::ZERO,
-            DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
-        ),
-    ])
-    .unwrap();
+    let path = quarter_turn_about_z();
     let sides = (k - 1) as f64;
     let exact = sides * (std::f64::consts::PI / (2.0 * sides)).sin();
     // Its sharp edges: the two caps' rims (the polygon's perimeter, under 2 pi r each).
@@ -325,14 +318,7 @@ fn topology_is_reported_only_for_a_manifold() {
 fn a_quarter_turn_sweeps_a_cylinder() {
     // A unit cube turning a quarter turn about the z axis through its centre sweeps the disk
     // of radius sqrt(2)/2 (the corners' circle) times its height: pi / 2.
-    let path = Path3::new(&[
-        keyframe(DVec3::ZERO, DQuat::IDENTITY),
-        keyframe(
-            DVec3::ZERO,
-            DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
-        ),
-    ])
-    .unwrap();
+    let path = quarter_turn_about_z();
     let swept = run(&cube(1.0), &path, 40, 17);
     let exact = std::f64::consts::FRAC_PI_2;
     let error = (swept.surface.volume - exact).abs() / exact;
@@ -553,4 +539,16 @@ fn report_blocks_render() {
             assert!(dir.join(&f.file).exists(), "{}", f.file);
         }
     }
+}
+
+/// A quarter turn about the z axis through the origin, in one step.
+fn quarter_turn_about_z() -> Path3 {
+    Path3::new(&[
+        keyframe(DVec3::ZERO, DQuat::IDENTITY),
+        keyframe(
+            DVec3::ZERO,
+            DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
+        ),
+    ])
+    .unwrap()
 }
