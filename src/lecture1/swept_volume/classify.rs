@@ -211,7 +211,7 @@ impl Buckets {
         self.first_crossing(p, q, from).map(|(t, _)| t)
     }
 
-    /// [`Buckets::first_hit`] and the unit normal of the primitive met there (either way
+    /// `Buckets::first_hit` and the unit normal of the primitive met there (either way
     /// round). `p` and `q` may be any two corners of one grid cube, `from` being `p`'s voxel.
     pub fn first_crossing(&self, p: DVec3, q: DVec3, from: [usize; 3]) -> Option<(f64, DVec3)> {
         let [cx, cy, cz] = from.map(|c| c / BUCKET);
