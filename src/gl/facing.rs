@@ -1,8 +1,9 @@
 //! Whether a fragment shader's `gl_FrontFacing` agrees with the facing the rasterizer gives a
 //! triangle for culling and two-sided stencil (the winding in window space against
-//! `glFrontFace`). The GL specification says it must (section 14.6.1 of GL 4.6); softpipe's
-//! does not, so a shader that counts a fragment with the facing it was drawn with asks
-//! [`Context::fragment_facing`] first.
+//! `glFrontFace`). The GL specification says it must (section 14.6.1 of GL 4.6), but nothing
+//! is taken on trust: a shader that counts a fragment with the facing it was drawn with asks
+//! [`Context::fragment_facing`] first. Shaders read `gl_FrontFacing` through `?:` only: on
+//! softpipe (Mesa 22.3) it is right there but compares unequal to `true` with `==`.
 
 use super::{Context, DrawState, Face, Framebuffer, GlError, Pass, Primitive, Program, Rect};
 use super::{Texture, TextureFormat};
