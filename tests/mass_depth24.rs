@@ -10,7 +10,7 @@ use classic_gpgpu::gl::{Rect, TextureFormat};
 use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::GpuMass;
 use classic_gpgpu::mass::integrands::{Placement, Soup};
-use classic_gpgpu::mass::peel::{Job, Peeler};
+use classic_gpgpu::mass::peel::{Job, Peeler, PeelerOptions};
 use classic_gpgpu::mass::peel_depth::{self, PeelDepth};
 use classic_gpgpu::mass::{cpu_reference, VolumeIntegrals};
 use classic_gpgpu::mesh::Mesh;
@@ -123,16 +123,11 @@ fn peel(
 ) -> (VolumeIntegrals, usize) {
     let n = 16;
     let framing = unit_framing(n);
-    let peeler = Peeler::with_depth(
-        ctx,
-        n,
-        n,
-        None,
-        classic_gpgpu::mass::integrands::Integrands::All,
-        TextureFormat::Rgba32F,
-        depth,
-    )
-    .unwrap();
+    let options = PeelerOptions {
+        depth: Some(depth),
+        ..PeelerOptions::default()
+    };
+    let peeler = Peeler::with_options(ctx, n, n, None, options).unwrap();
     let soup = Soup::new(ctx).unwrap();
     let tile = Rect::sized(n, n);
     let world: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();

@@ -11,7 +11,7 @@
 use super::framing::Framing;
 use super::integrals::VolumeIntegrals;
 use super::integrands::{Placement, Soup};
-use super::peel::{Job, PeelSettings, Peeler};
+use super::peel::{Job, PeelSettings, Peeler, PeelerOptions};
 use super::peel_depth::PeelDepth;
 use crate::gl::{profile, query, Context, GlError, Rect, TextureFormat};
 use crate::mesh::Mesh;
@@ -58,7 +58,16 @@ impl GpuMass {
         sum_format: TextureFormat,
     ) -> Result<GpuMass, GlError> {
         Ok(GpuMass {
-            peeler: Peeler::with_sum_format(ctx, resolution, resolution, None, sum_format)?,
+            peeler: Peeler::with_options(
+                ctx,
+                resolution,
+                resolution,
+                None,
+                PeelerOptions {
+                    sum_format,
+                    ..PeelerOptions::default()
+                },
+            )?,
             soup: Soup::new(ctx)?,
             resolution,
         })
@@ -72,9 +81,13 @@ impl GpuMass {
         sum_format: TextureFormat,
         depth: PeelDepth,
     ) -> Result<GpuMass, GlError> {
-        let (n, all) = (resolution, super::integrands::Integrands::All);
+        let options = PeelerOptions {
+            sum_format,
+            depth: Some(depth),
+            ..PeelerOptions::default()
+        };
         Ok(GpuMass {
-            peeler: Peeler::with_depth(ctx, n, n, None, all, sum_format, depth)?,
+            peeler: Peeler::with_options(ctx, resolution, resolution, None, options)?,
             soup: Soup::new(ctx)?,
             resolution,
         })

@@ -234,72 +234,56 @@ const WATER_DEPTH_PASS: &str = "mass: pass 0, fluid surface depth";
 const WATER_PATCH_PASS: &str = "mass: pass n+1, fluid surface patch";
 const CLEAR_PASS: &str = "mass: clear a peel's targets";
 
+/// What a [`Peeler`] evaluates and how it stores it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PeelerOptions {
+    /// The integrands the passes evaluate (eq. 4's four need one render target).
+    pub integrands: Integrands,
+    /// The format of the running sums ([`Accumulator::with_format`]; RGBA16F is the float
+    /// format a GeForce 7800 could blend into).
+    pub sum_format: TextureFormat,
+    /// How the peel depths are stored and compared; `None`: as the context allows
+    /// ([`PeelDepth::for_context`]: 24-bit under a period GPU without float depth).
+    pub depth: Option<PeelDepth>,
+}
+
+impl Default for PeelerOptions {
+    /// The ten integrals of eq. 4 and 6, fp32 sums, peel depths as the context allows.
+    fn default() -> Self {
+        PeelerOptions {
+            integrands: Integrands::All,
+            sum_format: TextureFormat::Rgba32F,
+            depth: None,
+        }
+    }
+}
+
 impl Peeler {
     /// Targets of `width x height`, reduced per `block x block` tile (`None`: as a whole),
-    /// for the ten integrals of eq. 4 and 6.
+    /// for the ten integrals of eq. 4 and 6 ([`PeelerOptions::default`]).
     pub fn new(
         ctx: &Context,
         width: u32,
         height: u32,
         block: Option<u32>,
     ) -> Result<Peeler, GlError> {
-        Peeler::with_integrands(ctx, width, height, block, Integrands::All)
+        Peeler::with_options(ctx, width, height, block, PeelerOptions::default())
     }
 
-    /// The same with the running sums stored as `sum_format` ([`Accumulator::with_format`]).
-    pub fn with_sum_format(
+    /// [`Peeler::new`] evaluating and storing what `options` says.
+    pub fn with_options(
         ctx: &Context,
         width: u32,
         height: u32,
         block: Option<u32>,
-        sum_format: TextureFormat,
+        options: PeelerOptions,
     ) -> Result<Peeler, GlError> {
-        Peeler::with(ctx, width, height, block, Integrands::All, sum_format)
-    }
-
-    /// [`Peeler::new`] evaluating `integrands` (eq. 4's four need one render target).
-    pub fn with_integrands(
-        ctx: &Context,
-        width: u32,
-        height: u32,
-        block: Option<u32>,
-        integrands: Integrands,
-    ) -> Result<Peeler, GlError> {
-        Peeler::with(
-            ctx,
-            width,
-            height,
-            block,
+        let PeelerOptions {
             integrands,
-            TextureFormat::Rgba32F,
-        )
-    }
-
-    /// A peeler evaluating `integrands`, its running sums stored as `sum_format`, its peel
-    /// depths as the context allows ([`PeelDepth::for_context`]: 24-bit under a period GPU
-    /// without float depth).
-    pub fn with(
-        ctx: &Context,
-        width: u32,
-        height: u32,
-        block: Option<u32>,
-        integrands: Integrands,
-        sum_format: TextureFormat,
-    ) -> Result<Peeler, GlError> {
-        let depth = PeelDepth::for_context(ctx);
-        Peeler::with_depth(ctx, width, height, block, integrands, sum_format, depth)
-    }
-
-    /// [`Peeler::with`] with the peel depths stored and compared as `depth`.
-    pub fn with_depth(
-        ctx: &Context,
-        width: u32,
-        height: u32,
-        block: Option<u32>,
-        integrands: Integrands,
-        sum_format: TextureFormat,
-        depth: PeelDepth,
-    ) -> Result<Peeler, GlError> {
+            sum_format,
+            depth,
+        } = options;
+        let depth = depth.unwrap_or_else(|| PeelDepth::for_context(ctx));
         let targets = integrands.targets();
         let accumulator = Accumulator::with(ctx, width, height, targets, sum_format)?;
         let layer = |name| peel_layer(ctx, width, height, targets, depth, name);

@@ -9,7 +9,7 @@ use super::simulation::{Body, Shape, SubmergedSolver};
 use crate::gl::{profile, Context, GlError, Rect};
 use crate::mass::framing::Framing;
 use crate::mass::integrands::{Integrands, Placement, Soup};
-use crate::mass::peel::{Job, PeelSettings, Peeler};
+use crate::mass::peel::{Job, PeelSettings, Peeler, PeelerOptions};
 use glam::DVec3;
 
 /// The GPU solver: the n + 2 passes for all bodies at once.
@@ -60,12 +60,15 @@ impl GpuSolver {
             largest(|s| s.mesh.triangles.len()),
         )?;
         Ok(GpuSolver {
-            peeler: Peeler::with_integrands(
+            peeler: Peeler::with_options(
                 ctx,
                 columns * block,
                 rows * block,
                 Some(block),
-                integrands,
+                PeelerOptions {
+                    integrands,
+                    ..PeelerOptions::default()
+                },
             )?,
             soup,
             resolution,
