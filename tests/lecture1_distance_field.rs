@@ -385,18 +385,7 @@ fn voronoi_meshes_cover_every_pixel_where_cut() {
 fn voronoi_meshes_at_extreme_scales() {
     let sites = random_sites(7, 4);
     for (scale, offset) in [(1e-4, 0.0), (1e4, 0.0), (1.0, 1e4)] {
-        let moved: Vec<Site> = sites
-            .iter()
-            .map(|s| match *s {
-                Site::Point(p) => Site::Point(p.map(|v| v * scale + offset)),
-                Site::Segment(s) => Site::Segment(s.map(|p| p.map(|v| v * scale + offset))),
-                Site::Triangle(t) => Site::Triangle(t.map(|p| p.map(|v| v * scale + offset))),
-            })
-            .collect();
-        let domain = Domain {
-            min: [offset, offset],
-            size: 10.0 * scale,
-        };
+        let (moved, domain) = scaled(&sites, scale, offset);
         check_meshes(&moved, domain, 24, 0.5);
     }
 }
@@ -437,18 +426,7 @@ fn voronoi_ties_go_to_the_smaller_id() {
 fn voronoi_at_extreme_scales() {
     let sites = random_sites(7, 4);
     for (scale, offset) in [(1e-4, 0.0), (1e4, 0.0), (1.0, 1e4)] {
-        let moved: Vec<Site> = sites
-            .iter()
-            .map(|s| match *s {
-                Site::Point(p) => Site::Point(p.map(|v| v * scale + offset)),
-                Site::Segment(s) => Site::Segment(s.map(|p| p.map(|v| v * scale + offset))),
-                Site::Triangle(t) => Site::Triangle(t.map(|p| p.map(|v| v * scale + offset))),
-            })
-            .collect();
-        let domain = Domain {
-            min: [offset, offset],
-            size: 10.0 * scale,
-        };
+        let (moved, domain) = scaled(&sites, scale, offset);
         check_voronoi(&moved, domain, 24);
     }
 }
@@ -534,4 +512,22 @@ fn voronoi_command_reports_and_refuses() {
         r#"{"sites": [{"point": [1, 1]}], "domain": {"min": [0, 0], "size": 0}}"#
     )
     .is_err());
+}
+
+/// `sites` on the 10 x 10 domain at the origin, scaled by `scale` and moved by `offset` on
+/// both axes, with the domain they then cover.
+fn scaled(sites: &[Site], scale: f64, offset: f64) -> (Vec<Site>, Domain) {
+    let moved = sites
+        .iter()
+        .map(|s| match *s {
+            Site::Point(p) => Site::Point(p.map(|v| v * scale + offset)),
+            Site::Segment(s) => Site::Segment(s.map(|p| p.map(|v| v * scale + offset))),
+            Site::Triangle(t) => Site::Triangle(t.map(|p| p.map(|v| v * scale + offset))),
+        })
+        .collect();
+    let domain = Domain {
+        min: [offset, offset],
+        size: 10.0 * scale,
+    };
+    (moved, domain)
 }
