@@ -2,20 +2,12 @@
 //! nothing of it is removed), two runs never write one report at once, a rerun of one section
 //! keeps every file of the others, and an interrupted or failed swap loses nothing.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
-const MARKER: &str = classic_gpgpu::report::report_folder::MARKER;
+mod common;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "classic-gpgpu-report-folder-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+const MARKER: &str = classic_gpgpu::report::report_folder::MARKER;
 
 /// `reproduce --quick --only blocks --out OUT` with `extra` arguments and environment.
 fn blocks(out: &Path, extra: &[&str], env: &[(&str, &str)]) -> Output {
@@ -67,7 +59,7 @@ fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
 
 #[test]
 fn a_folder_it_did_not_make_is_refused_and_nothing_of_it_is_removed() {
-    let dir = scratch("foreign");
+    let dir = common::temp_dir("report-folder", "foreign");
     let out = dir.join("mine");
     std::fs::create_dir_all(out.join("photos")).unwrap();
     std::fs::write(out.join("notes.txt"), "my notes").unwrap();
@@ -104,7 +96,7 @@ fn a_folder_it_did_not_make_is_refused_and_nothing_of_it_is_removed() {
 
 #[test]
 fn a_rerun_of_one_section_keeps_every_file_of_the_others() {
-    let dir = scratch("merge");
+    let dir = common::temp_dir("report-folder", "merge");
     let out = dir.join("report");
     assert_ok(&blocks(&out, &[], &[]));
     // Give the report a second section that wrote a file its figures do not list (as Fig. 10
@@ -147,7 +139,7 @@ fn a_rerun_of_one_section_keeps_every_file_of_the_others() {
 
 #[test]
 fn a_second_run_into_the_same_report_is_refused_while_the_first_holds_it() {
-    let dir = scratch("lock");
+    let dir = common::temp_dir("report-folder", "lock");
     let out = dir.join("report");
     assert_ok(&blocks(&out, &[], &[]));
     let before = snapshot(&out);
@@ -169,7 +161,7 @@ fn a_second_run_into_the_same_report_is_refused_while_the_first_holds_it() {
 
 #[test]
 fn an_interrupted_or_failed_swap_loses_nothing() {
-    let dir = scratch("swap");
+    let dir = common::temp_dir("report-folder", "swap");
     let out = dir.join("report");
     assert_ok(&blocks(&out, &[], &[]));
     let before = snapshot(&out);

@@ -5,18 +5,8 @@
 mod common;
 
 use common::classic_gpgpu;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "classic-gpgpu-safe-writes-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn text(p: &Path) -> String {
     p.to_str().unwrap().to_string()
@@ -58,7 +48,7 @@ fn assert_only(dir: &Path, names: &[&str]) {
 
 #[test]
 fn crowd_png_is_checked_before_the_run() {
-    let dir = scratch("crowd");
+    let dir = common::temp_dir("safe-writes", "crowd");
     let existing = dir.join("frame.png");
     std::fs::write(&existing, "keep me").unwrap();
     let small = [
@@ -97,7 +87,7 @@ fn crowd_png_is_checked_before_the_run() {
 
 #[test]
 fn png_outputs_refuse_other_formats_before_touching_the_file() {
-    let dir = scratch("formats");
+    let dir = common::temp_dir("safe-writes", "formats");
     let jpg = dir.join("mask.jpg");
     let bmp = dir.join("map.bmp");
     std::fs::write(&jpg, "mine").unwrap();
@@ -134,7 +124,7 @@ fn png_outputs_refuse_other_formats_before_touching_the_file() {
 
 #[test]
 fn a_screenshot_never_replaces_the_demos_input() {
-    let dir = scratch("view");
+    let dir = common::temp_dir("safe-writes", "view");
     let image = dir.join("page.png");
     image::GrayImage::from_fn(24, 16, |x, _| image::Luma([(x * 10) as u8]))
         .save(&image)
@@ -161,7 +151,7 @@ fn a_screenshot_never_replaces_the_demos_input() {
 
 #[test]
 fn a_write_that_fails_leaves_the_old_file_and_exits_non_zero() {
-    let dir = scratch("full");
+    let dir = common::temp_dir("safe-writes", "full");
     // The network is several KiB of JSON; the limit lets 1 KiB through.
     let network = dir.join("net.json");
     std::fs::write(&network, "the old network").unwrap();
@@ -239,7 +229,7 @@ fn json(out: &std::process::Output) -> serde_json::Value {
 
 #[test]
 fn overlapping_pieces_are_not_called_reliable() {
-    let dir = scratch("overlap");
+    let dir = common::temp_dir("safe-writes", "overlap");
     let path = dir.join("two_cubes.obj");
     std::fs::write(
         &path,
@@ -312,7 +302,7 @@ fn silent_answers_are_errors_naming_the_value() {
         "1",
     ]);
     assert_refused(&out, &["--method vertex-shader", "compute formulation"]);
-    let dir = scratch("silent");
+    let dir = common::temp_dir("safe-writes", "silent");
     let shot = text(&dir.join("shot.png"));
     let out = classic_gpgpu(&[
         "view",
@@ -336,7 +326,7 @@ fn silent_answers_are_errors_naming_the_value() {
 
 #[test]
 fn collide_refuses_classic_options_under_compute_and_warns_moller_far_from_unit_scale() {
-    let dir = scratch("collide");
+    let dir = common::temp_dir("safe-writes", "collide");
     let (a, b) = (dir.join("a.obj"), dir.join("b.obj"));
     std::fs::write(&a, cube_obj([0.0; 3], 1)).unwrap();
     std::fs::write(&b, cube_obj([0.5, 0.5, 0.5], 1)).unwrap();
@@ -402,7 +392,7 @@ fn collide_refuses_classic_options_under_compute_and_warns_moller_far_from_unit_
 
 #[test]
 fn messages_say_each_thing_once() {
-    let dir = scratch("messages");
+    let dir = common::temp_dir("safe-writes", "messages");
     let fake = dir.join("fake.png");
     std::fs::write(&fake, "not a PNG at all").unwrap();
     let out = classic_gpgpu(&["mlp", "detect", &text(&fake)]);
