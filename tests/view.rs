@@ -1,13 +1,14 @@
 //! The viewer: each demo's window, read back after N frames, against the headless rendering of
 //! frame N; and the one-line errors without a display.
 //!
-//! Each test starts its own X server (`Xvfb`, on a free display number, killed when the test
-//! ends), so `cargo test` needs no outer `xvfb-run`. Without the `Xvfb` binary the tests fail
+//! Each test starts its own X server (`Xvfb`, on a display number it picks itself, stopped when
+//! the test ends), so `cargo test` needs no outer `xvfb-run`. Without the `Xvfb` binary the tests fail
 //! and say to install the `xvfb` package. The window's context is glutin's (GLX on Xvfb, Mesa
 //! llvmpipe; `GALLIUM_DRIVER=softpipe` runs both sides on softpipe), the headless one is the
 //! crate's EGL context, so the comparison checks that the window shows the frame the headless
 //! code draws.
 
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -19,66 +20,75 @@ use std::time::{Duration, Instant};
 const MAX_CHANNEL_DIFF: u8 = 2;
 const MAX_DIFFERING_FRACTION: f64 = 0.001;
 
-/// An X server of our own, killed on drop.
+/// An X server of our own, stopped on drop.
 struct Xvfb {
     child: Child,
     display: String,
 }
 
 impl Xvfb {
+    /// Start Xvfb on a display number it picks itself (`-displayfd`): the server takes the
+    /// lock file atomically and skips numbers in use, and it reclaims a lock left by a server
+    /// that died, so parallel tests and stale `/tmp/.X*-lock` files from killed runs cannot
+    /// exhaust the numbers.
     fn start() -> Xvfb {
-        // Free display numbers: no lock file, no socket. Tests run in parallel threads, so
-        // each thread starts at its own offset and the lock file decides.
-        let offset = (std::process::id() % 200) as u32;
-        for n in (0..200).map(|i| 100 + (offset + i * 7) % 400) {
-            if Path::new(&format!("/tmp/.X{n}-lock")).exists()
-                || Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
-            {
-                continue;
-            }
-            let child = match Command::new("Xvfb")
-                .args([
-                    &format!(":{n}"),
-                    "-screen",
-                    "0",
-                    "1024x768x24",
-                    "-nolisten",
-                    "tcp",
-                ])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn()
-            {
-                Ok(child) => child,
-                Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!(
-                    "the viewer tests need an X server: the Xvfb binary is missing; install the \
-                     xvfb package (apt-get install xvfb)"
-                ),
-                Err(e) => panic!("starting Xvfb: {e}"),
-            };
-            let mut server = Xvfb {
-                child,
-                display: format!(":{n}"),
-            };
-            let socket = format!("/tmp/.X11-unix/X{n}");
-            let start = Instant::now();
-            while start.elapsed() < Duration::from_secs(20) {
-                if let Ok(Some(_)) = server.child.try_wait() {
-                    break; // lost the race for this number: try the next
-                }
-                if Path::new(&socket).exists() {
-                    return server;
-                }
-                std::thread::sleep(Duration::from_millis(50));
-            }
-            let _ = server.child.kill();
+        let mut child = match Command::new("Xvfb")
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "1024x768x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+        {
+            Ok(child) => child,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!(
+                "the viewer tests need an X server: the Xvfb binary is missing; install the \
+                 xvfb package (apt-get install xvfb)"
+            ),
+            Err(e) => panic!("starting Xvfb: {e}"),
+        };
+        // Xvfb writes the number once it accepts connections; EOF means it exited.
+        let stdout = child.stdout.take().expect("piped stdout");
+        let (sender, receiver) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut line = String::new();
+            let _ = BufReader::new(stdout).read_line(&mut line);
+            let _ = sender.send(line);
+        });
+        let line = receiver
+            .recv_timeout(Duration::from_secs(60))
+            .unwrap_or_default();
+        let server = Xvfb {
+            child,
+            display: format!(":{}", line.trim()),
+        };
+        if line.trim().parse::<u32>().is_err() {
+            drop(server);
+            panic!("Xvfb did not report a display number within 60 s (it printed {line:?})");
         }
-        panic!("no free X display number for Xvfb between :100 and :499");
+        server
     }
 }
 
 impl Drop for Xvfb {
+    /// SIGTERM, so the server removes its lock file and socket; SIGKILL if it lingers.
     fn drop(&mut self) {
+        let _ = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status();
+        let start = Instant::now();
+        while start.elapsed() < Duration::from_secs(5) {
+            if let Ok(Some(_)) = self.child.try_wait() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
