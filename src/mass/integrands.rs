@@ -138,6 +138,8 @@ struct Staging {
     indices: Vec<u32>,
     /// Where each group's indices start.
     group_starts: Vec<usize>,
+    /// [`Soup::push_body`]'s vertex map, kept for its allocation.
+    remap: Vec<u32>,
 }
 
 /// Where a body lies: its framing and its tile of a `target` of pixels.
@@ -195,9 +197,13 @@ impl Soup {
         s.group_starts.push(start);
     }
 
-    /// Adds a body to the current group (the first body starts one): its vertices posed at
-    /// `world` (world coordinates), placed at `at`, and those of its `triangles` for which
-    /// `keep` holds. Returns the number of triangles added.
+    /// Adds a body to the current group (the first body starts one): those of its
+    /// `triangles` for which `keep` holds, with their vertices posed at `world` (world
+    /// coordinates) and placed at `at`. Returns the number of triangles added.
+    ///
+    /// A vertex is stored once per sign of `n_z` among the kept triangles that use it, and
+    /// only if one does: the renderer then fetches and shades no vertex that no triangle
+    /// draws (a floating body's vertices above the water, those of culled slivers).
     pub fn push_body(
         &self,
         triangles: &[[u32; 3]],
@@ -210,29 +216,33 @@ impl Soup {
         if staging.group_starts.is_empty() {
             staging.group_starts.push(0);
         }
-        let first = staging.vertices.len() as u32;
-        let count = world.len() as u32;
-        for sign in [1.0f32, -1.0] {
-            staging.vertices.extend(world.iter().map(|&w| {
-                let p = w - at.framing.center;
-                let clip = posed_clip(p, at);
-                [
-                    clip.x as f32,
-                    clip.y as f32,
-                    clip.z as f32,
-                    sign,
-                    p.x as f32,
-                    p.y as f32,
-                    p.z as f32,
-                ]
-            }));
-        }
+        // Where vertex i with sign s of n_z went: remap[2 i + (s < 0)].
+        staging.remap.clear();
+        staging.remap.resize(2 * world.len(), u32::MAX);
         let before = staging.indices.len();
         for tri in triangles.iter().filter(|t| keep(t)) {
             let [a, b, c] = tri.map(|i| world[i as usize]);
             let n_z = (b - a).truncate().perp_dot((c - a).truncate());
-            let copy = if n_z >= 0.0 { first } else { first + count };
-            staging.indices.extend(tri.map(|i| copy + i));
+            let down = (n_z < 0.0) as usize;
+            for i in tri.map(|i| i as usize) {
+                let slot = &mut staging.remap[2 * i + down];
+                if *slot == u32::MAX {
+                    *slot = staging.vertices.len() as u32;
+                    let p = world[i] - at.framing.center;
+                    let clip = posed_clip(p, at);
+                    let sign = if down == 1 { -1.0 } else { 1.0 };
+                    staging.vertices.push([
+                        clip.x as f32,
+                        clip.y as f32,
+                        clip.z as f32,
+                        sign,
+                        p.x as f32,
+                        p.y as f32,
+                        p.z as f32,
+                    ]);
+                }
+                staging.indices.push(*slot);
+            }
         }
         (staging.indices.len() - before) / 3
     }

@@ -7,7 +7,7 @@
 use super::forces::{Submerged, Water};
 use super::simulation::{Body, Shape, SubmergedSolver};
 use crate::gl::{profile, Context, GlError, Rect};
-use crate::mass::framing::Framing;
+use crate::mass::framing::{covers_pixel_centre, Framing, PixelVertex};
 use crate::mass::integrands::{Integrands, Placement, Soup};
 use crate::mass::peel::{Job, PeelSettings, Peeler, PeelerOptions};
 use glam::DVec3;
@@ -118,9 +118,13 @@ impl GpuSolver {
             .map_err(|e| GlError::Invalid(format!("buoyancy: {name}: {e}")))?;
         // A hair of slack keeps triangles touching the surface (fp32 depths).
         let keep_below = level + 1e-5 * (hi - lo).max_element().max(1.0);
+        // Per vertex, once: below the water, and where it lies among the pixel centres.
+        let below: Vec<bool> = world.iter().map(|w| w.z <= keep_below).collect();
+        let pixels: Vec<PixelVertex> = world.iter().map(|&w| framing.pixel_vertex(w)).collect();
         let keep = |tri: &[u32; 3]| {
-            let corners = tri.map(|i| world[i as usize]);
-            corners.iter().any(|c| c.z <= keep_below) && framing.may_cover_pixel_centre(corners)
+            let [a, b, c] = tri.map(|i| i as usize);
+            (below[a] || below[b] || below[c])
+                && covers_pixel_centre(&pixels[a], &pixels[b], &pixels[c])
         };
         let (col, row) = (k as u32 % self.columns, k as u32 / self.columns);
         let job = Job {
