@@ -483,8 +483,7 @@ fn report_blocks_render() {
     use classic_gpgpu::report::timing::Runs;
     use classic_gpgpu::report::BenchOptions;
     let ctx = context();
-    let dir = std::env::temp_dir().join(format!("lecture1-report-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temp_dir("lecture1", "report");
     let opts = BenchOptions {
         gl: &ctx,
         quick: true,
@@ -539,6 +538,7 @@ fn report_blocks_render() {
             assert!(dir.join(&f.file).exists(), "{}", f.file);
         }
     }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A quarter turn about the z axis through the origin, in one step.

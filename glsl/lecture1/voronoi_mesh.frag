@@ -9,5 +9,7 @@ flat in int v_site;
 out vec4 o_site;         // site id, distance (input units)
 
 void main() {
-    o_site = vec4(float(v_site), v_distance * u_pixel, 0.0, 1.0);
+    // A pixel centre the rasterizer counts inside a triangle it lies a hair outside of
+    // reads the triangle's plane extended, which beside a segment dips below 0.
+    o_site = vec4(float(v_site), max(v_distance, 0.0) * u_pixel, 0.0, 1.0);
 }

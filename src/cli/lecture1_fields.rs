@@ -202,6 +202,7 @@ pub fn voronoi(args: &VoronoiArgs, ctx: &Context, json: bool) -> anyhow::Result<
             "pixel_counts": counts,
             "method": match method { Method::Exact => "exact", Method::Mesh { .. } => "mesh" },
             "mesh_error_bound": diagram.mesh_error,
+            "coverage_error_bound": diagram.coverage_error,
             "agreement": agreement,
             "tie_rule": "equal fp32 depth (distance / depth range): the smaller site id wins",
             "timings_ms": {"site_pass_gpu": timings.pass_ms, "readback": timings.readback_ms,

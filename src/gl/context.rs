@@ -447,6 +447,14 @@ impl Context {
             .map_or(renderer, |limit| limit.min(renderer))
     }
 
+    /// The bits of sub-pixel precision the rasterizer snaps vertex positions to
+    /// (`GL_SUBPIXEL_BITS`; OpenGL asks for at least 4): whether a pixel centre within
+    /// `2^-bits` of a triangle's edge is covered is the rasterizer's choice.
+    pub fn subpixel_bits(&self) -> u32 {
+        let bits = unsafe { self.gl().get_parameter_i32(glow::SUBPIXEL_BITS) };
+        (bits.max(0) as u32).max(4)
+    }
+
     /// The most work groups one dispatch may have along `axis` (0, 1, 2).
     pub fn max_work_groups(&self, axis: u32) -> u32 {
         let renderer = unsafe {

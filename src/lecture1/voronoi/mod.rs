@@ -40,6 +40,21 @@ pub struct Diagram {
     /// The distance meshes' tessellation bound (input units; 0 when exact): the distance is
     /// at most this much above the true one.
     pub mesh_error: f64,
+    /// How far a mesh distance may fall on the wrong side of the truth by where the
+    /// rasterizer's snapped edges put a pixel centre (input units; 0 when exact): see
+    /// [`coverage_error`].
+    pub coverage_error: f64,
+}
+
+/// What the distance meshes may err by at a pixel centre that the rasterizer counts inside
+/// a triangle it lies outside of (input units, for pixels of `pixel` units): vertices snap
+/// to `2^-subpixel_bits` of a pixel, so such a centre lies within `2^-bits / sqrt(2)` pixel
+/// of the edge, where the triangle's plane, extended (slope at most 2, a cone of three
+/// sides), and the neighbour's differ by at most `3 · 2^-bits / sqrt(2)`; four steps bound
+/// it. Seen on llvmpipe (8 bits): a pixel centre 0.0009 pixel from a segment read the other
+/// side's tent, -0.0009.
+pub fn coverage_error(subpixel_bits: u32, pixel: f64) -> f64 {
+    4.0 * 2f64.powi(-(subpixel_bits as i32)) * pixel
 }
 
 impl Diagram {
@@ -58,10 +73,10 @@ impl Diagram {
     /// of at most a few thousand pixels (1e-4 pixel), four steps of the fp32 depth value
     /// (2^-22 of the depth range), and the distance meshes' tessellation bound with the fp32
     /// interpolation across their triangles (2^-18 of the depth range, the triangles spanning
-    /// it).
+    /// it) and the rasterizer's coverage at their edges.
     pub fn tolerance(&self) -> f64 {
         let meshed = if self.mesh_error > 0.0 {
-            self.mesh_error + self.depth_range * 2f64.powi(-18)
+            self.mesh_error + self.depth_range * 2f64.powi(-18) + self.coverage_error
         } else {
             0.0
         };

@@ -174,6 +174,10 @@ impl VoronoiRasterizer {
                 distance,
                 depth_range,
                 mesh_error: meshes.as_ref().map_or(0.0, |m| m.error_bound * pixel),
+                coverage_error: match meshes {
+                    Some(_) => super::coverage_error(self.ctx.subpixel_bits(), pixel),
+                    None => 0.0,
+                },
             },
             timings,
         ))

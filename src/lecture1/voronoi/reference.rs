@@ -22,6 +22,7 @@ pub fn brute_force(sites: &[Site], domain: Domain, n: usize, depth_range: f64) -
         distance,
         depth_range,
         mesh_error: 0.0,
+        coverage_error: 0.0,
     }
 }
 
