@@ -147,7 +147,8 @@ pub fn covers_pixel_centre(a: &PixelVertex, b: &PixelVertex, c: &PixelVertex) ->
     if x0 > x1 || y0 > y1 {
         return false;
     }
-    let centres = (x1 - x0 + 1) as f64 * (y1 - y0 + 1) as f64;
+    // In f64: a far corner's range spans all of i32.
+    let centres = (x1 as f64 - x0 as f64 + 1.0) * (y1 as f64 - y0 as f64 + 1.0);
     let (a, b, c) = (a.p, b.p, c.p);
     let doubled_area = (b - a).perp_dot(c - a);
     if centres > MAX_CENTRES_TESTED || doubled_area.abs() < 1e-9 {
@@ -227,6 +228,22 @@ mod tests {
                 framing.may_cover_pixel_centre(corners),
                 kept,
                 "d = {d}, turned"
+            );
+        }
+    }
+
+    #[test]
+    fn a_triangle_with_a_far_or_not_finite_corner_is_kept() {
+        let framing = Framing::fit_box(DVec3::splat(-1.0), DVec3::splat(1.0), 32).unwrap();
+        let near = triangle_beside_centre(&framing, 0.5);
+        for far in [
+            DVec3::new(1e12, 0.0, 0.0),
+            DVec3::new(-3e9, 5e9, 0.0),
+            DVec3::NAN,
+        ] {
+            assert!(
+                framing.may_cover_pixel_centre([near[0], near[1], far]),
+                "{far}"
             );
         }
     }
