@@ -1,9 +1,9 @@
 //! The viewer: each demo's window, read back after N frames, against the headless rendering of
 //! frame N; and the one-line errors without a display.
 //!
-//! Each test starts its own X server (`Xvfb`, on a display number it picks itself, stopped when
-//! the test ends), so `cargo test` needs no outer `xvfb-run`. Without the `Xvfb` binary the tests fail
-//! and say to install the `xvfb` package. The window's context is glutin's (GLX on Xvfb, Mesa
+//! Each test starts its own X server (`Xvfb`, on a display number it picks itself, stopped
+//! when the test ends), so `cargo test` needs no outer `xvfb-run`. Without the `Xvfb` binary
+//! the tests fail and say to install the `xvfb` package. The window's context is glutin's (GLX on Xvfb, Mesa
 //! llvmpipe; `GALLIUM_DRIVER=softpipe` runs both sides on softpipe), the headless one is the
 //! crate's EGL context, so the comparison checks that the window shows the frame the headless
 //! code draws.
@@ -27,10 +27,10 @@ struct Xvfb {
 }
 
 impl Xvfb {
-    /// Start Xvfb on a display number it picks itself (`-displayfd`): the server takes the
-    /// lock file atomically and skips numbers in use, and it reclaims a lock left by a server
-    /// that died, so parallel tests and stale `/tmp/.X*-lock` files from killed runs cannot
-    /// exhaust the numbers.
+    /// Start Xvfb on a display number it picks itself (`-displayfd`): the server tries numbers
+    /// from :0 up and keeps the first it can listen on, so parallel tests never take the same
+    /// one, and stale `/tmp/.X*-lock` files and sockets left by killed servers do not use the
+    /// numbers up (with both planted at :0, it took :0).
     fn start() -> Xvfb {
         let mut child = match Command::new("Xvfb")
             .args([
