@@ -51,8 +51,8 @@ pub struct Diagram {
 /// to `2^-subpixel_bits` of a pixel, so such a centre lies within `2^-bits / sqrt(2)` pixel
 /// of the edge, where the triangle's plane, extended (slope at most 2, a cone of three
 /// sides), and the neighbour's differ by at most `3 · 2^-bits / sqrt(2)`; four steps bound
-/// it. Seen on llvmpipe (8 bits): a pixel centre 0.0009 pixel from a segment read the other
-/// side's tent, -0.0009.
+/// it. Seen on llvmpipe (8 bits): pixel centres under 0.001 pixel from a segment read the
+/// other side's tent, minus their distance.
 pub fn coverage_error(subpixel_bits: u32, pixel: f64) -> f64 {
     4.0 * 2f64.powi(-(subpixel_bits as i32)) * pixel
 }
