@@ -302,6 +302,10 @@ fn check_meshes(sites: &[Site], domain: Domain, n: usize, error_pixels: f64) -> 
     assert!(meshed.mesh_error > 0.0 && meshed.mesh_error <= error_pixels * pixel * (1.0 + 1e-9));
     let agreement = compare(&meshed, sites);
     assert!(agreement.agrees(), "{agreement:?}");
+    // A distance is never negative, whatever the rasterizer's coverage at an edge.
+    if let Some(i) = meshed.distance.iter().position(|&d| d < 0.0) {
+        panic!("pixel {i}: negative distance {}", meshed.distance[i]);
+    }
     // One-sided: a mesh lies above the distance function (its facets are chords of a convex
     // cone), never below it by more than fp32 rounding.
     let rounding = exact.tolerance();
@@ -557,14 +561,5 @@ fn voronoi_meshes_beside_an_edge_read_no_negative_distance() {
             .unwrap()
         });
         check_meshes(&sites, domain, n, 0.5);
-        let ctx = context();
-        let (meshed, _) = VoronoiRasterizer::new(&ctx)
-            .unwrap()
-            .diagram_by(&sites, domain, n, Method::Mesh { error_pixels: 0.5 })
-            .unwrap();
-        assert!(
-            meshed.distance.iter().all(|&d| d >= 0.0),
-            "seed {seed}, n {n}: a negative distance"
-        );
     }
 }
