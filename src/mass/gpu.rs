@@ -8,7 +8,7 @@
 //! from the origin), the pixel centres are the world framing's exactly (powers of two
 //! scale without rounding), and the integrals are scaled back in f64.
 
-use super::framing::Framing;
+use super::framing::{covers_pixel_centre, Framing, PixelVertex};
 use super::integrals::VolumeIntegrals;
 use super::integrands::{Placement, Soup};
 use super::peel::{Job, PeelSettings, Peeler, PeelerOptions};
@@ -180,9 +180,13 @@ impl GpuMass {
             tile: job.tile,
             target: (self.resolution, self.resolution),
         };
+        let pixels: Vec<PixelVertex> = local
+            .iter()
+            .map(|&p| unit.framing.pixel_vertex(p))
+            .collect();
         let keep = |tri: &[u32; 3]| {
-            unit.framing
-                .may_cover_pixel_centre(tri.map(|i| local[i as usize]))
+            let [a, b, c] = tri.map(|i| &pixels[i as usize]);
+            covers_pixel_centre(a, b, c)
         };
         self.soup.clear();
         self.soup.push_body(&mesh.triangles, &local, &place, keep);
