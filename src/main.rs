@@ -211,6 +211,13 @@ fn check_glsl_dir(dir: Option<&std::path::Path>) -> anyhow::Result<()> {
             }
         ),
         Some(dir) => {
+            // An entry that is there but is not a shader file is refused before any work.
+            for s in classic_gpgpu::gl::shaders::ALL {
+                let path = dir.join(s.name);
+                if let Err(e) = classic_gpgpu::gl::shaders::in_glsl_dir(&path) {
+                    anyhow::bail!("--glsl-dir: {}: {e}", path.display());
+                }
+            }
             let has_any = classic_gpgpu::gl::shaders::ALL
                 .iter()
                 .any(|s| dir.join(s.name).is_file());

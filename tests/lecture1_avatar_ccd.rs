@@ -400,3 +400,62 @@ fn the_cli_prints_the_contact_and_refuses_bad_keyframes() {
     assert!(report["time_of_contact"].is_null(), "{report}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A keyframe whose thigh turns by `angle` radians from the rest pose, walking into the wall.
+fn spinning_thigh(angle: f64) -> String {
+    format!(
+        r#"{{"keyframes": [{{"root": [0, 1.06, 1.9]}},
+            {{"root": [0, 1.06, 2.3], "angles": {{"left thigh": [{angle:e}, 0, 0]}}}}]}}"#
+    )
+}
+
+/// Conservative advancement takes at most speed / tolerance steps per keyframe interval: a
+/// turn that makes that bound pass the limit is refused before anything runs, naming the
+/// keyframes, the link and its angles (no minutes of silence, no "no contact" from bounds
+/// beyond fp32); a turn inside the range runs and finds the wall.
+#[test]
+fn a_turn_beyond_the_advancements_range_is_refused_naming_the_keyframe_and_the_angle() {
+    let body = Body::walker();
+    let env = Environment::new(&room()).unwrap();
+    let ctx = context();
+    let o = options(false);
+    let mut ccd = AvatarCcd::new(&ctx, &o).unwrap();
+    for angle in [1e6, 1e20, 1e40, 1e308] {
+        let keyframes = Keyframes::from_json(&body, &spinning_thigh(angle), "test").unwrap();
+        let err = ccd
+            .run(&body, &keyframes, &env, &o)
+            .expect_err("a turn beyond the range is refused")
+            .to_string();
+        assert!(
+            err.contains("keyframes 0 to 1")
+                && err.contains("left thigh")
+                && err.contains(&format!("{angle:?}"))
+                && err.contains("tolerance"),
+            "{angle}: {err}"
+        );
+    }
+    // Ten radians between keyframes: inside the range, and the leg still meets the wall.
+    let keyframes = Keyframes::from_json(&body, &spinning_thigh(10.0), "test").unwrap();
+    let c = ccd.run(&body, &keyframes, &env, &o).unwrap();
+    assert!(c.time_of_contact.is_some(), "{c:?}");
+    assert_matches_reference(&body, &keyframes, &env, &c);
+    // The command line names the file.
+    let dir = std::env::temp_dir().join(format!("avatar_ccd_range_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("spin.json");
+    std::fs::write(&file, spinning_thigh(1e40)).unwrap();
+    let out = classic_gpgpu(&[
+        "lecture1",
+        "avatar-ccd",
+        "--no-gpu",
+        "--keyframes",
+        file.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("spin.json") && err.contains("left thigh") && err.contains("1e40"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -782,3 +782,24 @@ fn obj_io_errors_say_read_or_write_and_give_the_os_message_once() {
         assert_eq!(message.matches("os error").count(), 1, "{message}");
     }
 }
+
+/// Degeneracy is relative to the triangle's size: a cube scaled by 1e30 or 1e-30 (squares
+/// beyond f32's range either way) has no zero-area triangle, and a collinear triangle at
+/// those scales is still zero-area.
+#[test]
+fn degeneracy_is_scale_aware() {
+    for scale in [1e30f32, 1e-30, 1e-19, 1e19] {
+        let mut cube = generate::cube(1.0);
+        for p in &mut cube.positions {
+            *p *= scale;
+        }
+        let r = cube.validate();
+        assert_eq!(r.zero_area_triangles, 0, "scale {scale}: {r}");
+        assert!(r.is_usable(), "scale {scale}: {r}");
+        let collinear = Mesh::new(
+            vec![Vec3::ZERO, Vec3::X * scale, Vec3::X * (2.0 * scale)],
+            vec![[0, 1, 2]],
+        );
+        assert_eq!(collinear.validate().zero_area_triangles, 1, "scale {scale}");
+    }
+}

@@ -2,8 +2,9 @@
 // Lecture 3, "the image pyramid and pyramidal displacement mapping" (Oh, Ki & Lee, VRST 2006): the
 // box the height field is traced in.
 // The box the height field is laid on, without vertex buffers: 12 triangles made from
-// gl_VertexID, counter-clockwise seen from outside, so that culling back faces leaves one
-// fragment per pixel (the box is convex). Each fragment then traces its own pixel's ray.
+// gl_VertexID, counter-clockwise seen from outside, so that culling front faces leaves one
+// fragment per pixel (the box is convex): its far side, which the near plane does not clip
+// when the eye is close to the box. Each fragment then traces its own pixel's ray.
 
 uniform mat4 u_view_projection;
 uniform vec3 u_box; // (Lx, Ly, Lz), world units

@@ -124,6 +124,32 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+/// Refuses a batch size of the method that does not run: `--vs-batch` is the vertex-shader
+/// method's, `--skin-batch` the two-pass method's pass 1.
+fn check_batches(args: &CrowdArgs) -> anyhow::Result<()> {
+    let method = args.method.unwrap_or(MethodArg::TwoPass);
+    if method == MethodArg::TwoPass && args.vs_batch.is_some() {
+        bail!(
+            "--vs-batch sets the characters per draw of the vertex-shader method, which is not \
+             running (the method is two-pass{}): add --method vertex-shader, or leave out \
+             --vs-batch (--skin-batch is two-pass's batch)",
+            if args.method.is_none() {
+                ", the default"
+            } else {
+                ""
+            }
+        );
+    }
+    if method == MethodArg::VertexShader && args.skin_batch.is_some() {
+        bail!(
+            "--skin-batch sets the characters per pass-1 draw of the two-pass method, which is \
+             not running (--method vertex-shader has no pass 1): leave out --skin-batch, or use \
+             --vs-batch for the vertex-shader method's draws"
+        );
+    }
+    Ok(())
+}
+
 /// Runs `crowd`.
 pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     args.period.apply(ctx, 2);
@@ -150,6 +176,9 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let [max_w, max_h] = ctx.info().limits.max_viewport_dims;
     if w > max_w || h > max_h {
         bail!("--size {w}x{h} exceeds this renderer's largest viewport {max_w}x{max_h}");
+    }
+    if args.formulation == super::Formulation::Classic {
+        check_batches(args)?;
     }
     let (kind, method) = (
         ModelKind::from(args.model),

@@ -14,8 +14,9 @@ pub struct LearnArgs {
     /// The lesson to run: its id (e.g. texture-is-array) or its number.
     #[arg(required_unless_present_any = ["list", "guide"])]
     pub id: Option<String>,
-    /// List the lessons: id, number, title, the paper steps, the shader files, the exercises.
-    #[arg(long, conflicts_with = "id")]
+    /// List the lessons: id, number, title, the paper steps, the shader files, the exercises
+    /// (nothing runs, so --png and --exercise have nothing to apply to).
+    #[arg(long, conflicts_with_all = ["id", "png", "exercise"])]
     pub list: bool,
     /// Write each pass's buffer into this folder as PNG (and .npy for float buffers).
     #[arg(long, value_name = "DIR")]

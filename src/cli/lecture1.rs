@@ -188,8 +188,33 @@ impl Motion {
     }
 }
 
+/// Memory per triangle of the generated knotted tube with its self-collision setup (the mesh,
+/// its welded copy, the stream of leaves and the GPU textures), measured and rounded up.
+const TUBE_TRIANGLE_BYTES: u64 = 2 << 10;
+
+/// Refuses a triangle count of the generated tube beyond this machine's memory (or beyond the
+/// 32-bit vertex indices).
+fn check_tube_triangles(n: usize) -> anyhow::Result<()> {
+    super::limits::check_count(
+        "--triangles",
+        n as u64,
+        super::limits::fit_in_memory(TUBE_TRIANGLE_BYTES).min(u32::MAX as u64 / 3),
+        &format!(
+            "the tube and its collision setup need about {} KiB a triangle, and vertex indices \
+             are 32-bit",
+            TUBE_TRIANGLE_BYTES >> 10
+        ),
+    )
+}
+
 fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     anyhow::ensure!(args.frames >= 1, "--frames must be at least 1");
+    super::limits::check_count(
+        "--frames",
+        args.frames as u64,
+        super::limits::fit_in_memory(1 << 10),
+        "each frame's counts and timing are kept, about 1 KiB",
+    )?;
     anyhow::ensure!(args.dt.is_finite(), "--dt must be finite");
     let motion = match (&args.model, args.scene) {
         (Some(_), Some(_)) => anyhow::bail!("give a model or a --scene, not both"),
@@ -200,6 +225,7 @@ fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow
                 "the knotted tube moves by itself; --deform applies to a model"
             );
             anyhow::ensure!(args.triangles >= 100, "--triangles must be at least 100");
+            check_tube_triangles(args.triangles)?;
             Motion::Tube(KnottedTube::with_triangles(args.triangles))
         }
         (Some(path), None) => {
@@ -374,10 +400,13 @@ fn timed<T>(f: impl FnOnce() -> anyhow::Result<T>) -> anyhow::Result<(T, f64)> {
 }
 
 fn compare(args: &CompareArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    for &n in &args.triangles {
+        anyhow::ensure!(n >= 100, "--triangles: {n} is fewer than 100");
+        check_tube_triangles(n)?;
+    }
     let tester = PairwiseTester::new(ctx, DEFAULT_TILE)?;
     let mut rows = Vec::new();
     for &n in &args.triangles {
-        anyhow::ensure!(n >= 100, "--triangles: {n} is fewer than 100");
         let tube = KnottedTube::with_triangles(n);
         let mut mesh = tube.mesh.clone();
         mesh.positions =

@@ -11,6 +11,7 @@ use classic_gpgpu::gl::dump::{texture_png, DumpRange};
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::lecture3::blend_histogram::{self, Bins};
 use classic_gpgpu::lecture3::depth_mask::{self, DepthMask, MaskShape};
+use classic_gpgpu::lecture3::displacement::camera::FAR;
 use classic_gpgpu::lecture3::displacement::compare::ReferenceImage;
 use classic_gpgpu::lecture3::displacement::{exact, Camera, DisplacementRenderer, Method, Surface};
 use classic_gpgpu::lecture3::error::check_range;
@@ -155,12 +156,12 @@ pub struct DisplaceArgs {
     /// beside the unfiltered frame's.
     #[arg(long)]
     prefilter: bool,
-    /// Relief mapping's linear steps.
-    #[arg(long, default_value_t = 32)]
-    linear_steps: u32,
-    /// Relief mapping's binary steps.
-    #[arg(long, default_value_t = 8)]
-    binary_steps: u32,
+    /// Relief mapping's linear steps (--method relief) [default: 32].
+    #[arg(long)]
+    linear_steps: Option<u32>,
+    /// Relief mapping's binary steps (--method relief) [default: 8].
+    #[arg(long)]
+    binary_steps: Option<u32>,
     /// Skip the exact CPU tracer (its check of the first frame and its time).
     #[arg(long)]
     no_check: bool,
@@ -287,8 +288,8 @@ pub struct HistogramArgs {
     /// Count the grey levels (0..1) of this PNG [default: random skewed values].
     #[arg(long)]
     image: Option<PathBuf>,
-    /// How many random values without --image.
-    #[arg(long, default_value_t = 1 << 20)]
+    /// How many random values without --image (with --image, its pixels are the values).
+    #[arg(long, default_value_t = 1 << 20, conflicts_with = "image")]
     values: usize,
     #[arg(long, default_value_t = 256)]
     bins: u32,
@@ -393,7 +394,16 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     check_size("--size", a.size)?;
     check_range("--azimuth", a.azimuth as f64, -3600.0, 3600.0)?;
     check_range("--elevation", a.elevation as f64, 0.1, 89.5)?;
-    check_range("--distance", a.distance as f64, 0.5, 1000.0)?;
+    // The box (at most 2 x 2 x 2) stays inside the far plane: beyond it no fragment traces.
+    let far_limit = (FAR - 5.0) as f64;
+    if a.distance as f64 > far_limit {
+        bail!(
+            "--distance {}: at most {far_limit}, as the projection's far plane is at {FAR} and \
+             the box must lie in front of it",
+            a.distance
+        );
+    }
+    check_range("--distance", a.distance as f64, 0.5, far_limit)?;
     if a.prefilter && a.method != MethodArg::Pyramid {
         bail!("--prefilter: the prefilter is part of the pyramid traversal (--method pyramid)");
     }
@@ -406,7 +416,15 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             a.frames
         );
     }
-    if a.linear_steps == 0 || a.linear_steps > 4096 || a.binary_steps > 64 {
+    if a.method != MethodArg::Relief && (a.linear_steps.is_some() || a.binary_steps.is_some()) {
+        bail!(
+            "--linear-steps and --binary-steps are relief mapping's search; the pyramid method \
+             traverses the max pyramid and takes no steps to set: add --method relief, or leave \
+             them out"
+        );
+    }
+    let (linear_steps, binary_steps) = (a.linear_steps.unwrap_or(32), a.binary_steps.unwrap_or(8));
+    if linear_steps == 0 || linear_steps > 4096 || binary_steps > 64 {
         bail!("--linear-steps must be 1 to 4096 and --binary-steps at most 64");
     }
     if let Some(dir) = &a.out {
@@ -430,8 +448,8 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         MethodArg::Pyramid if a.prefilter => Method::Prefiltered,
         MethodArg::Pyramid => Method::Pyramid,
         MethodArg::Relief => Method::Relief {
-            linear_steps: a.linear_steps,
-            binary_steps: a.binary_steps,
+            linear_steps,
+            binary_steps,
         },
     };
     let target = renderer.target(a.size, a.size)?;
@@ -533,6 +551,17 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     for p in &written {
         text.push_str(&format!("\nwrote {}", p.display()));
     }
+    // The pyramid traversal is exact (relief mapping's misses are its known artifact): a pixel
+    // where it disagrees with its own exact tracer is an error, not a result.
+    let disagree = check.as_ref().map_or(0, |(_, c)| {
+        c.wrong_surface
+            + c.outside_tolerance
+            + c.wrong_kind
+            + c.wrong_normal
+            + c.wrong_colour
+            + c.unfinished
+    });
+    let exact_method = matches!(method, Method::Pyramid);
     print(
         json,
         json!({
@@ -544,7 +573,14 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             "comparison": check.as_ref().map(|c| c.1), "written": written,
         }),
         text,
-    )
+    )?;
+    if exact_method && disagree > 0 {
+        bail!(
+            "{disagree} pixels of the pyramid method disagree with its exact CPU tracer (see \
+             above): a bug, or a view outside the method's range"
+        );
+    }
+    Ok(())
 }
 
 fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
@@ -720,6 +756,12 @@ fn function(a: &FunctionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     )
 }
 
+/// Memory per generated number of `random`: each is kept in its generator's stream, in the
+/// raw read-back, in the list the chi-square counts and in two lists of pairs (serial and
+/// neighbour), and once more when written as .npy: 32 bytes, measured (peak resident memory
+/// at 256 x 256 x 64 against 512 x 512 x 64), rounded up.
+const RANDOM_BYTES: u64 = 40;
+
 fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     a.output.check(&[])?;
     // Two generators a side at least: the neighbour correlation needs a pair in a row.
@@ -736,6 +778,13 @@ fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             a.steps
         );
     }
+    super::limits::check_memory(
+        &format!("--size {} --steps {}", a.size, a.steps),
+        a.size as u64 * a.size as u64 * a.steps as u64,
+        RANDOM_BYTES,
+        "numbers",
+        "use a smaller --size or fewer --steps",
+    )?;
     if let Some(npy) = &a.npy {
         files::check_output("--npy", npy, &[], a.output.force, &["npy"])?;
     }

@@ -41,6 +41,29 @@ pub fn check_count(option: &str, value: u64, max: u64, why: &str) -> anyhow::Res
     Ok(())
 }
 
+/// Refuses a run whose planned memory, `units` of `bytes_each` (`what` says what a unit is),
+/// is more than the budget; `options` names the options that set the count, `advice` what to
+/// change.
+pub fn check_memory(
+    options: &str,
+    units: u64,
+    bytes_each: u64,
+    what: &str,
+    advice: &str,
+) -> anyhow::Result<()> {
+    let budget = memory_budget();
+    let need = units.saturating_mul(bytes_each);
+    if need > budget {
+        bail!(
+            "{options}: {units} {what} of about {bytes_each} bytes each need {}, more than the {} \
+             this machine may use (half of the memory it has available); {advice}",
+            gib(need),
+            gib(budget)
+        );
+    }
+    Ok(())
+}
+
 /// A byte count for messages: `1.5 GiB`.
 pub fn gib(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
@@ -64,5 +87,16 @@ mod tests {
         assert_eq!(units_in(100, 0), 100);
         assert_eq!(units_in(100, 7), 14);
         assert!(fit_in_memory(1 << 40) < fit_in_memory(1));
+        let err = check_memory("--size 9 --steps 9", u64::MAX, 32, "numbers", "use fewer")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with(
+                "--size 9 --steps 9: 18446744073709551615 numbers of about 32 bytes each"
+            ),
+            "{err}"
+        );
+        assert!(err.ends_with("; use fewer"), "{err}");
+        assert!(check_memory("--size", 1, 1, "numbers", "x").is_ok());
     }
 }

@@ -142,6 +142,13 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
     if args.below.is_some_and(|z| !z.is_finite()) {
         bail!("--below: must be a finite height");
     }
+    if args.formulation == super::Formulation::Compute && args.peeling.order.is_some() {
+        bail!(
+            "--order orders the depth peels of the classic formulation; the compute formulation \
+             does not peel (it sums the integrals over the triangles in one pass): leave out \
+             --order or --formulation compute"
+        );
+    }
     if let Some(dir) = &args.dump {
         classic_gpgpu::files::check_folder("--dump", dir)?;
     }
@@ -219,6 +226,13 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
             want.volume
         );
     }
+    check_underflow(
+        args,
+        &[
+            (&got, MassProperties::from_integrals(&result.integrals, 1.0)),
+            (&want, MassProperties::from_integrals(&exact, 1.0)),
+        ],
+    )?;
     let mut warnings = Vec::new();
     if result.truncated {
         warnings.push(truncation_warning(result.settings.max_peels));
@@ -283,6 +297,36 @@ fn number(v: f64) -> String {
     } else {
         format!("{v:.6e}")
     }
+}
+
+/// Refuses a result that underflowed: a mass, or a diagonal moment of inertia, that is zero
+/// or subnormal at this density although it is a normal number at density 1 (the model is not
+/// empty: only the density made it vanish), as a result beyond a double is refused above.
+fn check_underflow(
+    args: &MassArgs,
+    results: &[(&MassProperties, MassProperties)],
+) -> anyhow::Result<()> {
+    let lost = |scaled: f64, unscaled: f64| unscaled.is_normal() && !scaled.is_normal();
+    let diagonal =
+        |p: &MassProperties| [p.inertia.x_axis.x, p.inertia.y_axis.y, p.inertia.z_axis.z];
+    for (p, unit) in results {
+        let underflows = lost(p.mass, unit.mass)
+            || diagonal(p)
+                .iter()
+                .zip(diagonal(unit))
+                .any(|(&m, one)| lost(m, one));
+        if underflows {
+            bail!(
+                "--density {:e}: model '{}' (volume {:e}) has a mass or moment of inertia below \
+                 the smallest normal number a double holds at this density (it would print as \
+                 0); give a larger --density",
+                args.density,
+                args.model,
+                p.volume
+            );
+        }
+    }
+    Ok(())
 }
 
 /// `mass --formulation compute`: the integrals summed over triangles in one compute pass.
@@ -585,6 +629,23 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     }
     if !(args.dt.is_finite() && args.dt > 0.0 && args.dt <= 0.1) {
         bail!("--dt {}: must be in (0, 0.1] seconds", args.dt);
+    }
+    if args.peeling.order.is_some() && (args.cpu || args.formulation == super::Formulation::Compute)
+    {
+        bail!(
+            "--order orders the depth peels of the GPU solver's classic formulation; {} does \
+             not peel: leave out --order or {}",
+            if args.cpu {
+                "the CPU solver (clip + Mirtich)"
+            } else {
+                "the compute formulation"
+            },
+            if args.cpu {
+                "--cpu"
+            } else {
+                "--formulation compute"
+            }
+        );
     }
     let frames = match &args.png_every {
         None => None,

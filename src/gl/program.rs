@@ -340,18 +340,22 @@ impl Program {
 }
 
 /// The file `part` names under the context's `--glsl-dir` folder, if that folder has it: its
-/// path on disk (which errors then name) and its text. `(_, None)`: use the compiled-in copy.
+/// path on disk (which errors then name) and its text. `(_, None)`: use the compiled-in copy,
+/// only where the folder has nothing of that name; an entry that is there but is not a regular
+/// file (a folder, a dangling link, a FIFO) is an error, never silently the compiled-in copy.
 fn from_glsl_dir(ctx: &Context, part: &ShaderSource) -> Result<(String, Option<String>), GlError> {
     let Some(dir) = ctx.glsl_dir() else {
         return Ok((String::new(), None));
     };
     let path = dir.join(part.name);
-    if !path.is_file() {
+    let refused = |message: String| GlError::Invalid(format!("{}: {message}", path.display()));
+    if !super::shaders::in_glsl_dir(&path).map_err(refused)? {
         return Ok((String::new(), None));
     }
-    let text = std::fs::read_to_string(&path).map_err(|e| GlError::Io {
-        path: path.display().to_string(),
-        message: format!("cannot read this shader (given by --glsl-dir): {e}"),
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        refused(format!(
+            "cannot read this shader (given by --glsl-dir): {e}"
+        ))
     })?;
     Ok((path.display().to_string(), Some(text)))
 }

@@ -98,6 +98,30 @@ pub fn stage_parts(file: ShaderSource<'static>) -> Result<Vec<(String, String)>,
     Ok(parts)
 }
 
+/// Whether the `--glsl-dir` entry `path` replaces a compiled-in shader: `Ok(true)` for a
+/// regular file (or a link to one), `Ok(false)` where nothing of that name is there, and an
+/// error saying what is there instead where it is a folder, a dangling link, a FIFO or any
+/// other entry that is not a regular file (reading it would fail or block; ignoring it would
+/// run the compiled-in copy without a word).
+pub fn in_glsl_dir(path: &Path) -> Result<bool, String> {
+    let link = match std::fs::symlink_metadata(path) {
+        Ok(meta) => meta,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(false),
+        Err(e) => return Err(format!("cannot look at this --glsl-dir entry: {e}")),
+    };
+    let what = match std::fs::metadata(path) {
+        Ok(meta) if meta.is_file() => return Ok(true),
+        Ok(meta) if meta.is_dir() => "a folder",
+        Ok(_) => "not a regular file (a FIFO, a socket or a device)",
+        Err(_) if link.file_type().is_symlink() => "a link to nothing (dangling)",
+        Err(e) => return Err(format!("cannot look at this --glsl-dir entry: {e}")),
+    };
+    Err(format!(
+        "this --glsl-dir entry is {what}, not a shader file; make it the shader's file (`classic-gpgpu \
+         glsl export` writes them) or remove it to use the compiled-in copy"
+    ))
+}
+
 /// Where `glsl export` writes each file, relative to its folder: every shader at its own path;
 /// with `exercises`, each template `glsl/learn/exercises/X` at `glsl/learn/X` in place of the
 /// solution (and not under `exercises/`).

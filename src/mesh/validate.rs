@@ -364,12 +364,16 @@ fn position_key(p: Vec3) -> [u32; 3] {
     p.to_array().map(|c| if c == 0.0 { 0 } else { c.to_bits() })
 }
 
+/// In f64: the squares of f32 coordinates near 1e30 overflow f32, and those near 1e-30
+/// underflow to zero, which would make every triangle of a scaled model zero-area; in f64
+/// the relative test holds at every scale f32 can express.
 fn is_zero_area([a, b, c]: [Vec3; 3]) -> bool {
+    let (a, b, c) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
     let longest = (b - a)
         .length_squared()
         .max((c - b).length_squared())
         .max((a - c).length_squared());
-    (b - a).cross(c - a).length() <= ZERO_AREA_RELATIVE * longest
+    (b - a).cross(c - a).length() <= ZERO_AREA_RELATIVE as f64 * longest
 }
 
 /// Union-find over vertex ids (path halving).

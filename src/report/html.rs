@@ -231,6 +231,14 @@ pub fn page(report: &Report) -> String {
         report.elapsed_s
     ));
     out.push_str(&format!("<p>Timings: {}.</p>\n", escape(&report.runs)));
+    if let Some(dir) = &report.glsl_dir {
+        out.push_str(&format!(
+            "<p class=\"note\">Modified shaders: every result here was made with \
+             <code>--glsl-dir {}</code>, whose shader files replaced the shipped ones; they \
+             are not the shipped code's results.</p>\n",
+            escape(dir)
+        ));
+    }
     if report.quick {
         out.push_str(
             "<p class=\"note\">Quick mode: small sizes for CI and smoke tests. These numbers \

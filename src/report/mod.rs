@@ -144,6 +144,9 @@ pub struct Report {
     pub runs: String,
     pub elapsed_s: f64,
     pub sections: Vec<Section>,
+    /// `--glsl-dir`: the folder whose shader files replaced the compiled-in ones (null when
+    /// none was given); with one, every result comes from modified shaders.
+    pub glsl_dir: Option<String>,
 }
 
 /// One paper's part of the report.

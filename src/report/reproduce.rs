@@ -192,6 +192,20 @@ fn kept_sections(
             sizes(args.quick)
         ));
     }
+    // Sections from modified shaders (--glsl-dir) and from the shipped ones are not merged.
+    let glsl_dir = ctx.glsl_dir().map(|d| d.display().to_string());
+    if old["glsl_dir"].as_str().map(str::to_string) != glsl_dir {
+        let shaders = |dir: Option<String>| match dir {
+            Some(dir) => format!("the shaders of --glsl-dir {dir}"),
+            None => "the compiled-in shaders".to_string(),
+        };
+        return refuse(format!(
+            "the report in {} was made with {}, this run with {}",
+            args.out.display(),
+            shaders(old["glsl_dir"].as_str().map(str::to_string)),
+            shaders(glsl_dir)
+        ));
+    }
     let runs = super::timing::runs_policy(args.runs, args.quick);
     // A report made before `--runs` existed does not say how it was timed: it is refused
     // too, as another policy may have timed it.
@@ -303,6 +317,7 @@ fn run_stages(
         runs: super::timing::runs_policy(args.runs, args.quick),
         elapsed_s: start.elapsed().as_secs_f64(),
         sections,
+        glsl_dir: ctx.glsl_dir().map(|d| d.display().to_string()),
     })
 }
 

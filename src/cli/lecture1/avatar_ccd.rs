@@ -7,7 +7,7 @@ use classic_gpgpu::lecture1::avatar_ccd::body::{Body, Keyframes};
 use classic_gpgpu::lecture1::avatar_ccd::environment::{room, Environment};
 use classic_gpgpu::lecture1::avatar_ccd::reference::{gap_at, sample, shapes};
 use classic_gpgpu::lecture1::avatar_ccd::{
-    visibility, AvatarCcd, Options, DEFAULT_STEPS, DEFAULT_TOLERANCE,
+    advance, visibility, AvatarCcd, Options, DEFAULT_STEPS, DEFAULT_TOLERANCE,
 };
 use classic_gpgpu::mesh::load_obj;
 use glam::DVec3;
@@ -57,6 +57,15 @@ pub fn run(args: &AvatarCcdArgs, ctx: &Context, json: bool) -> anyhow::Result<()
         Some(path) => Keyframes::load(&body, path)?,
         None => Keyframes::walk(&body, DVec3::new(0.0, 1.06, 0.0), 8, 0.35),
     };
+    // The motion within the advancement's range (also checked by `run`), named by its file.
+    if args.tolerance.is_finite() && args.tolerance > 0.0 {
+        advance::check_range(&body, &keyframes, args.tolerance).with_context(|| {
+            match &args.keyframes {
+                Some(p) => format!("keyframes {} (--tolerance {})", p.display(), args.tolerance),
+                None => format!("the built-in walk (--tolerance {})", args.tolerance),
+            }
+        })?;
+    }
     let options = Options {
         tolerance: args.tolerance,
         steps: args.steps,

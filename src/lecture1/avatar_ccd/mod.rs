@@ -176,6 +176,7 @@ impl AvatarCcd {
             "the sub-intervals per keyframe interval must be 1 to 100000, not {}",
             options.steps
         );
+        advance::check_range(body, keyframes, options.tolerance)?;
         let mut counts = Counts::default();
         let mut times = Times::default();
         let mut found = None;

@@ -22,12 +22,7 @@ pub fn link_speeds(body: &Body, keyframes: &Keyframes, k: usize) -> Vec<f64> {
     }
     let (a, b) = (&keyframes.poses[k], &keyframes.poses[k + 1]);
     let root_rate = (b.root - a.root).length();
-    let joint_rate: Vec<f64> = a
-        .angles
-        .iter()
-        .zip(&b.angles)
-        .map(|(x, y)| (*y - *x).abs().element_sum())
-        .collect();
+    let joint_rate = joint_rates(keyframes, k);
     (0..body.links.len())
         .map(|link| {
             let chain = body.chain(link);
@@ -44,6 +39,17 @@ pub fn link_speeds(body: &Body, keyframes: &Keyframes, k: usize) -> Vec<f64> {
             }
             speed
         })
+        .collect()
+}
+
+/// How fast each link's joint turns within keyframe interval `k`: |ȧx| + |ȧy| + |ȧz|,
+/// radians per unit time.
+pub fn joint_rates(keyframes: &Keyframes, k: usize) -> Vec<f64> {
+    let (a, b) = (&keyframes.poses[k], &keyframes.poses[k + 1]);
+    a.angles
+        .iter()
+        .zip(&b.angles)
+        .map(|(x, y)| (*y - *x).abs().element_sum())
         .collect()
 }
 

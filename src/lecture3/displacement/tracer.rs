@@ -1,4 +1,4 @@
-//! The GPU tracers: the displaced box drawn with back faces culled, each fragment tracing its
+//! The GPU tracers: the displaced box drawn with front faces culled, each fragment tracing its
 //! pixel's ray, by the pyramid traversal or by relief mapping's search, into three targets:
 //! the hit (grid position and ray parameter), statistics (iterations, surface or wall), a
 //! shaded colour and the normal shaded with, plus the hit's depth.
@@ -339,7 +339,10 @@ impl DisplacementRenderer {
                 func: Compare::Less,
                 write: true,
             }),
-            cull: Some(Face::Back),
+            // The far faces: a camera close to the box has its near faces clipped by the near
+            // plane (at --distance 0.5, four pixels in ten), the far ones never; each fragment
+            // traces its pixel's ray from the eye anyway, and writes the hit's depth.
+            cull: Some(Face::Front),
             ..DrawState::default()
         })
         .draw_attributeless(Primitive::Triangles, 36, 1)
