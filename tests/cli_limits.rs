@@ -194,3 +194,59 @@ fn mass_prints_huge_values_in_scientific_notation() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Counts within their documented ranges whose product is beyond memory, and the lecture-1
+/// counts, are refused before anything is allocated: `lecture3 random --size 4096 --steps
+/// 1024` (64 GiB of numbers and several times that in the lists its tests compare) names
+/// both options and the memory it would need.
+#[test]
+fn sizes_and_counts_beyond_memory_are_refused_before_allocating() {
+    let start = std::time::Instant::now();
+    let err = refused(&["lecture3", "random", "--size", "4096", "--steps", "1024"]);
+    assert!(
+        err.contains("--size 4096 --steps 1024")
+            && err.contains("GiB")
+            && err.contains("this machine may use"),
+        "{err}"
+    );
+    let max = "18446744073709551615";
+    for (args, option) in [
+        (
+            vec![
+                "lecture1",
+                "self-collision",
+                "--scene",
+                "knotted-tube",
+                "--triangles",
+                max,
+            ],
+            "--triangles",
+        ),
+        (
+            vec![
+                "lecture1",
+                "self-collision",
+                "--scene",
+                "knotted-tube",
+                "--frames",
+                max,
+            ],
+            "--frames",
+        ),
+        (
+            vec!["lecture1", "compare", "--triangles", max],
+            "--triangles",
+        ),
+    ] {
+        let err = refused(&args);
+        assert!(
+            err.contains(&format!("{option} ")) && err.contains("at most"),
+            "{args:?}: {err}"
+        );
+    }
+    assert!(
+        start.elapsed().as_secs() < 60,
+        "the refusals took {:?}",
+        start.elapsed()
+    );
+}

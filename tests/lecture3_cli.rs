@@ -267,3 +267,127 @@ fn prefiltered_displacement_and_the_octree_check_themselves_against_the_cpu() {
         assert_eq!(c["cpu_octree_vs_flat"], 0, "{v}");
     }
 }
+
+/// `pyramid --npy DIR`: one float32 file per kind and level, as the GPU drew them, equal to
+/// the CPU pyramid (max and min bit for bit; the mean within a few fp32 ulps of the f64 means
+/// of the pixels each node covers, as `lecture3_pyramid.rs` states); existing files only with
+/// --force.
+#[test]
+fn pyramid_npy_writes_every_level_equal_to_the_cpu_pyramid() {
+    use classic_gpgpu::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
+    use classic_gpgpu::lecture3::pyramid::{cpu_pyramid, Extreme};
+    let dir = scratch("pyramid_npy").join("levels");
+    let _ = std::fs::remove_dir_all(&dir);
+    let d = dir.to_str().unwrap();
+    let v = json_of(&["lecture3", "pyramid", "--npy", d, "--json"]);
+    let map = HeightMap::generated(SHIPPED_SIZE);
+    let levels = (SHIPPED_SIZE.trailing_zeros() + 1) as usize;
+    assert_eq!(v["written"].as_array().unwrap().len(), 3 * levels, "{v}");
+    for (kind, extreme) in [
+        ("max", Extreme::Max),
+        ("min", Extreme::Min),
+        ("mean", Extreme::Mean),
+    ] {
+        let cpu = cpu_pyramid(map.width(), map.height(), map.heights(), extreme);
+        assert_eq!(cpu.len(), levels);
+        for (l, want) in cpu.iter().enumerate() {
+            let path = dir.join(format!("{kind}_{l}.npy"));
+            let (shape, got) = classic_gpgpu::files::read_npy(&path).unwrap();
+            assert_eq!(
+                shape,
+                [want.height as usize, want.width as usize],
+                "{kind} {l}"
+            );
+            for (g, w) in got.iter().zip(&want.values) {
+                let tol = if extreme == Extreme::Mean {
+                    4.0 * f32::EPSILON
+                } else {
+                    0.0
+                };
+                assert!((g - w).abs() <= tol, "{kind} level {l}: GPU {g}, CPU {w}");
+            }
+        }
+    }
+    let err = fails(&["lecture3", "pyramid", "--npy", d]);
+    assert!(
+        err.contains("max_0.npy") && err.contains("--force"),
+        "{err}"
+    );
+    json_of(&["lecture3", "pyramid", "--npy", d, "--force", "--json"]);
+}
+
+/// The pyramid method agrees with its exact tracer down to the closest camera accepted (the
+/// near plane no longer clips the box's near faces: the far faces are drawn), and a camera
+/// behind the far plane is refused.
+#[test]
+fn displace_agrees_at_the_closest_distance_and_refuses_beyond_the_far_plane() {
+    for distance in ["0.5", "0.55"] {
+        let v = json_of(&[
+            "lecture3",
+            "displace",
+            "--size",
+            "64",
+            "--distance",
+            distance,
+            "--json",
+        ]);
+        let c = &v["comparison"];
+        assert!(c["compared"].as_u64().unwrap() > 1000, "{distance}: {c}");
+        for key in [
+            "wrong_surface",
+            "outside_tolerance",
+            "wrong_kind",
+            "wrong_normal",
+        ] {
+            assert_eq!(c[key], 0, "{distance}: {key} in {c}");
+        }
+    }
+    let err = fails(&["lecture3", "displace", "--size", "16", "--distance", "100"]);
+    assert!(
+        err.contains("--distance 100") && err.contains("far plane"),
+        "{err}"
+    );
+}
+
+/// Options that the chosen method or input would ignore are refused, naming them.
+#[test]
+fn options_the_run_would_ignore_are_refused() {
+    let err = fails(&[
+        "lecture3",
+        "displace",
+        "--size",
+        "16",
+        "--linear-steps",
+        "8",
+    ]);
+    assert!(
+        err.contains("--linear-steps") && err.contains("--method relief"),
+        "{err}"
+    );
+    let err = fails(&[
+        "lecture3",
+        "displace",
+        "--size",
+        "16",
+        "--binary-steps",
+        "2",
+    ]);
+    assert!(err.contains("--binary-steps"), "{err}");
+    let map = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/lecture3/height.png");
+    let err = fails(&["lecture3", "histogram", "--image", map, "--values", "5"]);
+    assert!(err.contains("--values") && err.contains("--image"), "{err}");
+    // Relief mapping takes them.
+    let v = json_of(&[
+        "lecture3",
+        "displace",
+        "--size",
+        "16",
+        "--method",
+        "relief",
+        "--linear-steps",
+        "8",
+        "--no-check",
+        "--json",
+    ]);
+    assert_eq!(v["method"]["relief"]["linear_steps"], 8, "{v}");
+}

@@ -22,7 +22,7 @@ use classic_gpgpu::lecture3::light_hierarchy::shade::Terms;
 use classic_gpgpu::lecture3::light_hierarchy::{Gather, LightUse};
 use classic_gpgpu::report::lecture3::{
     self as bench,
-    images::{gpu_pyramids, pyramid_png},
+    images::{gpu_pyramids, pyramid_png, PYRAMID_KINDS},
 };
 use classic_gpgpu::report::timing::Runs;
 use serde_json::json;
@@ -119,6 +119,12 @@ pub struct PyramidArgs {
     /// A greyscale PNG height map [default: the generated map of assets/lecture3/height.png].
     #[arg(long)]
     height: Option<PathBuf>,
+    /// Write every level the GPU drew, as read back, into DIR (created) as float32 .npy, one
+    /// file per kind and level: max_L.npy, min_L.npy and mean_L.npy (height x width of level
+    /// L; level 0 is the input padded to a power of two a side, the padding max's -3.4e38,
+    /// min's 3.4e38 and mean's 0; rows from the bottom).
+    #[arg(long, value_name = "DIR")]
+    npy: Option<PathBuf>,
     #[command(flatten)]
     output: Output,
 }
@@ -355,14 +361,51 @@ fn check_size(name: &str, size: u32) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The files of `pyramid --npy DIR` for a pyramid of `levels` levels: each kind of
+/// [`PYRAMID_KINDS`] (the pyramids [`gpu_pyramids`] draws, in its order), each level.
+fn pyramid_npy_files(dir: &Path, levels: u32) -> Vec<PathBuf> {
+    use classic_gpgpu::lecture3::pyramid::Extreme;
+    PYRAMID_KINDS
+        .iter()
+        .map(|kind| match kind {
+            Extreme::Max => "max",
+            Extreme::Min => "min",
+            Extreme::Mean => "mean",
+        })
+        .flat_map(|kind| (0..levels).map(move |l| dir.join(format!("{kind}_{l}.npy"))))
+        .collect()
+}
+
 fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    use classic_gpgpu::lecture3::pyramid::level_count;
     let inputs: Vec<&Path> = a.height.iter().map(|p| p.as_path()).collect();
     a.output.check(&inputs)?;
+    if let Some(dir) = &a.npy {
+        files::check_folder("--npy", dir)?;
+    }
     let (map, name) = load_map(a.height.as_deref(), ctx)?;
+    let npy_files = a
+        .npy
+        .as_ref()
+        .map(|dir| pyramid_npy_files(dir, level_count(map.width(), map.height())));
+    for path in npy_files.iter().flatten() {
+        files::check_output("--npy", path, &inputs, a.output.force, &["npy"])?;
+    }
     let row = bench::pyramid_row(ctx, &map, RUNS)?;
-    if let Some(png) = &a.output.png {
+    let mut written: Vec<PathBuf> = Vec::new();
+    if a.output.png.is_some() || npy_files.is_some() {
         // The levels the GPU drew, read back: what is shown is what was computed.
-        pyramid_png(&gpu_pyramids(ctx, &map)?, (map.width(), map.height()), png)?;
+        let pyramids = gpu_pyramids(ctx, &map)?;
+        if let Some(png) = &a.output.png {
+            pyramid_png(&pyramids, (map.width(), map.height()), png)?;
+            written.push(png.clone());
+        }
+        let levels = pyramids.iter().flatten();
+        for (path, level) in npy_files.iter().flatten().zip(levels) {
+            let shape = [level.height as usize, level.width as usize];
+            files::write_npy(path, &shape, &level.values)?;
+            written.push(path.clone());
+        }
     }
     if !row.equal_to_cpu {
         bail!("the GPU pyramid differs from the CPU pyramid (a bug: max and min are exact)");
@@ -371,7 +414,7 @@ fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     print(
         json,
         json!({ "renderer": renderer, "gpu_timing": bench::gpu_timing(ctx), "map": name, "width": map.width(), "height": map.height(),
-                "pyramid": row, "png": a.output.png }),
+                "pyramid": row, "png": a.output.png, "written": written }),
         format!(
             "{name}: {}x{}, {} levels; GPU max and min pyramids equal to the CPU's bit for bit\n\
              mean pyramid within {:.1e} of the CPU's f64 means\n\
@@ -384,7 +427,7 @@ fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             row.gpu_ms,
             row.cpu_ms,
             row.cpu_ms / row.gpu_ms
-        ),
+        ) + &wrote_lines(&written),
     )
 }
 
