@@ -801,8 +801,8 @@ fn function(a: &FunctionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
 
 /// Memory per generated number of `random`: each is kept in its generator's stream, in the
 /// raw read-back, in the list the chi-square counts and in two lists of pairs (serial and
-/// neighbour), and once more when written as .npy: 32 bytes, measured (peak resident memory
-/// at 256 x 256 x 64 against 512 x 512 x 64), rounded up.
+/// neighbour): 33 bytes, measured as peak resident memory at 256 x 256 x 64 against 512 x 512
+/// x 64; with 4 more when written as .npy, rounded up.
 const RANDOM_BYTES: u64 = 40;
 
 fn random(a: &RandomArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
