@@ -361,6 +361,24 @@ fn check_size(name: &str, size: u32) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Memory per pixel of `displace` with its check (the frame's targets read back, the exact
+/// tracer's three hits per pixel, the verdicts) and of `octree` (its two casts and their
+/// reference), measured as peak resident memory at --size 128 against 512 (431 and 202
+/// bytes), rounded up.
+const DISPLACE_PIXEL_BYTES: u64 = 512;
+const OCTREE_PIXEL_BYTES: u64 = 256;
+
+/// Refuses an image of `size` x `size` pixels of `bytes_each` beyond this machine's memory.
+fn check_pixels_memory(size: u32, bytes_each: u64) -> anyhow::Result<()> {
+    super::limits::check_memory(
+        &format!("--size {size}"),
+        size as u64 * size as u64,
+        bytes_each,
+        "pixels",
+        "use a smaller --size",
+    )
+}
+
 /// The files of `pyramid --npy DIR` for a pyramid of `levels` levels: each kind of
 /// [`PYRAMID_KINDS`] (the pyramids [`gpu_pyramids`] draws, in its order), each level.
 fn pyramid_npy_files(dir: &Path, levels: u32) -> Vec<PathBuf> {
@@ -435,6 +453,7 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let inputs: Vec<&Path> = a.height.iter().map(|p| p.as_path()).collect();
     a.output.check(&inputs)?;
     check_size("--size", a.size)?;
+    check_pixels_memory(a.size, DISPLACE_PIXEL_BYTES)?;
     check_range("--azimuth", a.azimuth as f64, -3600.0, 3600.0)?;
     check_range("--elevation", a.elevation as f64, 0.1, 89.5)?;
     // The box (at most 2 x 2 x 2) stays inside the far plane: beyond it no fragment traces.
@@ -1024,6 +1043,7 @@ fn octree(a: &OctreeArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let inputs: Vec<&Path> = a.model.iter().map(|p| p.as_path()).collect();
     a.output.check(&inputs)?;
     check_size("--size", a.size)?;
+    check_pixels_memory(a.size, OCTREE_PIXEL_BYTES)?;
     check_range("--distance", a.distance as f64, 0.1, 1000.0)?;
     check_range("--elevation", a.elevation as f64, -89.5, 89.5)?;
     check_range("--azimuth", a.azimuth as f64, -3600.0, 3600.0)?;
