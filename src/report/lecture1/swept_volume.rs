@@ -197,6 +197,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         id: "swept-volume".into(),
         results: serde_json::to_value(&rows)?,
         load,
+        checks_made: vec!["swept volume vs closed form"],
+        paths: vec![super::paths::SWEPT_VOLUME],
         summary: "Swept volumes (a reconstruction of Kim et al. 2003): ruled quads and posed \
                   faces, their distance field on the GPU, a flood fill from the border and \
                   marching tetrahedra with vertices where the grid meets the primitives and \
