@@ -51,7 +51,8 @@ pub struct Lecture3Options {
 impl Paper for Lecture3 {
     const ID: &'static str = "lecture3";
     const TITLE: &'static str = "Lecture 3 (Oh): image pyramids, pyramidal displacement mapping, \
-                                 quadtree search of a light hierarchy, and texture tricks";
+                                 octrees, quadtree search of a light hierarchy, and texture \
+                                 tricks";
     type Options = Lecture3Options;
     type Results = Lecture3Results;
 
