@@ -59,11 +59,12 @@ enum Command {
     Mlp(cli::mlp::MlpArgs),
     /// Paper 3's Table 1 (texture creation, matrix product, sigmoid; GPU vs CPU) with GFLOP/s.
     MlpBench(BenchArgs<NoOptions>),
-    /// The tutorial's lecture 1: self-collision and pairwise triangle tests on the GPU.
+    /// The tutorial's lecture 1: self-collision, pairwise triangle tests, Voronoi diagrams,
+    /// distance fields, swept volumes, penetration depth and avatar CCD on the GPU.
     #[command(subcommand)]
     Lecture1(cli::lecture1::Lecture1Command),
-    /// The tutorial's lecture 3: image pyramids, pyramidal displacement mapping, quadtree
-    /// search of a light hierarchy, and the lecture's texture and debugging techniques.
+    /// The tutorial's lecture 3: image pyramids, pyramidal displacement mapping, octrees,
+    /// quadtree search of a light hierarchy, and the lecture's texture and debugging techniques.
     #[command(subcommand)]
     Lecture3(cli::lecture3::Lecture3Command),
     /// Lecture 3's section: every technique against its CPU reference, tables and figures.

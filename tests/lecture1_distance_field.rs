@@ -1,9 +1,11 @@
 //! Lecture 1, distance fields by rasterization: the 3D field slice by slice (and its compute
 //! counterpart) against brute force on the CPU, with and without a clamp, with degenerate
-//! triangles and at extreme scales; the 2D generalized Voronoi diagram against brute force,
+//! triangles and at extreme scales; against parry3d's closest points (an independent
+//! reference) on a cube, a sphere and a torus; the 2D generalized Voronoi diagram against brute force,
 //! ties included; and the commands' files.
 
 use classic_gpgpu::lecture1::distance_field::compute::ComputeField;
+use classic_gpgpu::lecture1::distance_field::independent::parry_field;
 use classic_gpgpu::lecture1::distance_field::point_triangle::point_triangle;
 use classic_gpgpu::lecture1::distance_field::reference::brute_force;
 use classic_gpgpu::lecture1::distance_field::slices::SliceRasterizer;
@@ -140,6 +142,49 @@ fn compute_equals_slices_and_brute_force() {
             assert!(error <= tolerance(&grid), "compute vs slices: {error}");
         }
     }
+}
+
+/// The slices' field against parry3d's closest-point query (another library's triangle
+/// projection, fp32) on a cube, a polyhedral sphere and a torus (not convex), with and
+/// without a clamp. Tolerance: the GPU's fp32 bound ([`tolerance`]) plus 1e-5 mesh units for
+/// parry3d's fp32 projection at coordinates of order 1 (these meshes are about 1 across).
+/// An odd N puts a voxel at the cube's centre, where the distance is 0.5 exactly.
+#[test]
+fn slices_equal_parry3ds_closest_points_on_convex_and_non_convex_meshes() {
+    use classic_gpgpu::mesh::generate::{cube, torus_closed, uv_sphere};
+    let ctx = context();
+    let slices = SliceRasterizer::new(&ctx).unwrap();
+    let meshes = [
+        ("cube", cube(1.0)),
+        ("sphere", uv_sphere(0.5, 12, 6)),
+        ("torus", torus_closed(0.35, 0.15, 12, 6)),
+    ];
+    for (name, mesh) in &meshes {
+        for clamp in [None, Some(0.1)] {
+            let grid = Grid::around(mesh, 15, Grid::default_margin(mesh)).unwrap();
+            let (gpu, _) = slices.field(mesh, &grid, clamp).unwrap();
+            let parry = parry_field(mesh, &grid, clamp).unwrap();
+            let tol = tolerance(&grid) + 1e-5;
+            let worst = largest_difference(&gpu, &parry);
+            assert!(
+                worst <= tol,
+                "{name}, clamp {clamp:?}: |GPU - parry3d| = {worst:e} > {tol:e}"
+            );
+            if *name == "cube" && clamp.is_none() {
+                let centre = grid.index(7, 7, 7);
+                assert!(grid.point(7, 7, 7).length() < 1e-12);
+                assert!((parry.values[centre] as f64 - 0.5).abs() < 1e-6);
+                assert!((gpu.values[centre] as f64 - 0.5).abs() < tol);
+            }
+        }
+    }
+    // The torus's hole: its centre is the inner radius away, 0.35 - 0.15 = 0.2, along the
+    // axis direction's normal plane (the polygonal tube is a little nearer than the round one).
+    let (_, torus) = &meshes[2];
+    let grid = Grid::around(torus, 15, Grid::default_margin(torus)).unwrap();
+    let parry = parry_field(torus, &grid, None).unwrap();
+    let hole = parry.values[grid.index(7, 7, 7)] as f64;
+    assert!(hole > 0.15 && hole <= 0.2 + 1e-6, "{hole}");
 }
 
 #[test]

@@ -86,7 +86,7 @@ fn the_quick_section_agrees_with_brute_force_and_writes_its_figures() {
         .iter()
         .map(|t| t["caption"].as_str().unwrap())
         .collect();
-    assert_eq!(tables.len(), 9, "{tables:?}");
+    assert_eq!(tables.len(), 10, "{tables:?}");
     for start in [
         "Where each wins",
         "Then and now",
@@ -95,12 +95,46 @@ fn the_quick_section_agrees_with_brute_force_and_writes_its_figures() {
         "Penetration depth",
         "Continuous collision for an avatar (a reconstruction)",
         "Continuous collision for an avatar: the reported time",
+        "Not built: what the sources of lecture 1 name",
     ] {
         assert!(
             tables.iter().any(|c| c.starts_with(start)),
             "{start}: {tables:?}"
         );
     }
+    // The summary names the checks the run made, and only those (run_section fails the
+    // section otherwise); every path the run took has a fidelity row.
+    let strings = |v: &serde_json::Value| {
+        let mut v: Vec<String> = v
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s.as_str().unwrap().to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    let listed = strings(&section["checks_listed"]);
+    assert_eq!(listed, strings(&section["checks_made"]));
+    assert_eq!(
+        listed.len(),
+        ::classic_gpgpu::report::lecture1::listed_checks(has_compute).len()
+    );
+    let summary = section["summary"].as_str().unwrap();
+    for check in ::classic_gpgpu::report::lecture1::listed_checks(has_compute) {
+        assert!(summary.contains(check.says), "{summary}");
+    }
+    let covered: Vec<&str> = section["fidelity"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r["paths"].as_array().cloned().unwrap_or_default())
+        .map(|p| p.as_str().unwrap().to_string().leak() as &str)
+        .collect();
+    for path in strings(&section["paths"]) {
+        assert!(covered.contains(&path.as_str()), "{path}");
+    }
+    assert!(summary.contains("parry3d"), "{summary}");
     let page = std::fs::read_to_string(out_dir.join("index.html")).unwrap();
     assert!(page.contains("reconstruction"));
     std::fs::remove_dir_all(&out_dir).ok();

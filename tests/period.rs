@@ -725,3 +725,52 @@ fn cli_report_carries_the_period_block_unless_no_period() {
     assert!(stderr.contains("has no period block"), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+/// The table agrees with itself: every format a limit names (vertex texture fetch, float
+/// blending, float filtering) is one of the chip's texture formats, and every format is
+/// one the GL layer knows by that name. The G70 once listed R16F for blending and filtering
+/// but not among its textures (Mesa's nv30_format.c has no R16F).
+#[test]
+fn every_format_a_limit_names_is_a_format_the_chip_has() {
+    let known: Vec<&str> = [
+        TextureFormat::Rgba32F,
+        TextureFormat::Rg32F,
+        TextureFormat::R32F,
+        TextureFormat::R16F,
+        TextureFormat::Rgba16F,
+        TextureFormat::R8,
+        TextureFormat::Rgba8,
+        TextureFormat::Depth32F,
+        TextureFormat::Depth24Stencil8,
+        TextureFormat::Depth32FStencil8,
+        TextureFormat::Rgba32Ui,
+    ]
+    .map(TextureFormat::name)
+    .to_vec();
+    for gpu in period::all() {
+        let has = &gpu.texture_formats.value;
+        for format in has {
+            assert!(
+                known.contains(&format.as_str()),
+                "{}: texture format {format} is not a format the GL layer makes",
+                gpu.name
+            );
+        }
+        for (limit, formats) in [
+            ("vertex_texture_formats", &gpu.vertex_texture_formats.value),
+            ("float_blending", &gpu.float_blending.value),
+            ("float_filtering", &gpu.float_filtering.value),
+        ] {
+            for format in formats {
+                assert!(
+                    has.contains(format),
+                    "{}: {limit} names {format}, which is not in its texture_formats {has:?}",
+                    gpu.name
+                );
+            }
+        }
+    }
+    // The G70's fp16 blending and filtering is of its one fp16 texture format.
+    assert_eq!(g70().float_blending.value, ["RGBA16F"]);
+    assert_eq!(g70().float_filtering.value, ["RGBA16F"]);
+}

@@ -1,7 +1,8 @@
 //! `classic-gpgpu lecture1 ...`: the tutorial's lecture 1 beyond paper 1 (`src/lecture1/`):
 //! self-collision with streaming AABBs, pairwise triangle tests with the triangles in
-//! textures (classic, or as one compute dispatch with `--formulation compute`), and a
-//! comparison of the two with brute force by triangle count. The report's `lecture1` section
+//! textures (classic, or as one compute dispatch with `--formulation compute`), a
+//! comparison of the two with brute force by triangle count, 2D Voronoi diagrams, distance
+//! fields, swept volumes, penetration depth and avatar CCD. The report's `lecture1` section
 //! (`reproduce --only lecture1`) and `view lecture1 ...` show the same techniques.
 
 use anyhow::Context as _;
@@ -37,16 +38,18 @@ pub enum Lecture1Command {
     /// count (wall-clock times, measured side by side; the renderer named).
     Compare(CompareArgs),
     /// The 2D generalized Voronoi diagram of points, segments and triangles by rasterization
-    /// (Hoff et al. 1999, exact distances written as depth: a reconstruction): per pixel the
-    /// nearest site and its distance, checked against brute force. SITES.json:
+    /// (Hoff et al. 1999): exact distances written as depth (the default, ours) or Hoff's
+    /// distance meshes (--method mesh); per pixel the nearest site and its distance, checked
+    /// against brute force. SITES.json:
     /// {"sites": [{"point": [x, y]}, {"segment": [[x, y], [x, y]]}, {"triangle": [[x, y],
     /// [x, y], [x, y]]}, ...], "domain": {"min": [x, y], "size": s}}; the domain (optional,
     /// the square the pixels cover) defaults to the sites' box made square and grown by a
     /// tenth of its side on every side. Site ids are list positions; on a tie (equal fp32
     /// depth) the smaller id wins.
     Voronoi(VoronoiArgs),
-    /// The unsigned distance field of a mesh on an N^3 grid, slice by slice (DiFi-style, a
-    /// reconstruction), written as float32 .npy indexed [z][y][x]; the grid is the cube over
+    /// The unsigned distance field of a mesh on an N^3 grid, slice by slice with exact
+    /// per-fragment distances kept by GL_MIN blending (DiFi-style, a reconstruction; not
+    /// Hoff's distance meshes), written as float32 .npy indexed [z][y][x]; the grid is the cube over
     /// the model's box grown by the margin, voxel centres at origin + spacing * (x, y, z).
     DistanceField(DistanceFieldArgs),
     /// The swept volume of a model moving along a path (Kim, Varadhan, Lin & Manocha 2003, a

@@ -29,8 +29,11 @@
 //! compile errors ([`crate::gl::Program`] names the file and line, with the source around it).
 //! [`octree`]: an occupancy octree of a point set built by reduction passes and ray cast in
 //! the fragment shader, against a flat voxel walk and the CPU.
-//! Not built: subsurface scattering and environment lighting (named by the programme and the
-//! light-hierarchy abstract).
+//! The light hierarchy serves the three uses its abstract names: indirect light from VPLs,
+//! subsurface scattering (irradiance samples and Jensen's dipole) and environment light (a
+//! sky of directional lights), each against the brute-force sum. What the sources name and
+//! this module does not build is the report's "not built" table
+//! (`crate::report::not_built::LECTURE3`).
 //!
 //! Renderer notes found on the way (Mesa 22.3): softpipe takes `texelFetch`'s level of detail
 //! from the first pixel of each 2x2 quad (hence [`pyramid_atlas`]) and read row 0 for row 1 of

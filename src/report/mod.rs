@@ -8,10 +8,12 @@
 //! ([`bench_command`]) and `reproduce` both go through [`run_section`].
 
 pub mod blocks;
+pub mod checks;
 pub mod guide;
 mod html;
 pub mod lecture1;
 pub mod lecture3;
+pub mod not_built;
 pub mod paper1;
 pub mod paper2;
 pub mod paper3;
@@ -105,6 +107,13 @@ pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyho
             row.feature
         );
     }
+    checks::verify(
+        P::ID,
+        &section.checks_listed,
+        &section.checks_made,
+        &section.paths,
+        &section.fidelity,
+    )?;
     Ok(section)
 }
 
@@ -163,6 +172,16 @@ pub struct Section {
     pub figures: Vec<Figure>,
     /// Which GL feature the paper used and where this code uses it.
     pub fidelity: Vec<Fidelity>,
+    /// The checks the summary names ([`checks::Check`] ids, from the section's list).
+    #[serde(default)]
+    pub checks_listed: Vec<String>,
+    /// The checks the run made, recorded by the code that made them.
+    #[serde(default)]
+    pub checks_made: Vec<String>,
+    /// The paths the run took (methods, formulations, scenes): each must be covered by a
+    /// fidelity row ([`Fidelity::paths`]).
+    #[serde(default)]
+    pub paths: Vec<String>,
     /// Every measured number, machine readable.
     pub results: serde_json::Value,
     /// Wall time of the section's run, s (on a shared machine, see `cpu_s`).
@@ -208,6 +227,9 @@ pub struct Fidelity {
     pub code: String,
     /// What differs from the paper and why ("none" when the code does what the paper says).
     pub deviation: String,
+    /// The run paths this row speaks for ([`Section::paths`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub paths: Vec<String>,
 }
 
 impl Fidelity {
@@ -217,7 +239,14 @@ impl Fidelity {
             paper: paper.into(),
             code: code.into(),
             deviation: deviation.into(),
+            paths: Vec::new(),
         }
+    }
+
+    /// The same row, covering the run paths `paths`.
+    pub fn covers(mut self, paths: &[&str]) -> Fidelity {
+        self.paths.extend(paths.iter().map(|p| p.to_string()));
+        self
     }
 }
 

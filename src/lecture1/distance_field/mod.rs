@@ -10,13 +10,16 @@
 //! triangle's region (its screen rectangle in a slice grown by the clamp distance, or the whole
 //! slice without a clamp), GL_MIN blending into an R32F target, one readback per slice
 //! ([`slices`]); and the compute-shader counterpart ([`compute`], OpenGL 4.3, one invocation
-//! per voxel over every triangle). [`reference`](mod@reference) is brute force on the CPU in f64.
+//! per voxel over every triangle). [`reference`](mod@reference) is brute force on the CPU in f64
+//! with the same point-triangle distance (it checks the GPU's arithmetic, not the method);
+//! [`independent`] is the independent check, parry3d's closest-point query on the mesh.
 //!
 //! The grid ([`Grid`]) is a cube of `n^3` voxels over the mesh's bounding box grown by a
 //! margin, centred on the box; values are indexed `[z][y][x]` (x fastest).
 
 pub mod compute;
 pub mod grid;
+pub mod independent;
 pub mod point_triangle;
 pub mod reference;
 pub mod slices;

@@ -4,7 +4,7 @@
 //!
 //! | step | file |
 //! |---|---|
-//! | n + 2 passes for all bodies, as tiles of one target | [`batch`] (on [`crate::mass::peel`]) |
+//! | n + 2 passes for all bodies, as tiles of one target; eq. 4's four integrands in one render target | [`batch`] (on [`crate::mass::peel`]) |
 //! | the CPU reference: clip + Mirtich | [`analytic`] |
 //! | the compute formulation: clip in the kernel, one dispatch | [`compute`] |
 //! | gravity, buoyancy [eq. 7], drag (optional damping) | [`forces`] |

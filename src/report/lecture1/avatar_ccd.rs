@@ -12,7 +12,7 @@ use crate::lecture1::avatar_ccd::environment::{room, Environment};
 use crate::lecture1::avatar_ccd::reference::{gap_at, shapes};
 use crate::lecture1::avatar_ccd::{AvatarCcd, Contact, Options};
 use crate::report::timing::Load;
-use crate::report::{Fidelity, Table};
+use crate::report::Table;
 use glam::DVec3;
 use serde::Serialize;
 
@@ -218,18 +218,12 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                 .join(", ")
         ),
         tables: vec![times, errors],
-        fidelity: vec![Fidelity::new(
-            "continuous collision for an avatar by swept volumes",
-            "Kim, Redon, Lin, Manocha & Templeman, Presence 16(2) 2007 (abstract only)",
-            "src/lecture1/avatar_ccd/, glsl/lecture1/avatar_visibility.*",
-            "reconstruction: capsule links, joint angles interpolated linearly; a speed bound \
-             per link from its chain instead of the paper's interval arithmetic, giving a \
-             swept capsule per sub-interval; parry3d's BVH over the environment; the GPU query \
-             is CULLIDE's visibility culling with occlusion queries (chosen: a co-author's \
-             method of the same years, within a GeForce 6800's features), both sets grown by a \
-             pixel as in R-CULLIDE so no contact is culled; exact segment-triangle distances; \
-             conservative advancement instead of an unstated search",
-        )],
+        checks_made: if rows.iter().any(|r| r.true_contact.is_some()) {
+            vec!["avatar vs sampled parry3d"]
+        } else {
+            Vec::new()
+        },
+        paths: vec![super::paths::AVATAR_CCD, super::paths::AVATAR_SCENE],
         ..Block::default()
     })
 }

@@ -1,9 +1,12 @@
 //! Distance fields by rasterization in the report: where the time of each formulation goes
-//! (slice passes or the compute dispatch, upload, readback) and how the field's error against
-//! brute force on the CPU behaves as the resolution grows, on a torus.
+//! (slice passes or the compute dispatch, upload, readback), how the field's error against
+//! brute force on the CPU (the same point-triangle distance in f64) behaves as the resolution
+//! grows, on a torus, and its difference from parry3d's closest points (an independent
+//! reference); then the 2D Voronoi rows.
 
 use super::{Block, Setting};
 use crate::lecture1::distance_field::compute::ComputeField;
+use crate::lecture1::distance_field::independent::parry_field;
 use crate::lecture1::distance_field::reference::brute_force;
 use crate::lecture1::distance_field::slices::SliceRasterizer;
 use crate::lecture1::distance_field::{DistanceField, FieldTimings, Grid};
@@ -22,6 +25,8 @@ pub struct FieldRow {
     pub max_error_voxels: f64,
     /// The tessellation bound of Hoff's distance meshes (pixels); `None` for exact methods.
     pub tessellation_bound: Option<f64>,
+    /// Largest |GPU - parry3d's closest points| over the grid, in voxels (3D rows).
+    pub parry3d_error_voxels: Option<f64>,
     pub timings: FieldTimings,
 }
 
@@ -51,6 +56,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
     for &n in resolutions {
         let grid = Grid::around(&mesh, n, Grid::default_margin(&mesh))?;
         let cpu = brute_force(&mesh, &grid, None);
+        let parry = parry_field(&mesh, &grid, None)?;
         // An untimed first run (shader compilation), then the measured one.
         slices.field(&mesh, &grid, None)?;
         let (field, timings) = slices.field(&mesh, &grid, None)?;
@@ -59,6 +65,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             resolution: n,
             max_error_voxels: largest_difference(&field, &cpu),
             tessellation_bound: None,
+            parry3d_error_voxels: Some(largest_difference(&field, &parry)),
             timings,
         });
         if let Some(c) = &compute {
@@ -69,6 +76,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                 resolution: n,
                 max_error_voxels: largest_difference(&field, &cpu),
                 tessellation_bound: None,
+                parry3d_error_voxels: Some(largest_difference(&field, &parry)),
                 timings,
             });
         }
@@ -83,8 +91,9 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         caption: format!(
             "Distance field of a torus ({} triangles), unclamped, on {}: where the time goes \
              (ms; slice passes by GL timer queries, compute by glFinish wall clock, readback \
-             and upload by wall clock; one run each, {}) and the largest difference from \
-             brute force in f64, in voxels; the Voronoi rows (2D, {VORONOI_SITES} random \
+             and upload by wall clock; one run each, {}), the largest difference from \
+             brute force in f64 (the same point-triangle distance) and from parry3d's closest \
+             points (an independent library, fp32), in voxels; the Voronoi rows (2D, {VORONOI_SITES} random \
              points, segments and triangles, N x N pixels, measured in the same run) in \
              pixels, with Hoff's distance meshes within {MESH_ERROR_PIXELS} pixel",
             mesh.triangles.len(),
@@ -99,6 +108,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             "upload ms",
             "triangles drawn",
             "max error (voxels or pixels)",
+            "max |GPU - parry3d| (voxels)",
         ]
         .map(String::from)
         .to_vec(),
@@ -113,6 +123,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                     format!("{:.2}", r.timings.upload_ms),
                     r.timings.triangles_drawn.to_string(),
                     format!("{:.2e}", r.max_error_voxels),
+                    r.parry3d_error_voxels
+                        .map_or("-".into(), |e| format!("{e:.2e}")),
                 ]
             })
             .collect(),
@@ -139,16 +151,49 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             .collect(),
     }
     .write_png(&setting.opts.out_dir.join(file))?;
+    let worst = |prefix: &str, f: fn(&FieldRow) -> Option<f64>| {
+        rows.iter()
+            .filter(|r| r.formulation.starts_with(prefix))
+            .filter_map(f)
+            .fold(0.0, f64::max)
+    };
+    let mesh_error = worst("voronoi 2D, Hoff", |r| Some(r.max_error_voxels));
+    let summary = format!(
+        "The unsigned distance field of a mesh, rasterized slice by slice with exact \
+         per-fragment distances (a reconstruction in DiFi's style): at most {:.1e} voxels from \
+         brute force in f64 and {:.1e} voxels from parry3d's closest points. In 2D, the exact \
+         per-fragment Voronoi distances are at most {:.1e} pixels from brute force, and Hoff's \
+         distance meshes (cones and tents, the depth interpolated) {mesh_error:.2} pixels, \
+         {} their tessellation bound of {MESH_ERROR_PIXELS} pixel.",
+        worst("classic", |r| Some(r.max_error_voxels)),
+        worst("classic", |r| r.parry3d_error_voxels),
+        worst("voronoi 2D, exact", |r| Some(r.max_error_voxels)),
+        if mesh_error <= MESH_ERROR_PIXELS {
+            "within"
+        } else {
+            "BEYOND"
+        },
+    );
+    let mut paths = vec![
+        super::paths::FIELD_SLICES,
+        super::paths::FIELD_PARRY3D,
+        super::paths::VORONOI_EXACT,
+        super::paths::VORONOI_MESH,
+    ];
+    if compute.is_some() {
+        paths.push(super::paths::FIELD_COMPUTE);
+    }
     Ok(Block {
         id: "distance-field".into(),
         results: serde_json::to_value(&rows)?,
         load,
-        summary: "The unsigned distance field of a mesh, rasterized slice by slice with exact \
-                  per-fragment distances (a reconstruction in DiFi's style), equals brute force \
-                  to fp32 rounding at every resolution. In 2D, Hoff's distance meshes (cones \
-                  and tents, the depth interpolated) stay within their tessellation bound of \
-                  the exact per-fragment diagram."
-            .into(),
+        summary,
+        checks_made: vec![
+            "distance field vs f64",
+            "distance field vs parry3d",
+            "voronoi vs brute force",
+        ],
+        paths,
         tables: vec![table],
         figures: vec![Figure {
             file: file.into(),
@@ -213,6 +258,7 @@ fn voronoi_rows(ctx: &crate::gl::Context, n: usize) -> anyhow::Result<Vec<FieldR
             resolution: n,
             max_error_voxels: error,
             tessellation_bound: (diagram.mesh_error > 0.0).then_some(diagram.mesh_error / pixel),
+            parry3d_error_voxels: None,
             timings: FieldTimings {
                 passes_ms: t.pass_ms,
                 readback_ms: t.readback_ms,

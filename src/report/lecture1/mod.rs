@@ -1,15 +1,18 @@
 //! The lecture-1 section (the tutorial's first lecture beyond paper 1's streaming AABBs):
 //! self-collision of deforming meshes, pairwise triangle tests with the triangles in
-//! textures, and their compute counterpart (`src/lecture1/`), each GPU path beside its CPU
-//! reference. Only the abstracts and introductions of the lecture's sources are public
-//! (`lecture1-sources.md`): the section says which parts are reconstructions.
+//! textures and their compute counterpart, distance fields and 2D generalized Voronoi
+//! diagrams, swept volumes, penetration depth and continuous collision for an avatar
+//! (`src/lecture1/`). Only the abstracts and introductions of the lecture's sources are public
+//! (`lecture1-sources.md`): the fidelity table says which parts are reconstructions, and the
+//! "not built" table what the sources name that the project does not do.
 //!
 //! The section is a list of blocks ([`BLOCKS`]), one file each. A block measures its part
-//! and brings its own summary sentence, tables, figures, claims, fidelity rows and typed
-//! results; the section puts them together in the list's order. Another part of lecture 1
-//! (penetration depth, distance fields, swept volumes) is one more file here with a
-//! `pub fn block(setting: &Setting) -> anyhow::Result<Block>`, its `mod` line, and its line
-//! in [`BLOCKS`].
+//! and brings its own summary sentence, tables, figures, claims and typed results, and
+//! records the checks it made ([`CHECKS`]) and the paths it took ([`paths`]); the fidelity
+//! rows are in one file, `fidelity.rs`, and [`crate::report::run_section`] fails the section
+//! when a listed check was not made or a path taken has no row. Another part of lecture 1 is
+//! one more file here with a `pub fn block(setting: &Setting) -> anyhow::Result<Block>`, its
+//! `mod` line, its line in [`BLOCKS`], its checks and paths, and its fidelity rows.
 
 pub mod avatar_ccd;
 pub mod distance_field;
@@ -20,6 +23,7 @@ mod self_collision;
 pub mod swept_volume;
 mod then_and_now;
 
+use super::checks::{self, Check};
 use super::timing::{Load, Runs};
 use super::{BenchOptions, Claim, Fidelity, Figure, NoOptions, Paper, Section, Table};
 use serde::Serialize;
@@ -66,7 +70,108 @@ pub struct Block {
     pub claims: Vec<Claim>,
     #[serde(skip)]
     pub fidelity: Vec<Fidelity>,
+    /// The checks of [`CHECKS`] the block made, recorded where it made them.
+    pub checks_made: Vec<&'static str>,
+    /// The paths ([`paths`]) the block took.
+    pub paths: Vec<&'static str>,
 }
+
+/// The paths a lecture-1 run can take; each is covered by a fidelity row.
+pub mod paths {
+    pub const SELF_COLLISION: &str = "self-collision: streaming AABBs, one model against itself";
+    pub const PAIRWISE: &str = "pairwise: triangles in textures, the pair quad";
+    pub const PAIRWISE_COMPUTE: &str = "pairwise: one compute dispatch";
+    pub const FIELD_SLICES: &str = "distance field: slices, exact distances, GL_MIN";
+    pub const FIELD_COMPUTE: &str = "distance field: one compute dispatch";
+    pub const FIELD_PARRY3D: &str = "distance field: parry3d's closest points as reference";
+    pub const VORONOI_EXACT: &str = "voronoi: exact distances as depth";
+    pub const VORONOI_MESH: &str = "voronoi: Hoff's distance meshes";
+    pub const SWEPT_VOLUME: &str = "swept volume: field, flood fill, marching tetrahedra";
+    pub const PENETRATION: &str = "penetration depth: Minkowski sums on a cube map";
+    pub const AVATAR_CCD: &str = "avatar CCD: swept capsules, BVH, occlusion culling";
+    pub const AVATAR_SCENE: &str = "avatar CCD: the 13-link figure in the room";
+}
+
+/// Every check the section can make; the summary names the ones a run made from this list
+/// (those of [`NEEDS_COMPUTE`] only where OpenGL 4.3 runs).
+pub const CHECKS: &[Check] = &[
+    Check {
+        id: "self-collision vs brute force",
+        says: "every self-collision frame's pairs from the GPU against brute force on the CPU \
+               with paper 1's exact triangle predicate",
+    },
+    Check {
+        id: "pairwise vs brute force",
+        says: "the pair quad's pairs against the same brute force, by triangle count and on two \
+               models, and against streaming AABBs on the two models",
+    },
+    Check {
+        id: "pairwise compute vs classic",
+        says: "the compute dispatch's pairs against the pair quad's and brute force's",
+    },
+    Check {
+        id: "distance field vs f64",
+        says: "the distance field of the slices (and of the compute pass) against the same \
+               point-triangle distance in f64 on the CPU, which checks the GPU, not the method",
+    },
+    Check {
+        id: "distance field vs parry3d",
+        says: "the slices' distance field against parry3d's closest-point query on the mesh \
+               (an independent library)",
+    },
+    Check {
+        id: "voronoi vs brute force",
+        says: "the 2D Voronoi distances, exact and by Hoff's distance meshes, against brute \
+               force per pixel in f64",
+    },
+    Check {
+        id: "swept volume vs closed form",
+        says: "the swept volumes of three motions against their volumes in closed form",
+    },
+    Check {
+        id: "penetration vs exact depth",
+        says: "the penetration depth's upper bound and refined depth against the exact depth \
+               (a closed form, or the nearest face of one convex Minkowski sum)",
+    },
+    Check {
+        id: "avatar vs sampled parry3d",
+        says: "the avatar's time of contact against the first contact found by bisection on \
+               parry3d's distances",
+    },
+];
+
+/// The checks that need OpenGL 4.3 (compute).
+pub const NEEDS_COMPUTE: &[&str] = &["pairwise compute vs classic"];
+
+/// The checks a run on a context with or without compute claims.
+pub fn listed_checks(compute: bool) -> Vec<Check> {
+    CHECKS
+        .iter()
+        .filter(|c| compute || !NEEDS_COMPUTE.contains(&c.id))
+        .copied()
+        .collect()
+}
+
+/// Every fidelity row of the section.
+pub fn fidelity_rows() -> Vec<Fidelity> {
+    fidelity::rows()
+}
+
+/// The paths every run can take.
+pub const ALL_PATHS: &[&str] = &[
+    paths::SELF_COLLISION,
+    paths::PAIRWISE,
+    paths::PAIRWISE_COMPUTE,
+    paths::FIELD_SLICES,
+    paths::FIELD_COMPUTE,
+    paths::FIELD_PARRY3D,
+    paths::VORONOI_EXACT,
+    paths::VORONOI_MESH,
+    paths::SWEPT_VOLUME,
+    paths::PENETRATION,
+    paths::AVATAR_CCD,
+    paths::AVATAR_SCENE,
+];
 
 /// How a block is measured.
 pub type Measure = fn(&Setting) -> anyhow::Result<Block>;
@@ -91,6 +196,8 @@ pub struct Lecture1Results {
     pub quick: bool,
     /// How often each repeated timing ran.
     pub runs: String,
+    /// Whether OpenGL 4.3 (compute) ran, so that its checks are claimed.
+    pub compute: bool,
     pub blocks: Vec<Block>,
 }
 
@@ -99,8 +206,10 @@ pub struct Lecture1;
 
 impl Paper for Lecture1 {
     const ID: &'static str = "lecture1";
-    const TITLE: &'static str = "Lecture 1 (Kim): self-collision and pairwise triangle tests on \
-                                 the GPU, beyond paper 1's streaming AABBs";
+    const TITLE: &'static str = "Lecture 1 (Kim): self-collision, pairwise triangle tests, \
+                                 distance fields and Voronoi diagrams, swept volumes, \
+                                 penetration depth and avatar CCD on the GPU, beyond paper 1's \
+                                 streaming AABBs";
     type Options = NoOptions;
     type Results = Lecture1Results;
 
@@ -126,6 +235,10 @@ impl Paper for Lecture1 {
             software: setting.software,
             quick: opts.quick,
             runs: setting.runs.in_words(),
+            compute: opts
+                .gl
+                .require_compute("lecture 1's compute checks")
+                .is_ok(),
             blocks,
         })
     }
@@ -134,6 +247,7 @@ impl Paper for Lecture1 {
         let mut section = Section {
             summary: summary(results),
             fidelity: fidelity::rows(),
+            checks_listed: checks::ids(&listed_checks(results.compute)),
             ..Section::default()
         };
         for block in &results.blocks {
@@ -141,22 +255,35 @@ impl Paper for Lecture1 {
             section.figures.extend(block.figures.iter().cloned());
             section.claims.extend(block.claims.iter().cloned());
             section.fidelity.extend(block.fidelity.iter().cloned());
+            section
+                .checks_made
+                .extend(block.checks_made.iter().map(|c| c.to_string()));
+            section
+                .paths
+                .extend(block.paths.iter().map(|p| p.to_string()));
         }
+        section.tables.push(super::not_built::table(
+            "lecture 1",
+            super::not_built::LECTURE1,
+        ));
         Ok(section)
     }
 }
 
-fn summary(r: &Lecture1Results) -> String {
+/// The section's summary: what runs, the checks made (from [`CHECKS`]), each block's result.
+pub fn summary(r: &Lecture1Results) -> String {
     let mut text = format!(
         "Lecture 1 applies rasterization, occlusion queries and texture lookups to proximity \
          problems; paper 1's streaming AABBs are their own section. Only the abstracts and \
          introductions of the lecture's other sources are public, so what runs here are \
-         reconstructions (see the fidelity table): self-collision is paper 1's pipeline with one \
-         model against itself, and the pairwise tests with triangles in textures follow what \
-         paper 1 says of Choi, Kim & Kim 2006 (their layout, pass and test are ours). Every GPU \
-         answer is compared with brute force on the CPU with the same exact predicate, in the \
-         same run, on {}.",
-        r.renderer
+         reconstructions (see the fidelity table, and the 'not built' table for what the \
+         sources name that is not done): self-collision is paper 1's pipeline with one model \
+         against itself, the pairwise tests with triangles in textures follow what paper 1 \
+         says of Choi, Kim & Kim 2006 (their layout, pass and test are ours), and distance \
+         fields, Voronoi diagrams, swept volumes, penetration depth and avatar CCD follow \
+         their abstracts, on {}. {}",
+        r.renderer,
+        checks::sentence(&listed_checks(r.compute))
     );
     for block in &r.blocks {
         if !block.summary.is_empty() {

@@ -149,6 +149,12 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                 "DO NOT ALL EQUAL"
             }
         ),
+        checks_made: vec!["pairwise vs brute force"],
+        paths: if run.compute_unavailable.is_none() {
+            vec![super::paths::PAIRWISE, super::paths::PAIRWISE_COMPUTE]
+        } else {
+            vec![super::paths::PAIRWISE]
+        },
         tables: vec![count_table(setting, &run, load), agreement_table(&run)],
         figures: vec![
             Figure {

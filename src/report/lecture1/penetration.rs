@@ -167,7 +167,7 @@ pub fn report(opts: &BenchOptions) -> anyhow::Result<(PenetrationErrors, Table, 
 }
 
 /// The section's penetration-depth block: the error table and figure, what the rows say in
-/// one sentence, and the fidelity row.
+/// one sentence (its fidelity row is in `fidelity.rs`).
 pub fn block(setting: &super::Setting) -> anyhow::Result<super::Block> {
     let bar = setting.stage("penetration depth");
     let (errors, table, figure) = report(setting.opts)?;
@@ -194,15 +194,8 @@ pub fn block(setting: &super::Setting) -> anyhow::Result<super::Block> {
         tables: vec![table],
         figures: vec![figure],
         claims: Vec::new(),
-        fidelity: vec![crate::report::Fidelity::new(
-            "penetration depth by rasterized Minkowski sums",
-            "Kim, Otaduy, Lin & Manocha, SCA 2002 (abstract and introduction only)",
-            "src/lecture1/penetration/, glsl/lecture1/penetration_*",
-            "reconstruction: convex pieces (a non-convex one refused), pairwise sums by \
-             parry3d's hull, a cube map around the origin whose passes raise each ray's exit \
-             from the union by MAX blending until an occlusion query counts no raise, a \
-             min-reduction read back; refined on the CPU from the planes of the sums near \
-             the bound (the paper's refinement is not public)",
-        )],
+        fidelity: Vec::new(),
+        checks_made: vec!["penetration vs exact depth"],
+        paths: vec![super::paths::PENETRATION],
     })
 }

@@ -139,6 +139,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         figures,
         results: serde_json::to_value(&runs)?,
         load,
+        checks_made: vec!["self-collision vs brute force"],
+        paths: vec![super::paths::SELF_COLLISION],
         ..Block::default()
     })
 }

@@ -86,8 +86,19 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         },
         (None, Ok(())) => anyhow::bail!("the compute pair test could not be built"),
     };
+    let compared = result.same_answer.is_some();
     Ok(Block {
         summary: String::new(),
+        checks_made: if compared {
+            vec!["pairwise compute vs classic"]
+        } else {
+            Vec::new()
+        },
+        paths: if compared {
+            vec![super::paths::PAIRWISE_COMPUTE]
+        } else {
+            Vec::new()
+        },
         tables: vec![result.table(&setting.renderer)],
         results: serde_json::to_value(&result)?,
         load,

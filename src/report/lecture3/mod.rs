@@ -1,8 +1,14 @@
 //! The lecture-3 section (the tutorial's third lecture, beside paper 3): the image pyramid,
-//! pyramidal displacement mapping, the light hierarchy's quadtree search, and the lecture's
-//! texture and debugging techniques, each GPU path beside its CPU reference
-//! (`src/lecture3/`). The sources' texts are not available; the fidelity table says what is
-//! reconstructed.
+//! pyramidal displacement mapping with its minification prefilter, an octree ray cast, the
+//! light hierarchy's quadtree search with its uses (indirect light, subsurface scattering,
+//! environment light), and the lecture's texture and debugging techniques, each GPU path
+//! beside its CPU reference (`src/lecture3/`). The sources' texts are not available; the
+//! fidelity table says what is reconstructed and the "not built" table what is not done.
+//!
+//! The summary names the checks from one list ([`CHECKS`]); [`checks_made`] reads from the
+//! results which of them the run made, and [`paths_taken`] which paths it took, and
+//! [`crate::report::run_section`] fails the section when they disagree with the list or a
+//! path has no fidelity row.
 
 mod bench;
 mod claims;
@@ -26,7 +32,8 @@ pub use octree::OctreeRow;
 pub use prefilter::{prefilter_quality, PrefilterQuality, PrefilterRow};
 pub use results::*;
 
-use super::{BenchOptions, Paper, Section};
+use super::checks::{self, Check};
+use super::{BenchOptions, Fidelity, Paper, Section};
 use std::path::PathBuf;
 
 /// The lecture-3 section.
@@ -44,7 +51,8 @@ pub struct Lecture3Options {
 impl Paper for Lecture3 {
     const ID: &'static str = "lecture3";
     const TITLE: &'static str = "Lecture 3 (Oh): image pyramids, pyramidal displacement mapping, \
-                                 quadtree search of a light hierarchy, and texture tricks";
+                                 octrees, quadtree search of a light hierarchy, and texture \
+                                 tricks";
     type Options = Lecture3Options;
     type Results = Lecture3Results;
 
@@ -80,24 +88,171 @@ impl Paper for Lecture3 {
             claims: claims::claims(results),
             figures,
             fidelity: fidelity::rows(),
+            checks_listed: checks::ids(CHECKS),
+            checks_made: checks_made(results).into_iter().map(String::from).collect(),
+            paths: paths_taken(results).into_iter().map(String::from).collect(),
             ..Section::default()
+        })
+        .map(|mut s| {
+            s.tables.push(super::not_built::table(
+                "lecture 3",
+                super::not_built::LECTURE3,
+            ));
+            s
         })
     }
 }
 
-fn summary(r: &Lecture3Results) -> String {
+/// Every check of the section, in the summary's order.
+pub const CHECKS: &[Check] = &[
+    Check {
+        id: "pyramid vs CPU",
+        says: "the max, min and mean image pyramids against the CPU's (max and min bit for bit)",
+    },
+    Check {
+        id: "displacement vs exact tracer",
+        says: "pyramidal displacement mapping and relief mapping against an exact f64 ray \
+               tracer of the same bilinear height field",
+    },
+    Check {
+        id: "prefilter vs CPU rule",
+        says: "the minification prefilter against the CPU reference of the same rule",
+    },
+    Check {
+        id: "octree vs CPU",
+        says: "the octree's levels and its ray cast (and the flat voxel walk) against the CPU",
+    },
+    Check {
+        id: "light tree vs brute force",
+        says: "the light hierarchy's quadtree search against the brute-force sum of every \
+               light, for indirect light, subsurface scattering and environment light",
+    },
+    Check {
+        id: "function vs computed",
+        says: "a function in a 1D texture against computing it",
+    },
+    Check {
+        id: "random vs CPU",
+        says: "the random numbers generated into a texture against the CPU generator, bit \
+               for bit",
+    },
+    Check {
+        id: "depth mask vs CPU",
+        says: "the if removed with the depth buffer: its picture against the CPU's and its \
+               shader runs counted",
+    },
+    Check {
+        id: "histogram vs CPU",
+        says: "the histogram by additive blending against the CPU's",
+    },
+];
+
+/// The checks of [`CHECKS`] whose comparisons are in `r`.
+pub fn checks_made(r: &Lecture3Results) -> Vec<&'static str> {
+    let mut made = Vec::new();
+    let mut add = |cond: bool, id: &'static str| {
+        if cond {
+            made.push(id);
+        }
+    };
+    add(!r.pyramid.is_empty(), "pyramid vs CPU");
+    add(
+        !r.displacement.artifacts.is_empty(),
+        "displacement vs exact tracer",
+    );
+    add(!r.prefilter.is_empty(), "prefilter vs CPU rule");
+    add(!r.octree.is_empty(), "octree vs CPU");
+    add(
+        !r.light.rows.is_empty()
+            && !r.light_uses.subsurface.rows.is_empty()
+            && !r.light_uses.environment.rows.is_empty(),
+        "light tree vs brute force",
+    );
+    add(!r.function.errors.is_empty(), "function vs computed");
+    add(!r.random.values.is_empty(), "random vs CPU");
+    add(!r.depth_mask.rows.is_empty(), "depth mask vs CPU");
+    add(!r.histogram.is_empty(), "histogram vs CPU");
+    made
+}
+
+/// The paths every run of the section takes (each has a fidelity row).
+pub mod paths {
+    pub const PYRAMID: &str = "image pyramid by level passes, read from an atlas";
+    pub const PYRAMID_TRACE: &str = "displacement: top-down traversal of the max pyramid";
+    pub const RELIEF: &str = "displacement: relief mapping's linear + binary search";
+    pub const PREFILTER: &str = "displacement: minification prefilter";
+    pub const OCTREE: &str = "octree: built by reduction passes, ray cast per pixel";
+    pub const LIGHT_TREE: &str = "light hierarchy: VPL pyramid, quadtree gather";
+    pub const SUBSURFACE: &str = "light hierarchy: subsurface scattering";
+    pub const ENVIRONMENT: &str = "light hierarchy: environment light";
+    pub const FUNCTION: &str = "function in a 1D texture";
+    pub const RANDOM: &str = "random numbers in an integer texture";
+    pub const DEPTH_MASK: &str = "if removed by the depth test";
+    pub const HISTOGRAM: &str = "histogram by additive blending";
+}
+
+/// The paths the run in `r` took.
+pub fn paths_taken(r: &Lecture3Results) -> Vec<&'static str> {
+    let mut taken = Vec::new();
+    let mut add = |cond: bool, path: &'static str| {
+        if cond {
+            taken.push(path);
+        }
+    };
+    add(!r.pyramid.is_empty(), paths::PYRAMID);
+    add(!r.displacement.artifacts.is_empty(), paths::PYRAMID_TRACE);
+    add(!r.displacement.artifacts.is_empty(), paths::RELIEF);
+    add(!r.prefilter.is_empty(), paths::PREFILTER);
+    add(!r.octree.is_empty(), paths::OCTREE);
+    add(!r.light.rows.is_empty(), paths::LIGHT_TREE);
+    add(!r.light_uses.subsurface.rows.is_empty(), paths::SUBSURFACE);
+    add(
+        !r.light_uses.environment.rows.is_empty(),
+        paths::ENVIRONMENT,
+    );
+    add(!r.function.errors.is_empty(), paths::FUNCTION);
+    add(!r.random.values.is_empty(), paths::RANDOM);
+    add(!r.depth_mask.rows.is_empty(), paths::DEPTH_MASK);
+    add(!r.histogram.is_empty(), paths::HISTOGRAM);
+    taken
+}
+
+/// Every path a run can take.
+pub const ALL_PATHS: &[&str] = &[
+    paths::PYRAMID,
+    paths::PYRAMID_TRACE,
+    paths::RELIEF,
+    paths::PREFILTER,
+    paths::OCTREE,
+    paths::LIGHT_TREE,
+    paths::SUBSURFACE,
+    paths::ENVIRONMENT,
+    paths::FUNCTION,
+    paths::RANDOM,
+    paths::DEPTH_MASK,
+    paths::HISTOGRAM,
+];
+
+/// Every fidelity row of the section.
+pub fn fidelity_rows() -> Vec<Fidelity> {
+    fidelity::rows()
+}
+
+/// The section's summary: the techniques, the checks made (from [`CHECKS`]), how timed.
+pub fn summary(r: &Lecture3Results) -> String {
     format!(
-        "The seven techniques of lecture 3 beyond paper 3's network, each run on the GPU and \
-         checked against its CPU reference in the same run: (1) max, min and mean image pyramids, (2) \
-         pyramidal displacement mapping (Oh, Ki & Lee, VRST 2006) against an exact f64 ray \
-         tracer of the same bilinear height field and against relief mapping's linear + binary \
-         search, (3) a light hierarchy of virtual point lights searched as a quadtree in the \
-         fragment shader (Ki & Oh 2008) against the brute-force sum, (4) a function in a 1D \
-         texture, (5) random numbers generated into a texture, (6) an if removed with the depth \
-         buffer, (7) a histogram by additive blending. The sources' full texts are not \
-         available: the algorithms are reconstructed from their abstracts and the standard \
-         formulations (see the fidelity table). Times are medians ({} per timing; results.json \
+        "The techniques of lecture 3 beyond paper 3's network, each run on the GPU: (1) max, \
+         min and mean image pyramids, (2) pyramidal displacement mapping (Oh, Ki & Lee, VRST \
+         2006) with a minification prefilter, beside relief mapping's linear + binary search, \
+         (3) an octree of a point set built by reduction passes and ray cast per pixel, (4) a \
+         light hierarchy of virtual point lights searched as a quadtree in the fragment shader \
+         (Ki & Oh 2008), for indirect light, subsurface scattering and environment light, (5) a \
+         function in a 1D texture, (6) random numbers generated into a texture, (7) an if \
+         removed with the depth buffer, (8) a histogram by additive blending. {} The sources' \
+         full texts are not available: the algorithms are reconstructed from their abstracts \
+         and the standard formulations (see the fidelity table). Times are medians ({} per timing; results.json \
          gives each timing's runs, min and max) on {}, GPU times by {}{}.{}",
+        checks::sentence(CHECKS),
         r.runs,
         r.renderer,
         r.gpu_timing,

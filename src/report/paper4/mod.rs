@@ -70,9 +70,51 @@ impl Paper for Paper4 {
             claims: claims::claims(results, paper),
             figures,
             fidelity: fidelity::rows(),
+            paths: paths_taken(results).into_iter().map(String::from).collect(),
             ..Section::default()
         })
     }
+}
+
+/// The paths a paper-4 run can take; each is covered by a fidelity row.
+pub mod paths {
+    pub const MASS_LISTING: &str = "mass properties: the section 3.1 listing, three targets";
+    pub const PEEL: &str = "depth peeling, peels summed as they come";
+    pub const REDUCE: &str = "ping-pong reduction of the integrand targets";
+    pub const ANALYTIC: &str = "Mirtich's analytic method as the baseline";
+    pub const BUOYANCY_PASSES: &str = "buoyancy: n + 2 passes, eq. 4's integrands in one target";
+    pub const FORCES: &str = "buoyancy: gravity, buoyancy and quadratic drag (c = 1)";
+    pub const INTEGRATOR: &str = "buoyancy: semi-implicit Euler, dt = 1/60 s";
+    pub const SCENE: &str = "buoyancy: the 50-body scene with a closed teapot";
+    pub const COMPUTE: &str = "mass properties and buoyancy as compute passes";
+}
+
+/// Every path a run can take.
+pub const ALL_PATHS: &[&str] = &[
+    paths::MASS_LISTING,
+    paths::PEEL,
+    paths::REDUCE,
+    paths::ANALYTIC,
+    paths::BUOYANCY_PASSES,
+    paths::FORCES,
+    paths::INTEGRATOR,
+    paths::SCENE,
+    paths::COMPUTE,
+];
+
+/// The paths the run in `results` took: every one but the compute passes, which run only
+/// where OpenGL 4.3 does.
+pub fn paths_taken(results: &Paper4Results) -> Vec<&'static str> {
+    ALL_PATHS
+        .iter()
+        .copied()
+        .filter(|&p| p != paths::COMPUTE || results.then_and_now.unavailable.is_none())
+        .collect()
+}
+
+/// Every fidelity row of the section.
+pub fn fidelity_rows() -> Vec<super::Fidelity> {
+    fidelity::rows()
 }
 
 fn summary(opts: &BenchOptions, results: &Paper4Results) -> String {

@@ -1,0 +1,71 @@
+//! What a section says it checked, held to what its run did.
+//!
+//! A section lists its checks once (a `const` table of [`Check`]s): its summary names them
+//! from that list ([`sentence`]), and the code that makes a check records its id as the run
+//! goes. [`verify`] then fails the section when a listed check was not made or a made check
+//! is not listed, and when the run took a path (a method, a formulation, a scene) that no
+//! fidelity row covers. [`super::run_section`] runs it for every section.
+
+use super::Fidelity;
+
+/// One check of a section: an id the run records, and the words the summary says of it.
+#[derive(Clone, Copy, Debug)]
+pub struct Check {
+    pub id: &'static str,
+    /// What is compared with what, as the summary says it ("the pairs found on the GPU
+    /// against brute force on the CPU ...").
+    pub says: &'static str,
+}
+
+/// The summary's sentence naming `checks`, in the list's order.
+pub fn sentence(checks: &[Check]) -> String {
+    let items: Vec<String> = checks
+        .iter()
+        .enumerate()
+        .map(|(i, c)| format!("({}) {}", i + 1, c.says))
+        .collect();
+    format!("Checked in this run: {}.", items.join("; "))
+}
+
+/// The ids of `checks`.
+pub fn ids(checks: &[Check]) -> Vec<String> {
+    checks.iter().map(|c| c.id.to_string()).collect()
+}
+
+/// The section's claims against its run: every listed check made, every made check listed,
+/// every path taken covered by a fidelity row.
+pub fn verify(
+    section: &str,
+    listed: &[String],
+    made: &[String],
+    paths: &[String],
+    rows: &[Fidelity],
+) -> anyhow::Result<()> {
+    if let Some(id) = listed.iter().find(|id| !made.contains(id)) {
+        anyhow::bail!(
+            "section {section}: its summary names the check '{id}', which the run did not \
+             make (list only the checks the code makes)"
+        );
+    }
+    if let Some(id) = made.iter().find(|id| !listed.contains(id)) {
+        anyhow::bail!(
+            "section {section}: the run made the check '{id}', which the section's list of \
+             checks does not name (add it to the list)"
+        );
+    }
+    if let Some(path) = paths
+        .iter()
+        .find(|p| !rows.iter().any(|r| r.paths.contains(p)))
+    {
+        anyhow::bail!(
+            "section {section}: the run took the path '{path}', which no fidelity row covers \
+             (add a row saying what the source does, what the code does and why)"
+        );
+    }
+    Ok(())
+}
+
+/// The paths that `rows` cover.
+pub fn covered(rows: &[Fidelity]) -> Vec<String> {
+    rows.iter().flat_map(|r| r.paths.iter().cloned()).collect()
+}

@@ -1,0 +1,158 @@
+//! What the lectures' sources name and this project does not build: one table per lecture
+//! section, each row with what would be needed to build it.
+
+use super::Table;
+
+/// One thing a source names that the project does not do.
+#[derive(Clone, Copy, Debug)]
+pub struct NotBuilt {
+    /// What is not built.
+    pub what: &'static str,
+    /// The source that names it (`lecture1-sources.md`, `lecture3-sources.md`).
+    pub source: &'static str,
+    /// What the project does instead, if anything.
+    pub instead: &'static str,
+    /// What building it would take.
+    pub needed: &'static str,
+}
+
+/// The section's "not built" table.
+pub fn table(lecture: &str, rows: &[NotBuilt]) -> Table {
+    Table {
+        caption: format!(
+            "Not built: what the sources of {lecture} name that this project does not do, what \
+             it does instead, and what building it would need"
+        ),
+        header: ["not built", "named by", "instead", "what it would need"]
+            .map(String::from)
+            .to_vec(),
+        rows: rows
+            .iter()
+            .map(|r| {
+                vec![
+                    r.what.into(),
+                    r.source.into(),
+                    r.instead.into(),
+                    r.needed.into(),
+                ]
+            })
+            .collect(),
+    }
+}
+
+/// Lecture 1 (`lecture1-sources.md`).
+pub const LECTURE1: &[NotBuilt] = &[
+    NotBuilt {
+        what: "penetration depth: hierarchical refinement over bounding volume hierarchies, \
+               and object- and image-space culling beyond one bound",
+        source: "Kim, Otaduy, Lin & Manocha, SCA 2002 (abstract)",
+        instead: "every pair of convex pieces summed; sums farther than a box bound dropped; \
+                  the estimate refined on the CPU from the planes of the sums near the bound",
+        needed: "a BVH over each model's convex pieces, traversed pair by pair with the \
+                 current upper bound as the cull distance, and the cube-map pass run per \
+                 surviving node; the paper's refinement rule (not public) or a stated one",
+    },
+    NotBuilt {
+        what: "penetration depth: model simplification and tolerance verification",
+        source: "tech report TR02-014 (listed; text not public)",
+        instead: "the full models; the error against the exact depth reported by resolution",
+        needed: "a simplification with a distance bound (e.g. edge collapses with a Hausdorff \
+                 bound) and a check that the depth on the simplified pair is within the bound \
+                 of the depth on the originals",
+    },
+    NotBuilt {
+        what: "automatic convex decomposition of non-convex models",
+        source: "SCA 2002 abstract (both models decomposed into convex pieces)",
+        instead: "each OBJ object or group is a convex piece; a non-convex piece is refused",
+        needed: "an exact decomposition (e.g. Chazelle's cuts) to keep the depth exact; parry3d's \
+                 VHACD is approximate, so the depth would carry its concavity error, to be \
+                 stated and measured",
+    },
+    NotBuilt {
+        what: "swept volumes: classification by fast-marching front propagation",
+        source: "Kim, Varadhan, Lin & Manocha, SM 2003 / CAD 2004 (stage 3)",
+        instead: "a flood fill from the grid's border through voxels farther than the clamp",
+        needed: "a fast-marching solver on the grid (a heap of trial voxels, the eikonal \
+                 update); the same inside/outside answer, plus a signed distance away from the \
+                 surface",
+    },
+    NotBuilt {
+        what: "swept volumes: topological refinement of the extracted surface",
+        source: "SM 2003 / CAD 2004 (stage 5)",
+        instead: "the Euler characteristic and genus of the extracted surface are reported",
+        needed: "the paper's refinement rule (not public) or adaptive subdivision where the \
+                 grid's topology and the primitives' disagree, with a Hausdorff bound \
+                 (Varadhan & Manocha 2004)",
+    },
+    NotBuilt {
+        what: "avatar CCD: swept surfaces generated at run time and queried on the GPU",
+        source: "Kim, Redon, Lin, Manocha & Templeman, Presence 2007 (abstract)",
+        instead: "a swept capsule bound per link and sub-interval, drawn for CULLIDE-style \
+                  occlusion-query culling; exact distances on the CPU",
+        needed: "each link's swept surface as triangles (its ruled and developable patches \
+                 between poses), drawn against the environment for the interference query",
+    },
+    NotBuilt {
+        what: "avatar CCD: interval arithmetic bounding each link's swept space",
+        source: "Presence 2007 (abstract)",
+        instead: "a speed bound per link from its chain, giving a capsule per sub-interval",
+        needed: "interval versions of the forward kinematics (sine and cosine of interval \
+                 angles), giving an interval box per link and sub-interval",
+    },
+    NotBuilt {
+        what: "avatar CCD at the published scale: a 16-link avatar among hundreds of \
+               thousands of polygons",
+        source: "Presence 2007 (abstract)",
+        instead: "the default room: a 13-link walking figure and an environment of 38 \
+                  triangles (an OBJ environment of any size can be given to the command)",
+        needed: "a 16-link body (hands and feet as links) and an environment mesh of 100k+ \
+                 triangles shipped or generated; the BVH and the culling are built for it",
+    },
+    NotBuilt {
+        what: "general arrangements of surfaces (the lecture's 'arrangement computation')",
+        source: "lecture 1 programme; SM 2003 / CAD 2004; Varadhan & Manocha 2004",
+        instead: "only the outer boundary of the swept primitives' arrangement, by a grid field",
+        needed: "every cell of the arrangement (inner boundaries too), e.g. by labelling each \
+                 connected region of the grid field and extracting each region's boundary",
+    },
+    NotBuilt {
+        what: "Hoff's distance meshes in 3D, and DiFi's Voronoi-region bounds",
+        source: "Hoff et al., SIGGRAPH 1999; Sud, Otaduy & Manocha, EG 2004",
+        instead: "3D fields by exact per-fragment distances over each triangle's rectangle \
+                  grown by the clamp; Hoff's meshes only in 2D (voronoi --method mesh)",
+        needed: "per slice, each triangle's distance function as a tessellated surface with a \
+                 bounded error, and the region of each primitive clamped by its Voronoi bound",
+    },
+];
+
+/// Lecture 3 (`lecture3-sources.md`).
+pub const LECTURE3: &[NotBuilt] = &[
+    NotBuilt {
+        what: "pyramidal displacement mapping on a general mesh",
+        source: "Oh, Ki & Lee, VRST 2006 (abstract: per-pixel ray tracing of a displacement map)",
+        instead: "the height field lies on one box, traced in the box's frame",
+        needed: "per-vertex tangent frames and the ray carried into each triangle's texture \
+                 space, with the pyramid traversal unchanged",
+    },
+    NotBuilt {
+        what: "the sources' own traversal and clustering rules",
+        source: "VRST 2006 and Ki & Oh 2008 (abstracts only)",
+        instead: "reconstructions (see the fidelity table): climb one level after each node \
+                  left; a cluster is one light when its radius is under theta times its distance",
+        needed: "the papers' full texts",
+    },
+    NotBuilt {
+        what: "occlusion in the light hierarchy's gather",
+        source: "Ki & Oh 2008 (abstract: occlusion ignored)",
+        instead: "no occlusion, as in the source",
+        needed: "a visibility term per light group (shadow maps per cluster, or a depth test \
+                 against the group's representative), which the source does not have",
+    },
+    NotBuilt {
+        what: "octrees as textures for painting or sparse storage, updated on the GPU",
+        source: "lecture 3 programme ('octrees and quadtrees on the GPU')",
+        instead: "an occupancy octree of a point set built by reduction passes and ray cast",
+        needed: "an indirection-pool layout (nodes as texel blocks) and passes that insert and \
+                 remove nodes",
+    },
+];
