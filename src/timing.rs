@@ -1,4 +1,5 @@
-//! How many times the report times one measurement, and what it keeps of the runs: the
+//! The project's timing policy, below the papers so that a paper module (the buoyancy race)
+//! and the report use the same rules: how many times the report times one measurement, and what it keeps of the runs: the
 //! median, and the spread so a reader can judge it; and how a claim about a time is judged
 //! ([`judge`]): not at all while the machine is loaded or while its runs fall on both sides
 //! of the paper's number, so that a verdict does not flip from one run of the report to the
@@ -115,7 +116,7 @@ impl Spread {
         sorted.sort_by(f64::total_cmp);
         Spread {
             runs: sorted.len(),
-            median: super::then_and_now::median(sorted.clone()),
+            median: median(sorted.clone()),
             min: sorted[0],
             max: sorted[sorted.len() - 1],
         }
@@ -141,6 +142,21 @@ impl Spread {
         } else {
             (self.max - self.min) / self.median
         }
+    }
+}
+
+/// The middle value of `values` (the mean of the two middle ones for an even count; 0 for
+/// none).
+pub fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
     }
 }
 
