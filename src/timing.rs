@@ -218,6 +218,21 @@ impl Load {
     }
 }
 
+/// What a command that judges timings says at its start on a loaded machine: that the
+/// timed claims will read "not judged" (`None` on a quiet machine or where the load is
+/// unknown).
+pub fn loaded_warning(load: Option<Load>) -> Option<String> {
+    let l = load.filter(Load::is_loaded)?;
+    Some(format!(
+        "note: the machine is loaded ({}, {:.2} per core, above the {LOADED_PER_CORE:.1} \
+         under which timings are judged): the claims judged on a timing will read \
+         \"not judged\"; counts and errors are judged as usual. Run on a quiet machine to \
+         have every claim judged",
+        l.in_words(),
+        l.per_core()
+    ))
+}
+
 /// Which side of the paper's number a claim needs the measurement on.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Target {
@@ -512,6 +527,15 @@ mod tests {
         // A loaded machine is never judged, whatever the runs say.
         assert_eq!(judge_ends(ends, "", "", load(9.0, 2)).holds, None);
         assert_eq!((end(&gpu, true), end(&gpu, false)), (12.0, 8.0));
+    }
+
+    #[test]
+    fn a_loaded_machine_is_said_at_the_start() {
+        let w = loaded_warning(load(5.0, 2)).expect("loaded");
+        assert!(w.contains("load average 5.00 on 2 cores") && w.contains("2.50 per core"));
+        assert!(w.contains("not judged"), "{w}");
+        assert_eq!(loaded_warning(load(1.9, 2)), None);
+        assert_eq!(loaded_warning(None), None);
     }
 
     #[test]

@@ -289,6 +289,9 @@ pub fn bench_command<P: Paper>(
         _ => {}
     }
     period::set_requested(!args.no_period);
+    if let Some(warning) = timing::loaded_warning(timing::Load::now()) {
+        eprintln!("{warning}");
+    }
     let out_dir = args.out.as_deref().unwrap_or(Path::new(default_out));
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let opts = BenchOptions {
