@@ -1,7 +1,7 @@
 //! `index.html`: one section per paper, with the claims, the tables beside the paper's
 //! numbers, the figures and the fidelity table. Self-contained: no scripts, no external CSS.
 
-use super::{Report, Section, Table};
+use super::{Claim, Report, Section, Table};
 
 pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
@@ -100,12 +100,17 @@ fn claim_anchor(id: &str, i: usize) -> String {
     format!("{id}-claim-{}", i + 1)
 }
 
-/// The holds column: "yes", "no", or "not judged" (the measured text says why).
-fn holds_text(holds: Option<bool>) -> &'static str {
-    match holds {
-        Some(true) => "yes",
-        Some(false) => "no",
-        None => "not judged",
+/// The holds column: "yes", "no", or "not judged" (the measured text says why), and what
+/// decided it: "yes, by counts", "not judged (timing)".
+fn holds_text(claim: &Claim) -> String {
+    let basis = claim.decided_by.in_words();
+    match (claim.holds, basis.is_empty()) {
+        (Some(true), true) => "yes".into(),
+        (Some(false), true) => "no".into(),
+        (None, true) => "not judged".into(),
+        (Some(true), false) => format!("yes, by {basis}"),
+        (Some(false), false) => format!("no, by {basis}"),
+        (None, false) => format!("not judged ({basis})"),
     }
 }
 
@@ -130,7 +135,7 @@ fn claims_summary(sections: &[Section]) -> String {
                     Some(false) => "no",
                     None => "unjudged",
                 },
-                holds_text(c.holds)
+                holds_text(c)
             ));
         }
     }
@@ -159,7 +164,7 @@ fn section(s: &Section) -> String {
                         c.claim.clone(),
                         c.paper.clone(),
                         c.measured.clone(),
-                        holds_text(c.holds).into(),
+                        holds_text(c),
                     ]
                 })
                 .collect(),
@@ -298,6 +303,7 @@ mod tests {
                     paper: "the paper's words".into(),
                     measured: "12.5 ms on llvmpipe".into(),
                     holds,
+                    decided_by: crate::report::Basis::Timing,
                 })
                 .collect(),
             tables: vec![Table {
@@ -392,7 +398,8 @@ mod tests {
         for claim in ["fast", "exact", "interactive"] {
             assert!(summary.contains(&format!(">{claim}</a>")), "{claim}");
         }
-        assert!(summary.contains(">not judged</td>"));
+        assert!(summary.contains(">not judged (timing)</td>"));
+        assert!(summary.contains(">yes, by timing</td>"));
         let links: Vec<&str> = summary
             .split("href=\"#")
             .skip(1)
