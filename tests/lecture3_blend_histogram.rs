@@ -133,5 +133,9 @@ fn a_blended_histogram_is_one_draw_call_of_points() {
             .sum::<u64>()
     };
     assert_eq!(draws(Method::Blend), 1);
-    assert_eq!(draws(Method::Gather), 1, "the gather's loop is in its shader");
+    assert_eq!(
+        draws(Method::Gather),
+        1,
+        "the gather's loop is in its shader"
+    );
 }

@@ -70,7 +70,13 @@ fn every_subcommand_has_a_line_or_a_table_row_in_the_readme() {
     let readme = readme();
     let commands = every_command();
     // clap lists at least the papers' commands and lecture 1's and 3's techniques.
-    for known in ["info", "reproduce", "lecture1 voronoi", "lecture3 octree", "view mlp detect"] {
+    for known in [
+        "info",
+        "reproduce",
+        "lecture1 voronoi",
+        "lecture3 octree",
+        "view mlp detect",
+    ] {
         assert!(commands.contains(known), "{known} not in {commands:?}");
     }
     let table_rows: Vec<&str> = readme.lines().filter(|l| l.starts_with('|')).collect();
@@ -78,7 +84,9 @@ fn every_subcommand_has_a_line_or_a_table_row_in_the_readme() {
         .iter()
         .filter(|path| {
             let on_a_line = readme.contains(&format!("classic-gpgpu {path}"));
-            let in_a_row = table_rows.iter().any(|row| row.contains(&format!("`{path}")));
+            let in_a_row = table_rows
+                .iter()
+                .any(|row| row.contains(&format!("`{path}")));
             !on_a_line && !in_a_row
         })
         .collect();
@@ -110,14 +118,20 @@ fn no_readme_command_line_is_a_pipeline_of_subcommands() {
         }
     }
     // The check sees a pipeline where there is one.
-    assert_eq!(code_of("classic-gpgpu a | b  # c | d"), "classic-gpgpu a | b");
+    assert_eq!(
+        code_of("classic-gpgpu a | b  # c | d"),
+        "classic-gpgpu a | b"
+    );
 }
 
 #[test]
 fn the_install_lines_work_as_root_and_as_a_user() {
     let readme = readme();
     let lines = sh_lines(&readme);
-    let installs: Vec<&&str> = lines.iter().filter(|l| l.contains("apt-get install")).collect();
+    let installs: Vec<&&str> = lines
+        .iter()
+        .filter(|l| l.contains("apt-get install"))
+        .collect();
     assert!(!installs.is_empty(), "no apt-get install line");
     for line in installs {
         let code = code_of(line);
@@ -139,7 +153,9 @@ fn the_install_lines_work_as_root_and_as_a_user() {
         .find_map(|l| l.strip_prefix("rust-version = "))
         .expect("rust-version in Cargo.toml")
         .trim_matches('"');
-    let said = readme.find(&format!("Rust {version}")).expect("the Rust version");
+    let said = readme
+        .find(&format!("Rust {version}"))
+        .expect("the Rust version");
     assert!(said < readme.find("cargo install").unwrap());
 }
 

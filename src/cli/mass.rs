@@ -390,10 +390,7 @@ fn stop_test_waits(
             }
         }
     };
-    let rows = table
-        .rows
-        .iter()
-        .filter(|r| r.name == "wait: query result");
+    let rows = table.rows.iter().filter(|r| r.name == "wait: query result");
     let (waits, wait_ms) = rows.fold((0, 0.0), |(n, ms), r| (n + r.calls, ms + r.wall_ms));
     Ok(Some(StopTestWaits {
         waits,

@@ -363,7 +363,8 @@ mod tests {
         );
         assert_eq!(
             html.matches("<table").count(),
-            html.matches("<div class=\"table\"><p class=\"caption\">").count()
+            html.matches("<div class=\"table\"><p class=\"caption\">")
+                .count()
         );
         assert!(STYLE.contains("div.scroll{overflow-x:auto"));
         assert!(STYLE.contains("::-webkit-scrollbar{height:12px"));

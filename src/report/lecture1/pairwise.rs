@@ -541,7 +541,11 @@ mod tests {
         ]);
         let c = claim(&early, QUIET);
         assert_eq!(c.holds, Some(false));
-        assert!(c.measured.contains("faster already at 250"), "{}", c.measured);
+        assert!(
+            c.measured.contains("faster already at 250"),
+            "{}",
+            c.measured
+        );
         // No count of 1K or more: not judged, for the run's size.
         let small = run(vec![count(250, [5.0; 3], [1.0; 3])]);
         let c = claim(&small, QUIET);

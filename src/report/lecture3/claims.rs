@@ -249,10 +249,10 @@ fn prefilter_quality(rows: &[PrefilterRow], grazing: bool) -> Claim {
             )
         },
         decided_by: if acting.is_empty() {
-                Basis::RunSize
-            } else {
-                Basis::Error
-            },
+            Basis::RunSize
+        } else {
+            Basis::Error
+        },
         holds: (!acting.is_empty()).then(|| {
             acting
                 .iter()
@@ -327,10 +327,10 @@ fn prefilter_speed(rows: &[PrefilterRow], load: Option<Load>) -> Claim {
             )
         },
         decided_by: match (acting.is_empty(), fewer_steps) {
-                (true, _) => Basis::RunSize,
-                (false, false) => Basis::Count,
-                (false, true) => Basis::Timing,
-            },
+            (true, _) => Basis::RunSize,
+            (false, false) => Basis::Count,
+            (false, true) => Basis::Timing,
+        },
         holds: if acting.is_empty() {
             None
         } else if !fewer_steps {

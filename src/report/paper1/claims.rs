@@ -326,10 +326,10 @@ fn beats_cullide(results: &Paper1Results) -> Option<Claim> {
             verdict.note
         ),
         decided_by: if missing_stream {
-                Basis::Timing
-            } else {
-                Basis::Count
-            },
+            Basis::Timing
+        } else {
+            Basis::Count
+        },
         holds: if missing_stream {
             verdict.holds
         } else {

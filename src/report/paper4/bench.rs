@@ -479,9 +479,7 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     // the first plunge), as the paper's average over its interactive run would.
     let settle = SETTLE_STEPS;
     let total = settle + steps;
-    let bar = opts
-        .progress
-        .add(indicatif::ProgressBar::new(total as u64));
+    let bar = opts.progress.add(indicatif::ProgressBar::new(total as u64));
     bar.set_message("buoyancy, 50 bodies");
     let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
     let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
