@@ -111,3 +111,31 @@ fn bad_input_is_named() {
     let err = Bins::new(0.0, 1.0, 0, 4096).unwrap_err().to_string();
     assert!(err.contains("--bins"), "{err}");
 }
+
+/// The report's claim that the blender turns the scatter into one draw call, counted as the
+/// report counts it: by the gl layer's profiler, which records every draw of a pass.
+#[test]
+fn a_blended_histogram_is_one_draw_call_of_points() {
+    use classic_gpgpu::gl::profile;
+    let ctx = context();
+    let data = values(20_000, 11);
+    let texture = Values::new(&ctx, &data, None).unwrap();
+    let histogram = Histogram::new(&ctx, Bins::new(0.0, 1.0, 64, 4096).unwrap()).unwrap();
+    let draws = |method| {
+        profile::start_wall_only(&ctx);
+        histogram.draw(&texture, method).unwrap();
+        let table = profile::finish(&ctx).unwrap();
+        table
+            .rows
+            .iter()
+            .filter(|r| r.name == "histogram")
+            .map(|r| r.calls)
+            .sum::<u64>()
+    };
+    assert_eq!(draws(Method::Blend), 1);
+    assert_eq!(
+        draws(Method::Gather),
+        1,
+        "the gather's loop is in its shader"
+    );
+}

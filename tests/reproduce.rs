@@ -64,6 +64,19 @@ fn quick_reproduction_writes_every_section_and_keeps_a_good_report_on_failure() 
         );
     }
     assert_same_shape(&results);
+    // Every verdict says what decided it: timing, counts, error or run size.
+    for s in results["sections"].as_array().unwrap() {
+        for c in s["claims"].as_array().unwrap() {
+            assert!(
+                c["decided_by"]
+                    .as_str()
+                    .is_some_and(|b| ["timing", "count", "error", "run_size"].contains(&b)),
+                "section {}: claim {} does not say what decided it",
+                s["id"],
+                c["claim"]
+            );
+        }
+    }
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("Quick mode"));
     let files = referenced_files(&html);

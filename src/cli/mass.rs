@@ -178,11 +178,14 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
             } else {
                 None
             };
-            (result, (gpu_runs, wall), profile)
+            let waits = stop_test_waits(ctx, profile.as_ref(), || {
+                gpu.integrate(&mesh, args.below, None).map(|_| ())
+            })?;
+            (result, (gpu_runs, wall, waits), profile)
         }
         super::Formulation::Compute => {
-            let (result, timings) = compute_mass(args, ctx, &mesh).with_context(model)?;
-            (result, timings, None)
+            let (result, (gpu, wall)) = compute_mass(args, ctx, &mesh).with_context(model)?;
+            (result, (gpu, wall, None), None)
         }
     };
     let exact = match args.below {
@@ -208,6 +211,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         gpu_wall: timings.1,
         analytic,
         load: Load::now(),
+        stop_test: timings.2,
     };
 
     let got = MassProperties::from_integrals(&result.integrals, args.density);
@@ -391,6 +395,52 @@ struct Timings {
     gpu_wall: Spread,
     analytic: Spread,
     load: Option<Load>,
+    /// Where the classic path's wall time goes beyond the passes themselves.
+    stop_test: Option<StopTestWaits>,
+}
+
+/// The waits of one run for the occlusion-query results that decide whether another layer
+/// exists (the paper's stopping test): each drains the renderer before the next peel is
+/// issued. Passes issued with the layer count known in advance make none of these waits,
+/// which is why a bare program of the same passes runs faster than this command.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+struct StopTestWaits {
+    waits: u64,
+    wait_ms: f64,
+    wall_ms: f64,
+}
+
+/// [`StopTestWaits`] from `profiled` (the `--profile` run) or from one more run of `run`
+/// profiled for wall time and waits only.
+fn stop_test_waits(
+    ctx: &Context,
+    profiled: Option<&profile::ProfileTable>,
+    run: impl FnOnce() -> Result<(), classic_gpgpu::gl::GlError>,
+) -> anyhow::Result<Option<StopTestWaits>> {
+    let own;
+    let table = match profiled {
+        Some(t) => t,
+        None => {
+            profile::start_wall_only(ctx);
+            let done = run();
+            let table = profile::finish(ctx);
+            done?;
+            match table {
+                Some(t) => {
+                    own = t;
+                    &own
+                }
+                None => return Ok(None),
+            }
+        }
+    };
+    let rows = table.rows.iter().filter(|r| r.name == "wait: query result");
+    let (waits, wait_ms) = rows.fold((0, 0.0), |(n, ms), r| (n + r.calls, ms + r.wall_ms));
+    Ok(Some(StopTestWaits {
+        waits,
+        wait_ms,
+        wall_ms: table.wall_ms,
+    }))
 }
 
 /// The profile table under a heading.
@@ -477,6 +527,7 @@ impl MassOutput<'_> {
                     "analytic": self.timings.analytic,
                 },
                 "load": self.timings.load,
+                "stop_test_waits": self.timings.stop_test,
             },
             "warnings": self.warnings,
             "profile": self.profile,
@@ -563,6 +614,15 @@ impl MassOutput<'_> {
                 "peeling         {}, at most {} layers\n",
                 self.result.settings.order.name(),
                 self.result.settings.max_peels
+            );
+        }
+        if let Some(w) = &t.stop_test {
+            s += &format!(
+                "waits           {:.2} ms of one run's {:.2} ms wall in {} waits for the \
+                 occlusion queries that decide whether another layer exists (the paper's \
+                 stopping test): each drains the renderer before the next peel is issued; \
+                 the same passes with the layer count known in advance make no such wait\n",
+                w.wait_ms, w.wall_ms, w.waits
             );
         }
         if let Some(table) = &self.profile {

@@ -1,7 +1,7 @@
 //! `index.html`: one section per paper, with the claims, the tables beside the paper's
 //! numbers, the figures and the fidelity table. Self-contained: no scripts, no external CSS.
 
-use super::{Report, Section, Table};
+use super::{Claim, Report, Section, Table};
 
 pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
@@ -51,8 +51,10 @@ fn numeric_columns(t: &Table) -> Vec<bool> {
         .collect()
 }
 
-/// A table in its own scrolling box (a wide table scrolls there, not the page); the columns
-/// marked in `numeric` right-aligned, the others (text) left. `row_ids` gives rows an anchor.
+/// A table in its own scrolling box (a table still wider than the page after its text has
+/// wrapped scrolls there, not the page), its caption above the box so that it wraps at the
+/// page's width and is never cut at the box's edge; the columns marked in `numeric`
+/// right-aligned, the others (text) left. `row_ids` gives rows an anchor.
 fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
     let class = |c: usize| {
         if numeric.get(c).copied().unwrap_or(false) {
@@ -62,7 +64,7 @@ fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
         }
     };
     let mut out = format!(
-        "<div class=\"table\"><table>\n<caption>{}</caption>\n<tr>",
+        "<div class=\"table\"><p class=\"caption\">{}</p><div class=\"scroll\"><table>\n<tr>",
         escape(&t.caption)
     );
     for (c, h) in t.header.iter().enumerate() {
@@ -79,7 +81,7 @@ fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
         }
         out.push_str("</tr>\n");
     }
-    out.push_str("</table></div>\n");
+    out.push_str("</table></div></div>\n");
     out
 }
 
@@ -98,20 +100,25 @@ fn claim_anchor(id: &str, i: usize) -> String {
     format!("{id}-claim-{}", i + 1)
 }
 
-/// The holds column: "yes", "no", or "not judged" (the measured text says why).
-fn holds_text(holds: Option<bool>) -> &'static str {
-    match holds {
-        Some(true) => "yes",
-        Some(false) => "no",
-        None => "not judged",
+/// The holds column: "yes", "no", or "not judged" (the measured text says why), and what
+/// decided it: "yes, by counts", "not judged (timing)".
+fn holds_text(claim: &Claim) -> String {
+    let basis = claim.decided_by.in_words();
+    match (claim.holds, basis.is_empty()) {
+        (Some(true), true) => "yes".into(),
+        (Some(false), true) => "no".into(),
+        (None, true) => "not judged".into(),
+        (Some(true), false) => format!("yes, by {basis}"),
+        (Some(false), false) => format!("no, by {basis}"),
+        (None, false) => format!("not judged ({basis})"),
     }
 }
 
 /// Every claim of every section, each linking to its row in its section.
 fn claims_summary(sections: &[Section]) -> String {
     let mut out = String::from(
-        "<div class=\"table\"><table class=\"summary\">\n<caption>Every claim at a glance \
-         (a link leads to the claim and what was measured)</caption>\n\
+        "<div class=\"table\"><p class=\"caption\">Every claim at a glance (a link leads to \
+         the claim and what was measured)</p><div class=\"scroll\"><table class=\"summary\">\n\
          <tr><th>section</th><th>claim</th><th>holds here</th></tr>\n",
     );
     for s in sections {
@@ -128,11 +135,11 @@ fn claims_summary(sections: &[Section]) -> String {
                     Some(false) => "no",
                     None => "unjudged",
                 },
-                holds_text(c.holds)
+                holds_text(c)
             ));
         }
     }
-    out.push_str("</table></div>\n");
+    out.push_str("</table></div></div>\n");
     out
 }
 
@@ -157,7 +164,7 @@ fn section(s: &Section) -> String {
                         c.claim.clone(),
                         c.paper.clone(),
                         c.measured.clone(),
-                        holds_text(c.holds).into(),
+                        holds_text(c),
                     ]
                 })
                 .collect(),
@@ -205,13 +212,20 @@ fn section(s: &Section) -> String {
     out
 }
 
+/// The page's style. Tables: text cells and every header wrap (a long word or file name too,
+/// `overflow-wrap:anywhere`), so a table fits the page where its numbers do; only number
+/// cells stay on one line. A table still wider than the page scrolls in its box, with a
+/// scrollbar drawn at all times (not an overlay that shows only while scrolling).
 pub(crate) const STYLE: &str =
     "body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;\
-color:#222}div.table{overflow-x:auto;max-width:100%;margin:1em 0}table{border-collapse:collapse;\
-font-size:90%}caption{text-align:left;font-weight:bold;padding:.3em 0}td,th{border:1px solid \
-#bbb;padding:.25em .5em;text-align:left;vertical-align:top}td.num,th.num{text-align:right;\
-white-space:nowrap}th{background:#eee}td.yes{color:#060}td.no{color:#a00}td.unjudged{color:#666}\
-img{max-width:100%;border:1px solid #ddd}figure{margin:1em 0}\
+color:#222}div.table{margin:1em 0}div.scroll{overflow-x:auto;max-width:100%;\
+scrollbar-width:auto;scrollbar-color:#888 #eee}div.scroll::-webkit-scrollbar{height:12px;\
+background:#eee}div.scroll::-webkit-scrollbar-thumb{background:#888;border-radius:6px}\
+table{border-collapse:collapse;font-size:90%}p.caption{text-align:left;font-weight:bold;\
+margin:0;padding:.3em 0}td,th{border:1px solid #bbb;padding:.25em .5em;text-align:left;\
+vertical-align:top;overflow-wrap:anywhere}td.num,th.num{text-align:right}\
+td.num{white-space:nowrap}th{background:#eee}td.yes{color:#060}td.no{color:#a00}\
+td.unjudged{color:#666}img{max-width:100%;border:1px solid #ddd}figure{margin:1em 0}\
 .note{background:#ffd;padding:.5em 1em;border:1px solid #dd8}";
 
 /// The whole page.
@@ -297,6 +311,7 @@ mod tests {
                     paper: "the paper's words".into(),
                     measured: "12.5 ms on llvmpipe".into(),
                     holds,
+                    decided_by: crate::report::Basis::Timing,
                 })
                 .collect(),
             tables: vec![Table {
@@ -319,7 +334,9 @@ mod tests {
 
     /// The `<td>` cells of the first row of the table with `caption`.
     fn first_row_cells<'a>(html: &'a str, caption: &str) -> Vec<&'a str> {
-        let table = &html[html.find(&format!("<caption>{caption}</caption>")).unwrap()..];
+        let table = &html[html
+            .find(&format!("<p class=\"caption\">{caption}</p>"))
+            .unwrap()..];
         let start = ["<tr><td", "<tr id"]
             .iter()
             .filter_map(|t| table.find(t))
@@ -347,12 +364,36 @@ mod tests {
         assert!(
             STYLE.contains("text-align:left") && STYLE.contains("td.num,th.num{text-align:right")
         );
-        // Every table scrolls in its own box.
+        // Every table scrolls in its own box, its caption above the box.
         assert_eq!(
             html.matches("<table").count(),
-            html.matches("<div class=\"table\"><table").count()
+            html.matches("</p><div class=\"scroll\"><table").count()
         );
-        assert!(STYLE.contains("div.table{overflow-x:auto"));
+        assert_eq!(
+            html.matches("<table").count(),
+            html.matches("<div class=\"table\"><p class=\"caption\">")
+                .count()
+        );
+        assert!(STYLE.contains("div.scroll{overflow-x:auto"));
+        assert!(STYLE.contains("::-webkit-scrollbar{height:12px"));
+    }
+
+    #[test]
+    fn text_and_headers_wrap_and_only_numbers_keep_to_one_line() {
+        // Text cells and headers may break anywhere, so a wide table fits the page.
+        assert!(STYLE.contains("vertical-align:top;overflow-wrap:anywhere}"));
+        let nowrap: Vec<&str> = STYLE
+            .split('}')
+            .filter(|rule| rule.contains("white-space:nowrap"))
+            .map(|rule| rule.split('{').next().unwrap())
+            .collect();
+        assert_eq!(nowrap, ["td.num"]);
+        // A long caption is said whole, outside the scrolling box.
+        let mut s = section("paper1", &[]);
+        s.tables[0].caption = "Fig. 7, clustered CAPs: ... (paper: 0.095%, GeForce 7800)".into();
+        let html = contents(&[s]);
+        let at = html.find("(paper: 0.095%, GeForce 7800)</p>").unwrap();
+        assert!(at < html.find("<div class=\"scroll\"><table>").unwrap());
     }
 
     #[test]
@@ -366,7 +407,8 @@ mod tests {
         for claim in ["fast", "exact", "interactive"] {
             assert!(summary.contains(&format!(">{claim}</a>")), "{claim}");
         }
-        assert!(summary.contains(">not judged</td>"));
+        assert!(summary.contains(">not judged (timing)</td>"));
+        assert!(summary.contains(">yes, by timing</td>"));
         let links: Vec<&str> = summary
             .split("href=\"#")
             .skip(1)

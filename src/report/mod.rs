@@ -26,7 +26,9 @@ pub mod report_folder;
 pub mod reproduce;
 pub mod selftest;
 pub mod then_and_now;
-pub mod timing;
+/// The timing policy lives below the papers ([`crate::timing`]); this path stays for the
+/// report's own imports.
+pub use crate::timing;
 
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
@@ -209,6 +211,40 @@ pub struct Claim {
     pub measured: String,
     /// `None` when the claim cannot be judged on this renderer.
     pub holds: Option<bool>,
+    /// What decided the verdict (or, for "not judged", what would have).
+    #[serde(default)]
+    pub decided_by: Basis,
+}
+
+/// What a verdict rests on, so that a reader knows whether the load of the machine, the
+/// sizes of the run or neither could move it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Basis {
+    /// A report from before the field existed.
+    #[default]
+    Unstated,
+    /// Timings (judged only on a quiet machine, by the ends of their runs).
+    Timing,
+    /// Counts: pairs, pixels, draws, steps, bytes; the same on every run of the same sizes.
+    Count,
+    /// Errors against a reference, within a stated tolerance.
+    Error,
+    /// The size of the run: whether it reached the sizes the claim is about.
+    RunSize,
+}
+
+impl Basis {
+    /// "timing", "counts", ... ("" for a report that did not say).
+    pub fn in_words(self) -> &'static str {
+        match self {
+            Basis::Unstated => "",
+            Basis::Timing => "timing",
+            Basis::Count => "counts",
+            Basis::Error => "error",
+            Basis::RunSize => "run size",
+        }
+    }
 }
 
 /// A PNG written under [`BenchOptions::out_dir`].
@@ -271,9 +307,13 @@ impl Section {
         }
         for claim in &self.claims {
             out.push_str(&format!(
-                "- {} [{}]\n  paper: {}\n  here:  {}\n",
+                "- {} [{}{}]\n  paper: {}\n  here:  {}\n",
                 claim.claim,
                 claim.verdict(),
+                match claim.decided_by {
+                    Basis::Unstated => String::new(),
+                    basis => format!(", by {}", basis.in_words()),
+                },
                 claim.paper,
                 claim.measured
             ));
@@ -319,6 +359,9 @@ pub fn bench_command<P: Paper>(
         _ => {}
     }
     period::set_requested(!args.no_period);
+    if let Some(warning) = timing::loaded_warning(timing::Load::now()) {
+        eprintln!("{warning}");
+    }
     let out_dir = args.out.as_deref().unwrap_or(Path::new(default_out));
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let opts = BenchOptions {

@@ -89,6 +89,9 @@ pub fn reproduce(
     progress: MultiProgress,
 ) -> anyhow::Result<Report> {
     super::period::set_requested(!args.no_period);
+    if let Some(warning) = super::timing::loaded_warning(super::timing::Load::now()) {
+        eprintln!("{warning}");
+    }
     let all = stages();
     let chosen = chosen_stages(&all, &args.only)?;
     report_folder::check_out(&args.out, args.force)?;

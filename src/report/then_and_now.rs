@@ -168,15 +168,6 @@ impl ThenAndNow {
 }
 
 /// The median of `values` (0 for none).
-pub fn median(mut values: Vec<f64>) -> f64 {
-    if values.is_empty() {
-        return 0.0;
-    }
-    values.sort_by(f64::total_cmp);
-    let n = values.len();
-    if n % 2 == 1 {
-        values[n / 2]
-    } else {
-        0.5 * (values[n / 2 - 1] + values[n / 2])
-    }
+pub fn median(values: Vec<f64>) -> f64 {
+    crate::timing::median(values)
 }

@@ -9,7 +9,7 @@ use super::scene;
 use super::simulation::{AnalyticSolver, Simulation, SubmergedSolver};
 use crate::gl::Context;
 use crate::mass::peel::PeelSettings;
-use crate::report::timing::{Load, Spread};
+use crate::timing::{Load, Spread};
 use serde::Serialize;
 use std::time::Instant;
 

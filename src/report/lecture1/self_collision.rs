@@ -234,12 +234,18 @@ pub(super) fn ms(s: &Spread) -> String {
 fn table(setting: &Setting, runs: &[SceneRun], load: Option<Load>) -> Table {
     let mut rows = Vec::new();
     for r in runs {
-        for f in &r.frames {
-            rows.push(vec![
+        for (i, f) in r.frames.iter().enumerate() {
+            // The scene is named once, on its first frame; its other frames follow below it.
+            let scene = if i == 0 {
                 format!(
                     "{} ({} triangles, {} leaves)",
                     r.scene, r.triangles, r.leaves
-                ),
+                )
+            } else {
+                String::new()
+            };
+            rows.push(vec![
+                scene,
                 f.frame.to_string(),
                 format!("{:.1}", f.t),
                 f.gpu_pairs.to_string(),
@@ -258,8 +264,9 @@ fn table(setting: &Setting, runs: &[SceneRun], load: Option<Load>) -> Table {
              paper 1's wavy and pulsating deformations (Sec. 7.2) of a torus flattened to 15% of \
              its height, and on the knotted tube swelling until it presses through itself, \
              found by the streaming AABBs (GPU boxes, CPU exact triangle test) and by brute \
-             force on the CPU with the same predicate, on {}. Times: wall clock of the whole \
-             frame, median (range) of {}; {}",
+             force on the CPU with the same predicate, on {}. Each scene is named on its first \
+             frame; the rows below it, up to the next name, are its later frames. Times: wall \
+             clock of the whole frame, median (range) of {}; {}",
             setting.renderer,
             setting.runs.in_words(),
             load.map_or("load average unknown".into(), |l| l.in_words())

@@ -786,6 +786,26 @@ pub fn skewed_values(n: usize, seed: u64) -> Vec<f32> {
     (0..n).map(|_| g.next_f32().powi(3)).collect()
 }
 
+/// The draw calls of one blended histogram of `data`, as the gl layer's profiler counts them
+/// (every draw of a pass is recorded under the pass's name); `None` while a profile of the
+/// caller's runs, which this does not interrupt.
+fn blend_draws(ctx: &Context, histogram: &Histogram, data: &Values) -> anyhow::Result<Option<u64>> {
+    if crate::gl::profile::is_on(ctx) {
+        return Ok(None);
+    }
+    crate::gl::profile::start_wall_only(ctx);
+    let drawn = histogram.draw(data, blend_histogram::Method::Blend);
+    let profile = crate::gl::profile::finish(ctx);
+    drawn?;
+    Ok(profile.map(|p| {
+        p.rows
+            .iter()
+            .filter(|row| row.name == "histogram")
+            .map(|row| row.calls)
+            .sum()
+    }))
+}
+
 /// Values of the histogram passes' warm-up.
 const WARM_UP_VALUES: usize = 256;
 
@@ -813,6 +833,7 @@ pub fn histogram_row(
     let blend = gpu_ms_warm(ctx, runs, || {
         Ok(histogram.draw(&data, blend_histogram::Method::Blend)?)
     })?;
+    let blend_draws = blend_draws(ctx, &histogram, &data)?;
     let counts = histogram.read()?;
     let blend_equal = counts.iter().map(|&c| c as f64).eq(cpu.iter().copied());
     let (gather, gather_equal) = if with_gather {
@@ -830,6 +851,7 @@ pub fn histogram_row(
         counts,
         blend_equal,
         gather_equal,
+        blend_draws,
         blend_ms: blend.median,
         blend_spread: blend,
         gather_ms: gather.map(|g| g.median),

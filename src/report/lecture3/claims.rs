@@ -6,7 +6,7 @@ use super::prefilter::PrefilterRow;
 use super::results::{DepthMaskRow, Lecture3Results, LightRun};
 use crate::lecture3::depth_mask::{runs_fit_mask, RunCounter};
 use crate::report::timing::{end, faster, judge_ends, Ends, Load};
-use crate::report::Claim;
+use crate::report::{Basis, Claim};
 
 pub fn claims(r: &Lecture3Results) -> Vec<Claim> {
     vec![
@@ -53,6 +53,7 @@ fn pyramids_are_exact(r: &Lecture3Results) -> Claim {
                 .fold(0.0, f64::max),
             MEAN_PYRAMID_TOL
         ),
+        decided_by: Basis::Error,
         holds: Some(all && means),
     }
 }
@@ -109,6 +110,7 @@ fn artifact_free(r: &Lecture3Results) -> Claim {
                     .join(" / "))
                 .unwrap_or_default()
         ),
+        decided_by: Basis::Count,
         holds: Some(pyramid_wrong == 0),
     }
 }
@@ -138,6 +140,7 @@ fn frame_rate(r: &Lecture3Results) -> Claim {
                 verdict.note
             }
         ),
+        decided_by: Basis::Timing,
         holds: if r.software { None } else { verdict.holds },
     }
 }
@@ -194,6 +197,7 @@ fn resolution_independence(r: &Lecture3Results) -> Claim {
             it.1,
             verdict.note
         ),
+        decided_by: Basis::Timing,
         holds: verdict.holds,
     }
 }
@@ -244,6 +248,11 @@ fn prefilter_quality(rows: &[PrefilterRow], grazing: bool) -> Claim {
                 acting[0].quality.samples
             )
         },
+        decided_by: if acting.is_empty() {
+            Basis::RunSize
+        } else {
+            Basis::Error
+        },
         holds: (!acting.is_empty()).then(|| {
             acting
                 .iter()
@@ -289,17 +298,38 @@ fn prefilter_speed(rows: &[PrefilterRow], load: Option<Load>) -> Claim {
         "the runs of the prefiltered and the unfiltered frames overlap",
         load,
     );
+    let more_steps = acting
+        .iter()
+        .filter(|r| r.quality.prefiltered_steps >= r.quality.unfiltered_steps)
+        .count();
     Claim {
-        claim: "2. ... and speed".into(),
+        claim: "2. ... and speed: fewer traversal steps per hit pixel (counted), and frames \
+                faster by the GL timer"
+            .into(),
         paper: "VRST 2006 abstract".into(),
         measured: if acting.is_empty() {
-            "no distance of the sweep is far enough for the prefilter to act".into()
-        } else {
+            "no distance of the sweep is far enough for the prefilter to act (run size)".into()
+        } else if !fewer_steps {
             format!(
-                "unfiltered -> prefiltered: {}{}",
+                "decided by the step counts: the prefiltered frames take as many traversal \
+                 steps or more at {more_steps} of {} views, so the claim fails whatever the \
+                 timings say. Unfiltered -> prefiltered: {}{}",
+                acting.len(),
                 verdict.note,
                 why_slower(&acting)
             )
+        } else {
+            format!(
+                "fewer steps at every view (counted); decided by the timings: unfiltered -> \
+                 prefiltered: {}{}",
+                verdict.note,
+                why_slower(&acting)
+            )
+        },
+        decided_by: match (acting.is_empty(), fewer_steps) {
+            (true, _) => Basis::RunSize,
+            (false, false) => Basis::Count,
+            (false, true) => Basis::Timing,
         },
         holds: if acting.is_empty() {
             None
@@ -378,6 +408,7 @@ fn few_light_groups(l: &LightRun) -> Claim {
             ),
         },
         // No criterion within the error allowed is a failure of the claim, not a gap.
+        decided_by: Basis::Count,
         holds: Some(row.is_some_and(|row| {
             row.mean_nodes < l.vpls as f64 / 4.0
                 && row.relative_rms_error < LIGHT_ERROR
@@ -426,6 +457,7 @@ fn other_uses(u: &super::light_uses::LightUsesRun) -> Claim {
                 scattering approximated by a small number of light groups"
             .into(),
         measured,
+        decided_by: Basis::Count,
         holds: Some(found.iter().all(|f| {
             f.as_ref()
                 .is_some_and(|(row, lights)| row.mean_gathered < *lights as f64 / 4.0)
@@ -465,6 +497,7 @@ fn lookup_cheaper(r: &Lecture3Results) -> Claim {
                 .join("; "),
             verdict.note
         ),
+        decided_by: Basis::Timing,
         holds: if last.is_some() { verdict.holds } else { None },
     }
 }
@@ -488,6 +521,7 @@ fn random_numbers(r: &Lecture3Results) -> Claim {
             x.neighbour_correlation,
             x.correlation_bound
         ),
+        decided_by: Basis::Count,
         holds: Some(pass),
     }
 }
@@ -507,6 +541,7 @@ fn depth_test_masks(r: &Lecture3Results) -> Claim {
                 "not judged on this renderer: the expensive shader's runs cannot be counted \
                  ({why}); the pictures equal the CPU's within {max_error:.1e}"
             ),
+            decided_by: Basis::Count,
             holds: None,
         };
     }
@@ -564,6 +599,7 @@ fn depth_test_masks(r: &Lecture3Results) -> Claim {
                 format!(" ({})", off.join("; "))
             }
         ),
+        decided_by: Basis::Count,
         holds: Some(exact),
     }
 }
@@ -613,6 +649,7 @@ fn depth_test_saves_time(r: &Lecture3Results) -> Claim {
              second pass; {})",
             verdict.note
         ),
+        decided_by: Basis::Timing,
         holds: if sparse.is_empty() {
             None
         } else {
@@ -635,15 +672,26 @@ fn blending_histogram(r: &Lecture3Results) -> Claim {
         })
         .collect::<Vec<_>>()
         .join(", ");
+    // One draw call per histogram, as the gl layer counted them (None: not counted).
+    let draws: Vec<Option<u64>> = r.histogram.iter().map(|h| h.blend_draws).collect();
+    let one_draw = !draws.is_empty() && draws.iter().all(|&d| d == Some(1));
     Claim {
-        claim: "7. Alpha blending simplifies code: a scatter becomes points added by the blender"
+        claim: "7. Alpha blending simplifies code: a scatter becomes points added by the \
+                blender, in one draw call"
             .into(),
         paper: "lecture 3, debugging tips: simplifying code with alpha blending".into(),
         measured: format!(
-            "one draw, no loop; counts equal to the CPU's: {equal}; gather pass / blending time: \
-             {speed}"
+            "draw calls per blended histogram, counted by the gl layer: {}; counts equal to the \
+             CPU's: {equal}; gather pass (a loop over every value per bin) / blending time: \
+             {speed}",
+            draws
+                .iter()
+                .map(|d| d.map_or("not counted".into(), |d| d.to_string()))
+                .collect::<Vec<_>>()
+                .join(", ")
         ),
-        holds: Some(equal),
+        decided_by: Basis::Count,
+        holds: Some(equal && one_draw),
     }
 }
 

@@ -246,6 +246,9 @@ pub struct HistogramRow {
     pub blend_equal: bool,
     /// Gathered counts equal to the CPU's (when run).
     pub gather_equal: Option<bool>,
+    /// Draw calls one blended histogram made, counted by the gl layer's profiler (`None`
+    /// where a profile of the caller's was running and was not interrupted to count them).
+    pub blend_draws: Option<u64>,
     pub blend_ms: f64,
     pub blend_spread: Spread,
     pub gather_ms: Option<f64>,

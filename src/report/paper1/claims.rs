@@ -7,7 +7,7 @@ use super::fig7::crossover_text;
 use crate::collide::reduction::Scheme;
 use crate::collide::reduction_gpu::{paper_switch, CalibrationPoint, PAPER_ETA_THRESHOLD};
 use crate::report::timing::{end, judge_ends, Ends, Spread};
-use crate::report::Claim;
+use crate::report::{Basis, Claim};
 
 /// The `P0` side of the paper's readback claims (Sec. 5.3.2).
 const PAPER_P0: usize = 2048;
@@ -78,6 +78,7 @@ fn interactive_tori(results: &Paper1Results) -> Option<Claim> {
             "slowest tori scene {worst:.2} ms per frame ({})",
             verdict.note
         ),
+        decided_by: Basis::Timing,
         holds: verdict.holds,
     })
 }
@@ -155,6 +156,7 @@ fn hierarchy_pays_below_threshold(results: &Paper1Results) -> Option<Claim> {
             verdict.note,
             p0 = results.fig7.p0,
         ),
+        decided_by: Basis::Timing,
         holds: verdict.holds,
     })
 }
@@ -229,6 +231,7 @@ fn readback_bound(results: &Paper1Results) -> Option<Claim> {
             },
             p0 = f.p0
         ),
+        decided_by: Basis::Timing,
         holds: if judged { verdict.holds } else { None },
     })
 }
@@ -277,6 +280,7 @@ fn beats_solid(results: &Paper1Results) -> Option<Claim> {
             },
             verdict.note
         ),
+        decided_by: Basis::Timing,
         holds: verdict.holds,
     })
 }
@@ -321,6 +325,11 @@ fn beats_cullide(results: &Paper1Results) -> Option<Claim> {
             runs.len(),
             verdict.note
         ),
+        decided_by: if missing_stream {
+            Basis::Timing
+        } else {
+            Basis::Count
+        },
         holds: if missing_stream {
             verdict.holds
         } else {

@@ -4,7 +4,7 @@
 
 use crate::gl::profile::ProfileRow;
 use crate::gl::{profile, Context};
-use crate::mass::buoyancy::simulation::{AnalyticSolver, Simulation, SubmergedSolver};
+use crate::mass::buoyancy::simulation::{Simulation, SubmergedSolver};
 use crate::mass::buoyancy::{batch::GpuSolver, race, render::FrameRenderer, scene};
 use crate::mass::gpu::GpuMass;
 use crate::mass::peel::{PeelOrder, PeelSettings};
@@ -157,7 +157,10 @@ pub struct BuoyancyRun {
     pub max_peels_limit: usize,
     pub max_peels: usize,
     pub mean_peels: f64,
+    /// Steps per second of the CPU reference solver, and of the GPU solver beside it, in the
+    /// race's interleaved rounds from the drop ([`SpeedTargets::buoyancy_race`]).
     pub cpu_solver_steps_per_second: f64,
+    pub race_gpu_steps_per_second: f64,
     /// Frames per second of each of `RATE_PARTS` (3) consecutive parts of the timed frames:
     /// the runs the interactive-rate claim is judged on.
     pub rate_runs: Spread,
@@ -205,8 +208,11 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let bunny = models::paper_object("bunny").expect("bunny");
     let peel_orders = peel_orders(opts.gl, &bunny, opts.runs(QUICK_RUNS))?;
     let profile_bunny_64 = profile_bunny(opts.gl, &bunny)?;
-    let scene = measure_scene(opts, steps)?;
+    let mut scene = measure_scene(opts, steps)?;
     let targets = speed_targets(opts, &objects)?;
+    // The CPU solver's rate is the race's: it runs that solver on the same scene already.
+    scene.run.cpu_solver_steps_per_second = targets.buoyancy_cpu_steps_per_second;
+    scene.run.race_gpu_steps_per_second = targets.buoyancy_gpu_steps_per_second;
     Ok(Paper4Results {
         renderer: opts.gl.info().renderer_line(),
         quick: opts.quick,
@@ -215,7 +221,10 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         buoyancy: scene.run,
         fig10_peels: buoyant_bunny_peels(opts)?,
         then_and_now: super::then_and_now::measure(opts)?,
-        then_and_now_buoyancy: super::then_and_now_buoyancy::measure(opts)?,
+        then_and_now_buoyancy: super::then_and_now_buoyancy::measure(
+            opts,
+            (!opts.quick).then_some(scene.settled),
+        )?,
         peel_orders,
         targets,
         profile_bunny_64,
@@ -407,12 +416,15 @@ fn break_even(analytic_ms: f64, rows: &[ResolutionRow]) -> String {
     format!("GPU faster at every resolution (up to {last}x{last})")
 }
 
-/// The 50-body scene, run once with each solver from the drop: the GPU's timed frames
-/// (after the settling steps; each a step and the scene drawn), the CPU solver's steps, the
-/// per-pass profile and the batching gain all come from these two runs.
+/// The 50-body scene, run once with the GPU solver from the drop: its timed frames (after
+/// the settling steps; each a step and the scene drawn), the per-pass profile and the
+/// batching gain come from this run; the CPU solver's rate from the race
+/// ([`speed_targets`]), which runs that solver on the same scene.
 struct SceneRuns {
     run: BuoyancyRun,
     profile: Vec<ProfileRow>,
+    /// The scene when the settling steps ended (the then-and-now table's poses).
+    settled: Simulation,
 }
 
 /// Every step of one run: wall clock of the step, of its buoyancy half and of the whole
@@ -454,6 +466,9 @@ fn run_scene<S: SubmergedSolver>(
     Ok(times)
 }
 
+/// Steps from the drop before the buoyancy scene is timed (1 s, past the first plunge).
+pub const SETTLE_STEPS: usize = 60;
+
 /// The size of the frames drawn in the timed run (the CLI's `--png-every` frames).
 pub const FRAME_SIZE: (u32, u32) = (640, 400);
 
@@ -462,26 +477,26 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     let ctx = opts.gl;
     // The bodies start in the air; time them once they are in the water (after 1 s, past
     // the first plunge), as the paper's average over its interactive run would.
-    let settle = 60;
+    let settle = SETTLE_STEPS;
     let total = settle + steps;
-    let bar = opts
-        .progress
-        .add(indicatif::ProgressBar::new(2 * total as u64));
+    let bar = opts.progress.add(indicatif::ProgressBar::new(total as u64));
     bar.set_message("buoyancy, 50 bodies");
     let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
     let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
     let renderer = FrameRenderer::new(ctx, &sim.shapes, FRAME_SIZE.0, FRAME_SIZE.1)?;
+    // The settling steps are not timed, so not drawn either; one drawing warms the renderer.
+    run_scene(&mut sim, &mut solver, settle, |s| s.last_peels, None, &bar)?;
+    let settled = sim.clone();
+    renderer.draw_frame(&sim)?;
     let gpu = run_scene(
         &mut sim,
         &mut solver,
-        total,
+        steps,
         |s| s.last_peels,
         Some(&renderer),
         &bar,
     )?;
     let load = Load::now();
-    let mut cpu_sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-    let cpu = run_scene(&mut cpu_sim, &mut AnalyticSolver, total, |_| 0, None, &bar)?;
     bar.finish_and_clear();
     // Ten more steps, profiled per pass, of the bodies now in the water.
     profile::start(ctx);
@@ -489,13 +504,13 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
         sim.step(&mut solver).map_err(anyhow::Error::msg)?;
     }
     let profile = profile::finish(ctx).map(|t| t.rows).unwrap_or_default();
-    let timed = |v: &[f64]| v[settle..].iter().sum::<f64>();
+    let timed = |v: &[f64]| v.iter().sum::<f64>();
     let total_ms = timed(&gpu.step_ms);
     let frames_ms = timed(&gpu.frame_ms);
     let batching = batching_gain(ctx, &sim, &mut solver, opts.runs(5))?;
     let frame = "buoyancy_frame.png";
     FrameRenderer::new(ctx, &sim.shapes, 800, 500)?.write_png(&sim, &opts.out_dir.join(frame))?;
-    let peels = &gpu.peels[settle..];
+    let peels = &gpu.peels;
     let run = BuoyancyRun {
         bodies: sim.bodies.len(),
         resolution: 32,
@@ -510,15 +525,21 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
         max_peels_limit: PeelSettings::default().max_peels,
         max_peels: peels.iter().copied().max().unwrap_or(0),
         mean_peels: peels.iter().sum::<usize>() as f64 / steps as f64,
-        cpu_solver_steps_per_second: 1e3 * steps as f64 / timed(&cpu.step_ms),
-        rate_runs: rate_runs(&gpu.frame_ms[settle..]),
+        // Set from the race by the caller.
+        cpu_solver_steps_per_second: 0.0,
+        race_gpu_steps_per_second: 0.0,
+        rate_runs: rate_runs(&gpu.frame_ms),
         load,
         batched_ms: batching.batched.median,
         one_body_at_a_time_ms: batching.one_at_a_time.median,
         batching_runs: batching.batched.runs,
         frame: frame.into(),
     };
-    Ok(SceneRuns { run, profile })
+    Ok(SceneRuns {
+        run,
+        profile,
+        settled,
+    })
 }
 
 /// How many consecutive parts of the timed steps count as runs of the interactive rate.

@@ -72,15 +72,27 @@ fn timed(
 }
 
 /// The scene after the drop (its bodies in the water, the plane cutting most), then the
-/// three solvers on the same poses, in turn, as the report's runs policy says.
-pub fn measure(opts: &BenchOptions) -> anyhow::Result<BuoyancyThenAndNow> {
+/// three solvers on the same poses, in turn, as the report's runs policy says. `settled` is
+/// the 50-body scene after the frame-rate run's settling steps, where it has one (not
+/// simulated twice); without it (`--quick`: 10 bodies) the scene settles here.
+pub fn measure(
+    opts: &BenchOptions,
+    settled: Option<Simulation>,
+) -> anyhow::Result<BuoyancyThenAndNow> {
     let ctx = opts.gl;
-    let (bodies, settle) = if opts.quick { (10, 30) } else { (50, 60) };
     let runs = opts.runs(super::bench::QUICK_RUNS);
-    let mut sim = scene::paper_scene(bodies, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
-    for _ in 0..settle {
-        sim.step(&mut AnalyticSolver).map_err(anyhow::Error::msg)?;
-    }
+    let (sim, settle) = match settled {
+        Some(sim) => (sim, super::bench::SETTLE_STEPS),
+        None => {
+            let (bodies, settle) = (10, 30);
+            let mut sim = scene::paper_scene(bodies, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
+            for _ in 0..settle {
+                sim.step(&mut AnalyticSolver).map_err(anyhow::Error::msg)?;
+            }
+            (sim, settle)
+        }
+    };
+    let bodies = sim.bodies.len();
     let mut classic = GpuSolver::new(ctx, &sim.shapes, bodies, 32)?;
     let mut compute = if ctx.has_compute() {
         Some(ComputeSolver::new(ctx)?)

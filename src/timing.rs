@@ -1,4 +1,5 @@
-//! How many times the report times one measurement, and what it keeps of the runs: the
+//! The project's timing policy, below the papers so that a paper module (the buoyancy race)
+//! and the report use the same rules: how many times the report times one measurement, and what it keeps of the runs: the
 //! median, and the spread so a reader can judge it; and how a claim about a time is judged
 //! ([`judge`]): not at all while the machine is loaded or while its runs fall on both sides
 //! of the paper's number, so that a verdict does not flip from one run of the report to the
@@ -115,7 +116,7 @@ impl Spread {
         sorted.sort_by(f64::total_cmp);
         Spread {
             runs: sorted.len(),
-            median: super::then_and_now::median(sorted.clone()),
+            median: median(sorted.clone()),
             min: sorted[0],
             max: sorted[sorted.len() - 1],
         }
@@ -141,6 +142,21 @@ impl Spread {
         } else {
             (self.max - self.min) / self.median
         }
+    }
+}
+
+/// The middle value of `values` (the mean of the two middle ones for an even count; 0 for
+/// none).
+pub fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
     }
 }
 
@@ -200,6 +216,21 @@ impl Load {
             if self.cores == 1 { "" } else { "s" }
         )
     }
+}
+
+/// What a command that judges timings says at its start on a loaded machine: that the
+/// timed claims will read "not judged" (`None` on a quiet machine or where the load is
+/// unknown).
+pub fn loaded_warning(load: Option<Load>) -> Option<String> {
+    let l = load.filter(Load::is_loaded)?;
+    Some(format!(
+        "note: the machine is loaded ({}, {:.2} per core, above the {LOADED_PER_CORE:.1} \
+         under which timings are judged): the claims judged on a timing will read \
+         \"not judged\"; counts and errors are judged as usual. Run on a quiet machine to \
+         have every claim judged",
+        l.in_words(),
+        l.per_core()
+    ))
 }
 
 /// Which side of the paper's number a claim needs the measurement on.
@@ -496,6 +527,15 @@ mod tests {
         // A loaded machine is never judged, whatever the runs say.
         assert_eq!(judge_ends(ends, "", "", load(9.0, 2)).holds, None);
         assert_eq!((end(&gpu, true), end(&gpu, false)), (12.0, 8.0));
+    }
+
+    #[test]
+    fn a_loaded_machine_is_said_at_the_start() {
+        let w = loaded_warning(load(5.0, 2)).expect("loaded");
+        assert!(w.contains("load average 5.00 on 2 cores") && w.contains("2.50 per core"));
+        assert!(w.contains("not judged"), "{w}");
+        assert_eq!(loaded_warning(load(1.9, 2)), None);
+        assert_eq!(loaded_warning(None), None);
     }
 
     #[test]
