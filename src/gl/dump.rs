@@ -32,6 +32,7 @@
 //! size ([`map_floats`]); [`texture_picture_png`] draws any float texture as panels with keys.
 //! Alpha is written opaque. Row 0 (GL's bottom) is written at the bottom of the image.
 
+use super::drawn::{self, Drawn};
 use super::picture::{self, Panel, Scale};
 use super::{GlError, Texture, TextureFormat};
 use std::path::Path;
@@ -82,11 +83,32 @@ pub fn texture_picture_png(
     picture_png(&panels, size, path)
 }
 
-/// Write `panels` as one picture of `size` pixels ([`picture::picture`]).
+/// Write `panels` as one picture of at least `size` pixels ([`picture::picture`]), grown
+/// where a panel would otherwise drop texels ([`picture::whole_texel_size`]); what it shows
+/// is recorded ([`drawn::record`]).
 pub fn picture_png(panels: &[Panel], size: (u32, u32), path: &Path) -> Result<(), GlError> {
-    let (image, _) = picture::picture(panels, size);
+    let size = picture::whole_texel_size(panels, size);
+    let (image, _, shown) = picture::picture_drawn(panels, size);
     crate::files::write_image(path, &image::DynamicImage::ImageRgba8(image))
-        .map_err(|e| io_error(path, e))
+        .map_err(|e| io_error(path, e))?;
+    drawn::record(path, Drawn::Picture(shown));
+    Ok(())
+}
+
+/// Write rendered `frames` (titles, images top row first) as one picture
+/// ([`picture::frames_picture`]) with their colour `legend`, and record what it shows.
+pub fn frames_png(
+    frames: &[(String, image::RgbaImage)],
+    columns: usize,
+    scale: u32,
+    legend: &[([u8; 4], String)],
+    path: &Path,
+) -> Result<(), GlError> {
+    let (image, shown) = picture::frames_picture(frames, columns, scale, legend);
+    crate::files::write_image(path, &image::DynamicImage::ImageRgba8(image))
+        .map_err(|e| io_error(path, e))?;
+    drawn::record(path, Drawn::Frames(shown));
+    Ok(())
 }
 
 /// Write `texture` to `path` as PNG.
@@ -95,7 +117,14 @@ pub fn texture_png(texture: &Texture, path: &Path, range: DumpRange) -> Result<(
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| io_error(path, e))?;
     }
-    rgba_png(&rgba, (texture.width(), texture.height()), path)
+    rgba_png(&rgba, (texture.width(), texture.height()), path)?;
+    let what = format!("a {:?} texture", texture.format());
+    let shown = match texture.format() {
+        TextureFormat::Rgba8 | TextureFormat::R8 => Drawn::Image { what },
+        _ => Drawn::BareFloats { what },
+    };
+    drawn::record(path, shown);
+    Ok(())
 }
 
 /// Write `width x height` RGBA bytes, rows from the bottom as GL reads them, to `path` as
@@ -108,7 +137,10 @@ pub fn rgba_png(rgba: &[u8], (width, height): (u32, u32), path: &Path) -> Result
         .copied()
         .collect();
     crate::files::write_png(path, &flipped, width, height)
-        .map_err(|e| io_error(path, format!("{e:#}")))
+        .map_err(|e| io_error(path, format!("{e:#}")))?;
+    let what = format!("a {width}x{height} RGBA frame");
+    drawn::record(path, Drawn::Image { what });
+    Ok(())
 }
 
 fn io_error(path: &Path, e: impl std::fmt::Display) -> GlError {

@@ -24,6 +24,7 @@
 mod buffer;
 pub mod compute;
 mod context;
+pub mod drawn;
 pub mod dump;
 mod facing;
 pub mod feedback;

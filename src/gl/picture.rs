@@ -3,6 +3,7 @@
 //! number format of every label ([`number`], [`fixed`]: never "-0"). CPU only: the same
 //! pictures go into PNG files and, through the viewer, onto the screen.
 
+use super::drawn::{FrameDrawn, FramesDrawn, PanelDrawn, PictureDrawn, MAX_TITLE_LINES};
 use font8x8::legacy::BASIC_LEGACY;
 use image::{Rgba, RgbaImage};
 
@@ -229,18 +230,51 @@ const MARGIN: u32 = 4;
 const BAR: u32 = 8;
 
 /// `panels` laid out in a grid that fits `width x height` (the columns chosen to give the
-/// panels the largest texels), each with its title above and its colour key (the scale's
+/// panels the largest texels, among the layouts whose titles wrap at most
+/// [`MAX_TITLE_LINES`] lines), each with its title above and its colour key (the scale's
 /// range, and zero for a diverging map) below; texels enlarged by whole factors, nearest
 /// texel, when there is room. The picture, and where each panel's texels are.
-pub fn picture(panels: &[Panel], (width, height): (u32, u32)) -> (RgbaImage, Vec<Placement>) {
+pub fn picture(panels: &[Panel], size: (u32, u32)) -> (RgbaImage, Vec<Placement>) {
+    let (image, placements, _) = picture_drawn(panels, size);
+    (image, placements)
+}
+
+/// [`picture`], and what it shows: each panel's title, key and texel scale.
+pub fn picture_drawn(
+    panels: &[Panel],
+    (width, height): (u32, u32),
+) -> (RgbaImage, Vec<Placement>, PictureDrawn) {
     let mut image = RgbaImage::from_pixel(width.max(1), height.max(1), Rgba(BACKGROUND));
     let mut placements = Vec::new();
     if panels.is_empty() {
-        return (image, placements);
+        return (image, placements, PictureDrawn::default());
     }
     let glyph = glyph_for(width);
+    let columns = layout(panels, (width, height), glyph).1;
+    let rows = (panels.len() as u32).div_ceil(columns);
+    let (cw, ch) = (width / columns, height / rows);
+    let mut drawn = PictureDrawn::default();
+    for (k, panel) in panels.iter().enumerate() {
+        let (col, row) = (k as u32 % columns, k as u32 / columns);
+        let placement = draw_panel(&mut image, panels, k, (col * cw, row * ch), (cw, ch), glyph);
+        drawn.panels.push(PanelDrawn {
+            title: panel.title.clone(),
+            title_lines: title_lines(panel, cw, glyph).len(),
+            key: key_ends(panel.scale),
+            texels: placement.texels,
+            pixels: (placement.w, placement.h),
+        });
+        placements.push(placement);
+    }
+    (image, placements, drawn)
+}
+
+/// The best layout of `panels` in `width x height`: the smallest enlargement of a panel and
+/// the columns. Layouts whose titles wrap more than [`MAX_TITLE_LINES`] lines are taken only
+/// when every layout's do.
+fn layout(panels: &[Panel], (width, height): (u32, u32), glyph: u32) -> (f64, u32) {
     let n = panels.len() as u32;
-    let mut best: Option<(f64, u32)> = None;
+    let mut best: Option<(bool, f64, u32)> = None;
     for columns in 1..=n {
         let rows = n.div_ceil(columns);
         let (cw, ch) = (width / columns, height / rows);
@@ -249,19 +283,113 @@ pub fn picture(panels: &[Panel], (width, height): (u32, u32)) -> (RgbaImage, Vec
             .iter()
             .map(|p| (aw as f64 / p.width as f64).min(ah as f64 / p.height as f64))
             .fold(f64::INFINITY, f64::min);
-        if best.is_none_or(|(b, _)| s > b) {
-            best = Some((s, columns));
+        let short = panels
+            .iter()
+            .all(|p| title_lines(p, cw, glyph).len() <= MAX_TITLE_LINES);
+        if best.is_none_or(|(b_short, b, _)| (short, s) > (b_short, b)) {
+            best = Some((short, s, columns));
         }
     }
-    let columns = best.map_or(1, |(_, c)| c);
-    let rows = n.div_ceil(columns);
-    let (cw, ch) = (width / columns, height / rows);
-    for k in 0..panels.len() {
-        let (col, row) = (k as u32 % columns, k as u32 / columns);
-        let placement = draw_panel(&mut image, panels, k, (col * cw, row * ch), (cw, ch), glyph);
-        placements.push(placement);
+    best.map_or((1.0, 1), |(_, s, c)| (s, c))
+}
+
+/// The smallest size at least `size` (grown in proportion) at which every panel gets at
+/// least one pixel per texel, so that no texel is dropped; at most 8 times `size`.
+pub fn whole_texel_size(panels: &[Panel], size: (u32, u32)) -> (u32, u32) {
+    let mut grown = size;
+    for _ in 0..8 {
+        if panels.is_empty() || layout(panels, grown, glyph_for(grown.0)).0 >= 1.0 {
+            return grown;
+        }
+        grown = (grown.0 + size.0 / 2, grown.1 + size.1 / 2);
     }
-    (image, placements)
+    grown
+}
+
+/// The two ends of a colour key, as printed.
+fn key_ends(scale: Scale) -> (String, String) {
+    if scale.hi - scale.lo <= 0.0 {
+        ("all 0".into(), "all 0".into())
+    } else {
+        (number(scale.lo as f64), number(scale.hi as f64))
+    }
+}
+
+/// Rendered frames (`(title, image)`, top row first) in a grid of `columns`, each enlarged by
+/// the whole factor `scale` (nearest pixel) under its title, and below them the `legend`: a
+/// swatch and its meaning per line. The picture, and what it shows.
+pub fn frames_picture(
+    frames: &[(String, RgbaImage)],
+    columns: usize,
+    scale: u32,
+    legend: &[([u8; 4], String)],
+) -> (RgbaImage, FramesDrawn) {
+    let columns = columns.clamp(1, frames.len().max(1)) as u32;
+    let rows = (frames.len() as u32).div_ceil(columns);
+    let scale = scale.max(1);
+    let cell_w = frames.iter().map(|f| f.1.width()).max().unwrap_or(1) * scale + 2 * MARGIN + 2;
+    let width = (columns * cell_w).max(480);
+    let glyph = glyph_for(width);
+    let line = |text: &str| wrap(text, ((cell_w - 2 * MARGIN) / glyph).max(1) as usize);
+    let title_rows = frames
+        .iter()
+        .map(|f| line(&f.0).len() as u32)
+        .max()
+        .unwrap_or(1);
+    let cell_h = frames.iter().map(|f| f.1.height()).max().unwrap_or(1) * scale
+        + title_rows * (glyph + 2)
+        + 2 * MARGIN
+        + 2;
+    let legend_lines: Vec<Vec<String>> = legend
+        .iter()
+        .map(|(_, text)| wrap(text, ((width - 3 * glyph) / glyph).max(1) as usize))
+        .collect();
+    let legend_h = legend_lines.iter().map(|l| l.len() as u32).sum::<u32>() * (glyph + 2);
+    let height = rows * cell_h + legend_h + MARGIN * 2;
+    let mut image = RgbaImage::from_pixel(width, height, Rgba(BACKGROUND));
+    let mut drawn = FramesDrawn::default();
+    for (k, (title, frame)) in frames.iter().enumerate() {
+        let (x0, y0) = ((k as u32 % columns) * cell_w, (k as u32 / columns) * cell_h);
+        let lines = line(title);
+        for (i, text) in lines.iter().enumerate() {
+            draw_text(
+                &mut image,
+                x0 + MARGIN,
+                y0 + MARGIN + i as u32 * (glyph + 2),
+                text,
+                glyph,
+            );
+        }
+        let (ix, iy) = (x0 + MARGIN + 1, y0 + MARGIN + title_rows * (glyph + 2) + 1);
+        let (w, h) = (frame.width() * scale, frame.height() * scale);
+        fill(&mut image, (ix - 1, iy - 1), (w + 2, h + 2), FRAME);
+        for py in 0..h {
+            for px in 0..w {
+                put(
+                    &mut image,
+                    ix + px,
+                    iy + py,
+                    frame.get_pixel(px / scale, py / scale).0,
+                );
+            }
+        }
+        drawn.frames.push(FrameDrawn {
+            title: title.clone(),
+            title_lines: lines.len(),
+            pixels: (frame.width(), frame.height()),
+            shown: (w, h),
+        });
+    }
+    let mut y = rows * cell_h + MARGIN;
+    for ((colour, text), lines) in legend.iter().zip(&legend_lines) {
+        fill(&mut image, (MARGIN, y), (glyph, glyph), *colour);
+        for text in lines {
+            draw_text(&mut image, MARGIN + 2 * glyph, y, text, glyph);
+            y += glyph + 2;
+        }
+        drawn.legend.push(text.clone());
+    }
+    (image, drawn)
 }
 
 /// The lines of a panel's title in a cell `cw` wide.
@@ -315,6 +443,7 @@ fn draw_panel(
     let (sx, sy) = stretch(
         aw as f64 / panel.width as f64,
         ah as f64 / panel.height as f64,
+        (panel.width, panel.height),
     );
     let (w, h) = (
         ((panel.width as f64 * sx) as u32).max(1),
@@ -348,11 +477,12 @@ fn draw_panel(
 
 /// The enlargement of each axis from the room's (`sx`, `sy`): one factor for both (square
 /// texels), whole when it is at least 1 so that every texel is a block of equal pixels; but a
-/// target more than 4 times longer one way than the room (a strip) is stretched each way
-/// (rectangular texels) so that it is not drawn as a line.
-fn stretch(sx: f64, sy: f64) -> (f64, f64) {
+/// target more than 4 times longer one way than the other (a strip) in a room of another shape
+/// is stretched each way (rectangular texels) so that it is not drawn as a line.
+fn stretch(sx: f64, sy: f64, (width, height): (u32, u32)) -> (f64, f64) {
     let whole = |s: f64| if s >= 1.0 { s.floor() } else { s };
-    if sx.max(sy) > 4.0 * sx.min(sy) {
+    let strip = width.max(height) > 4 * width.min(height);
+    if strip && sx.max(sy) > 4.0 * sx.min(sy) {
         (whole(sx), whole(sy))
     } else {
         let s = whole(sx.min(sy));

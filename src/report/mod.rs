@@ -101,6 +101,11 @@ pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyho
     section.results = serde_json::to_value(&results).context("serialising the results")?;
     section.elapsed_s = start.elapsed().as_secs_f64();
     section.cpu_s = process_cpu_s() - cpu_start;
+    for figure in &section.figures {
+        if let Some(drawn) = crate::gl::drawn::recorded(&opts.out_dir.join(&figure.file)) {
+            section.drawn.insert(figure.file.clone(), drawn);
+        }
+    }
     for row in &section.fidelity {
         anyhow::ensure!(
             !row.deviation.trim().is_empty(),
@@ -193,6 +198,10 @@ pub struct Section {
     /// section's run, s: less sensitive than wall time to other work on the machine.
     #[serde(default)]
     pub cpu_s: f64,
+    /// What each figure shows (axes, ticks, legend; panels and keys), by file, as the code
+    /// that drew it recorded ([`crate::gl::drawn`]); filled by [`run_section`].
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub drawn: std::collections::BTreeMap<String, crate::gl::drawn::Drawn>,
 }
 
 /// A table of measured numbers, usually with the paper's numbers in adjacent columns.

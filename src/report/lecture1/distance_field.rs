@@ -135,7 +135,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             name,
             rows.iter()
                 .filter(|r| r.formulation.starts_with(prefix))
-                .map(|r| (r.resolution as f64, r.max_error_voxels.max(1e-9)))
+                .map(|r| (r.resolution as f64, r.max_error_voxels))
                 .collect(),
         )
     };

@@ -186,7 +186,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                     case.name,
                     rows.iter()
                         .filter(|r| r.case == case.name)
-                        .map(|r| (r.resolution as f64, r.relative_error.max(1e-9)))
+                        .map(|r| (r.resolution as f64, r.relative_error))
                         .collect(),
                 )
             })

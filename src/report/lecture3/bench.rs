@@ -620,10 +620,17 @@ pub fn random(
     bit_exact &= gpu.states()? == states;
     // The picture is the last checked step (the numbers the histogram below counts), taken
     // before the timed steps move the generators on by as many steps as the runs take.
-    crate::gl::dump::texture_png(
-        gpu.value_texture(),
+    let last_step = &raw[raw.len() - n..];
+    crate::gl::dump::picture_png(
+        &[crate::gl::picture::Panel {
+            title: format!("one number per texel, step {steps} of {side}x{side} generators"),
+            values: last_step.to_vec(),
+            width: side,
+            height: side,
+            scale: crate::gl::picture::Scale::fixed(0.0, 1.0),
+        }],
+        (640, 700),
         &opts.out_dir.join(images::RANDOM_PNG),
-        crate::gl::dump::DumpRange::Fixed(0.0, 1.0),
     )?;
     // The checked steps above were the warm-up.
     let gpu_step = gpu_ms_warm(ctx, runs, || Ok(gpu.step()?))?;
@@ -686,14 +693,10 @@ fn depth_mask(opts: &BenchOptions, quick: bool, runs: Runs) -> anyhow::Result<De
                 Some(&expensive),
                 runs,
             )?);
-            // The picture is the scattered mask at 25%, the row's masked picture still in
+            // The picture is the coherent mask at 25%, the row's masked picture still in
             // the target.
-            if shape == MaskShape::Scattered && fraction == DEPTH_MASK_PICTURE_FRACTION {
-                crate::gl::dump::texture_png(
-                    passes.target.color(0),
-                    &opts.out_dir.join(images::DEPTH_MASK_PNG),
-                    crate::gl::dump::DumpRange::Auto,
-                )?;
+            if shape == MaskShape::Blobs && fraction == DEPTH_MASK_PICTURE_FRACTION {
+                depth_mask_picture(opts, &passes, &mask, &expensive, side, fraction)?;
             }
         }
     }
@@ -704,7 +707,45 @@ fn depth_mask(opts: &BenchOptions, quick: bool, runs: Runs) -> anyhow::Result<De
     })
 }
 
-/// The fraction of the depth-mask picture (scattered mask).
+/// The depth-mask picture: the active pixels, the depth-masked shader's picture (the
+/// expensive function where the mask is active, 0 elsewhere) and its difference to the CPU's.
+fn depth_mask_picture(
+    opts: &BenchOptions,
+    passes: &DepthMask,
+    mask: &[f32],
+    expensive: &[f64],
+    side: u32,
+    fraction: f32,
+) -> anyhow::Result<()> {
+    use crate::gl::picture::{Panel, Scale};
+    let gpu = passes.read()?;
+    let (cpu, _) = depth_mask::cpu_masked(expensive, mask, fraction);
+    let active: Vec<f32> = mask
+        .iter()
+        .map(|&m| if m < fraction { 1.0 } else { 0.0 })
+        .collect();
+    let difference: Vec<f32> = gpu.iter().zip(&cpu).map(|(&g, &c)| g - c as f32).collect();
+    let panel = |title: String, values: Vec<f32>| Panel {
+        scale: Scale::of([values.as_slice()]),
+        title,
+        values,
+        width: side,
+        height: side,
+    };
+    let percent = (fraction * 100.0).round();
+    let panels = [
+        panel(format!("active pixels (1: mask below {percent}%)"), active),
+        panel("depth-masked shader's picture".into(), gpu),
+        panel("GPU minus CPU".into(), difference),
+    ];
+    Ok(crate::gl::dump::picture_png(
+        &panels,
+        (1200, 560),
+        &opts.out_dir.join(images::DEPTH_MASK_PNG),
+    )?)
+}
+
+/// The fraction of the depth-mask picture (coherent mask).
 const DEPTH_MASK_PICTURE_FRACTION: f32 = 0.25;
 
 /// One mask and fraction: both versions timed, their fragments counted, their pictures

@@ -110,7 +110,12 @@ pub fn figures(opts: &BenchOptions, results: &Lecture3Results) -> anyhow::Result
         },
         Figure {
             file: DEPTH_MASK_PNG.into(),
-            caption: "6. The depth-masked picture for a scattered mask, 25% active".into(),
+            caption: "6. The depth-masked passes on the coherent mask, 25% active: the active \
+                      pixels (left), the picture the expensive shader drew where the depth test \
+                      let it run (middle; grey, 0, wherever the mask is off) and its \
+                      difference to the CPU's picture (right: fp32 rounding only). Look for the \
+                      middle picture's pattern exactly inside the left one's blobs."
+                .into(),
         },
     ])
 }

@@ -2,7 +2,8 @@
 //! data): the pyramid levels, displacement-mapped frames and their verdicts against the
 //! exact tracer, the indirect lighting, the random numbers, the depth-masked picture.
 
-use crate::gl::dump::{map_floats, DumpRange};
+use crate::gl::dump::{frames_png, picture_png};
+use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
 use crate::lecture3::displacement::compare::Verdict;
 use crate::lecture3::displacement::{Camera, DisplacementRenderer, Method};
@@ -85,6 +86,18 @@ impl Rgba {
         out
     }
 
+    /// As an image, top row first.
+    pub fn to_image(&self) -> image::RgbaImage {
+        let rows: Vec<u8> = self
+            .data
+            .chunks_exact(self.width as usize * 4)
+            .rev()
+            .flatten()
+            .copied()
+            .collect();
+        image::RgbaImage::from_raw(self.width, self.height, rows).expect("4 bytes a pixel")
+    }
+
     /// Written as PNG, top row first.
     pub fn save(&self, path: &Path) -> anyhow::Result<()> {
         Ok(crate::gl::dump::rgba_png(
@@ -96,34 +109,45 @@ impl Rgba {
 }
 
 /// Pyramids of one `image`-sized picture (as read back from the GPU), each laid out as its
-/// atlas (level 0, the levels above in a column to its right), side by side: values 0..1 as
-/// grey, nodes that cover no image pixel (padding) magenta.
+/// atlas (level 0, the levels above in a column to its right) in a panel of its own, all on
+/// one colour key from 0 to 1; the atlas's empty area and the nodes that cover no image pixel
+/// (padding to a power of two) are left at 0, the neutral grey.
 pub fn pyramid_png(pyramids: &[Vec<Level>], image: (u32, u32), path: &Path) -> anyhow::Result<()> {
-    let pictures: Vec<Rgba> = pyramids
+    let names = ["max", "min", "mean"];
+    let panels: Vec<Panel> = pyramids
         .iter()
-        .map(|levels| {
+        .enumerate()
+        .map(|(k, levels)| {
             let sizes: Vec<_> = levels.iter().map(|l| (l.width, l.height)).collect();
             let ((aw, ah), offsets) = atlas_layout(&sizes);
             let (pw, ph) = sizes.first().copied().unwrap_or((1, 1));
-            let mut out = Rgba::new(aw, ah);
+            let mut values = vec![0.0f32; (aw * ah) as usize];
             for (level, &(ox, oy)) in levels.iter().zip(&offsets) {
                 let (sx, sy) = (pw / level.width, ph / level.height);
-                let bytes = map_floats(&level.values, 1, DumpRange::Fixed(0.0, 1.0));
-                for (i, p) in bytes.chunks_exact(4).enumerate() {
+                for (i, &v) in level.values.iter().enumerate() {
                     let (x, y) = (i as u32 % level.width, i as u32 / level.width);
                     let padding = x * sx >= image.0 || y * sy >= image.1;
-                    let pixel = if padding {
-                        [255, 0, 255, 255]
-                    } else {
-                        [p[0], p[1], p[2], 255]
-                    };
-                    out.put(ox + x, oy + y, pixel);
+                    if !padding {
+                        values[((oy + y) * aw + ox + x) as usize] = v;
+                    }
                 }
             }
-            out
+            Panel {
+                title: format!(
+                    "{} pyramid: level 0, levels 1.. to its right",
+                    names.get(k).unwrap_or(&"")
+                ),
+                values,
+                width: aw,
+                height: ah,
+                scale: Scale::fixed(0.0, 1.0),
+            }
         })
         .collect();
-    Rgba::row(&pictures, 4).save(path)
+    let width = panels.iter().map(|p| p.width).sum::<u32>();
+    let side = (1200 / width.max(1)).max(1);
+    let height = panels.iter().map(|p| p.height).max().unwrap_or(1) * side + 120;
+    Ok(picture_png(&panels, (1200, height), path)?)
 }
 
 /// The pyramids [`pyramid_png`] draws: max, min and mean of `map`, drawn on the GPU and read
@@ -151,6 +175,20 @@ pub struct JudgedFrame {
     pub verdicts: Vec<Verdict>,
 }
 
+/// The verdicts' colours and meanings, as the grazing picture's legend says them.
+const VERDICT_COLOURS: [([u8; 4], &str); 7] = [
+    (
+        [150, 150, 150, 255],
+        "exact hit (the frame's own colour, in grey)",
+    ),
+    ([230, 30, 30, 255], "wrong surface"),
+    ([255, 160, 0, 255], "outside tolerance"),
+    ([40, 90, 255, 255], "ill-conditioned"),
+    ([200, 0, 200, 255], "wall drawn for surface, or the reverse"),
+    ([0, 190, 120, 255], "wrong normal or colour"),
+    ([0, 0, 0, 255], "not compared (background)"),
+];
+
 /// The verdicts as colours: exact hits grey, wrong surface red, outside tolerance orange,
 /// ill-conditioned blue, wall drawn for surface (or the reverse) magenta, wrong normal or
 /// colour green, not compared black.
@@ -160,33 +198,53 @@ fn verdict_picture(frame: &JudgedFrame, side: u32) -> Rgba {
         let c = &frame.colour[4 * i..4 * i + 4];
         let grey = ((c[0] as u32 + c[1] as u32 + c[2] as u32) / 6) as u8;
         let pixel = match v {
-            Verdict::NotCompared => [0, 0, 0, 255],
+            Verdict::NotCompared => VERDICT_COLOURS[6].0,
             Verdict::Exact => [grey, grey, grey, 255],
-            Verdict::WrongSurface => [230, 30, 30, 255],
-            Verdict::OutsideTolerance => [255, 160, 0, 255],
-            Verdict::Ambiguous => [40, 90, 255, 255],
-            Verdict::WrongKind => [200, 0, 200, 255],
-            Verdict::WrongShading => [0, 190, 120, 255],
+            Verdict::WrongSurface => VERDICT_COLOURS[1].0,
+            Verdict::OutsideTolerance => VERDICT_COLOURS[2].0,
+            Verdict::Ambiguous => VERDICT_COLOURS[3].0,
+            Verdict::WrongKind => VERDICT_COLOURS[4].0,
+            Verdict::WrongShading => VERDICT_COLOURS[5].0,
         };
         out.put(i as u32 % side, i as u32 / side, pixel);
     }
     out
 }
 
-/// The grazing view: each method's frame above its verdict map.
+/// The whole factor that shows a `side`-pixel frame at about 300 pixels.
+fn enlargement(side: u32) -> u32 {
+    (300 / side.max(1)).max(1)
+}
+
+/// The grazing view: each method's frame above its verdict map, every panel titled, the
+/// verdicts' colours in a legend.
 pub fn grazing_png(opts: &BenchOptions, frames: &[JudgedFrame], side: u32) -> anyhow::Result<()> {
-    let columns: Vec<Rgba> = frames
+    let mut panels = Vec::new();
+    for f in frames {
+        let colour = Rgba {
+            width: side,
+            height: side,
+            data: f.colour.clone(),
+        };
+        panels.push((format!("{}: frame", f.method), colour.to_image()));
+    }
+    for f in frames {
+        panels.push((
+            format!("{}: verdicts", f.method),
+            verdict_picture(f, side).to_image(),
+        ));
+    }
+    let legend: Vec<([u8; 4], String)> = VERDICT_COLOURS
         .iter()
-        .map(|f| {
-            let colour = Rgba {
-                width: side,
-                height: side,
-                data: f.colour.clone(),
-            };
-            Rgba::column(&[colour, verdict_picture(f, side)], 4)
-        })
+        .map(|&(c, t)| (c, t.to_string()))
         .collect();
-    Rgba::row(&columns, 8).save(&opts.out_dir.join(GRAZING_PNG))
+    Ok(frames_png(
+        &panels,
+        frames.len(),
+        enlargement(side),
+        &legend,
+        &opts.out_dir.join(GRAZING_PNG),
+    )?)
 }
 
 /// Four frames of the camera orbiting the box (pyramid traversal).
@@ -208,14 +266,21 @@ pub fn orbit_png(
                 side,
             );
             renderer.render(&target, &camera, Method::Pyramid)?;
-            Ok(Rgba {
+            let frame = Rgba {
                 width: side,
                 height: side,
                 data: renderer.read(&target)?.colour,
-            })
+            };
+            Ok((format!("azimuth {azimuth} degrees"), frame.to_image()))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
-    Rgba::row(&frames, 4).save(&opts.out_dir.join(ORBIT_PNG))
+    Ok(frames_png(
+        &frames,
+        4,
+        enlargement(side),
+        &[],
+        &opts.out_dir.join(ORBIT_PNG),
+    )?)
 }
 
 fn shaded(lighting: &IndirectLighting, terms: Terms) -> anyhow::Result<Rgba> {
@@ -247,5 +312,18 @@ pub fn light_png(
 ) -> anyhow::Result<()> {
     let coarse = shaded(lighting, Terms::Indirect)?;
     let [both, indirect] = brute_force;
-    Rgba::row(&[both, indirect, coarse], 4).save(&opts.out_dir.join(LIGHT_PNG))
+    let frames = [
+        ("direct + indirect, brute force", both),
+        ("indirect alone, brute force", indirect),
+        ("indirect alone, coarsest criterion", coarse),
+    ]
+    .map(|(title, frame)| (title.to_string(), frame.to_image()));
+    let side = frames[0].1.width().max(frames[0].1.height());
+    Ok(frames_png(
+        &frames,
+        3,
+        enlargement(side),
+        &[],
+        &opts.out_dir.join(LIGHT_PNG),
+    )?)
 }

@@ -258,7 +258,19 @@ pub fn measure(opts: &BenchOptions, ctx: &Context) -> anyhow::Result<LightUsesRu
     };
     let subsurface = run(LightUse::subsurface())?;
     let environment = run(LightUse::environment())?;
-    Rgba::row(&pictures, 4).save(&opts.out_dir.join(USES_PNG))?;
+    let titles = [
+        "subsurface scattering, brute force",
+        "subsurface scattering, coarsest criterion",
+        "environment light, brute force",
+        "environment light, coarsest criterion",
+    ];
+    let frames: Vec<(String, image::RgbaImage)> = titles
+        .iter()
+        .zip(&pictures)
+        .map(|(t, p)| (t.to_string(), p.to_image()))
+        .collect();
+    let scale = (300 / size.max(1)).max(1);
+    crate::gl::dump::frames_png(&frames, 4, scale, &[], &opts.out_dir.join(USES_PNG))?;
     Ok(LightUsesRun {
         clustering,
         subsurface,

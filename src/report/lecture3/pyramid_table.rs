@@ -46,7 +46,9 @@ pub fn figure() -> Figure {
         file: PYRAMID_PNG.into(),
         caption: "1. The max (left), min (middle) and mean (right) pyramids of the height map as \
                   the GPU drew them, every level laid out as the traversals read them (level 0, \
-                  the levels above to its right); padding to a power of two in magenta"
+                  the levels above to its right), on one colour key from 0 to 1; the atlas's \
+                  empty corner and any padding to a power of two are left at 0, the neutral \
+                  dark grey"
             .into(),
     }
 }

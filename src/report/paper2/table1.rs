@@ -94,11 +94,18 @@ pub fn figures(
             log_x: true,
             log_y: true,
             series: vec![
-                Series::new("VS, paper (GeForce 7800 GTX)", published(|p| p.0)),
-                Series::new("2-pass, paper (GeForce 7800 GTX)", published(|p| p.1)),
-                Series::new("VS, here", here(Variant::VertexShader)),
-                Series::new("VS 1/draw, here", here(Variant::VertexShaderSingle)),
-                Series::new("2-pass, here", here(Variant::TwoPass)),
+                Series::new("VS, paper (GeForce 7800 GTX; dashed)", published(|p| p.0))
+                    .slot(0)
+                    .dashed(),
+                Series::new(
+                    "2-pass, paper (GeForce 7800 GTX; dashed)",
+                    published(|p| p.1),
+                )
+                .slot(1)
+                .dashed(),
+                Series::new("VS, here", here(Variant::VertexShader)).slot(0),
+                Series::new("2-pass, here", here(Variant::TwoPass)).slot(1),
+                Series::new("VS 1/draw, here", here(Variant::VertexShaderSingle)).slot(2),
             ],
         };
         let file = format!("table1_{}.png", kind.name());

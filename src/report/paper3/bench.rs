@@ -457,6 +457,7 @@ fn detection_of(
     );
     crate::files::write_image(&opts.out_dir.join(FIG2A_FILE), &photo.clone().into())
         .with_context(|| format!("writing {FIG2A_FILE}"))?;
+    recorded_image(opts, FIG2A_FILE, "the input photograph (text.png)");
     let run_of = |method: Method| -> anyhow::Result<DetectionRun> {
         let (measurement, outputs) = outputs_of(method);
         let out = outputs.column(0).to_vec();
@@ -464,6 +465,11 @@ fn detection_of(
             let mask = mask_image(&out, width, height, THRESHOLD);
             crate::files::write_image(&opts.out_dir.join(FIG2B_FILE), &mask.into())
                 .with_context(|| format!("writing {FIG2B_FILE}"))?;
+            recorded_image(
+                opts,
+                FIG2B_FILE,
+                "the network's mask: white where it finds text",
+            );
         }
         Ok(detection_run(
             &out,
@@ -504,6 +510,7 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
     let cpu = classify_cpu(&net, photo, CpuProduct::Optimised, 1 << 18).outputs;
     crate::files::write_image(&opts.out_dir.join(FIG2A_FILE), &photo.clone().into())
         .with_context(|| format!("writing {FIG2A_FILE}"))?;
+    recorded_image(opts, FIG2A_FILE, "the input photograph (text.png)");
     let classify = |formulation: Formulation| -> anyhow::Result<DetectionRun> {
         let loaded = gpu.load(&net, formulation)?;
         let classified = classify_gpu(&loaded, photo, 1 << 18, None)?;
@@ -516,6 +523,11 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
             let mask = mask_image(&out, width, height, THRESHOLD);
             crate::files::write_image(&opts.out_dir.join(FIG2B_FILE), &mask.into())
                 .with_context(|| format!("writing {FIG2B_FILE}"))?;
+            recorded_image(
+                opts,
+                FIG2B_FILE,
+                "the network's mask: white where it finds text",
+            );
         }
         Ok(detection_run(&out, &cpu, classified.times, 1))
     };
@@ -528,4 +540,10 @@ fn detect_photo(opts: &BenchOptions, gpu: &GpuMlp, photo: &GrayImage) -> anyhow:
         faithful,
         packed,
     })
+}
+
+/// Note what the image `file` in the report shows ([`crate::gl::drawn`]).
+fn recorded_image(opts: &BenchOptions, file: &str, what: &str) {
+    let shown = crate::gl::drawn::Drawn::Image { what: what.into() };
+    crate::gl::drawn::record(&opts.out_dir.join(file), shown);
 }

@@ -277,8 +277,12 @@ fn write_mask(
             }
         })
         .collect();
-    crate::files::write_png(&opts.out_dir.join(PERIOD_MASK_FILE), &rgba, width, height)
-        .with_context(|| format!("writing {PERIOD_MASK_FILE}"))
+    let path = opts.out_dir.join(PERIOD_MASK_FILE);
+    crate::files::write_png(&path, &rgba, width, height)
+        .with_context(|| format!("writing {PERIOD_MASK_FILE}"))?;
+    let what = "the fp24 mask: white text, red where fp24 and fp32 disagree";
+    crate::gl::drawn::record(&path, crate::gl::drawn::Drawn::Image { what: what.into() });
+    Ok(())
 }
 
 /// Each step of the faithful passes: what it asks of the GPU in this run against the R300's
