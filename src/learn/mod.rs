@@ -17,6 +17,7 @@
 // One file per lesson ([`all`] lists them in teaching order), and `kit`: what several share.
 mod compute_reduction;
 mod count_and_mask;
+mod debugging;
 mod depth_peeling;
 mod feedback;
 mod kit;
@@ -548,6 +549,7 @@ pub fn all() -> Vec<&'static dyn Lesson> {
         &readback_and_upload::ReadbackAndUpload,
         &render_to_vertex_buffer::RenderToVertexBuffer,
         &compute_reduction::ComputeReduction,
+        &debugging::Debugging,
     ]
 }
 
