@@ -164,7 +164,7 @@ fn every_solution_passes_and_every_unfilled_template_fails_with_its_hint() {
             let attempt = run(&ctx, id, Some(e.number));
             ctx.set_glsl_dir(None);
             assert!(!attempt.passed, "{id}: the unfilled template {name} passed");
-            assert_eq!(attempt.hint.as_deref(), Some(e.hint), "{id}");
+            assert_eq!(attempt.hint.as_deref(), Some(e.hints[0]), "{id}");
             let _ = std::fs::remove_dir_all(&dir);
         }
     }
@@ -246,7 +246,7 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
         assert_eq!(l["number"], k);
         assert!(!l["paper_steps"].as_array().unwrap().is_empty());
         assert!(!l["shaders"].as_array().unwrap().is_empty());
-        assert!(l["exercises"][0]["hint"].is_string());
+        assert_eq!(l["exercises"][0]["hints"].as_array().unwrap().len(), 3);
     }
     let dir = scratch("cli_png");
     let pictures = dir.join("pictures");
@@ -423,7 +423,7 @@ fn an_exported_template_fails_through_the_binary_and_the_solution_passes() {
     ]);
     let stderr = String::from_utf8_lossy(&attempt.stderr);
     assert!(!attempt.status.success(), "the unfilled template passed");
-    assert!(stderr.contains(exercise.hint), "no hint in: {stderr}");
+    assert!(stderr.contains(exercise.hints[0]), "no hint in: {stderr}");
     let solution = classic_gpgpu(&["learn", "reduction", "--exercise", &number]);
     assert!(
         solution.status.success(),

@@ -485,3 +485,15 @@ fn lecture1_window_matches_headless() {
     // The walking figure in the room, two steps along its walk.
     window_matches_headless("lecture1-avatar-ccd", &["lecture1", "avatar-ccd"], 2);
 }
+
+/// A probe over no buffer (the text at the top of a lesson's frame) draws no label, in the
+/// window as headless (the headless frame is checked against the frame without a probe in
+/// tests/learn_feedback.rs).
+#[test]
+fn learn_probe_over_no_buffer_window_matches_headless() {
+    window_matches_headless(
+        "learn-probe-nowhere",
+        &["learn", "reduction", "--probe", "200,4"],
+        1,
+    );
+}

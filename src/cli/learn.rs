@@ -34,6 +34,19 @@ pub struct LearnArgs {
     /// folder the guide did not make).
     #[arg(long)]
     pub force: bool,
+    /// Print hint N of the exercise (--exercise, else the lesson's first) and stop: 1 the idea,
+    /// 2 the formula, 3 the line.
+    #[arg(
+        long,
+        value_name = "N",
+        value_parser = clap::value_parser!(u32).range(1..=3),
+        conflicts_with_all = ["list", "guide", "png", "solution"]
+    )]
+    pub hint: Option<u32>,
+    /// Print the shipped solution of the exercise (--exercise, else the lesson's first): the
+    /// shader file as the project ships it; then stop.
+    #[arg(long, conflicts_with_all = ["list", "guide", "png"])]
+    pub solution: bool,
 }
 
 pub fn run(
@@ -52,6 +65,43 @@ pub fn run(
         .as_deref()
         .context("name a lesson, or pass --list")?;
     let lesson = learn::find(id)?;
+    if let Some(n) = args.hint {
+        let e = exercise_of(lesson.info(), args.exercise)?;
+        let what = ["the idea", "the formula", "the line"][n as usize - 1];
+        println!(
+            "lesson {} exercise {} [{}], hint {n} of 3 ({what}):",
+            lesson.info().id,
+            e.number,
+            e.shader
+        );
+        for line in classic_gpgpu::gl::picture::wrap(e.hints[n as usize - 1], 90) {
+            println!("  {line}");
+        }
+        if n < 3 {
+            println!(
+                "next hint: classic-gpgpu learn {} --exercise {} --hint {}",
+                lesson.info().id,
+                e.number,
+                n + 1
+            );
+        }
+        return Ok(());
+    }
+    if args.solution {
+        let e = exercise_of(lesson.info(), args.exercise)?;
+        let shader = classic_gpgpu::gl::shaders::find(e.shader)
+            .with_context(|| format!("the shipped shader {} is not compiled in", e.shader))?;
+        if !json {
+            eprintln!(
+                "the shipped solution of lesson {} exercise {}: {}",
+                lesson.info().id,
+                e.number,
+                e.shader
+            );
+        }
+        print!("{}", shader.source);
+        return Ok(());
+    }
     if let Some(dir) = &args.png {
         if dir.exists() && !dir.is_dir() {
             anyhow::bail!("--png {}: exists and is not a folder", dir.display());
@@ -73,7 +123,7 @@ pub fn run(
     if json {
         println!("{}", serde_json::to_string_pretty(&run)?);
     } else {
-        print_run(&run, args.png.as_ref());
+        print_run(&run, lesson.info(), args.png.as_ref());
     }
     if run.passed {
         return Ok(());
@@ -84,10 +134,75 @@ pub fn run(
         run.id,
         run.checks.len()
     );
-    if let Some(hint) = &run.hint {
-        message.push_str(&format!("\nhint: {hint}"));
+    for line in feedback(&run, ctx.glsl_dir().is_some(), args.png.as_ref()) {
+        message.push_str(&format!("\n{line}"));
     }
     anyhow::bail!(message)
+}
+
+/// Exercise `number` of a lesson (its first without one), or an error naming those it has.
+fn exercise_of(
+    info: &'static learn::LessonInfo,
+    number: Option<u32>,
+) -> anyhow::Result<&'static learn::Exercise> {
+    let opts = LessonOptions {
+        exercise: number,
+        ..LessonOptions::default()
+    };
+    match learn::chosen_exercise(info, &opts)? {
+        Some(e) => Ok(e),
+        None => info
+            .exercises
+            .first()
+            .with_context(|| format!("lesson {} has no exercise", info.id)),
+    }
+}
+
+/// What a failed run says after its verdict: where the first failed check made texel by
+/// texel went wrong (the texel, both values), its difference picture, the viewer command that
+/// probes it, and the first hint with the command for the next.
+fn feedback(run: &LessonRun, glsl_dir: bool, png: Option<&PathBuf>) -> Vec<String> {
+    let mut lines = Vec::new();
+    let texelwise = run
+        .checks
+        .iter()
+        .enumerate()
+        .find(|(_, c)| !c.passed && c.wrong.is_some_and(|n| n > 0));
+    if let Some((k, check)) = texelwise {
+        lines.push(format!("{}:", check.what));
+        lines.extend(check.where_wrong().into_iter().map(|l| format!("  {l}")));
+        match (png, &check.difference_picture) {
+            (Some(dir), Some(picture)) => lines.push(format!(
+                "  the difference GPU - CPU, with its colour key: {}",
+                dir.join(picture).display()
+            )),
+            _ => lines.push(format!(
+                "  add --png DIR to get the difference GPU - CPU as a picture ({})",
+                LessonRun::difference_file(k)
+            )),
+        }
+        let buffer = check
+            .buffer
+            .map_or(String::new(), |b| format!(" --buffer {b}"));
+        let first = check.first_wrong.first();
+        lines.push(format!(
+            "  look at it texel by texel: classic-gpgpu{} view learn {}{buffer} (point the mouse \
+             at texel ({}, {}), or --probe X,Y in window pixels)",
+            if glsl_dir { " --glsl-dir DIR" } else { "" },
+            run.id,
+            first.map_or(0, |w| w.x),
+            first.map_or(0, |w| w.y),
+        ));
+    }
+    if let (Some(hint), Some(n)) = (&run.hint, run.hint_exercise) {
+        lines.push(format!("hint 1 of 3 (exercise {n}): {hint}"));
+        lines.push(format!(
+            "more: classic-gpgpu learn {} --exercise {n} --hint 2 (then --hint 3; --solution \
+             prints the shipped shader)",
+            run.id
+        ));
+    }
+    lines
 }
 
 /// `learn --list`.
@@ -113,9 +228,17 @@ fn list(json: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The run as text: each pass, each check, the notes, the compute counterpart.
-fn print_run(run: &LessonRun, png: Option<&PathBuf>) {
+/// The run as text: the idea, each pass, each check (where a failed one went wrong), the
+/// notes, the compute counterpart, and what comes next.
+fn print_run(run: &LessonRun, info: &learn::LessonInfo, png: Option<&PathBuf>) {
     println!("lesson {}: {} ({})", run.id, run.title, run.renderer);
+    if let Some(ran) = &run.exercise_ran {
+        println!("  {ran}");
+    }
+    println!("  the idea:");
+    for line in classic_gpgpu::gl::picture::wrap(info.idea, 88) {
+        println!("    {line}");
+    }
     for (k, pass) in run.passes.iter().enumerate() {
         let shader = if pass.shader.is_empty() {
             String::new()
@@ -136,6 +259,17 @@ fn print_run(run: &LessonRun, png: Option<&PathBuf>) {
             check.max_error,
             check.tolerance
         );
+        if !check.passed {
+            for line in check.where_wrong() {
+                println!("       {line}");
+            }
+            if let (Some(dir), Some(picture)) = (png, &check.difference_picture) {
+                println!(
+                    "       wrote the difference GPU - CPU {}",
+                    dir.join(picture).display()
+                );
+            }
+        }
     }
     for (name, value) in &run.notes {
         println!("  note {name}: {value}");
@@ -148,6 +282,24 @@ fn print_run(run: &LessonRun, png: Option<&PathBuf>) {
         if run.passed { "passed" } else { "FAILED" },
         run.max_error
     );
+    for line in next_step(info) {
+        println!("{line}");
+    }
+}
+
+/// The lesson after `info` with the command that runs it; after the last, the paper to read.
+fn next_step(info: &learn::LessonInfo) -> Vec<String> {
+    let lessons = learn::all();
+    let at = lessons.iter().position(|l| l.info().id == info.id);
+    match at.and_then(|k| lessons.get(k + 1)) {
+        Some(next) => vec![format!(
+            "next: lesson {}, {}: classic-gpgpu learn {}",
+            next.info().number,
+            next.info().title,
+            next.info().id
+        )],
+        None => classic_gpgpu::report::guide::after_the_lessons(),
+    }
 }
 
 /// `learn --guide DIR`: run every lesson and write the guide; fails when a lesson failed.

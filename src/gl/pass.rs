@@ -270,6 +270,26 @@ impl<'a> Pass<'a> {
         self
     }
 
+    /// The GL check for a rendering feedback loop (GL 4.5 section 9.3.1): the sampler
+    /// uniforms bound to a single-level texture that this pass also draws into, whose result
+    /// GL leaves undefined. Empty when there is none. (A texture of several mipmap levels may
+    /// be read at one level and drawn at another, as a pyramid does: not reported.)
+    pub fn feedback_loops(&self) -> Vec<String> {
+        let attached: Vec<glow::Texture> = self
+            .target
+            .colors()
+            .iter()
+            .chain(self.target.depth())
+            .map(|t| t.id())
+            .collect();
+        self.textures
+            .iter()
+            .zip(&self.samplers)
+            .filter(|((_, t), _)| t.levels() == 1 && attached.contains(&t.id()))
+            .map(|(_, sampler)| sampler.clone())
+            .collect()
+    }
+
     /// Under a period GPU ([`Context::set_period`]): whether it could have drawn this pass,
     /// blending into these targets and sampling these textures as set up.
     fn check_period(&self) -> Result<(), GlError> {

@@ -56,9 +56,15 @@ static INFO: LessonInfo = LessonInfo {
         task: "Write the step of the tree: fold the partner `stride` places up onto this \
                invocation's value (needs OpenGL 4.3).",
         shader: "glsl/learn/compute-reduction/reduce.comp",
-        hint: "Inside `if (local < stride)`: s_partial[local] = combine(s_partial[local], \
-               s_partial[local + stride]); the barrier after it makes the result visible to \
-               the next step.",
+        hints: [
+            "In a tree reduction in shared memory, each step folds the upper half of \
+             the active invocations onto the lower half, with a barrier between \
+             steps.",
+            "At step `stride`, invocation `local` < stride keeps combine(its value, \
+             the value stride places up): s[local] = combine(s[local], s[local + \
+             stride]).",
+            "s_partial[local] = combine(s_partial[local], s_partial[local + stride]);",
+        ],
     }],
 };
 

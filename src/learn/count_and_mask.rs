@@ -6,7 +6,7 @@
 //! `if`s with the depth buffer.
 
 use super::kit;
-use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
+use super::{Exercise, Grid, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
 use crate::gl::{
     AtomicCounters, Buffer, BufferUsage, Compare, ComputeProgram, Context, DepthTest, DrawState,
     Framebuffer, OcclusionQuery, Program, StencilTest, Texture, TextureFormat,
@@ -57,8 +57,14 @@ static INFO: LessonInfo = LessonInfo {
         task: "Write the condition into the depth buffer: 1.0 (open) where the value is above \
                the threshold, 0.0 (closed) elsewhere.",
         shader: "glsl/learn/count-and-mask/mask_depth.frag",
-        hint: "The work pass is drawn at depth 0.5 with the test LESS: it runs where the stored \
-               depth is greater than 0.5. Write gl_FragDepth = value > u_threshold ? 1.0 : 0.0.",
+        hints: [
+            "The mask pass writes a depth per pixel that the work pass (drawn at \
+             depth 0.5 with the test LESS) is compared with: it runs only where the \
+             stored depth is greater than 0.5.",
+            "Open (depth 1.0) where value > u_threshold, closed (depth 0.0) where it \
+             is not.",
+            "gl_FragDepth = value > u_threshold ? 1.0 : 0.0;",
+        ],
     }],
 };
 
@@ -136,9 +142,11 @@ impl Lesson for CountAndMask {
             "the square root with no if, drawn at depth 0.5 with LESS: runs where the mask is open",
             picture,
         );
-        run.check(
+        run.check_texels(
             "work behind the depth mask vs the CPU's if (fp32 sqrt, correctly rounded: 1e-6)",
-            kit::max_abs_diff(&result, &data.expected(false)),
+            Grid::new(SIDE, SIDE, 1),
+            &result,
+            &data.expected(false),
             1e-6,
         );
         run.check(
@@ -169,9 +177,11 @@ impl Lesson for CountAndMask {
             "the same pass, now also where the stencil equals 1: real slots above the threshold",
             picture,
         );
-        run.check(
+        run.check_texels(
             "work behind the depth and stencil masks vs the CPU (1e-6, as above)",
-            kit::max_abs_diff(&result, &data.expected(true)),
+            Grid::new(SIDE, SIDE, 1),
+            &result,
+            &data.expected(true),
             1e-6,
         );
         run.check(

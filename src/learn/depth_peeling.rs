@@ -58,8 +58,14 @@ static INFO: LessonInfo = LessonInfo {
         task: "Peel: from layer 1 on, discard each fragment at or in front of the depth the \
                previous layer left at its pixel.",
         shader: "glsl/learn/depth-peeling/peel.frag",
-        hint: "Compare gl_FragCoord.z with `previous`: `if (u_layer > 0 && gl_FragCoord.z <= \
-               previous) discard;`. With `<` instead of `<=` the layer just found comes back.",
+        hints: [
+            "Layer k + 1 is what lies behind layer k: from layer 1 on, a fragment at \
+             or in front of the depth the previous layer left at its pixel has been \
+             taken already.",
+            "Discard when u_layer > 0 and gl_FragCoord.z <= previous; with < instead \
+             of <= the layer just found comes back.",
+            "if (u_layer > 0 && gl_FragCoord.z <= previous) { discard; }",
+        ],
     }],
 };
 

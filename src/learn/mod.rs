@@ -17,7 +17,9 @@
 // One file per lesson ([`all`] lists them in teaching order), and `kit`: what several share.
 mod compute_reduction;
 mod count_and_mask;
+mod debugging;
 mod depth_peeling;
+mod feedback;
 mod kit;
 mod ping_pong;
 mod quad_is_loop;
@@ -30,6 +32,7 @@ mod texture_is_array;
 
 use crate::gl::picture::{self, Panel, Scale};
 use crate::gl::Context;
+pub use feedback::{Grid, WrongTexel, FIRST_WRONG};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -53,8 +56,9 @@ pub struct Exercise {
     pub task: &'static str,
     /// The solution's path, `glsl/learn/X`; the template is `glsl/learn/exercises/X`.
     pub shader: &'static str,
-    /// Shown when the learner's shader fails the check.
-    pub hint: &'static str,
+    /// Three hints, each closer to the answer (`learn <id> --hint 1`, `2`, `3`): the idea,
+    /// the formula, the line. The first is shown when the learner's shader fails the check.
+    pub hints: [&'static str; 3],
 }
 
 /// What `learn --list` shows of a lesson.
@@ -104,6 +108,19 @@ pub struct Check {
     pub max_error: f64,
     pub tolerance: f64,
     pub passed: bool,
+    /// For a check made texel by texel ([`LessonRun::check_texels`]): how many values are off
+    /// by more than the tolerance.
+    pub wrong: Option<usize>,
+    /// The first few of them, with the GPU's value and the CPU's.
+    pub first_wrong: Vec<WrongTexel>,
+    /// The index in [`LessonRun::buffers`] of the buffer it checked (`view learn <id>
+    /// --buffer K` shows it), when a pass recorded it.
+    pub buffer: Option<usize>,
+    /// The difference picture written for a failed check, relative to the PNG folder.
+    pub difference_picture: Option<String>,
+    /// GPU - CPU for a failed check made texel by texel (not in the JSON: the picture is).
+    #[serde(skip)]
+    pub difference: Option<PassBuffer>,
 }
 
 /// What running a lesson gives: its passes, its checks against the CPU, and the verdict.
@@ -126,8 +143,13 @@ pub struct LessonRun {
     pub notes: Vec<(String, String)>,
     /// Whether the compute counterpart ran (false without OpenGL 4.3, and why).
     pub compute: Option<String>,
-    /// The hint of the exercise that was run, when it failed.
+    /// The first hint of the exercise that was run, when it failed.
     pub hint: Option<String>,
+    /// The number of that exercise (its further hints: `learn <id> --exercise N --hint 2`).
+    pub hint_exercise: Option<u32>,
+    /// With `--exercise N`: whose shader ran, the learner's file (from `--glsl-dir`) or the
+    /// shipped solution, in a sentence.
+    pub exercise_ran: Option<String>,
     /// The buffers the passes wrote, as read back (what `--png` writes and `view learn`
     /// shows); not in the JSON, whose passes name the pictures instead.
     #[serde(skip)]
@@ -243,6 +265,8 @@ impl LessonRun {
             notes: Vec::new(),
             compute: None,
             hint: None,
+            hint_exercise: None,
+            exercise_ran: None,
             buffers: Vec::new(),
         }
     }
@@ -285,8 +309,11 @@ impl LessonRun {
             self.passed = false;
         }
         if !self.passed {
-            self.hint = failed_exercise(info, ctx, opts).map(|e| e.hint.to_string());
+            let exercise = failed_exercise(info, ctx, opts);
+            self.hint = exercise.map(|e| e.hints[0].to_string());
+            self.hint_exercise = exercise.map(|e| e.number);
         }
+        self.exercise_ran = exercise_ran(info, ctx, opts);
         match &opts.png_dir {
             Some(dir) => self.write_pictures(dir),
             None => Ok(()),
@@ -300,6 +327,11 @@ impl LessonRun {
             files.push(dir.join(format!("{}.png", b.stem)));
             if b.float {
                 files.push(dir.join(format!("{}.npy", b.stem)));
+            }
+        }
+        for (k, c) in self.checks.iter().enumerate() {
+            if c.difference.is_some() {
+                files.push(dir.join(LessonRun::difference_file(k)));
             }
         }
         files
@@ -319,6 +351,18 @@ impl LessonRun {
             crate::files::write_image(&dir.join(&png), &image)?;
             let pass = self.buffers[i].pass;
             self.passes[pass].picture = Some(png);
+        }
+        // A failed check made texel by texel: its difference GPU - CPU, with its key.
+        for k in 0..self.checks.len() {
+            let Some(d) = &self.checks[k].difference else {
+                continue;
+            };
+            let size = picture_size(d.width, d.height, d.channels);
+            let panels = self.checks[k].difference_panels();
+            let image = image::DynamicImage::ImageRgba8(picture::picture(&panels, size).0);
+            let png = LessonRun::difference_file(k);
+            crate::files::write_image(&dir.join(&png), &image)?;
+            self.checks[k].difference_picture = Some(png);
         }
         Ok(())
     }
@@ -374,6 +418,11 @@ impl LessonRun {
             max_error,
             tolerance,
             passed,
+            wrong: None,
+            first_wrong: Vec::new(),
+            buffer: None,
+            difference_picture: None,
+            difference: None,
         });
     }
 }
@@ -445,6 +494,24 @@ fn failed_exercise(
         .or(info.exercises.first())
 }
 
+/// With `--exercise N`, whose shader ran: the learner's file in the `--glsl-dir` folder, or
+/// the shipped solution.
+fn exercise_ran(info: &LessonInfo, ctx: &Context, opts: &LessonOptions) -> Option<String> {
+    let e = info
+        .exercises
+        .iter()
+        .find(|e| Some(e.number) == opts.exercise)?;
+    let yours = ctx.glsl_dir().map(|dir| dir.join(e.shader));
+    Some(match yours.filter(|p| p.is_file()) {
+        Some(path) => format!("exercise {}: ran your file {}", e.number, path.display()),
+        None => format!(
+            "exercise {}: ran the shipped solution {} (yours runs with --glsl-dir DIR once DIR/{} \
+             exists: `classic-gpgpu glsl export DIR --exercises`)",
+            e.number, e.shader, e.shader
+        ),
+    })
+}
+
 /// A pass name as a file name: lower case, words joined by `-`.
 fn file_stem(name: &str) -> String {
     let mut stem = String::new();
@@ -482,6 +549,7 @@ pub fn all() -> Vec<&'static dyn Lesson> {
         &readback_and_upload::ReadbackAndUpload,
         &render_to_vertex_buffer::RenderToVertexBuffer,
         &compute_reduction::ComputeReduction,
+        &debugging::Debugging,
     ]
 }
 

@@ -9,7 +9,7 @@
 //! check it against.
 
 use super::{
-    chosen_exercise, max_difference, no_compute, Exercise, Lesson, LessonInfo, LessonOptions,
+    chosen_exercise, max_difference, no_compute, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
     LessonRun, PaperStep, PassBuffer,
 };
 use crate::gl::{
@@ -55,8 +55,17 @@ static INFO: LessonInfo = LessonInfo {
         task: "Write the Jacobi update: an interior value becomes the mean of its four \
                neighbours in the iterate read.",
         shader: JACOBI,
-        hint: "Read left, right, down and up with texelFetch(u_current, p +/- ivec2(1, 0) or \
-               ivec2(0, 1), 0).r and write 0.25 * (((left + right) + down) + up).",
+        hints: [
+            "A Jacobi step reads only the previous iterate (the texture bound as \
+             u_current) and writes the next one: each interior value becomes the mean \
+             of its four neighbours.",
+            "next(p) = 0.25 * (((left + right) + down) + up), with left = current(p - \
+             (1, 0)), right = current(p + (1, 0)), down = current(p - (0, 1)), up = \
+             current(p + (0, 1)), added in that order as the CPU does.",
+            "float left = texelFetch(u_current, p - ivec2(1, 0), 0).r; (and right, \
+             down, up the same way) then o_value = 0.25 * (((left + right) + down) + \
+             up);",
+        ],
     }],
 };
 
@@ -84,9 +93,11 @@ impl Lesson for PingPong {
         let start = initial_grid(N);
         let cpu = jacobi_cpu(&start, N, steps);
         let gpu = jacobi_gpu(ctx, &mut run, &start, steps)?;
-        run.check(
+        run.check_texels(
             &format!("after {steps} steps the grid = the CPU's Jacobi iterate"),
-            max_difference(&gpu, &cpu),
+            Grid::new(N, N, 1),
+            &gpu,
+            &cpu,
             TOLERANCE,
         );
         run.check(
@@ -268,9 +279,11 @@ fn jacobi_compute(
         "the same steps between two storage buffers, a barrier between dispatches",
         Some(PassBuffer::floats(N, N, 1, gpu.clone()).in_set("grid")),
     );
-    run.check(
+    run.check_texels(
         &format!("compute: after {steps} steps the grid = the CPU's iterate"),
-        max_difference(&gpu, cpu),
+        Grid::new(N, N, 1),
+        &gpu,
+        cpu,
         TOLERANCE,
     );
     Ok(format!(

@@ -3,8 +3,8 @@
 //! indirect read every fragment may do.
 
 use super::{
-    chosen_exercise, max_difference, no_compute, random_values, Exercise, Lesson, LessonInfo,
-    LessonOptions, LessonRun, PaperStep, PassBuffer,
+    chosen_exercise, no_compute, random_values, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
+    LessonRun, PaperStep, PassBuffer,
 };
 use crate::gl::{
     memory_barrier, Barrier, Buffer, BufferUsage, ComputeProgram, Context, Framebuffer, Program,
@@ -48,8 +48,13 @@ static INFO: LessonInfo = LessonInfo {
         number: 1,
         task: "Write the loop body of saxpy: the new y is a x + y.",
         shader: SAXPY,
-        hint: "The body runs once per element with x and y already read at the element's index: \
-               o_y = u_a * x + y.",
+        hints: [
+            "The rectangle is the loop; the shader is its body, run once per element \
+             with x and y already read at that element's index.",
+            "The body of `for i: y[i] = a x[i] + y[i]` with the uniform u_a as a: one \
+             multiply and one add.",
+            "o_y = u_a * x + y;",
+        ],
     }],
 };
 
@@ -122,9 +127,11 @@ fn saxpy(
         ),
         Some(PassBuffer::floats(W, H, 1, gpu.clone()).with_reference(cpu.to_vec())),
     );
-    run.check(
+    run.check_texels(
         "saxpy = the CPU loop",
-        max_difference(&gpu, cpu),
+        Grid::new(W, H, 1),
+        &gpu,
+        cpu,
         SAXPY_TOLERANCE,
     );
     Ok(())
@@ -156,9 +163,11 @@ fn gather(ctx: &Context, run: &mut LessonRun, values: &[f32]) -> anyhow::Result<
         Some(PassBuffer::floats(W, H, 1, gpu.clone())),
     );
     // A copy of values through exact integer indices: nothing is rounded.
-    run.check(
+    run.check_texels(
         "gather = values[index] on the CPU (exact)",
-        max_difference(&gpu, &cpu),
+        Grid::new(W, H, 1),
+        &gpu,
+        &cpu,
         0.0,
     );
     Ok(())
@@ -189,9 +198,11 @@ fn saxpy_compute(
         "one invocation per element updates y in place in a storage buffer",
         Some(PassBuffer::floats(W, H, 1, gpu.clone())),
     );
-    run.check(
+    run.check_texels(
         "compute: saxpy = the CPU loop",
-        max_difference(&gpu, cpu),
+        Grid::new(W, H, 1),
+        &gpu,
+        cpu,
         SAXPY_TOLERANCE,
     );
     Ok(format!(

@@ -52,8 +52,15 @@ static INFO: LessonInfo = LessonInfo {
         number: 1,
         task: "Flag a block when any texel of it is not zero: visit all BLOCK x BLOCK texels.",
         shader: "glsl/learn/readback-and-upload/block_flags.frag",
-        hint: "Loop y and x from 0 to u_block and texelFetch(u_data, corner + ivec2(x, y), 0); \
-               one texel with a non-zero component sets the flag.",
+        hints: [
+            "A block's flag says whether any texel of its u_block x u_block block \
+             holds data; looking at one texel misses the rest.",
+            "flag = 1 when some texel corner + (x, y), x and y in [0, u_block), has a \
+             non-zero component; else 0.",
+            "for (int y = 0; y < u_block; ++y) { for (int x = 0; x < u_block; ++x) { \
+             vec4 v = texelFetch(u_data, corner + ivec2(x, y), 0); if \
+             (any(notEqual(v, vec4(0.0)))) any_set = 1.0; } }",
+        ],
     }],
 };
 

@@ -3,7 +3,7 @@
 //! 2x2 blocks, then with 4x4 blocks (a wider fan-in: fewer passes, more reads per fragment).
 
 use super::{
-    chosen_exercise, no_compute, random_values, Exercise, Lesson, LessonInfo, LessonOptions,
+    chosen_exercise, no_compute, random_values, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
     LessonRun, PaperStep, PassBuffer,
 };
 use crate::gl::reduce::ReduceOp;
@@ -53,8 +53,16 @@ static INFO: LessonInfo = LessonInfo {
         task: "Widen the reduction's fan-in to 4x4: each output texel must combine the whole \
                u_fan x u_fan block below it.",
         shader: REDUCE_WIDE,
-        hint: "The loops must run i and j from 0 to u_fan, not to 2: with 2 each pass keeps a \
-               quarter of the 4x4 block and the sum comes out too small.",
+        hints: [
+            "Each output texel must combine its whole u_fan x u_fan block of the \
+             level below; reading only part of it drops values, so the sum comes out \
+             short.",
+            "Texel (x, y) of the next level = the sum (and the maximum) over i, j in \
+             [0, u_fan) of the level below at (u_fan x + i, u_fan y + j), skipping \
+             those past its edge.",
+            "for (int j = 0; j < u_fan; ++j) { for (int i = 0; i < u_fan; ++i) { ... \
+             } }",
+        ],
     }],
 };
 
@@ -84,7 +92,8 @@ impl Lesson for Reduction {
         let two = Program::rect(ctx, &[shader!("glsl/learn/reduce_2x2.frag")])?;
         let wide = Program::rect(ctx, &[shader!("glsl/learn/reduce_wide.frag")])?;
         for (program, fan, shader) in [(&two, 2, REDUCE_2X2), (&wide, WIDE, REDUCE_WIDE)] {
-            let (gpu_sum, gpu_max, sizes) = ladder(ctx, &mut run, &input, program, fan, shader)?;
+            let (gpu_sum, gpu_max, sizes) =
+                ladder(ctx, &mut run, (&input, &values), program, fan, shader)?;
             check_results(
                 &mut run,
                 &format!("{fan}x{fan}"),
@@ -118,7 +127,7 @@ type Ladder = (f32, f32, Vec<(u32, u32)>);
 fn ladder(
     ctx: &Context,
     run: &mut LessonRun,
-    input: &Texture,
+    (input, values): (&Texture, &[f32]),
     program: &Program,
     fan: u32,
     shader: &str,
@@ -147,12 +156,45 @@ fn ladder(
                 level.width(),
                 level.height()
             ),
-            Some(PassBuffer::floats(w, h, 2, rg).named(&["sum", "max"])),
+            Some(PassBuffer::floats(w, h, 2, rg.clone()).named(&["sum", "max"])),
         );
+        if sizes.len() == 1 {
+            // The first level texel by texel: each block's sum (within fp32's rounding of its
+            // fan x fan additions of values below 1) and its maximum.
+            let blocks = (fan * fan) as f64;
+            run.check_texels(
+                &format!("{fan}x{fan} level 1 = the CPU's block sums and maxima"),
+                Grid::new(w, h, 2),
+                &rg,
+                &blocks_cpu(values, fan),
+                blocks * blocks * UNIT_ROUNDOFF,
+            );
+        }
         level = next;
     }
     let top = level.download_f32()?;
     Ok((top[0], top[1], sizes))
+}
+
+/// The first level on the CPU: for each `fan x fan` block of the `W x H` values (those past
+/// the edge left out), its sum and its maximum.
+fn blocks_cpu(values: &[f32], fan: u32) -> Vec<f32> {
+    let (w, h) = (W.div_ceil(fan), H.div_ceil(fan));
+    let mut out = Vec::with_capacity((w * h * 2) as usize);
+    for by in 0..h {
+        for bx in 0..w {
+            let (mut sum, mut max) = (0f32, f32::MIN);
+            for y in (by * fan..(by + 1) * fan).filter(|&y| y < H) {
+                for x in (bx * fan..(bx + 1) * fan).filter(|&x| x < W) {
+                    let v = values[(y * W + x) as usize];
+                    sum += v;
+                    max = max.max(v);
+                }
+            }
+            out.extend([sum, max]);
+        }
+    }
+    out
 }
 
 /// Compare a reduction's sum and maximum with the CPU's. `path` is the most additions any one

@@ -5,7 +5,7 @@
 //! way: a vertex shader's outputs captured into a buffer. Both checked against the CPU.
 
 use super::kit;
-use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
+use super::{Exercise, Grid, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
 use crate::gl::{
     feedback, Barrier, Buffer, BufferUsage, ComputeProgram, Context, Framebuffer, Primitive,
     Program, Texture, TextureFormat, VertexArray,
@@ -53,8 +53,14 @@ static INFO: LessonInfo = LessonInfo {
         number: 1,
         task: "Compute the height of each vertex in pass 1: z = 0.25 sin(6u) cos(4v).",
         shader: "glsl/learn/render-to-vertex-buffer/grid.frag",
-        hint: "uv is already the texel's grid coordinate: float height = 0.25 * sin(6.0 * uv.x) \
-               * cos(4.0 * uv.y);",
+        hints: [
+            "Each texel of the target is one vertex of the grid: the fragment shader \
+             computes its position, and the buffer it lands in is drawn as vertices \
+             next.",
+            "The surface's height over the texel's grid coordinate uv (in [0, 1]) is \
+             z = 0.25 sin(6 u) cos(4 v).",
+            "float height = 0.25 * sin(6.0 * uv.x) * cos(4.0 * uv.y);",
+        ],
     }],
 };
 
@@ -103,9 +109,11 @@ impl Lesson for RenderToVertexBuffer {
             "glReadPixels into a pixel pack buffer, then a buffer copy into the vertex buffer",
             None,
         );
-        run.check(
+        run.check_texels(
             "vertex buffer after PBO -> VBO vs CPU positions (sin, cos: 1e-4)",
-            kit::max_abs_diff(&vbo.read::<f32>()?, &expected),
+            Grid::new(N, N, 4),
+            &vbo.read::<f32>()?,
+            &expected,
             TOLERANCE,
         );
 

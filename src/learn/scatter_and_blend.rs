@@ -3,8 +3,8 @@
 //! and additive blending sums the points that land on the same pixel.
 
 use super::{
-    chosen_exercise, max_difference, no_compute, random_values, Exercise, Lesson, LessonInfo,
-    LessonOptions, LessonRun, PaperStep, PassBuffer,
+    chosen_exercise, no_compute, random_values, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
+    LessonRun, PaperStep, PassBuffer,
 };
 use crate::gl::{
     memory_barrier, Barrier, Blend, Buffer, BufferUsage, ComputeProgram, Context, DrawState,
@@ -48,8 +48,15 @@ static INFO: LessonInfo = LessonInfo {
         number: 1,
         task: "Place each point on its value's bin: bin = floor(value * bins), at most bins - 1.",
         shader: POINTS,
-        hint: "float bin = min(floor(value * float(u_bins)), float(u_bins - 1)); the line after \
-               it turns the bin into the x of its pixel centre.",
+        hints: [
+            "A scatter writes where the data says: the vertex shader moves each point \
+             to its value's bin, and additive blending counts the points that land \
+             there.",
+            "With u_bins bins over [0, 1), a value falls in bin floor(value * \
+             u_bins); a value that rounds up to 1 belongs to the last bin, u_bins - \
+             1.",
+            "float bin = min(floor(value * float(u_bins)), float(u_bins - 1));",
+        ],
     }],
 };
 
@@ -112,9 +119,11 @@ impl Lesson for ScatterAndBlend {
                     ),
                 );
                 // Counts are sums of 1.0, exact in fp32 up to 2^24.
-                run.check(
+                run.check_texels(
                     "the blended bins = the CPU's histogram (exact counts)",
-                    max_difference(&gpu, &cpu),
+                    Grid::new(BINS, 1, 1),
+                    &gpu,
+                    &cpu,
                     0.0,
                 );
                 let total: f64 = gpu.iter().map(|&c| c as f64).sum();
@@ -138,9 +147,9 @@ impl Lesson for ScatterAndBlend {
                 run.note(
                     "without blending",
                     format!(
-                        "the bins held {:?} instead of {:?}: a point overwrites what the bin \
-                         held",
-                        gpu, blended
+                        "without blending the GPU's bins held {:?}, with additive blending {:?} \
+                         (the CPU's histogram: {:?}): a point overwrites what the bin held",
+                        gpu, blended, cpu
                     ),
                 );
             }
@@ -194,9 +203,11 @@ fn compute(
                 .with_reference(cpu.to_vec()),
         ),
     );
-    run.check(
+    run.check_texels(
         "compute: the atomic counts = the CPU's histogram (exact)",
-        max_difference(&counts, cpu),
+        Grid::new(BINS, 1, 1),
+        &counts,
+        cpu,
         0.0,
     );
     Ok(format!(

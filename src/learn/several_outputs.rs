@@ -3,7 +3,7 @@
 //! CPU sums them into the volume and centroid.
 
 use super::{
-    chosen_exercise, max_difference, no_compute, Exercise, Lesson, LessonInfo, LessonOptions,
+    chosen_exercise, max_difference, no_compute, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
     LessonRun, PaperStep, PassBuffer,
 };
 use crate::gl::{
@@ -49,9 +49,15 @@ static INFO: LessonInfo = LessonInfo {
         number: 1,
         task: "Write the second target too: x^2 z, y^2 z, z^3 / 3 and x y z.",
         shader: INTEGRANDS,
-        hint: "o_second is the fragment's output at location 1, drawn into the framebuffer's \
-               second colour attachment: o_second = vec4(p.x * p.x * z, p.y * p.y * z, \
-               z * z * z / 3.0, p.x * p.y * z).",
+        hints: [
+            "A fragment shader can write several outputs in one pass: o_second \
+             (location 1) lands in the framebuffer's second colour attachment, target \
+             1.",
+            "Target 1 holds the second moments of the column [0, z] over the texel at \
+             p: (x^2 z, y^2 z, z^3 / 3, x y z).",
+            "o_second = vec4(p.x * p.x * z, p.y * p.y * z, z * z * z / 3.0, p.x * p.y \
+             * z);",
+        ],
     }],
 };
 
@@ -94,14 +100,18 @@ impl Lesson for SeveralOutputs {
             "the same pass's target 1: x^2 z, y^2 z, z^3/3, x y z",
             Some(PassBuffer::floats(N, N, 4, gpu1.clone()).named(TARGET_1)),
         );
-        run.check(
+        run.check_texels(
             "target 0 = the CPU's integrands",
-            max_difference(&gpu0, &first),
+            Grid::new(N, N, 4),
+            &gpu0,
+            &first,
             TOLERANCE,
         );
-        run.check(
+        run.check_texels(
             "target 1 = the CPU's integrands",
-            max_difference(&gpu1, &second),
+            Grid::new(N, N, 4),
+            &gpu1,
+            &second,
             TOLERANCE,
         );
         let cell = 1.0 / (N * N) as f64;

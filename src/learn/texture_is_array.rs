@@ -4,7 +4,7 @@
 //! edges with linear filtering (what `(i + 0.5) / N` gives and what `i / N` gives).
 
 use super::{
-    chosen_exercise, max_difference, no_compute, Exercise, Lesson, LessonInfo, LessonOptions,
+    chosen_exercise, max_difference, no_compute, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
     LessonRun, PaperStep, PassBuffer,
 };
 use crate::gl::{
@@ -51,8 +51,15 @@ static INFO: LessonInfo = LessonInfo {
         task: "Sample texel i at the point u_offset into it (0.5: its centre), not at its left \
                edge, so that the centre pass reads each texel's own value.",
         shader: SAMPLE,
-        hint: "Texel i covers [i/N, (i+1)/N); the point u_offset into it is (i + u_offset) / N. \
-               At i / N linear filtering mixes texels i-1 and i half and half.",
+        hints: [
+            "Texel i of a row of N covers [i/N, (i+1)/N) in normalised coordinates; a \
+             point on a border between two texels gets half of each under linear \
+             filtering, so a GPGPU read aims at a point inside the texel.",
+            "The point u_offset of the way into texel i is x = (i + u_offset) / N; \
+             u_offset = 0.5 is its centre, where linear filtering returns the texel's \
+             own value.",
+            "float x = (i + u_offset) / u_size.x;",
+        ],
     }],
 };
 
@@ -270,9 +277,11 @@ fn compare_format(run: &mut LessonRun, format: TextureFormat, values: &[f32], ba
             );
         }
         _ => {
-            run.check(
+            run.check_texels(
                 "R32F read back = the values uploaded (exact)",
-                max_difference(back, values),
+                Grid::new(SIDE, SIDE, 1),
+                back,
+                values,
                 0.0,
             );
             run.note(
@@ -343,7 +352,7 @@ fn texel_centres(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
         } else {
             "edges i / N read the mean of texels i-1 and i (linear filtering)"
         };
-        run.check(what, max_difference(&back, &expected), 1e-6 * scale);
+        run.check_texels(what, Grid::new(ROW, 1, 1), &back, &expected, 1e-6 * scale);
         if offset == 0.0 {
             run.note(
                 "texel edges",

@@ -304,8 +304,11 @@ fn exercises(info: &crate::learn::LessonInfo) -> String {
             "<p><b>{}.</b> {} The file to edit: <code>{}</code>. Get the templates and run \
              yours:</p>\n<pre>classic-gpgpu glsl export DIR --exercises\n# edit DIR/{}, then\n\
              classic-gpgpu learn {} --exercise {} --glsl-dir DIR</pre>\n<p>Without \
-             <code>--glsl-dir</code> the shipped solution runs. When the check fails the \
-             hint is shown.</p>\n",
+             <code>--glsl-dir</code> the shipped solution runs, and says so. A failed check \
+             names the first wrong texels with the GPU's value and the CPU's, writes the \
+             difference GPU - CPU beside the <code>--png</code> pictures, and shows the first \
+             hint; <code>--hint 2</code> and <code>--hint 3</code> come closer to the answer, \
+             <code>--solution</code> prints the shipped shader.</p>\n",
             e.number,
             escape(e.task),
             escape(e.shader),
@@ -347,6 +350,25 @@ fn contains_word(text: &str, word: &str) -> bool {
 }
 
 /// A step of the reading order: what it is, what to run, what to read.
+/// What to read after the last lesson, as lines for the terminal: the first paper of the
+/// reading order, what it does, a command that runs it and the files to read.
+pub fn after_the_lessons() -> Vec<String> {
+    let Some(paper) = READING.iter().find(|r| r.title.starts_with("Paper")) else {
+        return Vec::new();
+    };
+    let mut lines = vec![format!("next, the papers: {}", paper.title)];
+    lines.push(format!("  {}", paper.what));
+    if let Some(run) = paper.run.first() {
+        lines.push(format!("  run:  {run}"));
+    }
+    lines.push(format!("  read: {}", paper.read.join(", ")));
+    lines.push(
+        "  the whole reading order: classic-gpgpu learn --guide DIR, then DIR/reading.html"
+            .to_string(),
+    );
+    lines
+}
+
 struct Reading {
     title: &'static str,
     what: &'static str,

@@ -52,11 +52,14 @@ impl Canvas {
     /// The probe's lines for canvas pixel (`x`, `y`) (top-left origin, as the mouse gives it):
     /// the topmost buffer drawn there, its texel, its value and its reference's.
     pub fn probe(&self, (x, y): (u32, u32)) -> Vec<String> {
+        self.probe_buffer((x, y))
+            .unwrap_or_else(|| vec![format!("({x}, {y}): no buffer here")])
+    }
+
+    /// [`Canvas::probe`]'s lines where a buffer is under the pixel, `None` elsewhere.
+    pub fn probe_buffer(&self, (x, y): (u32, u32)) -> Option<Vec<String>> {
         let probed = self.probed.borrow();
-        match probed.iter().rev().find_map(|p| p.readout(x, y)) {
-            Some(lines) => lines,
-            None => vec![format!("({x}, {y}): no buffer here")],
-        }
+        probed.iter().rev().find_map(|p| p.readout(x, y))
     }
 
     /// The program that blends an RGBA image over the canvas.

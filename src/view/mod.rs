@@ -159,7 +159,11 @@ pub fn draw_frame(
     let Some((x, y)) = view.probe else {
         return Ok(Vec::new());
     };
-    let probe = canvas.probe((x, y));
+    // Only over a buffer is a readout drawn; elsewhere (the text, the background) nothing is,
+    // so no label is left standing where no texel is, and the line comes back for `--probe`.
+    let Some(probe) = canvas.probe_buffer((x, y)) else {
+        return Ok(canvas.probe((x, y)));
+    };
     // Beside the pointer (below and right of it, moved inside the frame where it must be).
     let below = canvas.height().saturating_sub(y + 12);
     overlay::draw_text(canvas, &probe, overlay::Corner::Probe(x + 12, below))?;

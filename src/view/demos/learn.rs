@@ -1,6 +1,12 @@
 //! A lesson live (`view learn <id>`): the buffer of each pass that wrote one (Tab cycles them),
 //! the pass and the checks against the CPU in the overlay, and for a lesson that iterates
 //! (ping-pong) one more iteration per step.
+//!
+//! A lesson that iterates runs again at each step, and so reads its shaders again. With a
+//! `--glsl-dir`, the demo therefore runs from its own copy of that folder's shader files,
+//! taken when it was built (and checked by the first run): a file saved broken while it runs
+//! does not reach its steps. The live reload builds a new demo from the saved files; when that
+//! fails, this one keeps stepping with the last good shaders, and the window draws the error.
 
 use crate::gl::Context;
 use crate::learn::{self, Lesson, LessonOptions, LessonRun};
@@ -9,6 +15,8 @@ use crate::view::{Canvas, Demo, ViewState};
 
 pub struct LearnDemo {
     ctx: Context,
+    /// The copy of the `--glsl-dir` shader files this demo runs with (none without one).
+    shaders: Option<ShaderCopy>,
     lesson: &'static dyn Lesson,
     run: LessonRun,
     /// Iterations of the last run (lessons that iterate).
@@ -21,9 +29,16 @@ impl LearnDemo {
     pub fn new(ctx: &Context, id: &str) -> anyhow::Result<Self> {
         let lesson = learn::find(id)?;
         let iterations = 1;
-        let run = Self::run_lesson(ctx, lesson, iterations)?;
+        let shaders = match ctx.glsl_dir() {
+            Some(dir) => Some(ShaderCopy::of(&dir)?),
+            None => None,
+        };
+        // The first run reads the given folder itself, so that its errors name the
+        // learner's files; the copy was taken just before, of the same files.
+        let run = Self::run_lesson(ctx, None, lesson, iterations)?;
         Ok(LearnDemo {
             ctx: ctx.clone(),
+            shaders,
             lesson,
             run,
             iterations,
@@ -31,17 +46,60 @@ impl LearnDemo {
         })
     }
 
+    /// Run the lesson (`iterations` steps of one that iterates), its shaders read from
+    /// `shaders` when the demo has its own copy.
     fn run_lesson(
         ctx: &Context,
+        shaders: Option<&ShaderCopy>,
         lesson: &'static dyn Lesson,
         iterations: u32,
     ) -> anyhow::Result<LessonRun> {
         let opts = LessonOptions::default();
-        if lesson.iterates() {
+        let given = ctx.glsl_dir();
+        if let Some(copy) = shaders {
+            ctx.set_glsl_dir(Some(copy.dir.clone()));
+        }
+        let run = if lesson.iterates() {
             lesson.run_iterations(ctx, &opts, iterations)
         } else {
             lesson.run(ctx, &opts)
+        };
+        ctx.set_glsl_dir(given);
+        run
+    }
+}
+
+/// A private copy of the project's shader files found in a `--glsl-dir` folder, removed when
+/// the demo goes.
+struct ShaderCopy {
+    dir: std::path::PathBuf,
+}
+
+impl ShaderCopy {
+    fn of(given: &std::path::Path) -> anyhow::Result<ShaderCopy> {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        static MADE: AtomicUsize = AtomicUsize::new(0);
+        let dir = std::env::temp_dir().join(format!(
+            "classic-gpgpu-view-learn-{}-{}",
+            std::process::id(),
+            MADE.fetch_add(1, Ordering::Relaxed)
+        ));
+        let copy = ShaderCopy { dir };
+        for shader in crate::gl::shaders::ALL {
+            let from = given.join(shader.name);
+            if from.is_file() {
+                let text = std::fs::read(&from)
+                    .map_err(|e| anyhow::anyhow!("reading {}: {e}", from.display()))?;
+                crate::files::write_bytes(&copy.dir.join(shader.name), &text)?;
+            }
         }
+        Ok(copy)
+    }
+}
+
+impl Drop for ShaderCopy {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
     }
 }
 
@@ -50,7 +108,12 @@ impl Demo for LearnDemo {
     fn step(&mut self) -> anyhow::Result<()> {
         if self.lesson.iterates() {
             self.iterations += 1;
-            self.run = Self::run_lesson(&self.ctx, self.lesson, self.iterations)?;
+            self.run = Self::run_lesson(
+                &self.ctx,
+                self.shaders.as_ref(),
+                self.lesson,
+                self.iterations,
+            )?;
         }
         Ok(())
     }
