@@ -167,7 +167,7 @@ pub const LOADED_PER_CORE: f64 = 1.0;
 
 /// How busy the machine was when a timing was taken: the 1-minute load average of
 /// `/proc/loadavg` and the cores this process may use.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, serde::Deserialize)]
 pub struct Load {
     pub one_minute: f64,
     pub cores: usize,

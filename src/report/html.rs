@@ -244,6 +244,11 @@ pub fn page(report: &Report) -> String {
         escape(&report.date),
         report.elapsed_s
     ));
+    out.push_str(&format!(
+        "<p>Built from commit <code>{}</code>; made by <code>{}</code>.</p>\n",
+        escape(&report.commit),
+        escape(&report.command_line.join(" "))
+    ));
     out.push_str(&format!("<p>Timings: {}.</p>\n", escape(&report.runs)));
     if let Some(dir) = &report.glsl_dir {
         out.push_str(&format!(

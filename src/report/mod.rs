@@ -21,6 +21,7 @@ pub mod paper4;
 pub mod period;
 pub mod plot;
 pub mod profile;
+pub mod provenance;
 pub mod published;
 pub mod report_folder;
 pub mod reproduce;
@@ -94,6 +95,7 @@ pub struct BenchArgs<O: clap::Args> {
 /// Measure one section and build it, with its id, title and results filled in.
 pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyhow::Result<Section> {
     let (start, cpu_start) = (std::time::Instant::now(), process_cpu_s());
+    let load_start = timing::Load::now();
     let results = P::measure(opts, options)?;
     let mut section = P::section(opts, &results)?;
     section.id = P::ID.into();
@@ -106,6 +108,9 @@ pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyho
             section.drawn.insert(figure.file.clone(), drawn);
         }
     }
+    section.commit = provenance::COMMIT.into();
+    section.load_start = load_start;
+    section.load_end = timing::Load::now();
     for row in &section.fidelity {
         anyhow::ensure!(
             !row.deviation.trim().is_empty(),
@@ -155,6 +160,14 @@ pub struct Report {
     pub renderer: crate::gl::ContextInfo,
     pub cpu: String,
     pub date: String,
+    /// The commit the binary was built from ([`provenance::COMMIT`]; sections kept from an
+    /// earlier run with `--only` name their own).
+    pub commit: String,
+    /// [`provenance::CLAIMS_VERSION`]: `compare` puts side by side only results that judged
+    /// the same claims.
+    pub claims_version: String,
+    /// The command that made the report, program name first.
+    pub command_line: Vec<String>,
     pub quick: bool,
     /// How often each repeated timing ran ([`timing::runs_policy`]).
     pub runs: String,
@@ -202,6 +215,16 @@ pub struct Section {
     /// that drew it recorded ([`crate::gl::drawn`]); filled by [`run_section`].
     #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub drawn: std::collections::BTreeMap<String, crate::gl::drawn::Drawn>,
+    /// The commit of the binary that ran the section ([`provenance::COMMIT`]; empty in a
+    /// report from before it was recorded).
+    #[serde(default)]
+    pub commit: String,
+    /// The machine's load (1-minute load average, `/proc/loadavg`) when the section started
+    /// and when it ended; `None` where it cannot be read.
+    #[serde(default)]
+    pub load_start: Option<timing::Load>,
+    #[serde(default)]
+    pub load_end: Option<timing::Load>,
 }
 
 /// A table of measured numbers, usually with the paper's numbers in adjacent columns.

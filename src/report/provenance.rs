@@ -1,0 +1,65 @@
+//! Where a result comes from, so that a number in `results.json` can be traced back to the
+//! run that made it: the commit the binary was built from, the version of the claims it
+//! judges, the command line, and how busy the machine was.
+
+/// The commit this binary was built from (`git rev-parse HEAD` at build time), ending in
+/// `-dirty` when the tree held changes not committed; "unknown" when built without git.
+pub const COMMIT: &str = env!("CLASSIC_GPGPU_COMMIT");
+
+/// The version of the claims: a hash of the report's code and the published tables
+/// (`src/report/`, `assets/paper_tables.toml`), which decide what each claim says and how it
+/// is judged. Two results with the same version judged the same claims the same way.
+pub const CLAIMS_VERSION: &str = env!("CLASSIC_GPGPU_CLAIMS_VERSION");
+
+/// The command line of this process, program name first (arguments that are not UTF-8 are
+/// written with replacement characters).
+pub fn command_line() -> Vec<String> {
+    std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect()
+}
+
+/// Whether `commit` was built from a tree with changes not committed.
+pub fn is_dirty(commit: &str) -> bool {
+    commit.ends_with("-dirty")
+}
+
+/// A commit as a reader sees it: the first 7 hex digits, `-dirty` kept.
+pub fn short_commit(commit: &str) -> String {
+    let (hash, dirty) = match commit.strip_suffix("-dirty") {
+        Some(hash) => (hash, "-dirty"),
+        None => (commit, ""),
+    };
+    if hash.len() > 7 && hash.chars().all(|c| c.is_ascii_hexdigit()) {
+        format!("{}{dirty}", &hash[..7])
+    } else {
+        commit.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_build_says_where_it_comes_from() {
+        // build.rs ran git here (a checkout), or said it could not.
+        let hash = COMMIT.strip_suffix("-dirty").unwrap_or(COMMIT);
+        assert!(
+            hash == "unknown" || (hash.len() == 40 && hash.chars().all(|c| c.is_ascii_hexdigit())),
+            "{COMMIT}"
+        );
+        assert_eq!(CLAIMS_VERSION.len(), 16, "{CLAIMS_VERSION}");
+        assert!(CLAIMS_VERSION.chars().all(|c| c.is_ascii_hexdigit()));
+        assert!(!command_line().is_empty());
+    }
+
+    #[test]
+    fn commits_are_shortened_as_git_does() {
+        let full = "0592cce1a2b3c4d5e6f708192a3b4c5d6e7f8091";
+        assert_eq!(short_commit(full), "0592cce");
+        assert_eq!(short_commit(&format!("{full}-dirty")), "0592cce-dirty");
+        assert_eq!(short_commit("unknown"), "unknown");
+        assert!(is_dirty("abc-dirty") && !is_dirty("abc"));
+    }
+}
