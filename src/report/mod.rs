@@ -8,6 +8,7 @@
 //! ([`bench_command`]) and `reproduce` both go through [`run_section`].
 
 pub mod blocks;
+pub mod compare;
 pub mod guide;
 mod html;
 pub mod lecture1;
