@@ -286,8 +286,9 @@ fn every_headline_figure_is_read_from_every_kept_run() {
                 .unwrap_or_else(|| panic!("no figure for '{}' on {}", row.label, machine.label));
             assert!(!figure.text.is_empty());
             if !row.ratio.is_empty() {
+                // 0 where the claim printed "0.00" (a log axis leaves that point out).
                 let ratio = figure.ratio.expect("a ratio to plot");
-                assert!(ratio.is_finite() && ratio > 0.0, "{} {ratio}", row.label);
+                assert!(ratio.is_finite() && ratio >= 0.0, "{} {ratio}", row.label);
             }
         }
     }
