@@ -81,6 +81,9 @@ enum Command {
     Glsl(cli::glsl::GlslCommand),
     /// The lessons of the basic GPGPU approach, in order, each checked against the CPU.
     Learn(cli::learn::LearnArgs),
+    /// Several machines' results.json side by side: every claim a row, each machine a column
+    /// (a page in --out), or the README's table (--markdown).
+    Compare(report::compare::CompareArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -188,6 +191,7 @@ fn main() -> ExitCode {
         Command::View(a) => cli::view::run(&a, global.glsl_dir.clone(), || global.context()),
         Command::Glsl(c) => cli::glsl::run(&c, json),
         Command::Learn(a) => cli::learn::run(&a, json, || global.context()),
+        Command::Compare(a) => cli::compare::run(&a, json),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

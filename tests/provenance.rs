@@ -80,3 +80,26 @@ fn results_name_the_commit_the_command_and_the_load() {
     assert!(html.contains(&format!("<code>{commit}</code>")));
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn the_build_says_where_it_comes_from() {
+    use classic_gpgpu::report::provenance::{CLAIMS_VERSION, COMMIT};
+    // build.rs ran git here (a checkout), or said it could not.
+    let hash = COMMIT.strip_suffix("-dirty").unwrap_or(COMMIT);
+    assert!(
+        hash == "unknown" || (hash.len() == 40 && hash.chars().all(|c| c.is_ascii_hexdigit())),
+        "{COMMIT}"
+    );
+    assert_eq!(CLAIMS_VERSION.len(), 16, "{CLAIMS_VERSION}");
+    assert!(CLAIMS_VERSION.chars().all(|c| c.is_ascii_hexdigit()));
+}
+
+#[test]
+fn commits_are_shortened_as_git_does() {
+    use classic_gpgpu::report::provenance::{is_dirty, short_commit};
+    let full = "0592cce1a2b3c4d5e6f708192a3b4c5d6e7f8091";
+    assert_eq!(short_commit(full), "0592cce");
+    assert_eq!(short_commit(&format!("{full}-dirty")), "0592cce-dirty");
+    assert_eq!(short_commit("unknown"), "unknown");
+    assert!(is_dirty("abc-dirty") && !is_dirty("abc"));
+}

@@ -9,6 +9,7 @@
 
 pub mod blocks;
 pub mod checks;
+pub mod compare;
 pub mod guide;
 mod html;
 pub mod lecture1;

@@ -326,7 +326,7 @@ fn image_size(entries: usize, notes: usize) -> (u32, u32) {
     (SIZE.0, SIZE.1 + legend * LEGEND_ROW + margin)
 }
 
-fn register_font() {
+pub(crate) fn register_font() {
     static REGISTER: Once = Once::new();
     REGISTER.call_once(|| {
         // The font is part of the source; a failure here is a bug caught by the plot test.
