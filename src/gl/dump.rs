@@ -86,7 +86,7 @@ pub fn texture_picture_png(
 pub fn picture_png(panels: &[Panel], size: (u32, u32), path: &Path) -> Result<(), GlError> {
     let (image, _) = picture::picture(panels, size);
     crate::files::write_image(path, &image::DynamicImage::ImageRgba8(image))
-        .map_err(|e| io_error(path, e))
+        .map_err(|e| write_error(path, &e))
 }
 
 /// Write `texture` to `path` as PNG.
@@ -107,8 +107,16 @@ pub fn rgba_png(rgba: &[u8], (width, height): (u32, u32), path: &Path) -> Result
         .flatten()
         .copied()
         .collect();
-    crate::files::write_png(path, &flipped, width, height)
-        .map_err(|e| io_error(path, format!("{e:#}")))
+    crate::files::write_png(path, &flipped, width, height).map_err(|e| write_error(path, &e))
+}
+
+/// A failed write of `path` as [`GlError::Io`] (which says "writing PATH" itself): every
+/// cause of `e`, the disk's own reason included, without saying the path twice.
+pub(crate) fn write_error(path: &Path, e: &anyhow::Error) -> GlError {
+    let text = crate::files::error_text(e);
+    let prefix = format!("writing {}: ", path.display());
+    let message = text.strip_prefix(&prefix).unwrap_or(&text).to_string();
+    io_error(path, message)
 }
 
 fn io_error(path: &Path, e: impl std::fmt::Display) -> GlError {

@@ -89,6 +89,11 @@ pub fn reproduce(
     progress: MultiProgress,
 ) -> anyhow::Result<Report> {
     super::period::set_requested(!args.no_period);
+    // A link to a folder: the report goes into that folder, and the link stays.
+    let args = &ReproduceArgs {
+        out: report_folder::resolve("--out", &args.out)?,
+        ..args.clone()
+    };
     let all = stages();
     let chosen = chosen_stages(&all, &args.only)?;
     report_folder::check_out(&args.out, args.force)?;
