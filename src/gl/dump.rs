@@ -92,9 +92,7 @@ pub fn picture_png(panels: &[Panel], size: (u32, u32), path: &Path) -> Result<()
 /// Write `texture` to `path` as PNG.
 pub fn texture_png(texture: &Texture, path: &Path, range: DumpRange) -> Result<(), GlError> {
     let rgba = to_rgba8(texture, range)?;
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| io_error(path, e))?;
-    }
+    // The folder is made by the write (`files::write`), which names a part that is a file.
     rgba_png(&rgba, (texture.width(), texture.height()), path)
 }
 
