@@ -379,9 +379,14 @@ impl Lock {
                 Ok(()) if still_at(&file, &path) => return Ok(Lock { file, path }),
                 Ok(()) => continue,
                 Err(rustix::io::Errno::WOULDBLOCK) => bail!(
-                    "{what} {}: another `classic-gpgpu {command}` is writing this folder now \
-                     (it holds {}); run again when it has finished, or choose another {what}",
+                    "{what} {}: another `classic-gpgpu {command}` is writing this {} now (it \
+                     holds {}); run again when it has finished, or choose another {what}",
                     out.display(),
+                    if command == REPRODUCE {
+                        "report"
+                    } else {
+                        "folder"
+                    },
                     path.display()
                 ),
                 Err(e) => return Err(e).with_context(|| format!("locking {}", path.display())),
