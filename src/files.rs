@@ -115,8 +115,7 @@ pub fn write(
 ) -> anyhow::Result<()> {
     let dir = match path.parent().filter(|d| !d.as_os_str().is_empty()) {
         Some(dir) => {
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("creating the folder {}", dir.display()))?;
+            create_folder(dir)?;
             dir.to_path_buf()
         }
         None => PathBuf::from("."),
@@ -133,6 +132,26 @@ pub fn write(
     }
     remove_stale_temporaries(path, &dir);
     Ok(())
+}
+
+/// Makes `dir` and its parents; where a part of the path is a file, says which (not the
+/// system's bare "File exists").
+pub fn create_folder(dir: &Path) -> anyhow::Result<()> {
+    let Err(e) = std::fs::create_dir_all(dir) else {
+        return Ok(());
+    };
+    let file = dir
+        .ancestors()
+        .find(|a| !a.as_os_str().is_empty() && a.exists() && !a.is_dir());
+    match file {
+        Some(file) => bail!(
+            "cannot create the folder {}: {} is a file, not a folder; give a path whose \
+             folders are folders",
+            dir.display(),
+            file.display()
+        ),
+        None => Err(e).with_context(|| format!("creating the folder {}", dir.display())),
+    }
 }
 
 /// Removes the temporary files of `path` that killed runs left (`.NAME.tmp-PID` whose process
@@ -228,6 +247,40 @@ pub fn write_npy(path: &Path, shape: &[usize], data: &[f32]) -> anyhow::Result<(
         .write_npy(&mut npy)
         .with_context(|| format!("encoding {} as .npy", path.display()))?;
     write_bytes(path, &npy)
+}
+
+/// The most bytes an image may take decoded: the `image` crate's own default allocation
+/// limit, said in the message with the size the file's header claims.
+pub const IMAGE_DECODE_LIMIT: u64 = 512 << 20;
+
+/// The image at `path` (the `what` in messages: "image", "height map"), decoded after its
+/// header's size is checked against [`IMAGE_DECODE_LIMIT`]: a file claiming more pixels than
+/// fit is refused with its size, not a bare "Memory limit exceeded".
+pub fn read_image(path: &Path, what: &str) -> anyhow::Result<image::DynamicImage> {
+    use image::ImageDecoder as _;
+    let cannot = || format!("cannot read the {what} {}", path.display());
+    let decoder = image::ImageReader::open(path)
+        .with_context(cannot)?
+        .with_guessed_format()
+        .with_context(cannot)?
+        .into_decoder()
+        .with_context(cannot)?;
+    let (width, height) = decoder.dimensions();
+    let bytes = decoder.total_bytes();
+    if bytes > IMAGE_DECODE_LIMIT {
+        bail!(
+            "the {what} {}: its header says {width} x {height} pixels, {:.1} GiB decoded, over \
+             the {} MiB this program decodes an image into; give a smaller image",
+            path.display(),
+            bytes as f64 / (1u64 << 30) as f64,
+            IMAGE_DECODE_LIMIT >> 20
+        );
+    }
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(IMAGE_DECODE_LIMIT.max(bytes) + (64 << 20));
+    let mut decoder = decoder;
+    decoder.set_limits(limits).with_context(cannot)?;
+    image::DynamicImage::from_decoder(decoder).with_context(cannot)
 }
 
 /// A `.npy` file of float32 values: its shape and values (for tests and for checking dumps).

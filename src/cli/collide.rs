@@ -129,8 +129,14 @@ pub struct CollideArgs {
     /// and each one's exact float values beside it as .npy (numpy, float32, shape [height,
     /// width, channels]; row 0 is the texture's bottom row, GL's order, so a[y, x] is texel
     /// (x, y) and the PNG's top row is the array's last).
+    /// A folder holding files `collide --dump` did not write is refused without --force; a
+    /// rerun replaces the files of the earlier dump.
     #[arg(long)]
     pub dump: Option<PathBuf>,
+    /// Write the --dump files into a folder that holds other files (they are never removed
+    /// or replaced).
+    #[arg(long, requires = "dump")]
+    pub force: bool,
     #[command(flatten)]
     pub profile: super::profile::ProfileArg,
 }
@@ -145,9 +151,17 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
             .with_context(|| format!("model {}", p.display()))?;
         Ok(mesh)
     };
-    if let Some(dir) = &args.dump {
-        classic_gpgpu::files::check_folder("--dump", dir)?;
-    }
+    let dump = match &args.dump {
+        Some(dir) if args.pipeline.formulation == super::Formulation::Classic => {
+            Some(classic_gpgpu::report::report_folder::Staged::begin(
+                "--dump",
+                "collide --dump",
+                dir,
+                args.force,
+            )?)
+        }
+        _ => None,
+    };
     let (x, y) = (load(&args.a)?, load(&args.b)?);
     let options = args.pipeline.options(ctx, &x, &y)?;
     if args.pipeline.formulation == super::Formulation::Compute {
@@ -165,9 +179,15 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     args.profile.start(ctx);
     let frame = collider.frame(&x.positions, &y.positions)?;
     super::profile::print(ctx);
-    if let Some(dir) = &args.dump {
-        dump_buffers(&collider, dir)?;
-        frame_png(&collider, &frame, (&x, &y), &dir.join("snapshot.png"))?;
+    if let Some(dump) = dump {
+        dump_buffers(&collider, dump.path())?;
+        frame_png(
+            &collider,
+            &frame,
+            (&x, &y),
+            &dump.path().join("snapshot.png"),
+        )?;
+        dump.finish()?;
     }
     let renderer = ctx.info().renderer_line();
     let report = json!({

@@ -4,9 +4,9 @@
 //! when a check fails.
 
 use anyhow::Context as _;
-use classic_gpgpu::files;
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::learn::{self, LessonOptions, LessonRun};
+use classic_gpgpu::report::report_folder::Staged;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -18,7 +18,9 @@ pub struct LearnArgs {
     /// (nothing runs, so --png and --exercise have nothing to apply to).
     #[arg(long, conflicts_with_all = ["id", "png", "exercise"])]
     pub list: bool,
-    /// Write each pass's buffer into this folder as PNG (and .npy for float buffers).
+    /// Write each pass's buffer into this folder as PNG (and .npy for float buffers). A
+    /// folder holding files this lesson's --png did not write is refused without --force; a
+    /// rerun replaces the pictures of the earlier one.
     #[arg(long, value_name = "DIR")]
     pub png: Option<PathBuf>,
     /// Run with exercise N's shader: the learner's file where the shader folder has it, else
@@ -30,8 +32,8 @@ pub struct LearnArgs {
     /// a glossary.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["id", "list", "png", "exercise"])]
     pub guide: Option<PathBuf>,
-    /// Replace pictures that already exist in the --png folder (with --guide: write into a
-    /// folder the guide did not make).
+    /// Write the --png pictures (or the --guide) into a folder that holds other files (they
+    /// are never removed or replaced).
     #[arg(long)]
     pub force: bool,
     /// Print hint N of the exercise (--exercise, else the lesson's first) and stop: 1 the idea,
@@ -102,23 +104,25 @@ pub fn run(
         print!("{}", shader.source);
         return Ok(());
     }
-    if let Some(dir) = &args.png {
-        if dir.exists() && !dir.is_dir() {
-            anyhow::bail!("--png {}: exists and is not a folder", dir.display());
-        }
-    }
+    // The one rule of every folder writer (report_folder), checked before any work.
+    let folder = match &args.png {
+        Some(dir) => Some(Staged::begin(
+            "--png",
+            &format!("learn {} --png", lesson.info().id),
+            dir,
+            args.force,
+        )?),
+        None => None,
+    };
     let ctx = context()?;
     let opts = LessonOptions {
         png_dir: None,
         exercise: args.exercise,
     };
     let mut run = lesson.run(&ctx, &opts)?;
-    if let Some(dir) = &args.png {
-        // Every picture is checked before the first is written: nothing is half-replaced.
-        for file in run.picture_files(dir) {
-            files::check_output("--png", &file, &[], args.force, &["png", "npy"])?;
-        }
-        run.write_pictures(dir)?;
+    if let Some(folder) = folder {
+        run.write_pictures(folder.path())?;
+        folder.finish()?;
     }
     if json {
         println!("{}", serde_json::to_string_pretty(&run)?);

@@ -145,7 +145,7 @@ pub use super::lecture1_fields::{DistanceFieldArgs, SweptVolumeArgs, VoronoiArgs
 #[derive(clap::Args, Debug)]
 pub struct CompareArgs {
     /// Triangle counts of the swelling knot (at its thickest).
-    #[arg(long, value_delimiter = ',', default_values_t = [250, 500, 1000, 2000])]
+    #[arg(long, value_delimiter = ',', num_args = 1.., default_values_t = [250, 500, 1000, 2000])]
     pub triangles: Vec<usize>,
 }
 

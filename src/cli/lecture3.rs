@@ -24,6 +24,7 @@ use classic_gpgpu::report::lecture3::{
     self as bench,
     images::{gpu_pyramids, pyramid_png, PYRAMID_KINDS},
 };
+use classic_gpgpu::report::report_folder::Staged;
 use classic_gpgpu::report::timing::Runs;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -489,21 +490,15 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if linear_steps == 0 || linear_steps > 4096 || binary_steps > 64 {
         bail!("--linear-steps must be 1 to 4096 and --binary-steps at most 64");
     }
-    if let Some(dir) = &a.out {
-        for k in 0..a.frames {
-            check_output(
-                &dir.join(format!("frame_{k:03}.png")),
-                &inputs,
-                a.output.force,
-            )?;
-        }
+    if a.out.is_some() && a.out == a.npy {
+        bail!(
+            "--out and --npy name one folder ({}); give each its own",
+            a.npy.as_deref().unwrap_or(Path::new("")).display()
+        );
     }
+    let frames_folder = folder("--out", "lecture3 displace --out", &a.out, a.output.force)?;
+    let npy_folder = folder("--npy", "lecture3 displace --npy", &a.npy, a.output.force)?;
     let npy_files = |dir: &Path| DISPLACE_NPY.map(|f| dir.join(f));
-    if let Some(dir) = &a.npy {
-        for path in npy_files(dir) {
-            files::check_output("--npy", &path, &inputs, a.output.force, &["npy"])?;
-        }
-    }
     let (map, name) = load_map(a.height.as_deref(), ctx)?;
     let renderer = DisplacementRenderer::new(ctx, Surface::new(map, a.depth)?)?;
     let method = match a.method {
@@ -530,13 +525,14 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     let frame = renderer.read(&target)?;
     frame.check_finished()?;
     let mut written = Vec::new();
-    if let Some(dir) = &a.npy {
+    if let Some(folder) = npy_folder {
         let (w, h) = (a.size as usize, a.size as usize);
-        let [hit, depth, kind] = npy_files(dir);
+        let [hit, depth, kind] = npy_files(folder.path());
         files::write_npy(&hit, &[h, w, 4], frame.hits())?;
         files::write_npy(&depth, &[h, w], &frame.depth)?;
         files::write_npy(&kind, &[h, w], &frame.kinds())?;
-        written.extend([hit, depth, kind]);
+        written.extend([hit, depth, kind].map(|p| folder.shown(&p)));
+        folder.finish()?;
     }
     let check = if a.no_check {
         None
@@ -558,17 +554,20 @@ fn displace(a: &DisplaceArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     for k in 0..a.frames {
         renderer.render(&target, &camera(k), method)?;
         renderer.read(&target)?.check_finished()?;
-        let path = match (&a.out, &a.output.png) {
-            (Some(dir), _) => {
-                std::fs::create_dir_all(dir)
-                    .with_context(|| format!("creating {}", dir.display()))?;
-                dir.join(format!("frame_{k:03}.png"))
-            }
+        let path = match (&frames_folder, &a.output.png) {
+            (Some(folder), _) => folder.path().join(format!("frame_{k:03}.png")),
             (None, Some(png)) => png.clone(),
             (None, None) => continue,
         };
         texture_png(renderer.colour_texture(&target), &path, DumpRange::Auto)?;
-        written.push(path);
+        written.push(
+            frames_folder
+                .as_ref()
+                .map_or(path.clone(), |f| f.shown(&path)),
+        );
+    }
+    if let Some(folder) = frames_folder {
+        folder.finish()?;
     }
     let hits = frame
         .pixels()
@@ -652,10 +651,8 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     // The criterion and the exposure are checked before anything runs.
     Gather::normal_aware(a.theta, a.min_coherence)?;
     lecture3_light::check_exposure(a.exposure)?;
-    let irradiance_npy = a.npy.as_ref().map(|dir| dir.join("irradiance.npy"));
-    if let Some(path) = &irradiance_npy {
-        files::check_output("--npy", path, &inputs, a.output.force, &["npy"])?;
-    }
+    let npy_folder = folder("--npy", "lecture3 light --npy", &a.npy, a.output.force)?;
+    let irradiance_npy = npy_folder.as_ref().map(|f| f.path().join("irradiance.npy"));
     if a.mode != LightMode::Indirect {
         if a.indirect_only || a.min_coherence != 0.0 {
             bail!("--indirect-only and --min-coherence are for --mode indirect");
@@ -677,6 +674,7 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             },
             ctx,
         )?;
+        let written = finish_npy(npy_folder, written)?;
         bar.finish_and_clear();
         let renderer = ctx.info().renderer_line();
         return print(
@@ -718,6 +716,7 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         files::write_npy(path, &[a.size as usize, a.size as usize, 3], &rgb)?;
         written.push(path.clone());
     }
+    let mut written = finish_npy(npy_folder, written)?;
     if let Some(png) = &a.output.png {
         // `light_run` left the gather of `a.theta` in the target.
         let terms = if a.indirect_only {
@@ -771,6 +770,29 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
 const DISPLACE_NPY: [&str; 3] = ["hit.npy", "depth.npy", "kind.npy"];
 
 /// One "wrote PATH" line per file, each after a line break.
+/// The folder of a `DIR` option (`--out`, `--npy`), by the rule of every folder writer
+/// ([`Staged`]): checked before any work, written in full or not at all.
+fn folder(
+    what: &str,
+    command: &str,
+    dir: &Option<PathBuf>,
+    force: bool,
+) -> anyhow::Result<Option<Staged>> {
+    dir.as_deref()
+        .map(|d| Staged::begin(what, command, d, force))
+        .transpose()
+}
+
+/// Puts the `--npy` folder's files in place; `written` then names them where they are.
+fn finish_npy(folder: Option<Staged>, written: Vec<PathBuf>) -> anyhow::Result<Vec<PathBuf>> {
+    let Some(folder) = folder else {
+        return Ok(written);
+    };
+    let written = written.iter().map(|p| folder.shown(p)).collect();
+    folder.finish()?;
+    Ok(written)
+}
+
 fn wrote_lines(written: &[PathBuf]) -> String {
     written
         .iter()
@@ -1051,11 +1073,7 @@ fn octree(a: &OctreeArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         bail!("--points: {}; 1 to 10000000 are allowed", a.points);
     }
     let npy_files = |dir: &Path| OCTREE_NPY.map(|f| dir.join(f));
-    if let Some(dir) = &a.npy {
-        for path in npy_files(dir) {
-            files::check_output("--npy", &path, &inputs, a.output.force, &["npy"])?;
-        }
-    }
+    let npy_folder = folder("--npy", "lecture3 octree --npy", &a.npy, a.output.force)?;
     let (points, source) = match &a.model {
         Some(path) => {
             let mesh = classic_gpgpu::mesh::obj::load_obj(path)
@@ -1113,12 +1131,13 @@ fn octree(a: &OctreeArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     }
     let frame = octree_frame.expect("the octree cast ran");
     let mut written = Vec::new();
-    if let Some(dir) = &a.npy {
+    if let Some(folder) = npy_folder {
         let (w, h) = (a.size as usize, a.size as usize);
-        let [hit, steps] = npy_files(dir);
+        let [hit, steps] = npy_files(folder.path());
         files::write_npy(&hit, &[h, w, 4], frame.hits())?;
         files::write_npy(&steps, &[h, w], &frame.steps())?;
-        written.extend([hit, steps]);
+        written.extend([hit, steps].map(|p| folder.shown(&p)));
+        folder.finish()?;
     }
     if let Some(png) = &a.output.png {
         // The octree cast's distance to the hit as grey (near bright), rows from the top.

@@ -11,6 +11,7 @@ use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::{GpuMass, GpuResult};
 use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings, DEFAULT_MAX_PEELS};
 use classic_gpgpu::mass::{analytic, clip, models, surface};
+use classic_gpgpu::report::report_folder::Staged;
 use classic_gpgpu::report::timing::{Load, Runs, Spread};
 use serde_json::json;
 use std::path::PathBuf;
@@ -35,8 +36,14 @@ pub struct MassArgs {
     /// each one's exact float values beside it as .npy (numpy, float32, shape [height, width,
     /// 4]; row 0 is the buffer's bottom row, GL's order, so the PNG's top row is the array's
     /// last).
+    /// A folder holding files `mass --dump` did not write is refused without --force; a
+    /// rerun replaces the files of the earlier dump (its deeper peels too).
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
+    /// Write the --dump files into a folder that holds other files (they are never removed
+    /// or replaced).
+    #[arg(long, requires = "dump")]
+    pub force: bool,
     /// The paper's peeling passes (classic) or one compute pass over the triangles with a
     /// shared-memory reduction (compute, OpenGL 4.3; with --below each triangle is clipped to
     /// the plane in the pass; no --dump).
@@ -149,9 +156,12 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
              --order or --formulation compute"
         );
     }
-    if let Some(dir) = &args.dump {
-        classic_gpgpu::files::check_folder("--dump", dir)?;
-    }
+    let dump = match &args.dump {
+        Some(dir) if args.formulation == super::Formulation::Classic => {
+            Some(Staged::begin("--dump", "mass --dump", dir, args.force)?)
+        }
+        _ => None,
+    };
     let mesh = models::load(&args.model).map_err(anyhow::Error::msg)?;
     let report = surface::check(&mesh);
     Framing::fit(&mesh, args.resolution)
@@ -166,8 +176,11 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
             // The first run compiles llvmpipe's shader variants and allocates on the driver
             // side: untimed (it also writes the dumps), then the report's runs policy.
             let result = gpu
-                .integrate(&mesh, args.below, args.dump.as_deref())
+                .integrate(&mesh, args.below, dump.as_ref().map(Staged::path))
                 .with_context(model)?;
+            if let Some(dump) = dump {
+                dump.finish()?;
+            }
             let (gpu_runs, wall) =
                 timed_runs(|| Ok(gpu.integrate(&mesh, args.below, None)?.gpu_ms))
                     .with_context(model)?;
@@ -650,9 +663,15 @@ pub struct BuoyancyArgs {
     /// Time step (s).
     #[arg(long, default_value_t = 1.0 / 60.0)]
     pub dt: f64,
-    /// Write every K-th frame into DIR as PNG.
+    /// Write every K-th frame into DIR as PNG. A folder holding files `buoyancy
+    /// --png-every` did not write is refused without --force; a rerun replaces the frames
+    /// of the earlier one.
     #[arg(long, num_args = 2, value_names = ["K", "DIR"])]
     pub png_every: Option<Vec<String>>,
+    /// Write the --png-every frames into a folder that holds other files (they are never
+    /// removed or replaced).
+    #[arg(long, requires = "png_every")]
+    pub force: bool,
     /// Compute the submerged parts on the CPU (clip + Mirtich) instead of the GPU.
     #[arg(long)]
     pub cpu: bool,
@@ -714,10 +733,8 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
                 format!("--png-every {}: K must be a positive whole number", v[0])
             })?;
             let dir = PathBuf::from(&v[1]);
-            classic_gpgpu::files::check_folder("--png-every", &dir)?;
-            std::fs::create_dir_all(&dir)
-                .with_context(|| format!("--png-every: creating {}", dir.display()))?;
-            Some((k, dir))
+            let folder = Staged::begin("--png-every", "buoyancy --png-every", &dir, args.force)?;
+            Some((k, folder))
         }
     };
     let settings = args.peeling.settings()?;
@@ -788,14 +805,17 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         })
         .map_err(anyhow::Error::msg)?;
         step_ms.push(start.elapsed().as_secs_f64() * 1e3);
-        if let (Some((k, dir)), Some(r)) = (&frames, &renderer) {
+        if let (Some((k, folder)), Some(r)) = (&frames, &renderer) {
             if step % k == 0 {
-                r.write_png(&sim, &dir.join(format!("frame{step:05}.png")))?;
+                r.write_png(&sim, &folder.path().join(format!("frame{step:05}.png")))?;
             }
         }
         progress.inc(1);
     }
     progress.finish_and_clear();
+    if let Some((_, folder)) = frames {
+        folder.finish()?;
+    }
     let truncated_steps = gpu.as_ref().map_or(0, |g| g.truncated_steps);
     if truncated_steps > 0 {
         let w = format!(

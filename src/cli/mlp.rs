@@ -338,9 +338,7 @@ fn read_grey(path: &Path, what: &str) -> anyhow::Result<image::GrayImage> {
             format!("{format:?}").to_uppercase()
         );
     }
-    Ok(image::open(path)
-        .with_context(|| format!("cannot read the {what} {}", path.display()))?
-        .to_luma8())
+    Ok(classic_gpgpu::files::read_image(path, what)?.to_luma8())
 }
 
 /// Outputs (L x M) of a batch, where it ran, its step times, tiles and passes.

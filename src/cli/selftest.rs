@@ -10,10 +10,13 @@ use std::path::PathBuf;
 /// Arguments of `selftest`.
 #[derive(clap::Args, Debug)]
 pub struct SelftestArgs {
-    /// Also write the results as JUnit XML to this file (replaced if it exists: it is a
-    /// report this command owns, as CI systems expect).
+    /// Also write the results as JUnit XML to this file (FILE.xml; an existing file only
+    /// with --force).
     #[arg(long, value_name = "FILE")]
     pub junit: Option<PathBuf>,
+    /// Replace the --junit file when it exists (a CI job that reruns in one workspace).
+    #[arg(long, requires = "junit")]
+    pub force: bool,
     /// Run only the checks whose name or group contains one of these (comma separated),
     /// e.g. `--only gl,paper4`.
     #[arg(long, value_delimiter = ',')]
@@ -23,7 +26,7 @@ pub struct SelftestArgs {
 /// Runs `selftest`.
 pub fn run(args: &SelftestArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if let Some(path) = &args.junit {
-        classic_gpgpu::files::check_output("--junit", path, &[], true, &[])?;
+        classic_gpgpu::files::check_output("--junit", path, &[], args.force, &["xml"])?;
     }
     let known = |o: &str| {
         selftest::checks()
@@ -59,7 +62,7 @@ pub fn run(args: &SelftestArgs, ctx: &Context, json: bool) -> anyhow::Result<()>
     let results = selftest::run(ctx, &checks);
     if let Some(path) = &args.junit {
         classic_gpgpu::files::write_bytes(path, selftest::to_junit(&results).as_bytes())
-            .with_context(|| format!("writing the JUnit report {}", path.display()))?;
+            .context("--junit: the JUnit report was not written")?;
     }
     if json {
         println!("{}", serde_json::to_string_pretty(&results)?);

@@ -90,7 +90,7 @@ pub fn picture_png(panels: &[Panel], size: (u32, u32), path: &Path) -> Result<()
     let size = picture::whole_texel_size(panels, size);
     let (image, _, shown) = picture::picture_drawn(panels, size);
     crate::files::write_image(path, &image::DynamicImage::ImageRgba8(image))
-        .map_err(|e| io_error(path, e))?;
+        .map_err(|e| write_error(path, &e))?;
     drawn::record(path, Drawn::Picture(shown));
     Ok(())
 }
@@ -106,7 +106,7 @@ pub fn frames_png(
 ) -> Result<(), GlError> {
     let (image, shown) = picture::frames_picture(frames, columns, scale, legend);
     crate::files::write_image(path, &image::DynamicImage::ImageRgba8(image))
-        .map_err(|e| io_error(path, e))?;
+        .map_err(|e| write_error(path, &e))?;
     drawn::record(path, Drawn::Frames(shown));
     Ok(())
 }
@@ -114,9 +114,7 @@ pub fn frames_png(
 /// Write `texture` to `path` as PNG.
 pub fn texture_png(texture: &Texture, path: &Path, range: DumpRange) -> Result<(), GlError> {
     let rgba = to_rgba8(texture, range)?;
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| io_error(path, e))?;
-    }
+    // The folder is made by the write (`files::write`), which names a part that is a file.
     rgba_png(&rgba, (texture.width(), texture.height()), path)?;
     let what = format!("a {:?} texture", texture.format());
     let shown = match texture.format() {
@@ -136,11 +134,19 @@ pub fn rgba_png(rgba: &[u8], (width, height): (u32, u32), path: &Path) -> Result
         .flatten()
         .copied()
         .collect();
-    crate::files::write_png(path, &flipped, width, height)
-        .map_err(|e| io_error(path, format!("{e:#}")))?;
+    crate::files::write_png(path, &flipped, width, height).map_err(|e| write_error(path, &e))?;
     let what = format!("a {width}x{height} RGBA frame");
     drawn::record(path, Drawn::Image { what });
     Ok(())
+}
+
+/// A failed write of `path` as [`GlError::Io`] (which says "writing PATH" itself): every
+/// cause of `e`, the disk's own reason included, without saying the path twice.
+pub(crate) fn write_error(path: &Path, e: &anyhow::Error) -> GlError {
+    let text = crate::files::error_text(e);
+    let prefix = format!("writing {}: ", path.display());
+    let message = text.strip_prefix(&prefix).unwrap_or(&text).to_string();
+    io_error(path, message)
 }
 
 fn io_error(path: &Path, e: impl std::fmt::Display) -> GlError {

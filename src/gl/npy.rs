@@ -48,9 +48,7 @@ pub fn texture_npy(texture: &Texture, path: &Path) -> Result<bool, GlError> {
     let Some((shape, values)) = texture_floats(texture)? else {
         return Ok(false);
     };
-    crate::files::write_npy(path, &shape, &values).map_err(|e| GlError::Io {
-        path: path.display().to_string(),
-        message: format!("{e:#}"),
-    })?;
+    crate::files::write_npy(path, &shape, &values)
+        .map_err(|e| super::dump::write_error(path, &e))?;
     Ok(true)
 }

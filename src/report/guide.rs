@@ -7,11 +7,7 @@
 use super::html::{escape, STYLE};
 use crate::gl::Context;
 use crate::learn::{LessonOptions, LessonRun};
-use anyhow::{bail, Context as _};
 use std::path::{Path, PathBuf};
-
-/// The file that marks a folder as one this guide wrote (so it may be rewritten).
-const MARKER: &str = ".classic-gpgpu-guide";
 
 /// What was written: every page, and each lesson's verdict.
 #[derive(Debug)]
@@ -21,29 +17,27 @@ pub struct GuideWritten {
     pub lessons: Vec<(String, bool)>,
 }
 
-/// Run every lesson on `ctx` and write the guide into `dir` (made if missing). A folder that
-/// holds anything and was not made by this function is refused unless `force`.
+/// Run every lesson on `ctx` and write the guide into `dir` (made if missing), by the rule of
+/// every folder writer ([`super::report_folder::Staged`]): a folder holding files the guide
+/// did not write is refused unless `force`, and a rewrite removes the old guide's files that
+/// the new one does not have.
 pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<GuideWritten> {
-    check_folder(dir, force)?;
-    crate::files::write_bytes(
-        &dir.join(MARKER),
-        b"written by classic-gpgpu learn --guide\n",
-    )?;
+    let folder = super::report_folder::Staged::begin("--guide", "learn --guide", dir, force)?;
+    let staging = folder.path();
     let lessons = crate::learn::all();
     let mut runs = Vec::new();
     for lesson in &lessons {
         let info = lesson.info();
         let opts = LessonOptions {
-            png_dir: Some(dir.join("pictures").join(info.id)),
+            png_dir: Some(staging.join("pictures").join(info.id)),
             exercise: None,
         };
         runs.push(lesson.run(ctx, &opts).map_err(|e| format!("{e:#}")));
     }
     let mut pages = Vec::new();
     let mut write = |name: &str, html: String| -> anyhow::Result<()> {
-        let path = dir.join(name);
-        crate::files::write_bytes(&path, html.as_bytes())?;
-        pages.push(path);
+        crate::files::write_bytes(&staging.join(name), html.as_bytes())?;
+        pages.push(dir.join(name));
         Ok(())
     };
     write("index.html", index_page(ctx, &lessons, &runs))?;
@@ -64,30 +58,11 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
         .zip(&runs)
         .map(|(l, r)| (l.info().id.to_string(), matches!(r, Ok(run) if run.passed)))
         .collect();
+    folder.finish()?;
     Ok(GuideWritten {
         pages,
         lessons: verdicts,
     })
-}
-
-/// Refuse a non-empty folder the guide did not make, unless `force`.
-fn check_folder(dir: &Path, force: bool) -> anyhow::Result<()> {
-    if dir.exists() && !dir.is_dir() {
-        bail!("--guide {} is a file; give a folder", dir.display());
-    }
-    if !dir.is_dir() || force || dir.join(MARKER).is_file() {
-        return Ok(());
-    }
-    let mut entries =
-        std::fs::read_dir(dir).with_context(|| format!("reading the folder {}", dir.display()))?;
-    if entries.next().is_some() {
-        bail!(
-            "--guide {} is a folder that holds files and was not written by the guide; give an \
-             empty or new folder, or --force to write into it anyway",
-            dir.display()
-        );
-    }
-    Ok(())
 }
 
 fn lesson_file(id: &str) -> String {

@@ -72,9 +72,15 @@ pub struct BenchArgs<O: clap::Args> {
     /// Small sizes, for CI and smoke tests; the output says so.
     #[arg(long)]
     pub quick: bool,
-    /// Where the figures (PNG) go [default: the command's name, e.g. `collide-bench`].
+    /// Where the figures (PNG) go [default: the command's name, e.g. `collide-bench`]. A
+    /// folder holding files the command did not write is refused without --force; a rerun
+    /// replaces the files of the earlier one.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write the figures into an --out folder that holds other files (they are never
+    /// removed or replaced).
+    #[arg(long)]
+    pub force: bool,
     /// Time every repeated measurement exactly this many times [default: 3, and up to 5
     /// while the runs take under a second in all].
     #[arg(long, value_parser = timing::parse_runs)]
@@ -396,15 +402,17 @@ pub fn bench_command<P: Paper>(
         eprintln!("{warning}");
     }
     let out_dir = args.out.as_deref().unwrap_or(Path::new(default_out));
-    std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
+    // The one rule of every folder writer (report_folder): checked before any work.
+    let folder = report_folder::Staged::begin("--out", default_out, out_dir, args.force)?;
     let opts = BenchOptions {
         gl,
         quick: args.quick,
-        out_dir: out_dir.to_path_buf(),
+        out_dir: folder.path().to_path_buf(),
         progress: progress_bars(json),
         runs: args.runs,
     };
     let section = run_section::<P>(&opts, &args.options)?;
+    folder.finish()?;
     if json {
         println!("{}", serde_json::to_string_pretty(&section)?);
     } else {

@@ -1,11 +1,16 @@
-//! The folder `reproduce` writes its report into, and what in it is the report's own.
+//! The folders the program writes (`reproduce`'s report, `mass --dump`, every `*-bench --out`
+//! ...), and what in each is the command's own. One rule for all of them, [`Staged`]:
 //!
-//! A marker file in the folder lists every file the run wrote and the section it belongs to.
-//! Only those files are ever replaced or removed: a folder without the marker that holds
-//! anything is someone else's, refused without `--force`, and even with it nothing the
-//! marker does not list is deleted. A lock beside the folder keeps two runs from writing one
-//! report at once; the final swap moves the old report aside first, so a run killed between
-//! the two renames leaves it where the next run finds and restores it.
+//! A marker file in the folder lists every file the command wrote (and, for the report, the
+//! section it belongs to). Only those files are ever replaced or removed: a folder that holds
+//! anything the marker does not list (or another command's marker) is someone else's,
+//! refused without `--force`, and even with it nothing the marker does not list is deleted,
+//! nor replaced. A rerun removes the files of the earlier run that it did not write again. A
+//! destination that is a link to a folder is followed (the folder is written, the link
+//! stays); a link to nothing is refused. The files are written into a staging folder beside
+//! the destination; a lock beside it keeps two runs from writing one folder at once; the
+//! final swap moves the old folder aside first, so a run killed between the two renames
+//! leaves it where the next run finds and restores it.
 
 use anyhow::{bail, Context as _};
 use std::collections::BTreeMap;
@@ -14,9 +19,24 @@ use std::path::{Path, PathBuf};
 /// The marker's file name, inside the report folder.
 pub const MARKER: &str = ".classic-gpgpu-report";
 
-/// The marker's first line (anything else on it is not ours).
+/// The marker's first line for `reproduce` (anything else on it is not the report's).
 const MARKER_HEADER: &str = "classic-gpgpu report: the files `classic-gpgpu reproduce` wrote \
     here (section, path); it replaces or removes only these";
+
+/// The marker's first line for `command` (`mass --dump`): the command owns the files listed
+/// under its own line only.
+fn marker_header(command: &str) -> String {
+    if command == REPRODUCE {
+        return MARKER_HEADER.to_string();
+    }
+    format!(
+        "classic-gpgpu files: the files `classic-gpgpu {command}` wrote here (section, path); \
+         it replaces or removes only these"
+    )
+}
+
+/// The command whose marker [`Owned::read`] and [`Owned::write`] read and write.
+const REPRODUCE: &str = "reproduce";
 
 /// What a report wrote: relative path (`/`-separated) to the section that wrote it (`-` for
 /// the page and the results).
@@ -26,8 +46,15 @@ pub struct Owned {
 }
 
 impl Owned {
-    /// The marker of `dir`, `None` when it has none (a folder this program did not make).
+    /// The report's marker in `dir`, `None` when it has none (a folder this program did not
+    /// make).
     pub fn read(dir: &Path) -> anyhow::Result<Option<Owned>> {
+        Self::read_of(dir, REPRODUCE)
+    }
+
+    /// The marker `command` wrote in `dir`; `None` when there is none, or when it is another
+    /// command's (whose files are not this command's to replace).
+    pub fn read_of(dir: &Path, command: &str) -> anyhow::Result<Option<Owned>> {
         let path = dir.join(MARKER);
         if !path.exists() {
             return Ok(None);
@@ -35,8 +62,12 @@ impl Owned {
         let text = std::fs::read_to_string(&path)
             .with_context(|| format!("reading {}", path.display()))?;
         let mut lines = text.lines();
-        if lines.next() != Some(MARKER_HEADER) {
-            bail!("{} is not a classic-gpgpu report marker", path.display());
+        let header = lines.next().unwrap_or_default();
+        if header != marker_header(command) {
+            if command == REPRODUCE && !header.starts_with("classic-gpgpu files: ") {
+                bail!("{} is not a classic-gpgpu report marker", path.display());
+            }
+            return Ok(None);
         }
         let mut files = BTreeMap::new();
         for line in lines.filter(|l| !l.is_empty()) {
@@ -94,9 +125,14 @@ impl Owned {
             .map(|(f, _)| f.as_str())
     }
 
-    /// Writes the marker into `dir` (whole or not at all).
+    /// Writes the report's marker into `dir` (whole or not at all).
     pub fn write(&self, dir: &Path) -> anyhow::Result<()> {
-        let mut text = format!("{MARKER_HEADER}\n");
+        self.write_of(dir, REPRODUCE)
+    }
+
+    /// Writes `command`'s marker into `dir` (whole or not at all).
+    pub fn write_of(&self, dir: &Path, command: &str) -> anyhow::Result<()> {
+        let mut text = format!("{}\n", marker_header(command));
         for (file, section) in &self.files {
             text.push_str(&format!("{section}\t{file}\n"));
         }
@@ -137,33 +173,181 @@ pub fn list_files(dir: &Path) -> anyhow::Result<Vec<String>> {
 /// Refuses, before any work, an `--out` that is a file, or a folder with anything in it that
 /// this program did not make (no marker) unless `force` says to add the report to it.
 pub fn check_out(out: &Path, force: bool) -> anyhow::Result<()> {
+    check_folder("--out", REPRODUCE, out, force)
+}
+
+/// Refuses, before any work, a destination `out` (given as the option `what`) that is a
+/// file, or a folder holding anything without `command`'s marker, unless `force` says to
+/// write beside those files (a folder with the marker may hold files it does not list: they
+/// were there when `--force` was given, and stay).
+pub fn check_folder(what: &str, command: &str, out: &Path, force: bool) -> anyhow::Result<()> {
     if !out.exists() {
         return Ok(());
     }
     if !out.is_dir() {
         bail!(
-            "--out {}: exists and is not a folder; choose another --out",
+            "{what} {}: exists and is not a folder; choose another {what}",
             out.display()
         );
     }
-    if force || Owned::read(out)?.is_some() {
+    // A folder with the command's marker was given to it once (with --force if it held
+    // other files): those stay, and are never replaced.
+    if force || Owned::read_of(out, command)?.is_some() {
         return Ok(());
     }
     let first = std::fs::read_dir(out)
-        .with_context(|| format!("--out {}: cannot read the folder", out.display()))?
+        .with_context(|| format!("{what} {}: cannot read the folder", out.display()))?
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .min();
-    if let Some(first) = first {
-        bail!(
-            "--out {}: the folder holds files this program did not write (e.g. {first}; it has \
-             no {MARKER} marker), so it is not a report of classic-gpgpu's. Choose another \
-             --out, or pass --force to write the report into it (files that are not the \
-             report's are never removed)",
-            out.display()
-        );
+    let Some(first) = first else {
+        return Ok(());
+    };
+    let whose = if command == REPRODUCE {
+        "so it is not a report of classic-gpgpu's".to_string()
+    } else {
+        format!("so it is not a folder `classic-gpgpu {command}` wrote")
+    };
+    let marker = if command == REPRODUCE {
+        format!("it has no {MARKER} marker")
+    } else {
+        format!("it has no {MARKER} marker of this command's")
+    };
+    let what_goes = if command == REPRODUCE {
+        "the report"
+    } else {
+        "the files"
+    };
+    bail!(
+        "{what} {}: the folder holds files this program did not write (e.g. {first}; {marker}), \
+         {whose}. Choose another {what}, or pass --force to write {what_goes} into it (files \
+         that are not its own are never removed or replaced)",
+        out.display()
+    );
+}
+
+/// The folder `out` really names: a link to a folder is followed (the folder is written,
+/// the link stays as it is), a link to nothing or to a file is refused, and `.` or `..` is
+/// given its full name (the swap renames the folder, so it needs one).
+pub fn resolve(what: &str, out: &Path) -> anyhow::Result<PathBuf> {
+    let Ok(meta) = std::fs::symlink_metadata(out) else {
+        return Ok(out.to_path_buf());
+    };
+    let target = || {
+        std::fs::read_link(out)
+            .map(|t| t.display().to_string())
+            .unwrap_or_else(|_| "?".into())
+    };
+    if meta.file_type().is_symlink() {
+        return match std::fs::canonicalize(out) {
+            Ok(real) if real.is_dir() => Ok(real),
+            Ok(_) => bail!(
+                "{what} {}: a link to {}, which is not a folder; give a folder",
+                out.display(),
+                target()
+            ),
+            Err(_) => bail!(
+                "{what} {}: a link to {}, which does not exist; create that folder first, or \
+                 give another {what}",
+                out.display(),
+                target()
+            ),
+        };
     }
-    Ok(())
+    if meta.is_dir() && out.file_name().is_none() {
+        return std::fs::canonicalize(out)
+            .with_context(|| format!("{what} {}: cannot find its full name", out.display()));
+    }
+    Ok(out.to_path_buf())
+}
+
+/// A folder a command writes by the one rule (see the module's doc): made with
+/// [`Staged::begin`] before any work, written into at [`Staged::path`], put in place by
+/// [`Staged::finish`]. Dropped unfinished (an error), it leaves the destination as it was.
+pub struct Staged {
+    command: String,
+    /// The destination as given (a link not followed), for messages.
+    given: PathBuf,
+    out: PathBuf,
+    staging: PathBuf,
+    installing: bool,
+    _lock: Lock,
+}
+
+impl Staged {
+    /// Checks the destination `out` (given as option `what` of `command`, e.g. `--dump` of
+    /// `mass --dump`) by the rule, locks it and makes an empty staging folder beside it.
+    pub fn begin(what: &str, command: &str, given: &Path, force: bool) -> anyhow::Result<Staged> {
+        let out = resolve(what, given)?;
+        check_folder(what, command, &out, force)?;
+        let lock = Lock::take_for(what, command, &out)?;
+        recover(&out)?;
+        // Checked again under the lock: a recovered folder is a folder too.
+        check_folder(what, command, &out, force)?;
+        let staging = staging_of(&out, std::process::id())?;
+        if staging.exists() {
+            std::fs::remove_dir_all(&staging)
+                .with_context(|| format!("removing {}", staging.display()))?;
+        }
+        std::fs::create_dir_all(&staging).with_context(|| {
+            format!(
+                "{what} {}: creating the folder {} that the files are written into first",
+                out.display(),
+                staging.display()
+            )
+        })?;
+        Ok(Staged {
+            command: command.to_string(),
+            given: given.to_path_buf(),
+            out,
+            staging,
+            installing: false,
+            _lock: lock,
+        })
+    }
+
+    /// Where the files are written (a staging folder beside the destination).
+    pub fn path(&self) -> &Path {
+        &self.staging
+    }
+
+    /// The destination (a link followed).
+    pub fn out(&self) -> &Path {
+        &self.out
+    }
+
+    /// Where `path`, written under [`Staged::path`], will be once finished, under the
+    /// destination as it was given (for messages); other paths as they are.
+    pub fn shown(&self, path: &Path) -> PathBuf {
+        match path.strip_prefix(&self.staging) {
+            Ok(relative) => self.given.join(relative),
+            Err(_) => path.to_path_buf(),
+        }
+    }
+
+    /// Puts every file written at [`Staged::path`] in place, with the marker listing them;
+    /// the earlier run's files that this one did not write again are removed. Returns the
+    /// files, relative to the destination.
+    pub fn finish(mut self) -> anyhow::Result<Vec<String>> {
+        let files = list_files(&self.staging)?;
+        let mut owned = Owned::default();
+        for file in &files {
+            owned.add("-", file);
+        }
+        owned.write_of(&self.staging, &self.command)?;
+        // From here on a failure names the staging folder as holding the files: keep it.
+        self.installing = true;
+        install_of(&self.staging, &self.out, &owned, &self.command)?;
+        Ok(files)
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        if !self.installing {
+            std::fs::remove_dir_all(&self.staging).ok();
+        }
+    }
 }
 
 /// The lock of one report folder: held while a run reads the old report and writes the new
@@ -175,9 +359,14 @@ pub struct Lock {
 }
 
 impl Lock {
-    /// Takes the lock of `out`, a file `.NAME.lock` beside it; refuses clearly when another
-    /// run holds it.
+    /// Takes the lock of the report `out`, a file `.NAME.lock` beside it; refuses clearly
+    /// when another run holds it.
     pub fn take(out: &Path) -> anyhow::Result<Lock> {
+        Self::take_for("--out", REPRODUCE, out)
+    }
+
+    /// Takes the lock of the folder `out` that `command` writes (its option `what`).
+    pub fn take_for(what: &str, command: &str, out: &Path) -> anyhow::Result<Lock> {
         let (parent, name) = parent_and_name(out)?;
         std::fs::create_dir_all(&parent)
             .with_context(|| format!("creating {}", parent.display()))?;
@@ -190,9 +379,14 @@ impl Lock {
                 Ok(()) if still_at(&file, &path) => return Ok(Lock { file, path }),
                 Ok(()) => continue,
                 Err(rustix::io::Errno::WOULDBLOCK) => bail!(
-                    "--out {}: another `classic-gpgpu reproduce` is writing this report now (it \
-                     holds {}); run again when it has finished, or choose another --out",
+                    "{what} {}: another `classic-gpgpu {command}` is writing this {} now (it \
+                     holds {}); run again when it has finished, or choose another {what}",
                     out.display(),
+                    if command == REPRODUCE {
+                        "report"
+                    } else {
+                        "folder"
+                    },
                     path.display()
                 ),
                 Err(e) => return Err(e).with_context(|| format!("locking {}", path.display())),
@@ -325,9 +519,15 @@ pub const SWAP_FAULT_ENV: &str = "CLASSIC_GPGPU_SWAP_FAULT";
 /// else's too, they stay where they are: the new files are renamed in one by one, the old
 /// report's files that the new one does not have are removed, and the marker comes last.
 pub fn install(staging: &Path, out: &Path, owned: &Owned) -> anyhow::Result<()> {
-    let old = match Owned::read(out)? {
+    install_of(staging, out, owned, REPRODUCE)
+}
+
+/// [`install`] for the folder `command` writes.
+pub fn install_of(staging: &Path, out: &Path, owned: &Owned, command: &str) -> anyhow::Result<()> {
+    let old = match Owned::read_of(out, command)? {
         Some(old) => old,
-        None => Owned::from_results(out),
+        None if command == REPRODUCE => Owned::from_results(out),
+        None => Owned::default(),
     };
     let present = list_files(out)?;
     let foreign: Vec<&String> = present.iter().filter(|f| !old.contains(f)).collect();
@@ -338,14 +538,22 @@ pub fn install(staging: &Path, out: &Path, owned: &Owned) -> anyhow::Result<()> 
             out.display()
         ))
     };
-    if foreign.is_empty() {
+    // The working folder is never swapped away (a shell in it would be left in a removed
+    // folder): its files go in one by one.
+    if foreign.is_empty() && only_files_of(out, &old) && !is_working_folder(out) {
         return swap(staging, out);
     }
     if let Some(clash) = foreign.iter().find(|f| owned.contains(f)) {
         return Err(kept(anyhow::anyhow!(
-            "{} in --out {} is not the report's, and the new report has a file of that name",
+            "{} in {} is not {}'s, and it wrote a file of that name; move that file \
+             away, or choose another folder",
             clash,
-            out.display()
+            out.display(),
+            if command == REPRODUCE {
+                "the report".to_string()
+            } else {
+                format!("`classic-gpgpu {command}`")
+            }
         )));
     }
     for (_, file) in owned.files() {
@@ -373,6 +581,29 @@ pub fn install(staging: &Path, out: &Path, owned: &Owned) -> anyhow::Result<()> 
         .with_context(|| format!("writing {}", out.join(MARKER).display()))?;
     std::fs::remove_dir_all(staging).ok();
     Ok(())
+}
+
+/// Whether everything in `out` is `old`'s (a folder of the user's, even empty, is not).
+fn only_files_of(out: &Path, old: &Owned) -> bool {
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return true;
+    };
+    entries.flatten().all(|e| {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let under = format!("{name}/");
+        name == MARKER || old.files().any(|(_, f)| f == name || f.starts_with(&under))
+    })
+}
+
+fn is_working_folder(out: &Path) -> bool {
+    std::env::current_dir().is_ok_and(|cwd| same_folder(&cwd, out))
+}
+
+fn same_folder(a: &Path, b: &Path) -> bool {
+    matches!(
+        (std::fs::canonicalize(a), std::fs::canonicalize(b)),
+        (Ok(a), Ok(b)) if a == b
+    )
 }
 
 /// Replaces `out` (absent, empty or only the old report) by `staging`: the old report is
@@ -419,6 +650,137 @@ fn swap(staging: &Path, out: &Path) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("cg-staged-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// One run of a writer of `files` into `out`.
+    fn write(out: &Path, force: bool, files: &[&str]) -> anyhow::Result<Vec<String>> {
+        let staged = Staged::begin("--dump", "test --dump", out, force)?;
+        for f in files {
+            crate::files::write_bytes(&staged.path().join(f), f.as_bytes())?;
+        }
+        staged.finish()
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        list_files(dir).unwrap()
+    }
+
+    #[test]
+    fn a_folder_writer_owns_only_what_it_wrote() {
+        let dir = scratch("rule");
+        let out = dir.join("dump");
+        write(&out, false, &["peel0.png", "peel1.png", "sub/peel2.png"]).unwrap();
+        assert_eq!(names(&out), ["peel0.png", "peel1.png", "sub/peel2.png"]);
+        // A rerun that writes fewer files removes the earlier run's others.
+        write(&out, false, &["peel0.png"]).unwrap();
+        assert_eq!(names(&out), ["peel0.png"]);
+        // A folder of the user's (no marker): refused without --force, nothing touched.
+        let theirs = dir.join("theirs");
+        std::fs::create_dir_all(&theirs).unwrap();
+        std::fs::write(theirs.join("notes.txt"), "mine").unwrap();
+        let err = format!("{:#}", write(&theirs, false, &["peel0.png"]).unwrap_err());
+        assert!(
+            err.contains("notes.txt") && err.contains("--force"),
+            "{err}"
+        );
+        assert_eq!(names(&theirs), ["notes.txt"]);
+        // With --force the note stays, and the writer's files go in beside it.
+        write(&theirs, true, &["peel1.png"]).unwrap();
+        assert_eq!(names(&theirs), ["notes.txt", "peel1.png"]);
+        assert_eq!(
+            std::fs::read_to_string(theirs.join("notes.txt")).unwrap(),
+            "mine"
+        );
+        std::fs::remove_dir_all(&theirs).unwrap();
+        // A file put later into a folder that has the writer's marker is kept too (the
+        // marker does not list it), and a rerun needs no --force.
+        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+        write(&out, false, &["peel1.png"]).unwrap();
+        assert_eq!(names(&out), ["notes.txt", "peel1.png"]);
+        assert_eq!(
+            std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+            "mine"
+        );
+        // A file of the user's with a name the writer writes is never replaced: the new
+        // files stay in the staging folder the message names.
+        let err = format!("{:#}", write(&out, true, &["notes.txt"]).unwrap_err());
+        assert!(
+            err.contains("notes.txt") && err.contains("move that file"),
+            "{err}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+            "mine"
+        );
+        let staging = staging_of(&out, std::process::id()).unwrap();
+        assert!(err.contains(&staging.display().to_string()), "{err}");
+        assert_eq!(
+            std::fs::read(staging.join("notes.txt")).unwrap(),
+            b"notes.txt"
+        );
+        std::fs::remove_dir_all(&staging).unwrap();
+        // Another command's folder is not this one's.
+        let theirs = Staged::begin("--out", "other --out", &out, false).err();
+        assert!(format!("{theirs:?}").contains("--force"), "{theirs:?}");
+        // Nothing is left beside the folder: no staging folder, no lock.
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            1,
+            "{:?}",
+            std::fs::read_dir(&dir).unwrap().collect::<Vec<_>>()
+        );
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn a_failed_writer_leaves_the_folder_as_it_was() {
+        let dir = scratch("failed");
+        let out = dir.join("dump");
+        write(&out, false, &["a.png", "b.png"]).unwrap();
+        let staged = Staged::begin("--dump", "test --dump", &out, false).unwrap();
+        crate::files::write_bytes(&staged.path().join("a.png"), b"new").unwrap();
+        drop(staged); // an error before finish
+        assert_eq!(names(&out), ["a.png", "b.png"]);
+        assert_eq!(std::fs::read(out.join("a.png")).unwrap(), b"a.png");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn a_linked_destination_is_followed_and_a_dangling_link_refused() {
+        let dir = scratch("link");
+        let real = dir.join("real");
+        std::fs::create_dir_all(&real).unwrap();
+        let link = dir.join("link");
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        write(&link, false, &["a.png"]).unwrap();
+        write(&link, false, &["b.png"]).unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(names(&real), ["b.png"]);
+        let dangling = dir.join("dangling");
+        std::os::unix::fs::symlink(dir.join("nowhere"), &dangling).unwrap();
+        let err = format!("{:#}", write(&dangling, true, &["a.png"]).unwrap_err());
+        assert!(
+            err.contains("does not exist") && err.contains("nowhere"),
+            "{err}"
+        );
+        assert!(!dir.join("nowhere").exists());
+        let file = dir.join("file");
+        std::fs::write(&file, "x").unwrap();
+        let err = format!("{:#}", write(&file, true, &["a.png"]).unwrap_err());
+        assert!(err.contains("not a folder"), "{err}");
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "x");
+        std::fs::remove_dir_all(dir).unwrap();
+    }
 
     #[test]
     fn one_run_holds_the_lock_and_leaves_no_file() {

@@ -92,6 +92,11 @@ pub fn reproduce(
     if let Some(warning) = super::timing::loaded_warning(super::timing::Load::now()) {
         eprintln!("{warning}");
     }
+    // A link to a folder: the report goes into that folder, and the link stays.
+    let args = &ReproduceArgs {
+        out: report_folder::resolve("--out", &args.out)?,
+        ..args.clone()
+    };
     let all = stages();
     let chosen = chosen_stages(&all, &args.only)?;
     report_folder::check_out(&args.out, args.force)?;

@@ -229,9 +229,6 @@ pub fn write_png(
     (width, height): (u32, u32),
     path: &std::path::Path,
 ) -> anyhow::Result<()> {
-    use anyhow::Context as _;
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    }
+    // The folder is made by the write (`files::write`), which names a part that is a file.
     Ok(crate::gl::dump::rgba_png(pixels, (width, height), path)?)
 }

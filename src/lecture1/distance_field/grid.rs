@@ -35,9 +35,15 @@ impl Grid {
             margin.is_finite() && margin >= 0.0,
             "the margin must be finite and not negative, not {margin}"
         );
-        let side = (max - min).max_element() + 2.0 * margin;
+        let extent = (max - min).max_element();
+        let side = extent + 2.0 * margin;
         anyhow::ensure!(
-            side.is_finite() && side > 0.0,
+            side.is_finite(),
+            "the model's box ({extent:e} across) grown by the margin {margin:e} on each side is \
+             beyond the largest number a double holds: give a smaller margin"
+        );
+        anyhow::ensure!(
+            side > 0.0,
             "the model's box is a single point and the margin is zero: give a positive margin"
         );
         let spacing = side / n as f64;

@@ -70,20 +70,36 @@ pub fn minkowski_sums(a: &[Piece], b: &[Piece]) -> anyhow::Result<Vec<Polytope>>
 /// hull(vertices(A_i) - vertices(B_j)): differences in f64, the hull by parry3d (fp32), the
 /// planes again in f64 from the hull's vertices.
 pub fn minkowski_sum(a: &Piece, b: &Piece) -> anyhow::Result<Polytope> {
-    let mut points = Vec::with_capacity(a.mesh.positions.len() * b.mesh.positions.len());
+    let mut differences = Vec::with_capacity(a.mesh.positions.len() * b.mesh.positions.len());
     for pa in &a.mesh.positions {
         for pb in &b.mesh.positions {
-            let d = pa.as_dvec3() - pb.as_dvec3();
-            points.push(parry3d::math::Vector3::new(
-                d.x as f32, d.y as f32, d.z as f32,
-            ));
+            differences.push(pa.as_dvec3() - pb.as_dvec3());
         }
     }
+    // The hull is found on the differences scaled to at most 1 (fp32 products of coordinates
+    // near 1e19 and beyond overflow, below 1e-19 underflow) and scaled back in f64; by a
+    // power of two, so that the scaling itself rounds nothing.
+    let largest = differences
+        .iter()
+        .map(|d| d.abs().max_element())
+        .fold(0.0, f64::max);
+    anyhow::ensure!(
+        largest > 0.0,
+        "every vertex of A minus every vertex of B is zero: the sum is a single point"
+    );
+    let unit = 2f64.powi(largest.log2().ceil() as i32);
+    let points: Vec<_> = differences
+        .iter()
+        .map(|d| {
+            let d = *d / unit;
+            parry3d::math::Vector3::new(d.x as f32, d.y as f32, d.z as f32)
+        })
+        .collect();
     let (hull_vertices, hull_triangles) = parry3d::transformation::try_convex_hull(&points)
         .map_err(|e| anyhow::anyhow!("no convex hull ({e:?})"))?;
     let vertices: Vec<DVec3> = hull_vertices
         .iter()
-        .map(|v| Vec3::new(v.x, v.y, v.z).as_dvec3())
+        .map(|v| Vec3::new(v.x, v.y, v.z).as_dvec3() * unit)
         .collect();
     anyhow::ensure!(
         vertices.iter().all(|v| v.is_finite()),
@@ -94,7 +110,10 @@ pub fn minkowski_sum(a: &Piece, b: &Piece) -> anyhow::Result<Polytope> {
         .iter()
         .map(|v| (*v - centre).length())
         .fold(0.0, f64::max);
-    anyhow::ensure!(size > 0.0, "the sum is a single point");
+    anyhow::ensure!(
+        size > 0.0,
+        "the hull of the sum is a single point (every difference of vertices rounds to one)"
+    );
     let mut triangles = Vec::with_capacity(hull_triangles.len());
     let mut planes: Vec<Plane> = Vec::new();
     for tri in hull_triangles {

@@ -122,6 +122,13 @@ pub fn check_piece(piece: &Piece) -> anyhow::Result<()> {
     mesh.check(name).map_err(|e| anyhow::anyhow!("{e}"))?;
     let closed = mesh.closedness();
     anyhow::ensure!(
+        closed.faces > 0,
+        "piece '{name}' has no triangle with three distinct vertices (every one of its {} \
+         triangles repeats a vertex position): it bounds no volume; each piece must be a \
+         closed convex polyhedron",
+        mesh.triangles.len()
+    );
+    anyhow::ensure!(
         closed.is_closed(),
         "piece '{name}' is not a closed surface ({} boundary, {} non-manifold and {} \
          misoriented edges): each piece must be a closed convex polyhedron",

@@ -39,14 +39,18 @@ pub fn model_triangles(mesh: &Mesh, source: &str, albedo: Vec3) -> Result<Vec<Tr
             format!("{source}: the model has no extent (every vertex at one point)"),
         ));
     }
-    let mesh = if mesh.is_outward() {
-        mesh.clone()
-    } else {
-        mesh.flipped()
-    };
+    // Placed first, normals after: at the scene's size no product of coordinates overflows
+    // or underflows (a model 1e30 or 1e-30 across has the same normals as at 0.5).
     let scale = MODEL_SIZE / side;
     let centre = bounds.center();
     let offset = FOOT - Vec3::new(centre.x, bounds.min.y, centre.z) * scale;
+    let placed = mesh.positions.iter().map(|&p| p * scale + offset).collect();
+    let mesh = Mesh::new(placed, mesh.triangles.clone());
+    let mesh = if mesh.is_outward() {
+        mesh
+    } else {
+        mesh.flipped()
+    };
     let vertex_normals = mesh.vertex_normals();
     let face_normals = mesh.face_normals();
     let triangles: Vec<Triangle> = mesh
@@ -65,7 +69,7 @@ pub fn model_triangles(mesh: &Mesh, source: &str, albedo: Vec3) -> Result<Vec<Tr
                 }
             };
             Triangle {
-                positions: [0, 1, 2].map(|k| mesh.positions[corner(k)] * scale + offset),
+                positions: [0, 1, 2].map(|k| mesh.positions[corner(k)]),
                 normals: [0, 1, 2].map(normal),
                 albedo,
             }

@@ -30,9 +30,7 @@ const MAX_PIXELS: u64 = 1 << 20;
 
 impl MlpDemo {
     pub fn new(ctx: &Context, path: &Path) -> anyhow::Result<Self> {
-        let image = image::open(path)
-            .with_context(|| format!("cannot read the image {}", path.display()))?
-            .to_luma8();
+        let image = crate::files::read_image(path, "image")?.to_luma8();
         let pixels = image.width() as u64 * image.height() as u64;
         if pixels == 0 || pixels > MAX_PIXELS {
             anyhow::bail!(

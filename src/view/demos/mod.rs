@@ -105,10 +105,13 @@ impl DemoSpec {
                     "classic-gpgpu lecture1 self-collision --scene knotted-tube --frames 8 --dt 0.25"
                         .to_string()
                 }
-                lecture1::Technique::Pairwise => "classic-gpgpu lecture1 pairwise A.obj B.obj".into(),
-                lecture1::Technique::Penetration => {
-                    "classic-gpgpu lecture1 penetration A.obj B.obj --png t.png".into()
-                }
+                lecture1::Technique::Pairwise => "classic-gpgpu mesh generate torus --out \
+                    torus.obj && classic-gpgpu lecture1 pairwise torus.obj torus.obj"
+                    .into(),
+                lecture1::Technique::Penetration => "classic-gpgpu mesh generate cube --out \
+                    cube.obj && classic-gpgpu lecture1 penetration cube.obj cube.obj --png \
+                    t.png"
+                    .into(),
                 lecture1::Technique::AvatarCcd => "classic-gpgpu lecture1 avatar-ccd --json".into(),
             },
             DemoSpec::Lecture3 { technique } => {
@@ -117,7 +120,7 @@ impl DemoSpec {
             DemoSpec::Learn { id } => format!("classic-gpgpu learn {id} --png DIR"),
         };
         format!(
-            "`classic-gpgpu view {} --headless --screenshot frame.png` (or `{paper}`)",
+            "`classic-gpgpu view --headless --frames 1 --screenshot frame.png {}` (or `{paper}`)",
             self.arguments()
         )
     }
