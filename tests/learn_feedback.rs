@@ -295,7 +295,10 @@ fn the_debugging_lesson_finds_every_fault_and_the_fixes_pass() {
             .iter()
             .filter(|c| c.what.starts_with(&format!("fault {k} fixed")))
             .collect();
-        assert!(!fixed.is_empty() && fixed.iter().all(|c| c.passed), "{fixed:?}");
+        assert!(
+            !fixed.is_empty() && fixed.iter().all(|c| c.passed),
+            "{fixed:?}"
+        );
         let (_, note) = run
             .notes
             .iter()
