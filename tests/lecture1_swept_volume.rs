@@ -9,12 +9,14 @@ use classic_gpgpu::lecture1::swept_volume::classify::segment_meets_triangle;
 use classic_gpgpu::lecture1::swept_volume::features::feature_point;
 use classic_gpgpu::lecture1::swept_volume::path::{Keyframe, Path3};
 use classic_gpgpu::lecture1::swept_volume::primitives::{edges, primitives};
-use classic_gpgpu::lecture1::swept_volume::topology::analyse;
-use classic_gpgpu::lecture1::swept_volume::{sweep, Options, SweptVolume};
-use classic_gpgpu::mesh::generate::{cube, torus_closed, uv_sphere};
-use classic_gpgpu::mesh::Mesh;
-use common::{classic_gpgpu, context, json_of};
+use classic_gpgpu::lecture1::swept_volume::topology::{analyse, of_mesh};
+use classic_gpgpu::lecture1::swept_volume::{sweep, Options, SweptVolume, DEFAULT_POSES};
+use classic_gpgpu::mesh::generate::{cube, cuboid, torus_closed, uv_sphere};
+use classic_gpgpu::mesh::{parse_obj, to_obj_string, Mesh};
+use common::{classic_gpgpu, context, json_of, soup};
 use glam::{DQuat, DVec3, Vec3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
 mod common;
 
@@ -551,4 +553,304 @@ fn quarter_turn_about_z() -> Path3 {
         ),
     ])
     .unwrap()
+}
+
+/// The surface as the command writes it (an OBJ, read back): a closed 2-manifold by position
+/// (after welding equal positions every edge has two opposite triangles and every vertex one
+/// fan) with no degenerate triangle, and the topology the sweep reported is that of this mesh.
+/// Its `V - E + F`.
+fn written_manifold(swept: &SweptVolume, what: &str) -> i64 {
+    let text = to_obj_string(&swept.surface.mesh, "");
+    let mesh = parse_obj(&text, what).unwrap();
+    let report = mesh.validate();
+    assert_eq!(report.degenerate_triangles(), 0, "{what}: {report}");
+    let closed = report.closedness.as_ref().unwrap();
+    assert!(closed.is_closed(), "{what}: {report}");
+    let t = of_mesh(&mesh);
+    assert!(t.is_manifold(), "{what}: {t:?}");
+    assert_eq!(t.vertices, closed.welded_vertices, "{what}");
+    assert_eq!(
+        t.euler_characteristic, swept.surface.topology.euler_characteristic,
+        "{what}: the reported topology is not the written mesh's"
+    );
+    t.euler_characteristic.unwrap()
+}
+
+/// Relative volume error within the sharp-edge bound (see `sharp_edge_length`) for a convex
+/// `mesh` translated by `v`.
+fn check_translated_volume(mesh: &Mesh, v: DVec3, swept: &SweptVolume, what: &str) {
+    let exact = convex_translation_volume(mesh, v);
+    let h = swept.grid.spacing;
+    let error = (swept.surface.volume - exact).abs() / exact;
+    let bound = sharp_edge_length(mesh, v) * h * h / exact;
+    assert!(
+        error <= bound,
+        "{what}: volume {} vs exact {exact}: relative error {error:.3e} above {bound:.3e}",
+        swept.surface.volume
+    );
+}
+
+#[test]
+fn the_reported_translations_of_a_cube_are_closed_manifolds() {
+    // Issue 43: these failed with "the signed field has a zero or non-finite value" (voxel
+    // centres on the diagonal ruled quads) at the command's defaults (17 poses).
+    let cube = cube(1.0);
+    let cases = [
+        (DVec3::new(1.0, 1.0, 0.0), 64),
+        (DVec3::new(0.6, 0.3, 0.2), 40),
+        (DVec3::new(0.6, 0.3, 0.2), 48),
+        (DVec3::new(0.6, 0.3, 0.2), 64),
+        (DVec3::new(1.0, 0.7, 0.3), 48),
+    ];
+    for (v, n) in cases {
+        let what = format!("cube moved by {v} at {n}");
+        let swept = run(&cube, &translation(v), n, DEFAULT_POSES);
+        assert_eq!(written_manifold(&swept, &what), 2, "{what}");
+        check_translated_volume(&cube, v, &swept, &what);
+    }
+}
+
+/// An L-shaped prism: the L of arms `a` (along x) and `b` (along y), both `t` thick, from
+/// the origin, extruded to height `h`; outward faces. Not convex.
+fn l_prism(a: f32, b: f32, t: f32, h: f32) -> Mesh {
+    let outline = [(0.0, 0.0), (a, 0.0), (a, t), (t, t), (t, b), (0.0, b)];
+    let mut positions = Vec::new();
+    for z in [0.0, h] {
+        positions.extend(outline.iter().map(|&(x, y)| Vec3::new(x, y, z)));
+    }
+    let mut triangles = Vec::new();
+    // The caps: a fan from the corner at the origin (the L is star-shaped from it).
+    for i in 1..5u32 {
+        triangles.push([0, i + 1, i]);
+        triangles.push([6, 6 + i, 6 + i + 1]);
+    }
+    // The sides, counter-clockwise outline seen from above.
+    for i in 0..6u32 {
+        let j = (i + 1) % 6;
+        triangles.push([i, j, 6 + j]);
+        triangles.push([i, 6 + j, 6 + i]);
+    }
+    Mesh::new(positions, triangles)
+}
+
+/// Whether the segment from `p` to `p - v` meets the box `lo..hi` (slab test).
+fn segment_meets_box(p: DVec3, v: DVec3, lo: DVec3, hi: DVec3) -> bool {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for k in 0..3 {
+        let (o, d) = (p[k], -v[k]);
+        if d.abs() < 1e-300 {
+            if o < lo[k] || o > hi[k] {
+                return false;
+            }
+            continue;
+        }
+        let (a, b) = ((lo[k] - o) / d, (hi[k] - o) / d);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    t0 <= t1
+}
+
+/// The volume swept by `l_prism(a, b, t, h)` translated by `v`, by Monte Carlo over the box
+/// of the sweep (a point is swept when the segment back along `v` meets one of the L's two
+/// boxes), with its standard error.
+fn l_prism_translation_volume(a: f64, b: f64, t: f64, h: f64, v: DVec3, seed: u64) -> (f64, f64) {
+    let boxes = [
+        (DVec3::ZERO, DVec3::new(a, t, h)),
+        (DVec3::ZERO, DVec3::new(t, b, h)),
+    ];
+    let lo = DVec3::ZERO.min(v);
+    let hi = DVec3::new(a, b, h).max(DVec3::new(a, b, h) + v);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let samples = 200_000;
+    let hits = (0..samples)
+        .filter(|_| {
+            let p = lo + (hi - lo) * DVec3::new(rng.gen(), rng.gen(), rng.gen());
+            boxes
+                .iter()
+                .any(|&(bl, bh)| segment_meets_box(p, v, bl, bh))
+        })
+        .count();
+    let box_volume = (hi - lo).element_product();
+    let p = hits as f64 / samples as f64;
+    (
+        box_volume * p,
+        box_volume * (p * (1.0 - p) / samples as f64).sqrt(),
+    )
+}
+
+/// The convex hull of the model's volume swept by turning about `centre`: at least the model's
+/// volume, at most the ball through its farthest vertex; `slack` for the discretisation.
+fn check_turned_volume(mesh: &Mesh, centre: DVec3, swept: &SweptVolume, what: &str) {
+    let h = swept.grid.spacing;
+    let slack = mesh.surface_area() * h;
+    let r = mesh
+        .positions
+        .iter()
+        .map(|p| (p.as_dvec3() - centre).length())
+        .fold(0.0, f64::max);
+    let ball = 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let v = swept.surface.volume;
+    assert!(
+        v >= mesh.signed_volume() - slack && v <= ball + slack,
+        "{what}: volume {v} outside [{} - {slack}, {ball} + {slack}]",
+        mesh.signed_volume()
+    );
+}
+
+#[test]
+fn a_seeded_sweep_of_shapes_motions_and_resolutions() {
+    // Convex and non-convex shapes, translations and turns, resolutions from 16 up: every
+    // run succeeds and writes a closed 2-manifold by position with no degenerate triangle,
+    // of the genus the motion gives, and its volume agrees with a reference where there is
+    // one.
+    let mut rng = ChaCha8Rng::seed_from_u64(43);
+    let ctx = context();
+    for case in 0..12 {
+        let n = rng.gen_range(16..=40);
+        let shape = case % 4;
+        let turn = case % 3 == 2 && shape != 2;
+        let (mesh, centre, name) = match shape {
+            0 => {
+                let half = Vec3::new(
+                    rng.gen_range(0.2..0.7),
+                    rng.gen_range(0.2..0.7),
+                    rng.gen_range(0.2..0.7),
+                );
+                (cuboid(half), DVec3::ZERO, "box")
+            }
+            1 => (
+                uv_sphere(
+                    rng.gen_range(0.4..0.8),
+                    rng.gen_range(8..16),
+                    rng.gen_range(5..9),
+                ),
+                DVec3::ZERO,
+                "polyhedral sphere",
+            ),
+            2 => (torus_closed(1.0, 0.3, 20, 8), DVec3::ZERO, "ring"),
+            _ => {
+                // Star-shaped from the square where its arms meet.
+                let t = rng.gen_range(0.3..0.5);
+                let mesh = l_prism(rng.gen_range(0.9..1.4), rng.gen_range(0.9..1.4), t, 0.4);
+                let centre = DVec3::new(0.5 * t as f64, 0.5 * t as f64, 0.2);
+                (mesh, centre, "L prism")
+            }
+        };
+        let (path, poses, v) = if turn {
+            // A turn about an axis through `centre`: every pose holds `centre` and is
+            // star-shaped from it, so the sweep is too (genus 0).
+            let axis = DVec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
+            let q = DQuat::from_axis_angle(axis.normalize(), rng.gen_range(0.3..1.5));
+            let path = Path3::new(&[
+                keyframe(DVec3::ZERO, DQuat::IDENTITY),
+                keyframe(centre - q * centre, q),
+            ])
+            .unwrap();
+            (path, rng.gen_range(5..10), DVec3::ZERO)
+        } else if shape == 2 {
+            // Along the ring's axis, a little aside: the hole stays open.
+            let v = DVec3::new(
+                rng.gen_range(-0.1..0.1),
+                rng.gen_range(-0.1..0.1),
+                rng.gen_range(0.2..1.0),
+            );
+            (translation(v), 2, v)
+        } else {
+            let v = DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            );
+            (translation(v), 2, v)
+        };
+        let what = format!("case {case}: {name} at {n}, {poses} poses, moved by {v}, turn {turn}");
+        eprintln!("{what}");
+        let swept = sweep(
+            &ctx,
+            &mesh,
+            &path,
+            Options {
+                resolution: n,
+                poses,
+                epsilon: None,
+            },
+        )
+        .unwrap_or_else(|e| panic!("{what}: {e:#}"));
+        let chi = written_manifold(&swept, &what);
+        assert_eq!(chi, if shape == 2 { 0 } else { 2 }, "{what}");
+        match (shape, turn) {
+            (0 | 1, false) => check_translated_volume(&mesh, v, &swept, &what),
+            (3, false) => {
+                let [a, b] = [mesh.positions[1].x, mesh.positions[4].y].map(f64::from);
+                let t = mesh.positions[2].y as f64;
+                let (exact, sigma) = l_prism_translation_volume(a, b, t, 0.4, v, case as u64);
+                let h = swept.grid.spacing;
+                let tolerance = 5.0 * sigma + sharp_edge_length(&mesh, v) * h * h;
+                let error = (swept.surface.volume - exact).abs();
+                assert!(
+                    error <= tolerance,
+                    "{what}: volume {} vs Monte Carlo {exact} ± {sigma}: off by {error} > \
+                     {tolerance}",
+                    swept.surface.volume
+                );
+            }
+            (_, true) => check_turned_volume(&mesh, centre, &swept, &what),
+            _ => {}
+        }
+    }
+}
+
+#[test]
+fn an_open_model_or_a_triangle_soup_is_refused() {
+    let ctx = context();
+    let path = translation(DVec3::new(0.5, 0.0, 0.0));
+    let options = Options {
+        resolution: 16,
+        poses: 2,
+        epsilon: None,
+    };
+    let mut open = cube(1.0);
+    open.triangles.pop();
+    let err = format!("{:#}", sweep(&ctx, &open, &path, options).unwrap_err());
+    assert!(
+        err.contains("not a closed surface") && err.contains("3 edges have one triangle"),
+        "{err}"
+    );
+    let err = format!(
+        "{:#}",
+        sweep(&ctx, &soup(20, 0.3, 7), &path, options).unwrap_err()
+    );
+    assert!(err.contains("not a closed surface"), "{err}");
+    // Through the command: a non-zero exit naming the model, and nothing written.
+    let dir = common::temp_dir("lecture1-swept", "open");
+    let model = dir.join("open.obj");
+    classic_gpgpu::mesh::write_obj(&open, &model).unwrap();
+    let path_file = dir.join("path.json");
+    std::fs::write(
+        &path_file,
+        r#"[{"translation": [0, 0, 0], "rotation": [1, 0, 0, 0]},
+            {"translation": [0.5, 0, 0], "rotation": [1, 0, 0, 0]}]"#,
+    )
+    .unwrap();
+    let out = dir.join("swept.obj");
+    let run = classic_gpgpu(&[
+        "lecture1",
+        "swept-volume",
+        model.to_str().unwrap(),
+        "--path",
+        path_file.to_str().unwrap(),
+        "--resolution",
+        "16",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("open.obj") && stderr.contains("not a closed surface"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -365,7 +365,8 @@ pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow
     Ok(())
 }
 
-/// `V - E + F` and the genus for a manifold surface, else what stops it being one.
+/// `V - E + F` and the genus for a manifold surface, else what stops it being one (of the
+/// mesh as written, welded by position).
 fn describe_topology(t: &swept_volume::topology::Topology) -> String {
     match (t.euler_characteristic, t.genus) {
         (Some(chi), Some(genus)) => format!(
@@ -374,8 +375,12 @@ fn describe_topology(t: &swept_volume::topology::Topology) -> String {
         ),
         _ => format!(
             "not a closed 2-manifold ({} boundary, {} misoriented, {} non-manifold edges, {} \
-             non-manifold vertices): no Euler characteristic",
-            t.boundary_edges, t.misoriented_edges, t.non_manifold_edges, t.non_manifold_vertices
+             non-manifold vertices, {} zero-area triangles): no Euler characteristic",
+            t.boundary_edges,
+            t.misoriented_edges,
+            t.non_manifold_edges,
+            t.non_manifold_vertices,
+            t.zero_area_triangles
         ),
     }
 }

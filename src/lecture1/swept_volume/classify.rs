@@ -92,16 +92,31 @@ pub fn classify(field: &DistanceField, primitives: &Mesh) -> anyhow::Result<Clas
 /// crossing of each of its edges to them where the segment first meets a primitive: with
 /// `d_u` outside and the hit at `t` of the way, `-d_u (1 - t) / t` (exact for a plane), the
 /// mean over its outside neighbours. Deeper inside voxels, which no sign change touches,
-/// keep `-d` (never `-0`, which would count as outside).
+/// keep `-d`.
+///
+/// The sign is the classification's, never the distance's: a voxel centre on a primitive
+/// has `d = 0` (and one a rounding error away from it may have too), so every magnitude is
+/// at least `f32::MIN_POSITIVE`. A centre exactly on a primitive is never reached by the
+/// fill (the segment to it touches the primitive), so it is inside; one the fill reached is
+/// outside whatever fp32 distance the GPU gave it. The zero level then stays between the
+/// samples, where the extraction places it on the primitives.
 pub fn signed_field(field: &DistanceField, c: &Classification, primitives: &Mesh) -> Vec<f32> {
     let grid = &field.grid;
     let n = grid.n;
     let buckets = Buckets::new(grid, primitives);
+    // (A NaN stays NaN, for the extraction to refuse.)
+    let magnitude = |d: f32| {
+        if d.is_nan() {
+            d
+        } else {
+            d.max(f32::MIN_POSITIVE)
+        }
+    };
     let mut signed: Vec<f32> = field
         .values
         .iter()
         .zip(&c.outside)
-        .map(|(&d, &o)| if o { d } else { -d.max(f32::MIN_POSITIVE) })
+        .map(|(&d, &o)| if o { magnitude(d) } else { -magnitude(d) })
         .collect();
     for z in 0..n {
         for y in 0..n {

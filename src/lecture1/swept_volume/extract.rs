@@ -16,6 +16,18 @@
 //! walked from its outside sample, first meets one (exact for every surface, where the
 //! signed field's linear interpolation is exact only for a plane), with that primitive's
 //! normal; sharp edges and corners then get their own vertices ([`super::features`]).
+//!
+//! Manifold by position, not only by index: no two vertices may share a place, or the mesh,
+//! welded by position as a reader of the OBJ does, folds there (two cells' feature vertices
+//! at one corner of the model made edges of four triangles). A crossing lies inside its own
+//! grid edge, never on a sample, and the edges' interiors are disjoint. A feature vertex
+//! lies where its tangent planes meet, which may be outside its tetrahedron and on another
+//! vertex (the model's corner is one point for every cell around it); every feature vertex
+//! at the fp32 place of another vertex, or whose fan would have a flat triangle, is drawn
+//! into the inside of its own tetrahedron ([`features::within_tetrahedron`]), where no
+//! other vertex can be and no fan triangle is flat. The topology is then computed on the
+//! welded fp32 mesh, the one written, with its zero-area triangles counted: it is measured,
+//! not assumed.
 
 use super::super::distance_field::Grid;
 use super::classify::Buckets;
@@ -89,6 +101,7 @@ pub fn extract(
         vertices: HashMap::new(),
         lattice: Vec::new(),
         normals: Vec::new(),
+        tetrahedra: HashMap::new(),
         triangles: Vec::new(),
     };
     for z in 0..n - 1 {
@@ -98,13 +111,14 @@ pub fn extract(
             }
         }
     }
+    march.separate_coincident();
     let is_feature: Vec<bool> = march.normals.iter().map(Option::is_none).collect();
     let feature_vertices = match primitives {
         Some(_) => march.lattice.len() - march.vertices.len(),
         None => 0,
     };
     let feature_flips = if feature_vertices > 0 {
-        features::flip_towards_features(&mut march.triangles, &is_feature)
+        features::flip_towards_features(&mut march.triangles, &is_feature, &march.lattice)
     } else {
         0
     };
@@ -115,8 +129,9 @@ pub fn extract(
         .iter()
         .map(|p| (grid.origin + grid.spacing * *p).as_vec3())
         .collect();
-    let mesh = Mesh::new(positions, march.triangles);
-    let topology = topology::analyse(&mesh.triangles, mesh.positions.len());
+    // Welded by fp32 position, as the OBJ is written and read back.
+    let mesh = Mesh::new(positions, march.triangles).welded();
+    let topology = topology::of_mesh(&mesh);
     Ok(Surface {
         mesh,
         volume,
@@ -124,6 +139,13 @@ pub fn extract(
         feature_vertices,
         feature_flips,
     })
+}
+
+/// The bits of the fp32 mesh position of lattice point `p`, `-0` as `0`: the key of
+/// welding by position.
+fn position_key(grid: &Grid, p: DVec3) -> [u32; 3] {
+    let q = (grid.origin + grid.spacing * p).as_vec3();
+    q.to_array().map(|c| if c == 0.0 { 0 } else { c.to_bits() })
 }
 
 /// The state of one extraction.
@@ -138,6 +160,8 @@ struct March<'a> {
     /// Each vertex's outward unit normal when it lies on a primitive; `None` for a feature
     /// vertex or one placed by interpolation.
     normals: Vec<Option<DVec3>>,
+    /// Each feature vertex's tetrahedron (lattice corners).
+    tetrahedra: HashMap<u32, [DVec3; 4]>,
     triangles: Vec<[u32; 3]>,
 }
 
@@ -178,12 +202,17 @@ impl March<'_> {
             ([], _) | (_, []) => {}
             ([a], [b, c, d]) | ([b, c, d], [a]) => {
                 let (a, b, c, d) = (*a, *b, *c, *d);
-                self.polygon(&[(a, b), (a, c), (a, d)], inside[0], outside[0]);
+                self.polygon(
+                    &[(a, b), (a, c), (a, d)],
+                    inside[0],
+                    outside[0],
+                    [a, b, c, d],
+                );
             }
             ([a, b], [c, d]) => {
                 let (a, b, c, d) = (*a, *b, *c, *d);
                 // The crossings on a-c, a-d, b-d, b-c form a cycle.
-                self.polygon(&[(a, c), (a, d), (b, d), (b, c)], a, c);
+                self.polygon(&[(a, c), (a, d), (b, d), (b, c)], a, c, [a, b, c, d]);
             }
             _ => unreachable!("four corners"),
         }
@@ -194,8 +223,8 @@ impl March<'_> {
     /// or around its feature vertex when it has one. Its orientation is decided on the first
     /// three edges' midpoints in exact integers: moving each crossing along its own edge
     /// never turns a triangle of a tetrahedron over, and the midpoints' plane separates the
-    /// inside corners from the outside ones.
-    fn polygon(&mut self, edges: &[(IVec3, IVec3)], inner: IVec3, outer: IVec3) {
+    /// inside corners from the outside ones. `tet` is the tetrahedron's corners.
+    fn polygon(&mut self, edges: &[(IVec3, IVec3)], inner: IVec3, outer: IVec3, tet: [IVec3; 4]) {
         let mid: Vec<_> = edges.iter().map(|&(p, q)| (p + q).as_i64vec3()).collect();
         let normal = (mid[1] - mid[0]).cross(mid[2] - mid[0]);
         let towards_outside = normal.dot((outer - inner).as_i64vec3());
@@ -204,15 +233,16 @@ impl March<'_> {
             ids.reverse();
         }
         let k = ids.len();
-        match self.feature_vertex(&ids) {
+        match self.feature_vertex(&ids, tet) {
             Some(f) => (0..k).for_each(|i| self.triangles.push([f, ids[i], ids[(i + 1) % k]])),
             None => (1..k - 1).for_each(|i| self.triangles.push([ids[0], ids[i], ids[i + 1]])),
         }
     }
 
     /// A vertex where the tangent planes of the polygon `ids` meet, when they meet at a sharp
-    /// angle within a voxel's diagonal of its crossings (else the plain polygon is kept).
-    fn feature_vertex(&mut self, ids: &[u32]) -> Option<u32> {
+    /// angle within a voxel's diagonal of its crossings (else the plain polygon is kept),
+    /// drawn into the tetrahedron `tet` when a triangle of its fan would be flat.
+    fn feature_vertex(&mut self, ids: &[u32], tet: [IVec3; 4]) -> Option<u32> {
         let normals: Option<Vec<DVec3>> = ids.iter().map(|&i| self.normals[i as usize]).collect();
         let points: Vec<DVec3> = ids.iter().map(|&i| self.lattice[i as usize]).collect();
         let point = features::feature_point(&points, &normals?)?;
@@ -220,10 +250,64 @@ impl March<'_> {
         if (point - centre).length() > 3f64.sqrt() {
             return None;
         }
+        let tet = tet.map(|c| c.as_dvec3());
+        let k = points.len();
+        let flat = (0..k).any(|i| features::flat(point, points[i], points[(i + 1) % k]));
+        let point = if flat {
+            features::within_tetrahedron(point, tet)
+        } else {
+            point
+        };
         let id = self.lattice.len() as u32;
         self.lattice.push(point);
         self.normals.push(None);
+        self.tetrahedra.insert(id, tet);
         Some(id)
+    }
+
+    /// Draw every feature vertex that shares its fp32 place (as written) with another vertex,
+    /// but one, into its own tetrahedron, until no two vertices share a place.
+    fn separate_coincident(&mut self) {
+        // Inside their tetrahedra, feature vertices are apart from each other and from the
+        // crossings; a second round only catches one moved onto an unmoved one.
+        for _ in 0..4 {
+            let mut at: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
+            for (i, p) in self.lattice.iter().enumerate() {
+                at.entry(position_key(self.grid, *p))
+                    .or_default()
+                    .push(i as u32);
+            }
+            let mut moved = 0;
+            for ids in at.values_mut().filter(|ids| ids.len() > 1) {
+                // One feature vertex keeps the place (the model's corner stays in the mesh
+                // once) unless a crossing has it: the one whose tetrahedron holds it, else
+                // the first.
+                ids.sort_unstable();
+                let at_home = |i: &u32| {
+                    self.tetrahedra.get(i).is_some_and(|t| {
+                        features::inside_tetrahedron(self.lattice[*i as usize], *t)
+                    })
+                };
+                let keep = ids.iter().all(|i| self.tetrahedra.contains_key(i));
+                if let Some(k) = ids.iter().position(at_home) {
+                    ids.swap(0, k);
+                }
+                for i in &ids[usize::from(keep)..] {
+                    let Some(tet) = self.tetrahedra.get(i) else {
+                        continue;
+                    };
+                    let p = &mut self.lattice[*i as usize];
+                    let inside = features::within_tetrahedron(*p, *tet);
+                    if inside != *p {
+                        *p = inside;
+                        moved += 1;
+                    }
+                }
+            }
+            if moved == 0 {
+                return;
+            }
+        }
     }
 
     /// The vertex where the field crosses zero on the edge `p q` (linear interpolation).

@@ -18,7 +18,10 @@
 //!    that the sharp edge runs along the mesh instead of being cut at every cell face.
 //!
 //! A fan and a flip change neither the vertices' links nor `V - E + F`: the topology stays
-//! that of the marching tetrahedra.
+//! that of the marching tetrahedra. Not in the paper: a feature vertex that would share its
+//! place with another vertex (several cells' feature vertices at one corner of the model)
+//! or make a flat fan triangle is drawn inside its own tetrahedron ([`within_tetrahedron`]),
+//! so that the mesh, welded by position, does not fold there.
 
 use glam::DVec3;
 use std::collections::{HashMap, HashSet};
@@ -69,6 +72,56 @@ pub fn feature_point(points: &[DVec3], normals: &[DVec3]) -> Option<DVec3> {
     point.is_finite().then_some(point)
 }
 
+/// How far inside its tetrahedron a feature vertex drawn into it stays: every barycentric
+/// coordinate at least this (a fiftieth of the way from a face to the opposite corner), so
+/// that its fan's triangles stay clear of zero area in fp32.
+pub const TETRAHEDRON_DEPTH: f64 = 0.02;
+
+/// Barycentric coordinates of `p` in the tetrahedron `a b c d`.
+fn barycentric(p: DVec3, [a, b, c, d]: [DVec3; 4]) -> [f64; 4] {
+    let l = glam::DMat3::from_cols(b - a, c - a, d - a).inverse() * (p - a);
+    [1.0 - l.x - l.y - l.z, l.x, l.y, l.z]
+}
+
+/// Whether `point` is inside the tetrahedron by [`TETRAHEDRON_DEPTH`] at least.
+pub fn inside_tetrahedron(point: DVec3, corners: [DVec3; 4]) -> bool {
+    barycentric(point, corners)
+        .iter()
+        .all(|&l| l >= TETRAHEDRON_DEPTH)
+}
+
+/// `point`, or where the segment from the tetrahedron's centroid to it leaves the
+/// tetrahedron shrunk to barycentric coordinates of at least [`TETRAHEDRON_DEPTH`].
+pub fn within_tetrahedron(point: DVec3, corners: [DVec3; 4]) -> DVec3 {
+    let [a, b, c, d] = corners;
+    let centroid = (a + b + c + d) / 4.0;
+    // Along centroid + s (point - centroid) each coordinate goes from 1/4 to its value at
+    // the point; the largest s in [0, 1] that keeps all of them at the depth or above.
+    let s = barycentric(point, corners)
+        .iter()
+        .filter(|&&l| l < TETRAHEDRON_DEPTH)
+        .map(|&l| (0.25 - TETRAHEDRON_DEPTH) / (0.25 - l))
+        .fold(1.0, f64::min);
+    if s == 1.0 {
+        return point;
+    }
+    centroid + s * (point - centroid)
+}
+
+/// Twice a triangle's area at most this fraction of its longest side squared: too flat to
+/// make by a fan or a flip (fp32 rounding of the written positions must not bring it to
+/// zero area, `mesh check`'s 4.8e-7).
+pub const FLAT: f64 = 1e-3;
+
+/// Whether the triangle `a b c` is flat by [`FLAT`].
+pub fn flat(a: DVec3, b: DVec3, c: DVec3) -> bool {
+    let longest = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    (b - a).cross(c - a).length() <= FLAT * longest
+}
+
 /// Eigenvalues and unit eigenvectors of a symmetric 3x3 matrix (cyclic Jacobi rotations).
 fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [DVec3; 3]) {
     let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -110,9 +163,15 @@ fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [DVec3; 3]) {
 }
 
 /// Step 3: flip every edge between two non-feature vertices whose two triangles' third
-/// vertices are both feature vertices (and not yet joined), until none is left. Triangles
-/// keep their orientation.
-pub fn flip_towards_features(triangles: &mut [[u32; 3]], is_feature: &[bool]) -> usize {
+/// vertices are both feature vertices (and not yet joined), until none is left; a flip that
+/// would make a flat triangle (at `positions`) is not made. Triangles keep their
+/// orientation.
+pub fn flip_towards_features(
+    triangles: &mut [[u32; 3]],
+    is_feature: &[bool],
+    positions: &[DVec3],
+) -> usize {
+    let at = |v: u32| positions[v as usize];
     let feature = |v: u32| is_feature[v as usize];
     let key = |u: u32, v: u32| (u.min(v), u.max(v));
     let mut flips = 0;
@@ -142,6 +201,9 @@ pub fn flip_towards_features(triangles: &mut [[u32; 3]], is_feature: &[bool]) ->
                 continue;
             }
             if touched.contains(&i) || touched.contains(&j) {
+                continue;
+            }
+            if flat(at(w), at(u), at(x)) || flat(at(x), at(v), at(w)) {
                 continue;
             }
             // (u, v, w) and (v, u, x) become (w, u, x) and (x, v, w).

@@ -89,6 +89,30 @@ pub fn margin_for(extent: f64, n: usize) -> f64 {
     (voxels * extent / (n as f64 - 2.0 * voxels)).max(0.05 * extent)
 }
 
+/// Refuse a model that does not bound a solid: after welding equal positions, every edge
+/// must have exactly two triangles, oppositely oriented. An open surface or a triangle soup
+/// has no inside, so the fill would run through it and the boundary found would be that of
+/// the primitives' own thickness, not of a solid's sweep.
+pub fn check_closed(model: &Mesh) -> anyhow::Result<()> {
+    let closed = model.closedness();
+    anyhow::ensure!(
+        closed.faces > 0,
+        "every triangle of the model repeats a vertex (after welding equal positions): it has \
+         no surface to sweep"
+    );
+    anyhow::ensure!(
+        closed.is_closed(),
+        "the model is not a closed surface: after welding equal positions, {} edges have one \
+         triangle, {} have three or more and {} have two facing the same way; a swept volume \
+         needs a closed, consistently oriented mesh (`classic-gpgpu mesh check MODEL` lists \
+         the problems)",
+        closed.boundary_edges,
+        closed.non_manifold_edges,
+        closed.misoriented_edges
+    );
+    Ok(())
+}
+
 /// The swept volume of `model` along `path`.
 pub fn sweep(
     ctx: &Context,
@@ -107,6 +131,7 @@ pub fn sweep(
         options.poses
     );
     super::distance_field::check_input(model, None)?;
+    check_closed(model)?;
     let start = Instant::now();
     let model = weld(model);
     let poses = path.sample(options.poses.max(1));
@@ -151,6 +176,14 @@ pub fn sweep(
     let buckets = classify::Buckets::new(&grid, &primitives.mesh);
     let surface = extract::extract(&grid, &signed, Some(&buckets))?;
     timings.extract_ms = start.elapsed().as_secs_f64() * 1e3;
+    let t = &surface.topology;
+    anyhow::ensure!(
+        surface.watertight(),
+        "the extracted boundary at resolution {n} is not closed ({} boundary and {} \
+         misoriented edges), so its volume means nothing; try another resolution",
+        t.boundary_edges,
+        t.misoriented_edges
+    );
     Ok(SweptVolume {
         surface,
         grid,

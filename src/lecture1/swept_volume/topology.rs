@@ -1,10 +1,13 @@
-//! The extracted boundary's topology, on its vertex indices (positions are not compared, so
-//! two vertices that happen to meet stay two): whether it is a closed, oriented 2-manifold,
-//! and then its Euler characteristic `V - E + F` and the genus that implies. Reported only
-//! for a manifold, where it means something: a sphere has 2, a torus 0, and each closed
-//! component of genus `g` adds `2 - 2g`.
+//! The extracted boundary's topology: whether it is a closed, oriented 2-manifold with no
+//! zero-area triangle, and then its Euler characteristic `V - E + F` and the genus that
+//! implies. Reported only for a manifold, where it means something: a sphere has 2, a torus
+//! 0, and each closed component of genus `g` adds `2 - 2g`.
+//!
+//! [`of_mesh`] asks it of a mesh by position (vertices at one fp32 position are one vertex,
+//! as in a written OBJ read back), [`analyse`] of bare indices.
 
 use crate::mesh::validate::UnionFind;
+use crate::mesh::Mesh;
 use serde::Serialize;
 use std::collections::{HashMap, HashSet};
 
@@ -25,6 +28,9 @@ pub struct Topology {
     pub non_manifold_edges: usize,
     /// Vertices whose triangles make more than one fan (two sheets touching at a point).
     pub non_manifold_vertices: usize,
+    /// Triangles of three distinct vertices but no area (by `mesh check`'s rule; counted by
+    /// [`of_mesh`] only).
+    pub zero_area_triangles: usize,
     /// `V - E + F`, only for a closed oriented manifold.
     pub euler_characteristic: Option<i64>,
     /// The summed genus of the components, `components - χ / 2`, only for a closed oriented
@@ -33,13 +39,14 @@ pub struct Topology {
 }
 
 impl Topology {
-    /// A closed, consistently oriented 2-manifold.
+    /// A closed, consistently oriented 2-manifold, no triangle of zero area.
     pub fn is_manifold(&self) -> bool {
         self.faces > 0
             && self.boundary_edges == 0
             && self.misoriented_edges == 0
             && self.non_manifold_edges == 0
             && self.non_manifold_vertices == 0
+            && self.zero_area_triangles == 0
     }
 
     /// No boundary and no edge used twice the same way: it encloses a volume (it may still
@@ -49,9 +56,21 @@ impl Topology {
     }
 }
 
+/// The topology of `mesh` by position: welded first, zero-area triangles counted.
+pub fn of_mesh(mesh: &Mesh) -> Topology {
+    let welded = mesh.welded();
+    let zero_area = welded.validate().zero_area_triangles;
+    analyse_counting(&welded.triangles, welded.positions.len(), zero_area)
+}
+
 /// The topology of `triangles` over `vertex_count` vertices. Triangles with a repeated
 /// vertex are refused as not manifold (they are counted as non-manifold edges).
 pub fn analyse(triangles: &[[u32; 3]], vertex_count: usize) -> Topology {
+    analyse_counting(triangles, vertex_count, 0)
+}
+
+/// [`analyse`], with `zero_area` triangles known to be flat (no Euler characteristic then).
+fn analyse_counting(triangles: &[[u32; 3]], vertex_count: usize, zero_area: usize) -> Topology {
     let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
     let mut used = vec![false; vertex_count];
     // Each vertex's link: the edge opposite it in each of its triangles, in order.
@@ -73,6 +92,7 @@ pub fn analyse(triangles: &[[u32; 3]], vertex_count: usize) -> Topology {
     let mut t = Topology {
         faces: triangles.len() - degenerate,
         non_manifold_edges: degenerate,
+        zero_area_triangles: zero_area,
         ..Topology::default()
     };
     for (&(u, v), &forward) in &directed {
