@@ -3,7 +3,8 @@
 //! (`results.json`'s `drawn`): a plot has a title, axis titles, at least two labelled ticks on
 //! each axis and a legend entry per curve; a picture of float buffers has a title and a colour
 //! key per panel, whole-texel enlargement and titles of at most three lines; rendered frames
-//! side by side are each titled. `Drawn::problems` names what is missing.
+//! side by side are each titled. `Drawn::problems` names what is missing. Set
+//! `CLASSIC_GPGPU_KEEP_FIGURES` to keep the report (its folder is printed) and look at it.
 
 use classic_gpgpu::gl::drawn::Drawn;
 use std::path::PathBuf;
@@ -24,6 +25,7 @@ fn every_figure_of_a_quick_report_is_readable() {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
+    eprintln!("report in {}", out.display());
     let text = std::fs::read_to_string(out.join("results.json")).unwrap();
     let results: serde_json::Value = serde_json::from_str(&text).unwrap();
     let mut problems = Vec::new();
@@ -67,5 +69,7 @@ fn every_figure_of_a_quick_report_is_readable() {
         plots >= 10 && pictures >= 5,
         "{plots} plots, {pictures} pictures"
     );
-    std::fs::remove_dir_all(&out).ok();
+    if std::env::var_os("CLASSIC_GPGPU_KEEP_FIGURES").is_none() {
+        std::fs::remove_dir_all(&out).ok();
+    }
 }

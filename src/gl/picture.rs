@@ -329,7 +329,8 @@ pub fn frames_picture(
     let scale = scale.max(1);
     let cell_w = frames.iter().map(|f| f.1.width()).max().unwrap_or(1) * scale + 2 * MARGIN + 2;
     let width = (columns * cell_w).max(480);
-    let glyph = glyph_for(width);
+    // Titles in the large font only where a frame is wide enough for a few words a line.
+    let glyph = if cell_w >= 400 { 16 } else { 8 };
     let line = |text: &str| wrap(text, ((cell_w - 2 * MARGIN) / glyph).max(1) as usize);
     let title_rows = frames
         .iter()

@@ -28,6 +28,9 @@ pub enum Line {
     /// A horizontal line at the first point's y across the whole x axis: a bound a claim
     /// names (Fig. 4's 5%).
     Reference,
+    /// A dashed grey line through the points, no markers: a mark on the axes (Fig. 7's
+    /// switch), not data.
+    Guide,
 }
 
 /// One curve of a plot.
@@ -56,6 +59,16 @@ impl Series {
             points: vec![(0.0, y)],
             slot: None,
             line: Line::Reference,
+        }
+    }
+
+    /// A dashed grey line through `points` (a threshold drawn across the data).
+    pub fn guide(name: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
+        Series {
+            name: name.into(),
+            points,
+            slot: None,
+            line: Line::Guide,
         }
     }
 
@@ -150,6 +163,13 @@ struct Curve {
     zeros: Vec<f64>,
 }
 
+impl Curve {
+    /// Measured or published data, not a reference or guide line.
+    fn is_data(&self) -> bool {
+        matches!(self.line, Line::Solid | Line::Dashed)
+    }
+}
+
 /// The curves of `series`: identical data series merged ("A = B"), styles assigned.
 fn curves(series: &[Series], log_x: bool, log_y: bool) -> Vec<Curve> {
     let mut out: Vec<(Curve, Vec<(u64, u64)>)> = Vec::new();
@@ -160,7 +180,7 @@ fn curves(series: &[Series], log_x: bool, log_y: bool) -> Vec<Curve> {
             .iter()
             .map(|p| (p.0.to_bits(), p.1.to_bits()))
             .collect();
-        if s.line != Line::Reference {
+        if matches!(s.line, Line::Solid | Line::Dashed) {
             if let Some((curve, _)) = out
                 .iter_mut()
                 .find(|(c, k)| c.line == s.line && *k == key && !key.is_empty())
@@ -171,8 +191,8 @@ fn curves(series: &[Series], log_x: bool, log_y: bool) -> Vec<Curve> {
         }
         let slot = s.slot.unwrap_or(data_slot);
         let (colour, marker) = match s.line {
-            Line::Reference => (GREY, Marker::Circle),
-            _ => {
+            Line::Reference | Line::Guide => (GREY, Marker::Circle),
+            Line::Solid | Line::Dashed => {
                 data_slot += 1;
                 style_of(slot)
             }
@@ -182,7 +202,7 @@ fn curves(series: &[Series], log_x: bool, log_y: bool) -> Vec<Curve> {
             let x_ok = reference || (x.is_finite() && (!log_x || x > 0.0));
             x_ok && y.is_finite() && (!log_y || y > 0.0)
         };
-        let zeros = if log_y && s.line != Line::Reference {
+        let zeros = if log_y && matches!(s.line, Line::Solid | Line::Dashed) {
             s.points
                 .iter()
                 .filter(|p| p.1 == 0.0 && p.0.is_finite() && (!log_x || p.0 > 0.0))
@@ -410,11 +430,7 @@ impl Plot {
                 x_ticks,
                 y_ticks,
                 legend: layout.curves.iter().map(|c| c.name.clone()).collect(),
-                curves: layout
-                    .curves
-                    .iter()
-                    .filter(|c| c.line != Line::Reference)
-                    .count(),
+                curves: layout.curves.iter().filter(|c| c.is_data()).count(),
                 notes: layout.notes.clone(),
             }),
         );
@@ -424,7 +440,7 @@ impl Plot {
     /// The curves, axes and notes of the plot.
     fn layout(&self) -> anyhow::Result<Layout> {
         let curves = curves(&self.series, self.log_x, self.log_y);
-        let data = || curves.iter().filter(|c| c.line != Line::Reference);
+        let data = || curves.iter().filter(|c| c.is_data());
         let xs: Vec<f64> = data()
             .flat_map(|c| c.points.iter().map(|p| p.0).chain(c.zeros.iter().copied()))
             .collect();
@@ -542,7 +558,7 @@ impl Plot {
                         ))
                         .map_err(err)?;
                 }
-                Line::Dashed => {
+                Line::Dashed | Line::Guide => {
                     chart
                         .draw_series(DashedLineSeries::new(
                             curve.points.clone(),

@@ -144,7 +144,7 @@ pub fn series(curve: &Fig7Curve) -> Vec<Series> {
         .fold((f64::INFINITY, 0.0f64), |(a, b), &y| (a.min(y), b.max(y)));
     if lo <= hi {
         let x = PAPER_ETA_THRESHOLD * 100.0;
-        series.push(Series::new(
+        series.push(Series::guide(
             "paper's switch (0.095%)",
             vec![(x, lo), (x, hi)],
         ));
