@@ -59,7 +59,7 @@ pub struct PanelDrawn {
 impl PanelDrawn {
     /// Every texel a whole block of pixels (integer magnification, none dropped).
     pub fn whole_texels(&self) -> bool {
-        let whole = |t: u32, p: u32| t > 0 && p >= t && p % t == 0;
+        let whole = |t: u32, p: u32| t > 0 && p >= t && p.is_multiple_of(t);
         whole(self.texels.0, self.pixels.0) && whole(self.texels.1, self.pixels.1)
     }
 }
@@ -173,7 +173,7 @@ impl Drawn {
                     if frame.title_lines > MAX_TITLE_LINES {
                         out.push(format!("{name}: title wraps {} lines", frame.title_lines));
                     }
-                    let whole = |p: u32, s: u32| p > 0 && s >= p && s % p == 0;
+                    let whole = |p: u32, s: u32| p > 0 && s >= p && s.is_multiple_of(p);
                     if !(whole(frame.pixels.0, frame.shown.0)
                         && whole(frame.pixels.1, frame.shown.1))
                     {
