@@ -103,15 +103,19 @@ fn mixed_versions_of_the_claims_are_refused() {
     let other = edited_copy(&dir, "other.json", |v| {
         v["claims_version"] = serde_json::json!("0123456789abcdef")
     });
-    let run = compare_cli(&[&kept()[0], &other], &["--markdown"]);
+    let page = dir.join("page");
+    let run = compare_cli(&[&kept()[0], &other], &["--out", page.to_str().unwrap()]);
     assert!(!run.status.success());
     let e = stderr(&run);
     assert!(e.contains("different versions of the claims"), "{e}");
     assert!(e.contains("0123456789abcdef"), "{e}");
-    assert!(
-        run.stdout.is_empty(),
-        "a refused comparison printed a table"
-    );
+    assert!(!page.exists(), "a refused comparison wrote a page");
+    // The README's text puts each version in a table of its own, under its heading.
+    let run = compare_cli(&[&kept()[0], &other], &["--markdown"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(text.matches("| paper | claim |").count(), 2, "{text}");
+    assert!(text.contains("(claims version 0123456789abcdef)"), "{text}");
 
     // A results.json from before the version was recorded is refused too.
     let old = edited_copy(&dir, "old.json", |v| {
@@ -310,8 +314,7 @@ fn the_readme_table_is_the_one_compare_prints_from_the_kept_results() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
     let in_readme = markdown::between_markers(&readme).unwrap();
-    let runs = compare::read(&kept()).unwrap();
-    let printed = markdown::text(&compare::compare(runs).unwrap());
+    let printed = markdown::grouped(&kept()).unwrap();
     assert!(
         in_readme == printed,
         "README.md's table between {} and {} differs from what `classic-gpgpu compare \
@@ -327,6 +330,29 @@ fn the_readme_table_is_the_one_compare_prints_from_the_kept_results() {
             "{name}"
         );
     }
+}
+
+#[test]
+fn markdown_puts_runs_of_other_sizes_in_their_own_table() {
+    let dir = scratch("grouped");
+    let quick = kept()[0].clone();
+    let was_quick = run::Run::read(&quick).unwrap().quick;
+    let other = edited_copy(&dir, "other-size.json", |v| {
+        v["quick"] = serde_json::json!(!was_quick)
+    });
+    let text = markdown::grouped(&[quick, other]).unwrap();
+    // Two groups, each its own table under its own heading, the papers' sizes first.
+    assert_eq!(text.matches("#### ").count(), 2, "{text}");
+    assert_eq!(text.matches("| paper | claim |").count(), 2, "{text}");
+    let full_at = text
+        .find("#### Runs at the papers' sizes")
+        .expect("a full group");
+    let quick_at = text.find("#### `--quick` runs").expect("a quick group");
+    assert!(full_at < quick_at, "{text}");
+    // One group alone has no heading, as the README's single table.
+    let alone = markdown::grouped(&kept()[..1]).unwrap();
+    assert!(!alone.contains("#### "), "{alone}");
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

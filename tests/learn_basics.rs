@@ -276,22 +276,25 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
     let (shape, values) = classic_gpgpu::files::read_npy(&npy).unwrap();
     assert_eq!(shape, vec![20, 24, 2]);
     assert!(values.iter().all(|v| v.is_finite()));
-    // The pictures exist now: refused without --force, nothing rewritten; then replaced.
-    let before = std::fs::metadata(pictures.join(picture))
-        .unwrap()
-        .modified()
-        .unwrap();
+    // The pictures exist now: a rerun of the same lesson replaces its own pictures (the
+    // folder's marker says they are its own); another lesson's run, and a folder with a
+    // file of the user's, are refused without --force, and the user's file is never touched.
     let out = classic_gpgpu(&["learn", "reduction", "--png", pictures.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(pictures.join(picture).is_file());
+    let notes = pictures.join("notes.txt");
+    std::fs::write(&notes, "the learner's notes").unwrap();
+    let out = classic_gpgpu(&["learn", "1", "--png", pictures.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         !out.status.success() && stderr.contains("--force"),
         "{stderr}"
     );
-    let after = std::fs::metadata(pictures.join(picture))
-        .unwrap()
-        .modified()
-        .unwrap();
-    assert_eq!(before, after);
+    assert!(pictures.join(picture).is_file());
     let out = classic_gpgpu(&[
         "learn",
         "1",
@@ -310,6 +313,10 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
     assert!(
         stdout.contains("pass 1: saxpy") && stdout.contains("passed"),
         "{stdout}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&notes).unwrap(),
+        "the learner's notes"
     );
     // Every lesson's passes get their pictures from the command line, the second half's too.
     for id in ["count-and-mask", "depth-peeling", "render-to-vertex-buffer"] {

@@ -224,6 +224,12 @@ fn pyramid_png_shows_the_three_gpu_pyramids() {
     let png = dir.join("pyramid.png");
     stdout_of(&["lecture3", "pyramid", "--png", png.to_str().unwrap()]);
     let picture = image::open(&png).unwrap();
-    // Three atlases of the 64x64 map (64 + 32 wide each) with two gaps of 4.
-    assert_eq!(picture.width(), 3 * 96 + 2 * 4);
+    // Three atlases of the 64x64 map (64 + 32 wide each), each a titled panel with its
+    // colour key, at a whole number of pixels per texel: wider and taller than the atlases.
+    assert!(
+        picture.width() >= 3 * 96 && picture.height() > 64,
+        "{}x{}",
+        picture.width(),
+        picture.height()
+    );
 }

@@ -4,12 +4,12 @@
 use classic_gpgpu::report::compare::{self, CompareArgs};
 
 pub fn run(args: &CompareArgs, json: bool) -> anyhow::Result<()> {
-    let runs = compare::read(&args.results)?;
-    let comparison = compare::compare(runs)?;
     if args.markdown {
-        print!("{}", compare::markdown::text(&comparison));
+        print!("{}", compare::markdown::grouped(&args.results)?);
         return Ok(());
     }
+    let runs = compare::read(&args.results)?;
+    let comparison = compare::compare(runs)?;
     compare::write_page(&comparison, &args.out, &args.results, args.force)?;
     if json {
         println!("{}", serde_json::to_string_pretty(&comparison)?);

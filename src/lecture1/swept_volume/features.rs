@@ -73,9 +73,11 @@ pub fn feature_point(points: &[DVec3], normals: &[DVec3]) -> Option<DVec3> {
 }
 
 /// How far inside its tetrahedron a feature vertex drawn into it stays: every barycentric
-/// coordinate at least this (a fiftieth of the way from a face to the opposite corner), so
-/// that its fan's triangles stay clear of zero area in fp32.
-pub const TETRAHEDRON_DEPTH: f64 = 0.02;
+/// coordinate at least this (a thousandth of the way from a face to the opposite corner).
+/// Its fan's triangles stay clear of zero area in fp32 (their heights are about 1e-3 voxel,
+/// against fp32's 1e-7 relative), and the volume moved is of that order too, so a
+/// translated convex model still converges to its exact prism.
+pub const TETRAHEDRON_DEPTH: f64 = 1e-3;
 
 /// Barycentric coordinates of `p` in the tetrahedron `a b c d`.
 fn barycentric(p: DVec3, [a, b, c, d]: [DVec3; 4]) -> [f64; 4] {

@@ -100,3 +100,49 @@ pub fn between_markers(readme: &str) -> Result<&str, String> {
         .ok_or_else(|| format!("README.md has no {END} line after {BEGIN}"))?;
     Ok(&readme[start..start + end])
 }
+
+/// The README's text for kept runs that cannot all share one table: one table per group of
+/// runs that can (the papers' sizes first, then `--quick`; each version of the claims apart),
+/// each under a heading that says which group it is. Runs are never mixed in one table.
+pub fn grouped(paths: &[std::path::PathBuf]) -> anyhow::Result<String> {
+    if paths.is_empty() {
+        anyhow::bail!("compare: give at least one results.json (the file `reproduce` writes)");
+    }
+    let mut groups: Vec<Vec<super::Run>> = Vec::new();
+    for path in paths {
+        let run = super::Run::read(path)?;
+        match groups
+            .iter_mut()
+            .find(|g| g[0].quick == run.quick && g[0].claims_version == run.claims_version)
+        {
+            Some(group) => group.push(run),
+            None => groups.push(vec![run]),
+        }
+    }
+    // Stable: the papers' sizes first, each size's groups in the order given.
+    groups.sort_by_key(|g| g[0].quick);
+    let several = groups.len() > 1;
+    let mut out = String::new();
+    for mut runs in groups {
+        super::comparable(&runs)?;
+        super::run::number_shared_labels(&mut runs);
+        if several {
+            let size = if runs[0].quick {
+                "`--quick` runs (small sizes)"
+            } else {
+                "Runs at the papers' sizes"
+            };
+            let names: Vec<&str> = runs.iter().map(|r| r.label.as_str()).collect();
+            out.push_str(&format!(
+                "#### {size}: {} (claims version {})\n\n",
+                names.join(", "),
+                runs[0].claims_version
+            ));
+        }
+        out.push_str(&text(&super::compare(runs)?));
+        if several {
+            out.push('\n');
+        }
+    }
+    Ok(out)
+}

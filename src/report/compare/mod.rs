@@ -3,7 +3,9 @@
 //! Each of the papers' claims is a row; the published hardware and each machine are columns
 //! (the verdict, what was measured, the machine's load). Results are put side by side only
 //! when they can be: runs at different sizes (`--quick` against the papers' sizes) or that
-//! judged different versions of the claims are refused with the reason, never mixed.
+//! judged different versions of the claims are refused with the reason, never mixed; the
+//! README's text (`--markdown`) puts each such group in a table of its own, under a heading
+//! that says which it is ([`markdown::grouped`]).
 //! The headline ratios are plotted across the machines, and the README's "What a run shows"
 //! table is printed from the kept results (`compare --markdown`).
 
@@ -230,7 +232,7 @@ pub struct CompareArgs {
     #[arg(long)]
     pub force: bool,
     /// Print the README's "What a run shows" table (and the then-and-now lines) instead of
-    /// writing the page.
+    /// writing the page; runs of other sizes or claims versions get a table each.
     #[arg(long)]
     pub markdown: bool,
 }
