@@ -80,8 +80,11 @@ fn counts_beyond_memory_are_refused_before_allocating() {
                 && err.contains("on this machine"),
             "{args:?}: {err}"
         );
+        // Not a speed check: a count that was not refused would run for days (--epochs,
+        // --frames) or allocate beyond memory, so a refusal that took minutes did work first.
+        // The bound is far above a refusal's milliseconds, even on a machine loaded 10x.
         assert!(
-            start.elapsed().as_secs() < 30,
+            start.elapsed().as_secs() < 120,
             "{args:?} took {:?}",
             start.elapsed()
         );
