@@ -191,7 +191,7 @@ fn the_page_shows_every_claim_of_every_machine() {
             assert!(!v.is_empty(), "{key} of {}", file.display());
             assert!(html.contains(&escape(v)), "the page lacks {key} {v}");
         }
-        assert!(html.contains(&escape(&m["command_line"][1].as_str().unwrap().to_string())));
+        assert!(html.contains(&escape(m["command_line"][1].as_str().unwrap())));
     }
     // Every claim of every input is a row, with a cell per machine.
     let rows = comparison["claims"].as_array().unwrap();

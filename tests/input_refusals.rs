@@ -135,28 +135,8 @@ fn screenshots_too_small_to_show_the_demo_are_refused() {
 fn mesh_check_finds_no_degenerate_triangle_in_a_scaled_cube() {
     let dir = common::temp_dir("input-refusals", "scaled");
     for scale in ["1e30", "1e-30"] {
-        let s: f32 = scale.parse().unwrap();
-        let mut obj = String::new();
-        for v in 0..8 {
-            let c = |bit: u32| if v & bit != 0 { s } else { 0.0 };
-            obj.push_str(&format!("v {:e} {:e} {:e}\n", c(1), c(2), c(4)));
-        }
-        // Outward faces of the unit cube, corners numbered by bits x = 1, y = 2, z = 4.
-        for f in [
-            [1, 3, 4, 2],
-            [5, 6, 8, 7],
-            [1, 2, 6, 5],
-            [3, 7, 8, 4],
-            [1, 5, 7, 3],
-            [2, 4, 8, 6],
-        ] {
-            obj.push_str(&format!(
-                "f {} {} {}\nf {} {} {}\n",
-                f[0], f[1], f[2], f[0], f[2], f[3]
-            ));
-        }
-        let path = dir.join(format!("cube-{scale}.obj"));
-        std::fs::write(&path, obj).unwrap();
+        let path =
+            common::scaled_cube_obj(&dir, &format!("cube-{scale}.obj"), scale.parse().unwrap());
         let v = json_of(&["mesh", "check", &text(&path), "--json"]);
         assert_eq!(v["zero_area_triangles"], 0, "{scale}: {v}");
         assert_eq!(v["triangles"], 12, "{scale}: {v}");

@@ -27,32 +27,6 @@ fn assert_refused(out: &Output, words: &[&str]) -> String {
     err
 }
 
-/// A unit cube's OBJ with every coordinate times `scale` (0: every vertex at the origin).
-fn cube_obj(dir: &Path, name: &str, scale: f64) -> std::path::PathBuf {
-    let path = dir.join(name);
-    let mut obj = String::new();
-    for v in 0..8 {
-        let c = |bit: u32| if v & (1 << bit) != 0 { scale } else { 0.0 };
-        obj.push_str(&format!("v {:e} {:e} {:e}\n", c(0), c(1), c(2)));
-    }
-    // Outward, counter-clockwise seen from outside.
-    for f in [
-        [1, 3, 4, 2],
-        [5, 6, 8, 7],
-        [1, 2, 6, 5],
-        [3, 7, 8, 4],
-        [1, 5, 7, 3],
-        [2, 4, 8, 6],
-    ] {
-        obj.push_str(&format!(
-            "f {} {} {}\nf {} {} {}\n",
-            f[0], f[1], f[2], f[0], f[2], f[3]
-        ));
-    }
-    std::fs::write(&path, obj).unwrap();
-    path
-}
-
 #[test]
 fn the_no_display_hint_runs_as_written() {
     let dir = common::temp_dir("messages", "hint");
@@ -152,7 +126,7 @@ fn huge_and_degenerate_models_get_the_right_answer_or_the_real_reason() {
     let dir = common::temp_dir("messages", "models");
     // Two unit cubes in the same place: B moves by their side to touch A, at any scale.
     for scale in [1.0, 1e30, 1e-30] {
-        let cube = cube_obj(&dir, "cube.obj", scale);
+        let cube = common::scaled_cube_obj(&dir, "cube.obj", scale);
         let out = classic_gpgpu(&[
             "lecture1",
             "penetration",
@@ -168,8 +142,8 @@ fn huge_and_degenerate_models_get_the_right_answer_or_the_real_reason() {
             "scale {scale}: depth {depth}"
         );
     }
-    let point = cube_obj(&dir, "point.obj", 0.0);
-    let unit = cube_obj(&dir, "unit.obj", 1.0);
+    let point = common::scaled_cube_obj(&dir, "point.obj", 0.0);
+    let unit = common::scaled_cube_obj(&dir, "unit.obj", 1.0);
     let out = classic_gpgpu(&["lecture1", "penetration", text(&point), text(&unit)]);
     assert_refused(&out, &["point.obj", "repeats a vertex"]);
     let err = stderr(&out);
@@ -211,7 +185,7 @@ fn huge_and_degenerate_models_get_the_right_answer_or_the_real_reason() {
             .as_f64()
             .unwrap()
     };
-    let big = cube_obj(&dir, "big.obj", 1e30);
+    let big = common::scaled_cube_obj(&dir, "big.obj", 1e30);
     let (small, large) = (light(&unit), light(&big));
     assert!((small - large).abs() < 1e-3, "{small} vs {large}");
     std::fs::remove_dir_all(dir).ok();
@@ -220,7 +194,7 @@ fn huge_and_degenerate_models_get_the_right_answer_or_the_real_reason() {
 #[test]
 fn a_failed_write_names_the_file_once_and_the_reason() {
     let dir = common::temp_dir("messages", "full");
-    let unit = cube_obj(&dir, "unit.obj", 1.0);
+    let unit = common::scaled_cube_obj(&dir, "unit.obj", 1.0);
     let png = dir.join("t.png");
     // A file-size limit stands in for a full disk (its signal ignored: the write fails).
     let out = Command::new("bash")

@@ -78,3 +78,29 @@ pub fn compute_context() -> (Context, bool) {
     );
     (ctx, false)
 }
+
+/// A unit cube's OBJ with every coordinate times `scale` (0: every vertex at the origin).
+pub fn scaled_cube_obj(dir: &std::path::Path, name: &str, scale: f64) -> std::path::PathBuf {
+    let path = dir.join(name);
+    let mut obj = String::new();
+    for v in 0..8 {
+        let c = |bit: u32| if v & (1 << bit) != 0 { scale } else { 0.0 };
+        obj.push_str(&format!("v {:e} {:e} {:e}\n", c(0), c(1), c(2)));
+    }
+    // Outward, counter-clockwise seen from outside.
+    for f in [
+        [1, 3, 4, 2],
+        [5, 6, 8, 7],
+        [1, 2, 6, 5],
+        [3, 7, 8, 4],
+        [1, 5, 7, 3],
+        [2, 4, 8, 6],
+    ] {
+        obj.push_str(&format!(
+            "f {} {} {}\nf {} {} {}\n",
+            f[0], f[1], f[2], f[0], f[2], f[3]
+        ));
+    }
+    std::fs::write(&path, obj).unwrap();
+    path
+}
