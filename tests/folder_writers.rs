@@ -7,30 +7,12 @@
 mod common;
 
 use classic_gpgpu::report::report_folder::{list_files, MARKER};
-use common::classic_gpgpu;
+use common::{assert_ok, assert_refused, classic_gpgpu, stderr};
 use std::path::Path;
 use std::process::Output;
 
 fn text(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn assert_ok(out: &Output) {
-    assert!(out.status.success(), "{}", stderr(out));
-}
-
-/// Failed with every one of `words` in the message, and no panic.
-fn assert_refused(out: &Output, words: &[&str]) {
-    let err = stderr(out);
-    assert!(!out.status.success(), "exit 0: {err}");
-    assert!(!err.contains("panicked"), "{err}");
-    for w in words {
-        assert!(err.contains(w), "'{w}' missing from: {err}");
-    }
 }
 
 /// `args` with `DIR` replaced by `dir` (and `--force` added when asked).

@@ -4,27 +4,12 @@
 
 mod common;
 
-use common::classic_gpgpu;
+use common::{assert_refused, classic_gpgpu, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
 fn text(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-/// Failed with every one of `words` in the message, and no panic.
-fn assert_refused(out: &Output, words: &[&str]) -> String {
-    let err = stderr(out);
-    assert!(!out.status.success(), "exit 0: {err}");
-    assert!(!err.contains("panicked"), "{err}");
-    for w in words {
-        assert!(err.contains(w), "'{w}' missing from: {err}");
-    }
-    err
 }
 
 #[test]

@@ -6,6 +6,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 mod common;
+use common::{assert_ok, assert_refused, stderr};
 
 const MARKER: &str = classic_gpgpu::report::report_folder::MARKER;
 
@@ -26,23 +27,6 @@ fn blocks(out: &Path, extra: &[&str], env: &[(&str, &str)]) -> Output {
         cmd.env(k, v);
     }
     cmd.output().expect("the binary runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn assert_ok(out: &Output) {
-    assert!(out.status.success(), "{}", stderr(out));
-}
-
-fn assert_refused(out: &Output, words: &[&str]) {
-    let err = stderr(out);
-    assert!(!out.status.success(), "exit 0: {err}");
-    assert!(!err.contains("panicked"), "{err}");
-    for w in words {
-        assert!(err.contains(w), "'{w}' missing from: {err}");
-    }
 }
 
 /// Every file under `dir` with its bytes.

@@ -4,22 +4,12 @@
 
 mod common;
 
-use common::classic_gpgpu;
+use common::{assert_refused, classic_gpgpu};
 use std::path::Path;
 use std::process::Command;
 
 fn text(p: &Path) -> String {
     p.to_str().unwrap().to_string()
-}
-
-/// The command failed with a message holding every one of `words`, and did not panic.
-fn assert_refused(out: &std::process::Output, words: &[&str]) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "exit 0: {stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    for w in words {
-        assert!(stderr.contains(w), "'{w}' missing from: {stderr}");
-    }
 }
 
 /// Runs the binary with every file it writes limited to `kib` KiB (`ulimit -f`, with the

@@ -104,3 +104,24 @@ pub fn scaled_cube_obj(dir: &std::path::Path, name: &str, scale: f64) -> std::pa
     std::fs::write(&path, obj).unwrap();
     path
 }
+
+/// The standard error of a finished run, as text.
+pub fn stderr(out: &std::process::Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// The run succeeded (its standard error is the message otherwise).
+pub fn assert_ok(out: &std::process::Output) {
+    assert!(out.status.success(), "{}", stderr(out));
+}
+
+/// Failed with every one of `words` in the message, and no panic; the message.
+pub fn assert_refused(out: &std::process::Output, words: &[&str]) -> String {
+    let err = stderr(out);
+    assert!(!out.status.success(), "exit 0: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    for w in words {
+        assert!(err.contains(w), "'{w}' missing from: {err}");
+    }
+    err
+}
