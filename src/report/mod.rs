@@ -24,6 +24,7 @@ pub mod plot;
 pub mod profile;
 pub mod provenance;
 pub mod published;
+pub mod regions;
 pub mod report_folder;
 pub mod reproduce;
 pub mod selftest;
