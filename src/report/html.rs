@@ -10,6 +10,33 @@ pub(crate) fn escape(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
+/// A word longer than this may break after a separator (a path, a list without spaces).
+const LONG_WORD: usize = 16;
+
+/// `text` escaped for a table cell, with a break opportunity (`<wbr>`) after each `/`, `_`,
+/// `.`, `,`, `:`, `=` and `(` inside a long word: cells wrap at spaces and there, never in the
+/// middle of a word such as "llvmpipe" (the style's `overflow-wrap:break-word` breaks only a
+/// word that fits no line at all).
+pub(crate) fn escape_cell(text: &str) -> String {
+    let words: Vec<String> = text
+        .split(' ')
+        .map(|word| {
+            if word.chars().count() <= LONG_WORD {
+                return escape(word);
+            }
+            let mut out = String::new();
+            for c in word.chars() {
+                out.push_str(&escape(c.encode_utf8(&mut [0; 4])));
+                if matches!(c, '/' | '_' | '.' | ',' | ':' | '=' | '(') {
+                    out.push_str("<wbr>");
+                }
+            }
+            out
+        })
+        .collect();
+    words.join(" ")
+}
+
 /// Whether a cell reads as a number (possibly with a unit or a range: "7.86", "-0.5%",
 /// "12.8 steps/s", "1.4-2x", "2048 x 2048"): such columns are right-aligned, text left.
 fn is_numeric(cell: &str) -> bool {
@@ -68,7 +95,7 @@ fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
         escape(&t.caption)
     );
     for (c, h) in t.header.iter().enumerate() {
-        out.push_str(&format!("<th{}>{}</th>", class(c), escape(h)));
+        out.push_str(&format!("<th{}>{}</th>", class(c), escape_cell(h)));
     }
     out.push_str("</tr>\n");
     for (r, row) in t.rows.iter().enumerate() {
@@ -77,7 +104,7 @@ fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
             None => out.push_str("<tr>"),
         }
         for (c, cell) in row.iter().enumerate() {
-            out.push_str(&format!("<td{}>{}</td>", class(c), escape(cell)));
+            out.push_str(&format!("<td{}>{}</td>", class(c), escape_cell(cell)));
         }
         out.push_str("</tr>\n");
     }
@@ -212,8 +239,9 @@ fn section(s: &Section) -> String {
     out
 }
 
-/// The page's style. Tables: text cells and every header wrap (a long word or file name too,
-/// `overflow-wrap:anywhere`), so a table fits the page where its numbers do; only number
+/// The page's style. Tables: text cells and every header wrap at spaces and at the separators
+/// of long words ([`escape_cell`]); a word is broken (`overflow-wrap:break-word`) only where it
+/// fits no line, so "llvmpipe" never becomes "llv mpi pe" in a narrow column. Only number
 /// cells stay on one line. A table still wider than the page scrolls in its box, with a
 /// scrollbar drawn at all times (not an overlay that shows only while scrolling).
 pub(crate) const STYLE: &str =
@@ -223,7 +251,7 @@ scrollbar-width:auto;scrollbar-color:#888 #eee}div.scroll::-webkit-scrollbar{hei
 background:#eee}div.scroll::-webkit-scrollbar-thumb{background:#888;border-radius:6px}\
 table{border-collapse:collapse;font-size:90%}p.caption{text-align:left;font-weight:bold;\
 margin:0;padding:.3em 0}td,th{border:1px solid #bbb;padding:.25em .5em;text-align:left;\
-vertical-align:top;overflow-wrap:anywhere}td.num,th.num{text-align:right}\
+vertical-align:top;overflow-wrap:break-word}td.num,th.num{text-align:right}\
 td.num{white-space:nowrap}th{background:#eee}td.yes{color:#060}td.no{color:#a00}\
 td.unjudged{color:#666}img{max-width:100%;border:1px solid #ddd}figure{margin:1em 0}\
 .note{background:#ffd;padding:.5em 1em;border:1px solid #dd8}";
@@ -386,7 +414,7 @@ mod tests {
     #[test]
     fn text_and_headers_wrap_and_only_numbers_keep_to_one_line() {
         // Text cells and headers may break anywhere, so a wide table fits the page.
-        assert!(STYLE.contains("vertical-align:top;overflow-wrap:anywhere}"));
+        assert!(STYLE.contains("vertical-align:top;overflow-wrap:break-word}"));
         let nowrap: Vec<&str> = STYLE
             .split('}')
             .filter(|rule| rule.contains("white-space:nowrap"))

@@ -5,7 +5,7 @@
 use super::headline::{then_and_now_text, THEN_AND_NOW};
 use super::plot::Figure;
 use super::Comparison;
-use crate::report::html::{escape, STYLE};
+use crate::report::html::{escape, escape_cell, STYLE};
 
 /// The verdict's class in the report's style (green, red, grey).
 fn class(holds: Option<bool>, ran: bool) -> &'static str {
@@ -23,7 +23,7 @@ fn table(caption: &str, header: &[String], rows: &[Vec<(String, String)>]) -> St
         escape(caption)
     );
     for h in header {
-        out.push_str(&format!("<th>{}</th>", escape(h)));
+        out.push_str(&format!("<th>{}</th>", escape_cell(h)));
     }
     out.push_str("</tr>\n");
     for row in rows {
@@ -42,7 +42,7 @@ fn table(caption: &str, header: &[String], rows: &[Vec<(String, String)>]) -> St
 }
 
 fn text(t: &str) -> (String, String) {
-    (String::new(), escape(t))
+    (String::new(), escape_cell(t))
 }
 
 fn machines(c: &Comparison) -> String {
@@ -65,9 +65,9 @@ fn machines(c: &Comparison) -> String {
                 text(&m.load_in_words()),
                 (
                     String::new(),
-                    format!("<code>{}</code>", escape(&m.command())),
+                    format!("<code>{}</code>", escape_cell(&m.command())),
                 ),
-                (String::new(), format!("<code>{}</code>", escape(&m.file))),
+                (String::new(), format!("<code>{}</code>", escape_cell(&m.file))),
             ]
         })
         .collect();
@@ -94,7 +94,7 @@ fn headlines(c: &Comparison) -> String {
                     "no" => "no",
                     _ => "unjudged",
                 };
-                (class.to_string(), escape(&cell.text()))
+                (class.to_string(), escape_cell(&cell.text()))
             }));
             row
         })
@@ -149,7 +149,7 @@ fn claims(c: &Comparison) -> String {
                     format!(
                         "<b>{}</b><br><small>{}</small>{}",
                         escape(cell.verdict()),
-                        escape(&cell.measured),
+                        escape_cell(&cell.measured),
                         if cell.load.is_empty() {
                             String::new()
                         } else {
