@@ -21,6 +21,7 @@ mod debugging;
 mod depth_peeling;
 mod feedback;
 mod kit;
+pub mod ladder;
 mod ping_pong;
 mod quad_is_loop;
 mod readback_and_upload;
