@@ -146,3 +146,157 @@ fn a_rung_made_wrong_on_purpose_is_caught() {
         "{text}\n{err}"
     );
 }
+
+fn stdout(out: &std::process::Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+#[test]
+fn the_ladder_bench_prints_its_table_and_writes_json_once() {
+    let (_, compute) = common::compute_context();
+    let dir = common::temp_dir("learn-ladder", "bench");
+    let json = dir.join("ladder.json");
+    let json_arg = json.to_str().unwrap();
+    let args = [
+        "learn",
+        "compute-reduction",
+        "--bench",
+        "--size",
+        "3001",
+        "--out",
+        json_arg,
+    ];
+    let out = classic_gpgpu(&args);
+    assert_ok(&out);
+    let text = stdout(&out);
+    println!("{text}");
+    assert!(text.contains("reduction ladder on "), "{text}");
+    assert!(text.contains("load"), "{text}");
+    assert!(
+        text.contains("readback of that value is excluded"),
+        "{text}"
+    );
+    for rung in ladder::runnable(&common::context()) {
+        assert!(text.contains(rung.name), "{} missing: {text}", rung.name);
+    }
+    assert!(text.contains("CPU: f64 sum"), "{text}");
+    assert_eq!(text.contains("compute rungs: not run"), !compute, "{text}");
+    // The JSON: every rung at the one size, with its time's runs and a bandwidth.
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(written["bench"], "ladder");
+    assert_eq!(written["sizes"], serde_json::json!([3001]));
+    let rungs = written["rungs"].as_array().unwrap();
+    assert_eq!(rungs.len(), if compute { 10 } else { 4 });
+    for r in rungs {
+        assert_eq!(r["n"], 3001);
+        assert_eq!(r["error"], 0.0);
+        assert!(r["ms"]["runs"].as_u64().unwrap() >= 3, "{r}");
+        assert!(r["gb_per_s"].as_f64().is_some(), "{r}");
+    }
+    // An existing file is never replaced without --force.
+    let before = std::fs::read(&json).unwrap();
+    let refused = classic_gpgpu(&args);
+    assert_refused(&refused, &["--out", "exists", "--force"]);
+    assert_eq!(std::fs::read(&json).unwrap(), before);
+    let mut forced = args.to_vec();
+    forced.push("--force");
+    assert_ok(&classic_gpgpu(&forced));
+}
+
+#[test]
+fn saxpy_and_readback_benches_print_their_tables() {
+    let out = classic_gpgpu(&["learn", "quad-is-loop", "--bench", "--size", "1000"]);
+    assert_ok(&out);
+    let text = stdout(&out);
+    println!("{text}");
+    assert!(
+        text.contains("saxpy bench") && text.contains("CPU ms"),
+        "{text}"
+    );
+    assert!(text.contains("load"), "{text}");
+    // 1000 elements fill a 32x32 texture.
+    assert!(text.contains("32x32"), "{text}");
+
+    let out = classic_gpgpu(&["learn", "readback-and-upload", "--bench", "--size", "64"]);
+    assert_ok(&out);
+    let text = stdout(&out);
+    println!("{text}");
+    for words in [
+        "whole read ms",
+        "PBO read ms",
+        "reduced read ms",
+        "why these numbers",
+    ] {
+        assert!(text.contains(words), "{words}: {text}");
+    }
+    assert!(text.contains("96.97 ms"), "{text}");
+}
+
+#[test]
+fn bench_refusals_name_the_input_and_what_to_do() {
+    let out = classic_gpgpu(&["learn", "ping-pong", "--bench"]);
+    let err = assert_refused(
+        &out,
+        &[
+            "ping-pong",
+            "no --bench",
+            "quad-is-loop",
+            "compute-reduction",
+        ],
+    );
+    assert!(
+        err.contains("readback-and-upload") && err.contains("reduction"),
+        "{err}"
+    );
+    let out = classic_gpgpu(&["learn", "reduction", "--bench", "--size", "5000000"]);
+    assert_refused(&out, &["--size 5000000", "4194304"]);
+    let out = classic_gpgpu(&["learn", "readback-and-upload", "--bench", "--size", "100"]);
+    assert_refused(&out, &["--size 100", "multiple of 8"]);
+    let out = classic_gpgpu(&["learn", "reduction", "--size", "64"]);
+    assert_refused(&out, &["--bench"]);
+    let dir = common::temp_dir("learn-ladder", "refusals");
+    let txt = dir.join("ladder.txt");
+    let out = classic_gpgpu(&[
+        "learn",
+        "reduction",
+        "--bench",
+        "--size",
+        "64",
+        "--out",
+        txt.to_str().unwrap(),
+    ]);
+    assert_refused(&out, &["--out", ".json"]);
+    assert!(!txt.exists());
+}
+
+/// Lesson 8 explains its own numbers: the note quotes this run's measured times and bytes.
+#[test]
+fn lesson_8_explains_its_own_numbers() {
+    let ctx = common::context();
+    let run = classic_gpgpu::learn::find("readback-and-upload")
+        .unwrap()
+        .run(&ctx, &Default::default())
+        .unwrap();
+    assert!(run.passed);
+    let note = |name: &str| {
+        run.notes
+            .iter()
+            .find(|(n, _)| n.starts_with(name))
+            .map(|(_, v)| v.clone())
+            .unwrap_or_else(|| panic!("no note {name}: {:?}", run.notes))
+    };
+    let why = note("why these numbers");
+    println!("{why}");
+    let full: f64 = note("glReadPixels into client memory, whole array")
+        .parse()
+        .unwrap();
+    assert!(why.contains(&format!("in {full:.3} ms")), "{why}");
+    let bytes = note("bytes read: whole array / flags and flagged blocks");
+    let (whole, reduced) = bytes.split_once(" / ").unwrap();
+    assert!(why.contains(&format!("moved {whole} bytes")), "{why}");
+    assert!(why.contains(&format!("read {reduced} bytes")), "{why}");
+    assert!(why.contains("96.97 ms"), "{why}");
+    let software = run.renderer.contains("llvmpipe") || run.renderer.contains("softpipe");
+    assert_eq!(why.contains("software rasterizer"), software, "{why}");
+}

@@ -14,14 +14,14 @@
 //! rung's sum must equal the CPU's f64 sum exactly, whatever order it adds in.
 
 use super::kit;
+pub use super::kit::Clock;
 use crate::gl::{
     memory_barrier, Barrier, Buffer, BufferUsage, ComputeProgram, Context, Framebuffer, Program,
-    Rect, ShaderSource, Texture, TextureFormat, TimerQuery,
+    Rect, ShaderSource, Texture, TextureFormat,
 };
 use crate::shader;
 use crate::timing::{Load, Runs, Spread};
 use serde::Serialize;
-use std::time::Instant;
 
 /// The ladder's sizes by default: 2^16 to 2^22 values (Harris's problem is 2^22).
 pub const SIZES: [u32; 7] = [
@@ -429,26 +429,6 @@ pub fn check_all(ctx: &Context, n: u32) -> anyhow::Result<Vec<Checked>> {
         .collect()
 }
 
-/// How a time was taken.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Clock {
-    /// A GL timer query (TIME_ELAPSED) around the passes.
-    TimerQuery,
-    /// Wall clock between two glFinish calls: used where the renderer's timer query reads
-    /// under a tenth of it (llvmpipe answers about zero around a compute dispatch).
-    FinishedWall,
-}
-
-impl Clock {
-    pub fn in_words(&self) -> &'static str {
-        match self {
-            Clock::TimerQuery => "timer query",
-            Clock::FinishedWall => "glFinish wall clock",
-        }
-    }
-}
-
 /// One rung timed at one size.
 #[derive(Clone, Debug, Serialize)]
 pub struct Timed {
@@ -504,30 +484,6 @@ fn gb_per_s(n: u32, ms: f64) -> f64 {
     }
 }
 
-/// Time one prepared rung: a timer query and the glFinish wall clock around each run; the
-/// timer query's times unless they read under a tenth of the wall clock's.
-fn time_rung(ctx: &Context, prepared: &Prepared, runs: Runs) -> anyhow::Result<(Spread, Clock)> {
-    let pairs = runs.run(|_| -> anyhow::Result<(f64, f64)> {
-        let query = TimerQuery::new(ctx)?;
-        ctx.finish_all();
-        let start = Instant::now();
-        query.begin();
-        let done = prepared.reduce();
-        query.end();
-        ctx.finish_all();
-        let wall = start.elapsed().as_secs_f64() * 1e3;
-        done?;
-        Ok((query.milliseconds()?, wall))
-    })?;
-    let (queried, wall): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
-    let (queried, wall) = (Spread::of(&queried), Spread::of(&wall));
-    Ok(if queried.median >= 0.1 * wall.median {
-        (queried, Clock::TimerQuery)
-    } else {
-        (wall, Clock::FinishedWall)
-    })
-}
-
 /// Check and time every rung `ctx` can run at each of `sizes`, and the CPU's sum beside
 /// them. A rung whose sum is wrong stops the bench: its time would mean nothing.
 pub fn bench(ctx: &Context, sizes: &[u32], runs: Runs) -> anyhow::Result<LadderBench> {
@@ -551,7 +507,7 @@ pub fn bench(ctx: &Context, sizes: &[u32], runs: Runs) -> anyhow::Result<LadderB
                 rung.name,
                 rung.shader.name
             );
-            let (ms, clock) = time_rung(ctx, &prepared, runs)?;
+            let (ms, clock) = kit::time_passes(ctx, runs, || prepared.reduce())?;
             timed.push(Timed {
                 rung: rung.number,
                 name: rung.name,
@@ -600,13 +556,13 @@ impl LadderBench {
             out.push_str(&format!("compute rungs: {why}\n"));
         }
         out.push_str(&format!(
-            "{:>8}  {:<42} {:>6} {:>10} {:>21} {:>9}  {}\n",
+            "{:>8}  {:<46} {:>6} {:>10} {:>21} {:>9}  {}\n",
             "n", "rung", "passes", "median ms", "range ms", "GB/s", "clock"
         ));
         for &n in &self.sizes {
             for t in self.rungs.iter().filter(|t| t.n == n) {
                 out.push_str(&format!(
-                    "{:>8}  {:<42} {:>6} {:>10.3} {:>10.3}-{:<10.3} {:>9.3}  {}\n",
+                    "{:>8}  {:<46} {:>6} {:>10.3} {:>10.3}-{:<10.3} {:>9.3}  {}\n",
                     n,
                     format!("{}. {}", t.rung, t.name),
                     t.passes,
@@ -619,7 +575,7 @@ impl LadderBench {
             }
             if let Some(c) = self.cpu.iter().find(|c| c.n == n) {
                 out.push_str(&format!(
-                    "{:>8}  {:<42} {:>6} {:>10.3} {:>10.3}-{:<10.3} {:>9.3}  {}\n",
+                    "{:>8}  {:<46} {:>6} {:>10.3} {:>10.3}-{:<10.3} {:>9.3}  {}\n",
                     n,
                     "CPU: f64 sum, one core",
                     "-",

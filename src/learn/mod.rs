@@ -15,6 +15,7 @@
 //! A lesson is a [`Lesson`]; [`all`] lists them in teaching order.
 
 // One file per lesson ([`all`] lists them in teaching order), and `kit`: what several share.
+pub mod bench;
 mod compute_reduction;
 mod count_and_mask;
 mod debugging;
