@@ -410,7 +410,7 @@ pub fn check(
 
 /// Why the compute rungs cannot run on `ctx`, or `None`.
 pub fn compute_skipped(ctx: &Context) -> Option<String> {
-    kit::compute_missing(ctx, "the ladder's compute rungs")
+    kit::compute_missing(ctx, "each compute rung of the ladder")
 }
 
 /// The rungs `ctx` can run: all of them where compute shaders run, else the fragment ones.
