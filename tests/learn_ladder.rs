@@ -300,3 +300,27 @@ fn lesson_8_explains_its_own_numbers() {
     let software = run.renderer.contains("llvmpipe") || run.renderer.contains("softpipe");
     assert_eq!(why.contains("software rasterizer"), software, "{why}");
 }
+
+/// The ladder's section of lesson 10's guide page: each rung once in the table, the CPU's
+/// row, the plot written; nothing on another lesson's page.
+#[test]
+fn the_guide_section_has_one_row_per_rung_and_its_plot() {
+    use classic_gpgpu::report::ladder_page;
+    let ctx = common::context();
+    let dir = common::temp_dir("learn-ladder", "guide");
+    assert_eq!(ladder_page::section(&ctx, "reduction", &dir), "");
+    let html = ladder_page::section(&ctx, ladder_page::LESSON, &dir);
+    for rung in ladder::runnable(&ctx) {
+        let row = format!("<tr><td>{}. {}</td>", rung.number, rung.name);
+        assert_eq!(html.matches(&row).count(), 1, "{row}: {html}");
+    }
+    assert_eq!(html.matches("<tr><td>CPU: f64 sum").count(), 1, "{html}");
+    assert!(html.contains("learn compute-reduction --bench"), "{html}");
+    let picture = dir.join("pictures/compute-reduction/ladder.png");
+    let image = image::open(&picture).unwrap();
+    assert!(image.width() > 400 && image.height() > 300);
+    assert!(
+        html.contains("src=\"pictures/compute-reduction/ladder.png\""),
+        "{html}"
+    );
+}

@@ -70,36 +70,42 @@ fn timed(bench: &LadderBench) -> String {
     if let Some(why) = &bench.compute_skipped {
         out.push_str(&format!("<p>Compute rungs: {}.</p>\n", escape(why)));
     }
-    out.push_str("<table><tr><th>rung</th><th>passes</th>");
+    out.push_str("<table><tr><th>rung</th>");
     for n in &bench.sizes {
         out.push_str(&format!(
-            "<th>{n} values: median ms (range)</th><th>GB/s</th>"
+            "<th>{n} values: median ms (range), passes</th><th>GB/s</th>"
         ));
     }
     out.push_str("<th>clock</th></tr>\n");
-    let mut rungs: Vec<u32> = bench.rungs.iter().map(|t| t.rung).collect();
-    rungs.dedup();
-    for rung in rungs {
-        let rows: Vec<_> = bench.rungs.iter().filter(|t| t.rung == rung).collect();
-        let first = rows[0];
+    for rung in &ladder::RUNGS {
+        let rows: Vec<_> = bench
+            .rungs
+            .iter()
+            .filter(|t| t.rung == rung.number)
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
         out.push_str(&format!(
-            "<tr><td>{}. {}</td><td>{}</td>",
-            rung,
-            escape(first.name),
-            first.passes
+            "<tr><td>{}. {}</td>",
+            rung.number,
+            escape(rung.name)
         ));
         for t in &rows {
             out.push_str(&format!(
-                "<td>{:.3} ({:.3}-{:.3})</td><td>{:.3}</td>",
-                t.ms.median, t.ms.min, t.ms.max, t.gb_per_s
+                "<td>{:.3} ({:.3}-{:.3}), {}</td><td>{:.3}</td>",
+                t.ms.median, t.ms.min, t.ms.max, t.passes, t.gb_per_s
             ));
         }
-        out.push_str(&format!("<td>{}</td></tr>\n", first.clock.in_words()));
+        let mut clocks: Vec<&str> = rows.iter().map(|t| t.clock.in_words()).collect();
+        clocks.sort_unstable();
+        clocks.dedup();
+        out.push_str(&format!("<td>{}</td></tr>\n", clocks.join(", ")));
     }
-    out.push_str("<tr><td>CPU: f64 sum, one core</td><td>-</td>");
+    out.push_str("<tr><td>CPU: f64 sum, one core</td>");
     for c in &bench.cpu {
         out.push_str(&format!(
-            "<td>{:.3} ({:.3}-{:.3})</td><td>{:.3}</td>",
+            "<td>{:.3} ({:.3}-{:.3}), -</td><td>{:.3}</td>",
             c.ms.median, c.ms.min, c.ms.max, c.gb_per_s
         ));
     }
