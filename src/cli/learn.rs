@@ -49,6 +49,19 @@ pub struct LearnArgs {
     /// shader file as the project ships it; then stop.
     #[arg(long, conflicts_with_all = ["list", "guide", "png"])]
     pub solution: bool,
+    /// Time the lesson where speed is part of it (quad-is-loop: saxpy over sizes against the
+    /// CPU; reduction, compute-reduction: the reduction ladder; readback-and-upload: whole,
+    /// PBO and reduced readback): plain-text tables naming the renderer and the load.
+    #[arg(long, conflicts_with_all = ["list", "guide", "png", "exercise", "hint", "solution"])]
+    pub bench: bool,
+    /// With --bench: this one size instead of the lesson's sweep (elements or values; the
+    /// array's side for readback-and-upload).
+    #[arg(long, value_name = "N", requires = "bench")]
+    pub size: Option<u32>,
+    /// With --bench: also write the results as JSON into FILE.json (an existing file only
+    /// with --force).
+    #[arg(long, value_name = "FILE.json", requires = "bench")]
+    pub out: Option<PathBuf>,
 }
 
 pub fn run(
@@ -104,6 +117,9 @@ pub fn run(
         print!("{}", shader.source);
         return Ok(());
     }
+    if args.bench {
+        return bench(lesson.info().id, args, json, context);
+    }
     // The one rule of every folder writer (report_folder), checked before any work.
     let folder = match &args.png {
         Some(dir) => Some(Staged::begin(
@@ -142,6 +158,44 @@ pub fn run(
         message.push_str(&format!("\n{line}"));
     }
     anyhow::bail!(message)
+}
+
+/// `learn <id> --bench [--size N] [--out FILE.json]`: the lesson's bench, its tables on
+/// stdout (its JSON with --json), and the JSON into --out, refused before any work when the
+/// lesson has no bench or the file exists without --force.
+fn bench(
+    id: &str,
+    args: &LearnArgs,
+    json: bool,
+    context: impl FnOnce() -> anyhow::Result<Context>,
+) -> anyhow::Result<()> {
+    learn::bench::has_bench(id)?;
+    if let Some(out) = &args.out {
+        classic_gpgpu::files::check_output("--out", out, &[], args.force, &["json"])?;
+    }
+    let ctx = context()?;
+    let runs = classic_gpgpu::timing::Runs::PAPER;
+    if let Some(load) = classic_gpgpu::timing::Load::now().filter(|l| l.is_loaded()) {
+        eprintln!(
+            "note: the machine is loaded ({}): the times below say as much about the other \
+             work as about the lesson; run on a quiet machine to compare them",
+            load.in_words()
+        );
+    }
+    let result = learn::bench::run(&ctx, id, args.size, runs)?;
+    let text = serde_json::to_string_pretty(&result)?;
+    if json {
+        println!("{text}");
+    } else {
+        print!("{}", result.table());
+    }
+    if let Some(out) = &args.out {
+        classic_gpgpu::files::write_bytes(out, format!("{text}\n").as_bytes())?;
+        if !json {
+            println!("wrote {}", out.display());
+        }
+    }
+    Ok(())
 }
 
 /// Exercise `number` of a lesson (its first without one), or an error naming those it has.

@@ -10,6 +10,7 @@
 //! checked. Its exercise (a compute shader) is refused there with that reason.
 
 use super::kit;
+use super::ladder;
 use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
 use crate::gl::reduce::{passes_for, ReduceOp, Reducer};
 use crate::gl::{Barrier, Buffer, BufferUsage, ComputeProgram, Context, Texture, TextureFormat};
@@ -34,7 +35,11 @@ static INFO: LessonInfo = LessonInfo {
            compute shader's work group shares fast on-chip memory and can wait at a barrier: \
            256 values are folded to one inside the group, in a tree of halving strides, and \
            one pass shrinks the data 256-fold. This is how CUDA reductions are written; the \
-           tree and the passes are the same idea as the ping-pong.",
+           tree and the passes are the same idea as the ping-pong. Then the ladder after \
+           Harris: the same sum by ten kernels, each making one change to the one before \
+           (wider fan-ins, then divergence, bank conflicts, idle invocations, loop overhead \
+           and too little work per invocation removed one at a time), every one checked \
+           here and timed by `learn compute-reduction --bench`.",
     paper_steps: &[
         PaperStep {
             paper: "Paper 4, section 3.3",
@@ -50,6 +55,14 @@ static INFO: LessonInfo = LessonInfo {
     shaders: &[
         "glsl/gl/reduce.frag",
         "glsl/learn/compute-reduction/reduce.comp",
+        "glsl/learn/ladder/f1_2x2.frag",
+        "glsl/learn/ladder/f2_fan.frag",
+        "glsl/learn/ladder/c1_interleaved_divergent.comp",
+        "glsl/learn/ladder/c2_interleaved_strided.comp",
+        "glsl/learn/ladder/c3_sequential.comp",
+        "glsl/learn/ladder/c4_first_add.comp",
+        "glsl/learn/ladder/c5_unrolled.comp",
+        "glsl/learn/ladder/c6_cascade.comp",
     ],
     exercises: &[Exercise {
         number: 1,
@@ -138,9 +151,44 @@ impl Lesson for ComputeReduction {
                 "ran: the tree in shared memory, 256 values per work group and pass".into()
             }
         });
+        ladder_checks(ctx, &mut run)?;
         run.finish(&INFO, ctx, opts)?;
         Ok(run)
     }
+}
+
+/// The ladder's size in the lesson: not a power of two, and more than one cascading group.
+const LADDER_N: u32 = 20_011;
+
+/// The ladder after Harris ([`super::ladder`]): every rung this context runs, one pass each,
+/// its sum checked against the CPU's; the compute rungs' absence noted where they cannot run.
+fn ladder_checks(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
+    for c in ladder::check_all(ctx, LADDER_N)? {
+        let rung = &ladder::RUNGS[c.rung as usize - 1];
+        run.pass(
+            &format!("ladder rung {}: {}", c.rung, c.name),
+            c.shader,
+            &format!(
+                "{} values to one in {} passes. {}",
+                c.n, c.passes, rung.change
+            ),
+            None,
+        );
+        run.check(
+            &format!(
+                "ladder rung {} ({}): sum = the CPU's f64 sum ({})",
+                c.rung,
+                c.name,
+                ladder::TOLERANCE_IN_WORDS
+            ),
+            c.error(),
+            ladder::TOLERANCE,
+        );
+    }
+    if let Some(why) = ladder::compute_skipped(ctx) {
+        run.note("ladder: compute rungs", why);
+    }
+    Ok(())
 }
 
 fn relative(gpu: f64, cpu: f64) -> f64 {

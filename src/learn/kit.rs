@@ -3,8 +3,11 @@
 //! makes.
 
 use super::{LessonInfo, LessonOptions, PassBuffer};
-use crate::gl::{Context, Texture, TextureFormat};
+use crate::gl::{Context, Texture, TextureFormat, TimerQuery};
+use crate::timing::{Runs, Spread};
 use anyhow::bail;
+use serde::Serialize;
+use std::time::Instant;
 
 /// What `texture` holds, read back for its pass's picture: floats as they are, a byte format
 /// as 0..1, a packed depth-stencil texture as its depth in 0..1, integers as their values.
@@ -91,4 +94,70 @@ pub fn bytes_differing(a: &[f32], b: &[f32]) -> f64 {
         return a.len().max(b.len()) as f64;
     }
     a.iter().zip(b).filter(|(x, y)| x != y).count() as f64
+}
+
+/// How a time was taken.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Clock {
+    /// A GL timer query (TIME_ELAPSED) around the passes.
+    TimerQuery,
+    /// Wall clock between two glFinish calls: used where the renderer's timer query reads
+    /// under a tenth of it (llvmpipe answers about zero around a compute dispatch).
+    FinishedWall,
+}
+
+impl Clock {
+    pub fn in_words(&self) -> &'static str {
+        match self {
+            Clock::TimerQuery => "timer query",
+            Clock::FinishedWall => "glFinish wall clock",
+        }
+    }
+}
+
+/// Time `work` (GPU passes, nothing read back) as `runs` says: a timer query and the wall
+/// clock between two glFinish calls around each run; the timer query's times unless they read
+/// under a tenth of the wall clock's (llvmpipe answers about zero around a compute dispatch).
+pub fn time_passes(
+    ctx: &Context,
+    runs: Runs,
+    mut work: impl FnMut() -> anyhow::Result<()>,
+) -> anyhow::Result<(Spread, Clock)> {
+    let pairs = runs.run(|_| -> anyhow::Result<(f64, f64)> {
+        let query = TimerQuery::new(ctx)?;
+        ctx.finish_all();
+        let start = Instant::now();
+        query.begin();
+        let done = work();
+        query.end();
+        ctx.finish_all();
+        let wall = start.elapsed().as_secs_f64() * 1e3;
+        done?;
+        Ok((query.milliseconds()?, wall))
+    })?;
+    let (queried, wall): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
+    let (queried, wall) = (Spread::of(&queried), Spread::of(&wall));
+    Ok(if queried.median >= 0.1 * wall.median {
+        (queried, Clock::TimerQuery)
+    } else {
+        (wall, Clock::FinishedWall)
+    })
+}
+
+/// Wall-clock milliseconds of `work` between two glFinish calls, as `runs` says (a path that
+/// reads back: the CPU's wait is part of it).
+pub fn time_finished(
+    ctx: &Context,
+    runs: Runs,
+    mut work: impl FnMut() -> anyhow::Result<()>,
+) -> anyhow::Result<Spread> {
+    let times = runs.run(|_| -> anyhow::Result<f64> {
+        ctx.finish_all();
+        let start = Instant::now();
+        work()?;
+        ctx.finish_all();
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    })?;
+    Ok(Spread::of(&times))
 }

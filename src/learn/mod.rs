@@ -15,12 +15,14 @@
 //! A lesson is a [`Lesson`]; [`all`] lists them in teaching order.
 
 // One file per lesson ([`all`] lists them in teaching order), and `kit`: what several share.
+pub mod bench;
 mod compute_reduction;
 mod count_and_mask;
 mod debugging;
 mod depth_peeling;
 mod feedback;
 mod kit;
+pub mod ladder;
 mod ping_pong;
 mod quad_is_loop;
 mod readback_and_upload;

@@ -2,6 +2,7 @@
 //! whose fragment shader is the loop's body; then a gather (`out[k] = values[index[k]]`), the
 //! indirect read every fragment may do.
 
+use super::kit::{self, Clock};
 use super::{
     chosen_exercise, no_compute, random_values, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
     LessonRun, PaperStep, PassBuffer,
@@ -11,6 +12,8 @@ use crate::gl::{
     Texture, TextureFormat,
 };
 use crate::shader;
+use crate::timing::{Load, Runs, Spread};
+use serde::Serialize;
 
 const SAXPY: &str = "glsl/learn/saxpy.frag";
 const GATHER: &str = "glsl/learn/gather.frag";
@@ -208,4 +211,152 @@ fn saxpy_compute(
     Ok(format!(
         "ran {SAXPY_COMPUTE}, checked against the same CPU loop"
     ))
+}
+
+/// The sizes `learn quad-is-loop --bench` sweeps by default (Göddeke's benchmark mode).
+pub const BENCH_SIZES: [u32; 6] = [1 << 12, 1 << 14, 1 << 16, 1 << 18, 1 << 20, 1 << 22];
+/// The largest array it takes (4096 x 4096 texels).
+pub const BENCH_MAX: u32 = 1 << 24;
+
+/// One size of the saxpy bench.
+#[derive(Clone, Debug, Serialize)]
+pub struct SaxpyTimed {
+    /// Elements computed: the `width x height` texture the size fills.
+    pub n: u32,
+    pub width: u32,
+    pub height: u32,
+    /// The one pass alone, x and y already on the GPU, nothing read back.
+    pub pass_ms: Spread,
+    pub clock: Clock,
+    /// Upload x and y, the pass, read y back (wall clock between glFinish calls).
+    pub with_transfers_ms: Spread,
+    /// The CPU loop (one core, wall clock).
+    pub cpu_ms: Spread,
+    /// Largest |GPU - CPU| (checked within the lesson's tolerance before timing).
+    pub error: f64,
+}
+
+/// Lesson 1's bench: saxpy over sizes against the CPU.
+#[derive(Clone, Debug, Serialize)]
+pub struct SaxpyBench {
+    pub renderer: String,
+    pub runs: String,
+    pub load: Option<Load>,
+    pub rows: Vec<SaxpyTimed>,
+}
+
+/// Time saxpy at each of `sizes` (elements; each rounded up to a texture as square as it goes):
+/// the pass alone, with its transfers, and the CPU loop, each size checked first.
+pub fn bench(ctx: &Context, sizes: &[u32], runs: Runs) -> anyhow::Result<SaxpyBench> {
+    for &n in sizes {
+        anyhow::ensure!(
+            (1..=BENCH_MAX).contains(&n),
+            "--size {n}: lesson 1's bench takes 1 to {BENCH_MAX} elements"
+        );
+    }
+    let before = Load::now();
+    let program = Program::rect(ctx, &[shader!("glsl/learn/saxpy.frag")])?;
+    let mut rows = Vec::new();
+    for &size in sizes {
+        let (w, h) = super::ladder::shape(size);
+        let n = (w * h) as usize;
+        let x = random_values(n, 1, -1.0, 1.0);
+        let y = random_values(n, 2, -1.0, 1.0);
+        let cpu = saxpy_cpu(A, &x, &y);
+        let tx = Texture::from_f32(ctx, w, h, TextureFormat::R32F, &x)?;
+        let ty = Texture::from_f32(ctx, w, h, TextureFormat::R32F, &y)?;
+        let out = Texture::new_2d(ctx, w, h, TextureFormat::R32F)?;
+        let fb = Framebuffer::new(ctx, "saxpy", &[&out], None)?;
+        let pass = || -> anyhow::Result<()> {
+            fb.pass(&program, "saxpy")?
+                .texture("u_x", &tx)
+                .texture("u_y", &ty)
+                .uniform("u_a", A)
+                .draw_full()?;
+            Ok(())
+        };
+        pass()?;
+        let error = super::max_difference(&out.download_f32()?, &cpu);
+        anyhow::ensure!(
+            error <= SAXPY_TOLERANCE,
+            "saxpy of {n} elements differs from the CPU loop by {error:e} (tolerance \
+             {SAXPY_TOLERANCE:e}): not timed"
+        );
+        let (pass_ms, clock) = kit::time_passes(ctx, runs, pass)?;
+        let with_transfers_ms = kit::time_finished(ctx, runs, || {
+            tx.upload_f32(&x)?;
+            ty.upload_f32(&y)?;
+            pass()?;
+            out.download_f32()?;
+            Ok(())
+        })?;
+        let cpu_ms = crate::timing::wall_ms(runs, || saxpy_cpu(A, &x, &y));
+        rows.push(SaxpyTimed {
+            n: n as u32,
+            width: w,
+            height: h,
+            pass_ms,
+            clock,
+            with_transfers_ms,
+            cpu_ms,
+            error,
+        });
+    }
+    Ok(SaxpyBench {
+        renderer: ctx.info().renderer_line(),
+        runs: runs.in_words(),
+        load: Load::worst(before, Load::now()),
+        rows,
+    })
+}
+
+impl SaxpyBench {
+    /// Plain text: a row per size.
+    pub fn table(&self) -> String {
+        let mut out = format!(
+            "saxpy bench (lesson 1, y = a x + y) on {}\n{}\nruns: {}\nGB/s: 12 bytes per \
+             element (read x and y, write y) / the median time; each size checked against the \
+             CPU first\n",
+            self.renderer,
+            self.load.map_or("load: unknown".into(), |l| format!(
+                "load: {}",
+                l.in_words()
+            )),
+            self.runs
+        );
+        out.push_str(&format!(
+            "{:>9} {:>10} {:>21} {:>8} {:>21} {:>21} {:>8} {:>9}  {}\n",
+            "n",
+            "texture",
+            "pass ms",
+            "GB/s",
+            "with transfers ms",
+            "CPU ms",
+            "CPU GB/s",
+            "CPU/pass",
+            "pass clock"
+        ));
+        let cell = |s: &Spread| format!("{:.3} ({:.3}-{:.3})", s.median, s.min, s.max);
+        let gb_s = |n: u32, ms: f64| 12.0 * n as f64 / (ms.max(1e-9) * 1e-3) / 1e9;
+        for r in &self.rows {
+            out.push_str(&format!(
+                "{:>9} {:>10} {:>21} {:>8.3} {:>21} {:>21} {:>8.3} {:>9.2}  {}\n",
+                r.n,
+                format!("{}x{}", r.width, r.height),
+                cell(&r.pass_ms),
+                gb_s(r.n, r.pass_ms.median),
+                cell(&r.with_transfers_ms),
+                cell(&r.cpu_ms),
+                gb_s(r.n, r.cpu_ms.median),
+                r.cpu_ms.median / r.pass_ms.median.max(1e-9),
+                r.clock.in_words()
+            ));
+        }
+        out.push_str(
+            "times: median (range) in ms. The pass alone against the CPU loop is the kernel's \
+             speed; with its transfers it is what a single saxpy costs the program, and why \
+             Göddeke keeps data on the GPU across many passes.\n",
+        );
+        out
+    }
 }

@@ -13,6 +13,8 @@ use crate::gl::{
     Texture, TextureFormat, TimerQuery,
 };
 use crate::shader;
+use crate::timing::{Load, Runs, Spread};
+use serde::Serialize;
 use std::time::Instant;
 
 const SIDE: u32 = 128;
@@ -74,7 +76,7 @@ impl Lesson for ReadbackAndUpload {
     fn run(&self, ctx: &Context, opts: &LessonOptions) -> anyhow::Result<LessonRun> {
         kit::exercise_asked(&INFO, opts)?;
         let mut run = LessonRun::new(&INFO, ctx);
-        let source = sparse_data();
+        let source = sparse_data(SIDE);
         let bytes = source.len() * 4;
         let renderer = run.renderer.clone();
         let timed = |run: &mut LessonRun, what: &str, ms: f64| {
@@ -129,10 +131,11 @@ impl Lesson for ReadbackAndUpload {
         ctx.finish_all();
         let start = Instant::now();
         let full = target.read_f32(0, target.rect())?;
+        let full_ms = wall_ms(start);
         timed(
             &mut run,
             "glReadPixels into client memory, whole array",
-            wall_ms(start),
+            full_ms,
         );
         run.pass(
             "glReadPixels",
@@ -173,7 +176,20 @@ impl Lesson for ReadbackAndUpload {
         );
 
         // The reduced readback: flags per block, then only the flagged blocks.
-        let (flags_texture, read_back, bytes_read, flag_ms) = reduced_readback(ctx, &direct)?;
+        let flags_program = Program::rect(
+            ctx,
+            &[shader!("glsl/learn/readback-and-upload/block_flags.frag")],
+        )?;
+        ctx.finish_all();
+        let start = Instant::now();
+        let (flags_texture, read_back, bytes_read, flag_ms) =
+            reduced_readback(ctx, &flags_program, &direct, SIDE)?;
+        let reduced_ms = wall_ms(start);
+        timed(
+            &mut run,
+            "reduced readback: flags pass, flags and flagged blocks read",
+            reduced_ms,
+        );
         let picture = Some(kit::buffer(&flags_texture)?);
         run.pass(
             "block flags",
@@ -194,6 +210,16 @@ impl Lesson for ReadbackAndUpload {
             "bytes read: whole array / flags and flagged blocks".into(),
             format!("{bytes} / {bytes_read}"),
         ));
+        let measured = Measured {
+            software: is_software(&run.renderer),
+            side: SIDE,
+            full_ms: full_ms.max(0.0),
+            reduced_ms,
+            flags_ms: flag_ms,
+            bytes_full: bytes,
+            bytes_reduced: bytes_read,
+        };
+        run.note("why these numbers", measured.explain());
         run.check(
             "reduced readback: bytes differing from the whole array (exact)",
             kit::bytes_differing(&read_back, &source),
@@ -227,9 +253,9 @@ fn wall_ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
 }
 
-/// `SIDE x SIDE` RGBA texels, about [`DENSITY`] of them not zero.
-fn sparse_data() -> Vec<f32> {
-    let n = (SIDE * SIDE) as usize;
+/// `side x side` RGBA texels, about [`DENSITY`] of them not zero.
+fn sparse_data(side: u32) -> Vec<f32> {
+    let n = (side * side) as usize;
     let pick = kit::values(n, 8);
     let content = kit::values(3 * n, 80);
     (0..n)
@@ -252,19 +278,17 @@ fn sparse_data() -> Vec<f32> {
 /// array put together from the blocks read (zeros elsewhere), the bytes read, the pass's time.
 fn reduced_readback(
     ctx: &Context,
+    program: &Program,
     data: &Texture,
+    data_side: u32,
 ) -> anyhow::Result<(Texture, Vec<f32>, usize, Option<f64>)> {
-    let program = Program::rect(
-        ctx,
-        &[shader!("glsl/learn/readback-and-upload/block_flags.frag")],
-    )?;
-    let side = SIDE / BLOCK;
+    let side = data_side / BLOCK;
     let flags = Texture::new_2d(ctx, side, side, TextureFormat::R32F)?;
     let flags_target = Framebuffer::new(ctx, "block flags", &[&flags], None)?;
     let timer = TimerQuery::new(ctx)?;
     timer.begin();
     flags_target
-        .pass(&program, "block flags")?
+        .pass(program, "block flags")?
         .texture("u_data", data)
         .uniform("u_block", BLOCK as i32)
         .draw_full()?;
@@ -272,13 +296,13 @@ fn reduced_readback(
     let flag_values = flags_target.read_f32(0, flags_target.rect())?;
     let mut bytes_read = flag_values.len() * 4;
     let source = Framebuffer::new(ctx, "data", &[data], None)?;
-    let mut out = vec![0f32; (SIDE * SIDE * 4) as usize];
+    let mut out = vec![0f32; (data_side * data_side * 4) as usize];
     for (b, _) in flag_values.iter().enumerate().filter(|(_, &f)| f > 0.5) {
         let (bx, by) = (b as u32 % side * BLOCK, b as u32 / side * BLOCK);
         let block = source.read_f32(0, Rect::new(bx, by, BLOCK, BLOCK))?;
         bytes_read += block.len() * 4;
         for (row, texels) in block.chunks_exact((BLOCK * 4) as usize).enumerate() {
-            let at = (((by + row as u32) * SIDE + bx) * 4) as usize;
+            let at = (((by + row as u32) * data_side + bx) * 4) as usize;
             out[at..at + texels.len()].copy_from_slice(texels);
         }
     }
@@ -333,4 +357,245 @@ fn compact_mismatches(ctx: &Context, source: &[f32]) -> anyhow::Result<usize> {
         .filter(|(g, c)| g.0 == c.0 && bytemuck::bytes_of(&g.1) == bytemuck::bytes_of(&c.1))
         .count();
     Ok(expected.len().max(gpu.len()) - matching)
+}
+
+/// Whether `renderer` is one of Mesa's software rasterizers (the "GPU" is the CPU).
+fn is_software(renderer: &str) -> bool {
+    let r = renderer.to_lowercase();
+    ["llvmpipe", "softpipe", "swrast"]
+        .iter()
+        .any(|s| r.contains(s))
+}
+
+/// Paper 1, section 5.3: a 2048 x 2048 float colour buffer read back in 96.97 ms on a GeForce
+/// 6800 over PCI Express (its reference [41]); taken as RGBA32F, 16 bytes a texel.
+const PAPER1_READBACK: (f64, f64) = (2048.0 * 2048.0 * 16.0, 96.97);
+
+/// What one run of the readbacks measured, for [`Measured::explain`].
+#[derive(Clone, Copy, Debug)]
+struct Measured {
+    software: bool,
+    side: u32,
+    full_ms: f64,
+    reduced_ms: f64,
+    flags_ms: Option<f64>,
+    bytes_full: usize,
+    bytes_reduced: usize,
+}
+
+impl Measured {
+    /// The run's own numbers explained: why the reduced readback cost what it did here, and
+    /// what the same bytes would have cost on the bus of paper 1's GPU.
+    fn explain(&self) -> String {
+        let gb_s = |bytes: usize, ms: f64| bytes as f64 / (ms.max(1e-9) * 1e-3) / 1e9;
+        let flag_bytes = (self.side / BLOCK).pow(2) as usize * 4;
+        let blocks = self.bytes_reduced.saturating_sub(flag_bytes) / (BLOCK * BLOCK * 16) as usize;
+        let flags = self.flags_ms.map_or(String::new(), |f| {
+            format!(", of which the flags pass alone took {f:.3} ms (timer query)")
+        });
+        let mut out = format!(
+            "This run: the whole {s}x{s} glReadPixels moved {} bytes in {:.3} ms ({:.2} GB/s); \
+             the reduced readback read {} bytes (the flags and {blocks} flagged blocks) in \
+             {:.3} ms, {:.1}x the whole read{flags}. ",
+            self.bytes_full,
+            self.full_ms,
+            gb_s(self.bytes_full, self.full_ms),
+            self.bytes_reduced,
+            self.reduced_ms,
+            self.reduced_ms / self.full_ms.max(1e-9),
+            s = self.side
+        );
+        out.push_str(if self.software {
+            "On a software rasterizer the GPU's memory is the CPU's own: a readback is a \
+             memcpy at memory speed, with no bus and no pipeline to wait for, while the flags \
+             pass is one more full rasterization run on the CPU cores (a draw, a fragment per \
+             block, its texel fetches through the shader) and every flagged block is one more \
+             glReadPixels call with its own fixed cost. The extra pass and the extra calls \
+             cost more than the bytes they save. "
+        } else {
+            "On a GPU the flags pass runs on the GPU's own memory, and what reading less saves \
+             is bus time and the wait for the pipeline to drain, once per glReadPixels call. "
+        });
+        let (paper_bytes, paper_ms) = PAPER1_READBACK;
+        let bus = paper_bytes / (paper_ms * 1e-3);
+        let at_bus = |bytes: usize| bytes as f64 / bus * 1e3;
+        let saved = self.bytes_full.saturating_sub(self.bytes_reduced);
+        out.push_str(&format!(
+            "Where reading less wins: on the buses of 2004-2007 (AGP, first PCI Express) a \
+             readback was slow and stalled the pipeline until every queued pass had finished; \
+             paper 1 (section 5.3) measured 96.97 ms for a 2048x2048 float colour buffer on a \
+             GeForce 6800, about {:.2} GB/s. At that rate this run's whole array takes {:.3} \
+             ms to cross the bus and the flags and flagged blocks {:.3} ms: the {saved} bytes \
+             saved are worth {:.3} ms, and reading less wins when the flags pass and the \
+             {blocks} extra reads cost less than that. The sparser the data and the larger \
+             the array, the more it saves: paper 1 reads its colliding pairs this way.",
+            bus / 1e9,
+            at_bus(self.bytes_full),
+            at_bus(self.bytes_reduced),
+            at_bus(saved),
+        ));
+        out
+    }
+}
+
+/// The sides `learn readback-and-upload --bench` times by default (square RGBA32F arrays).
+pub const BENCH_SIDES: [u32; 4] = [128, 256, 512, 1024];
+/// The largest side it takes.
+pub const BENCH_MAX_SIDE: u32 = 4096;
+
+/// One size of the readback bench.
+#[derive(Clone, Debug, Serialize)]
+pub struct ReadbackTimed {
+    pub side: u32,
+    pub bytes_full: usize,
+    pub bytes_reduced: usize,
+    /// glReadPixels of the whole array into client memory (wall clock, glFinish before).
+    pub full_ms: Spread,
+    /// glReadPixels into a PBO, then mapping it (wall clock).
+    pub pbo_ms: Spread,
+    /// The flags pass, the flags read, each flagged block read (wall clock).
+    pub reduced_ms: Spread,
+    /// The flags pass alone (its timer query).
+    pub flags_pass_ms: Spread,
+    /// What the run's own numbers say (see the lesson's note "why these numbers").
+    pub explanation: String,
+}
+
+/// Lesson 8's bench: the three readbacks of sparse arrays over sizes.
+#[derive(Clone, Debug, Serialize)]
+pub struct ReadbackBench {
+    pub renderer: String,
+    pub runs: String,
+    pub load: Option<Load>,
+    pub density: f32,
+    pub rows: Vec<ReadbackTimed>,
+}
+
+/// Time the whole readback, the PBO readback and the reduced readback of a `side x side`
+/// sparse array for each of `sides`, each checked byte for byte first.
+pub fn bench(ctx: &Context, sides: &[u32], runs: Runs) -> anyhow::Result<ReadbackBench> {
+    for &side in sides {
+        anyhow::ensure!(
+            side % BLOCK == 0 && (BLOCK..=BENCH_MAX_SIDE).contains(&side),
+            "--size {side}: lesson 8's bench takes the side of a square array, a multiple of \
+             {BLOCK} from {BLOCK} to {BENCH_MAX_SIDE}"
+        );
+    }
+    let before = Load::now();
+    let program = Program::rect(
+        ctx,
+        &[shader!("glsl/learn/readback-and-upload/block_flags.frag")],
+    )?;
+    let renderer = ctx.info().renderer_line();
+    let mut rows = Vec::new();
+    for &side in sides {
+        let source = sparse_data(side);
+        let bytes_full = source.len() * 4;
+        let data = Texture::from_f32(ctx, side, side, TextureFormat::Rgba32F, &source)?;
+        let target = Framebuffer::new(ctx, "data", &[&data], None)?;
+        let pack = Buffer::new(ctx, bytes_full, BufferUsage::GpuCopy)?;
+        // Each path checked once before it is timed.
+        let full = target.read_f32(0, target.rect())?;
+        target.read_into_buffer(0, target.rect(), &pack, 0)?;
+        let from_pbo: Vec<f32> = pack.read()?;
+        let (_, reduced, bytes_reduced, _) = reduced_readback(ctx, &program, &data, side)?;
+        for (what, got) in [("whole", &full), ("PBO", &from_pbo), ("reduced", &reduced)] {
+            let wrong = kit::bytes_differing(got, &source);
+            anyhow::ensure!(
+                wrong == 0.0,
+                "the {what} readback of {side}x{side} differs from the array in {wrong} bytes"
+            );
+        }
+        let full_ms = kit::time_finished(ctx, runs, || {
+            target.read_f32(0, target.rect())?;
+            Ok(())
+        })?;
+        let pbo_ms = kit::time_finished(ctx, runs, || {
+            target.read_into_buffer(0, target.rect(), &pack, 0)?;
+            pack.read::<f32>()?;
+            Ok(())
+        })?;
+        let mut flags = Vec::new();
+        let reduced_ms = kit::time_finished(ctx, runs, || {
+            let (_, _, _, ms) = reduced_readback(ctx, &program, &data, side)?;
+            flags.extend(ms);
+            Ok(())
+        })?;
+        let flags_pass_ms = Spread::of(&flags);
+        let measured = Measured {
+            software: is_software(&renderer),
+            side,
+            full_ms: full_ms.median,
+            reduced_ms: reduced_ms.median,
+            flags_ms: (flags_pass_ms.runs > 0).then_some(flags_pass_ms.median),
+            bytes_full,
+            bytes_reduced,
+        };
+        rows.push(ReadbackTimed {
+            side,
+            bytes_full,
+            bytes_reduced,
+            full_ms,
+            pbo_ms,
+            reduced_ms,
+            flags_pass_ms,
+            explanation: measured.explain(),
+        });
+    }
+    Ok(ReadbackBench {
+        renderer,
+        runs: runs.in_words(),
+        load: Load::worst(before, Load::now()),
+        density: DENSITY,
+        rows,
+    })
+}
+
+impl ReadbackBench {
+    /// Plain text: a row per size, then what the largest size's numbers say.
+    pub fn table(&self) -> String {
+        let mut out = format!(
+            "readback bench (lesson 8) on {}\n{}\nruns: {}\ndata: square RGBA32F arrays, \
+             about {:.0}% of texels not zero; every path checked byte for byte first; wall \
+             clock between glFinish calls, the flags pass by its timer query\n",
+            self.renderer,
+            self.load.map_or("load: unknown".into(), |l| format!(
+                "load: {}",
+                l.in_words()
+            )),
+            self.runs,
+            self.density * 100.0
+        );
+        out.push_str(&format!(
+            "{:>9} {:>10} {:>10} {:>19} {:>19} {:>19} {:>19}\n",
+            "array",
+            "bytes",
+            "reduced",
+            "whole read ms",
+            "PBO read ms",
+            "reduced read ms",
+            "flags pass ms"
+        ));
+        let cell = |s: &Spread| format!("{:.3} ({:.3}-{:.3})", s.median, s.min, s.max);
+        for r in &self.rows {
+            out.push_str(&format!(
+                "{:>9} {:>10} {:>10} {:>19} {:>19} {:>19} {:>19}\n",
+                format!("{0}x{0}", r.side),
+                r.bytes_full,
+                r.bytes_reduced,
+                cell(&r.full_ms),
+                cell(&r.pbo_ms),
+                cell(&r.reduced_ms),
+                cell(&r.flags_pass_ms)
+            ));
+        }
+        out.push_str("times: median (range) in ms\n");
+        if let Some(last) = self.rows.last() {
+            out.push_str("why these numbers (the largest array):\n");
+            for line in crate::gl::picture::wrap(&last.explanation, 90) {
+                out.push_str(&format!("  {line}\n"));
+            }
+        }
+        out
+    }
 }

@@ -34,7 +34,9 @@ static INFO: LessonInfo = LessonInfo {
            each output texel combines a block of the level below, each level is smaller by \
            the block's side, and the last is one texel. 2x2 blocks take ceil(log2 n) passes; \
            4x4 blocks take ceil(log4 n), half as many, with four times the reads per \
-           fragment. The same ladder gives the maximum (or any associative operation).",
+           fragment. The same ladder gives the maximum (or any associative operation). \
+           Lesson 10 times these passes against wider fan-ins and compute kernels, rung by \
+           rung: `learn reduction --bench`.",
     paper_steps: &[
         PaperStep {
             paper: "Paper 4, section 3.3",

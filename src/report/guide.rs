@@ -46,9 +46,11 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
             k.checked_sub(1).map(|p| lessons[p].info()),
             lessons.get(k + 1).map(|n| n.info()),
         );
+        // The reduction ladder's table and plot, on its lesson's page (empty elsewhere).
+        let ladder = super::ladder_page::section(ctx, lesson.info().id, staging);
         write(
             &lesson_file(lesson.info().id),
-            lesson_page(lesson.info(), &runs[k], neighbours),
+            lesson_page(lesson.info(), &runs[k], neighbours, &ladder),
         )?;
     }
     write("reading.html", reading_page())?;
@@ -145,6 +147,7 @@ fn lesson_page(
         Option<&crate::learn::LessonInfo>,
         Option<&crate::learn::LessonInfo>,
     ),
+    ladder: &str,
 ) -> String {
     let mut body = format!(
         "<h1>Lesson {}: {}</h1>\n<p>{}</p>\n",
@@ -159,6 +162,7 @@ fn lesson_page(
         )),
         Ok(run) => body.push_str(&run_sections(info, run)),
     }
+    body.push_str(ladder);
     body.push_str("<h2>Where the papers use it</h2>\n<ul>\n");
     for step in info.paper_steps {
         body.push_str(&format!(

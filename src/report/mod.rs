@@ -12,6 +12,7 @@ pub mod checks;
 pub mod compare;
 pub mod guide;
 mod html;
+pub mod ladder_page;
 pub mod lecture1;
 pub mod lecture3;
 pub mod not_built;
