@@ -4,6 +4,8 @@
 //! the papers with what to run and read for each, and a glossary of the papers' terms that
 //! every page links to where it uses them. No scripts, no external files.
 
+pub mod code;
+
 use super::html::{escape, STYLE};
 use crate::gl::Context;
 use crate::learn::{LessonOptions, LessonRun};
@@ -83,7 +85,10 @@ const GUIDE_STYLE: &str = "nav a{margin-right:1.5em}.flow{display:flex;flex-wrap
 align-items:center;gap:.4em;margin:.6em 0}.box{border:1px solid #99a;border-radius:4px;\
 padding:.4em .6em;background:#f4f6fb;max-width:16em;font-size:90%}.box img{width:96px;\
 image-rendering:pixelated;display:block;margin-top:.3em}.arrow{font-size:140%;color:#667}\
-.pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}";
+.pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}\
+pre.code{background:#f7f7f2;border:1px solid #ccc;padding:.5em;overflow-x:auto;margin-top:0}\
+pre.code code{background:none;padding:0}.where{font-size:85%;color:#555;margin-top:.8em}\
+mark{background:#ffe08a}details{margin:.5em 0}";
 
 fn verdict(run: &Result<LessonRun, String>) -> String {
     match run {
@@ -158,6 +163,13 @@ fn lesson_page(
             escape(e)
         )),
         Ok(run) => body.push_str(&run_sections(info, run)),
+    }
+    match code::code_section(info) {
+        Ok(section) => body.push_str(&section),
+        Err(e) => body.push_str(&format!(
+            "<p class=\"fail\">The code of this page could not be cut: {}</p>\n",
+            escape(&e)
+        )),
     }
     body.push_str("<h2>Where the papers use it</h2>\n<ul>\n");
     for step in info.paper_steps {
@@ -291,6 +303,13 @@ fn exercises(info: &crate::learn::LessonInfo) -> String {
             info.id,
             e.number
         ));
+        match code::exercise_code(e.shader) {
+            Ok(code) => out.push_str(&code),
+            Err(why) => out.push_str(&format!(
+                "<p class=\"fail\">The template could not be shown: {}</p>\n",
+                escape(&why)
+            )),
+        }
     }
     out
 }
