@@ -93,6 +93,8 @@ pub struct Gl {
     uniform: RefCell<Option<String>>,
 }
 
+// The wrappers keep glow's signatures, however many arguments GL takes.
+#[allow(clippy::too_many_arguments)]
 impl Gl {
     pub(super) fn new(raw: glow::Context) -> Gl {
         Gl {
