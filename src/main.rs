@@ -25,6 +25,11 @@ struct Cli {
     /// the compiled-in copy otherwise; `view` reloads them when they are saved.
     #[arg(long, global = true, value_name = "DIR")]
     glsl_dir: Option<std::path::PathBuf>,
+    /// Record every GL call the command makes, in order with its arguments, grouped by pass,
+    /// and print the calls when it ends; `--trace FILE` writes them to FILE (a new file)
+    /// instead. A debugging aid: a long run makes a long trace.
+    #[arg(long, global = true, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
+    trace: Option<std::path::PathBuf>,
     #[command(subcommand)]
     command: Command,
 }
@@ -99,6 +104,10 @@ pub struct Global {
     pub json: bool,
     /// `--glsl-dir`: set on every context made for a command.
     pub glsl_dir: Option<std::path::PathBuf>,
+    /// `--trace [FILE]`: "-" prints the trace.
+    pub trace: Option<std::path::PathBuf>,
+    /// The contexts made while tracing, whose calls are written when the command ends.
+    traced: std::cell::RefCell<Vec<gl::Context>>,
 }
 
 impl Global {
@@ -110,7 +119,36 @@ impl Global {
         };
         let ctx = ctx.context("creating the OpenGL context")?;
         ctx.set_glsl_dir(self.glsl_dir.clone());
+        if self.trace.is_some() {
+            ctx.trace_start();
+            self.traced.borrow_mut().push(ctx.clone());
+        }
         Ok(ctx)
+    }
+
+    /// `--trace`: the calls of every context the command made, printed or written to FILE.
+    fn write_trace(&self) -> anyhow::Result<()> {
+        let Some(out) = &self.trace else {
+            return Ok(());
+        };
+        let mut lines = Vec::new();
+        for ctx in self.traced.borrow().iter() {
+            lines.extend(gl::trace::lines(&ctx.trace_stop()));
+        }
+        if out.as_os_str() == "-" {
+            for line in &lines {
+                // Beside --json's object on stdout, the trace goes to stderr.
+                if self.json {
+                    eprintln!("{line}");
+                } else {
+                    println!("{line}");
+                }
+            }
+            return Ok(());
+        }
+        let text = lines.join("\n") + "\n";
+        classic_gpgpu::files::write_bytes(out, text.as_bytes())
+            .with_context(|| format!("--trace {}: writing the trace", out.display()))
     }
 
     /// A `*-bench` command: section `P`, figures in `--out` (default `default_out`).
@@ -148,10 +186,16 @@ fn main() -> ExitCode {
         eprintln!("error: {e:#}");
         return ExitCode::FAILURE;
     }
+    if let Err(e) = check_trace_file(cli.trace.as_deref()) {
+        eprintln!("error: {e:#}");
+        return ExitCode::FAILURE;
+    }
     let global = Global {
         renderer: cli.renderer,
         json: cli.json,
         glsl_dir: cli.glsl_dir,
+        trace: cli.trace,
+        traced: Default::default(),
     };
     let json = global.json;
     let result = match cli.command {
@@ -193,12 +237,29 @@ fn main() -> ExitCode {
         Command::Learn(a) => cli::learn::run(&a, json, || global.context()),
         Command::Compare(a) => cli::compare::run(&a, json),
     };
+    // The trace is written whether the command succeeded or not: a failure is when it helps.
+    let result = match (result, global.write_trace()) {
+        (Err(e), _) | (Ok(()), Err(e)) => Err(e),
+        (Ok(()), Ok(())) => Ok(()),
+    };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {}", classic_gpgpu::files::error_text(&e));
             ExitCode::FAILURE
         }
+    }
+}
+
+/// `--trace FILE` writes a new file: an existing file or a folder is refused before any work.
+fn check_trace_file(file: Option<&std::path::Path>) -> anyhow::Result<()> {
+    match file {
+        Some(f) if f.as_os_str() != "-" && f.exists() => anyhow::bail!(
+            "--trace {}: {}; a trace is written to a new file, so name one that does not exist",
+            f.display(),
+            if f.is_dir() { "is a folder" } else { "exists" }
+        ),
+        _ => Ok(()),
     }
 }
 

@@ -3,7 +3,6 @@
 //! render-to-vertex-buffer possible without a trip through the CPU.
 
 use super::{Context, GlError};
-use glow::HasContext;
 use std::rc::Rc;
 
 /// How often the contents change (a hint to the driver).

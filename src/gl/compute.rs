@@ -10,7 +10,6 @@
 
 use super::program::Uniform;
 use super::{Buffer, Context, GlError, Program, ShaderSource, Texture};
-use glow::HasContext;
 
 /// The first OpenGL version with compute shaders, storage buffers and atomic counters.
 pub const COMPUTE_VERSION: (i32, i32) = (4, 3);
@@ -124,6 +123,7 @@ impl ComputeProgram {
 
     /// Start a dispatch named `name` (for error messages); bind its inputs, then run it.
     pub fn dispatch<'a>(&'a self, name: &'a str) -> Dispatch<'a> {
+        self.ctx.gl().enter_pass(name);
         Dispatch {
             compute: self,
             name,
@@ -198,6 +198,7 @@ impl Dispatch<'_> {
         if groups.contains(&0) {
             return Ok(());
         }
+        gl.enter_pass(self.name);
         self.compute.program.bind();
         unsafe {
             for (unit, texture) in self.textures.iter().enumerate() {
@@ -212,7 +213,9 @@ impl Dispatch<'_> {
             }
             gl.dispatch_compute(groups[0], groups[1], groups[2]);
         }
-        ctx.check(&format!("dispatch {}", self.name))
+        let checked = ctx.check(&format!("dispatch {}", self.name));
+        gl.leave_pass();
+        checked
     }
 
     /// Run enough work groups along x to cover `items` invocations (one per item).

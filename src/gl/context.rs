@@ -156,7 +156,7 @@ pub struct Context {
 }
 
 pub(super) struct Inner {
-    pub(super) gl: glow::Context,
+    pub(super) gl: super::trace::Gl,
     info: ContextInfo,
     checks: Cell<bool>,
     /// A lower limit on work groups per dispatch axis (a test hook), if set.
@@ -358,7 +358,7 @@ impl Context {
             || std::env::var(CHECKS_ENV).is_ok_and(|v| v == "1" || v == "true");
         let ctx = Context {
             inner: Rc::new(Inner {
-                gl,
+                gl: super::trace::Gl::new(gl),
                 info,
                 checks: Cell::new(checks),
                 work_group_limit: Cell::new(None),
@@ -480,8 +480,24 @@ impl Context {
         self.inner.glsl_dir.borrow().clone()
     }
 
-    pub(super) fn gl(&self) -> &glow::Context {
+    pub(super) fn gl(&self) -> &super::trace::Gl {
         &self.inner.gl
+    }
+
+    /// Start recording every GL call this context makes ([`super::trace`]); an earlier
+    /// recording is dropped.
+    pub fn trace_start(&self) {
+        self.inner.gl.start();
+    }
+
+    /// Stop recording: the calls made since [`Context::trace_start`], in order.
+    pub fn trace_stop(&self) -> Vec<super::trace::TracedCall> {
+        self.inner.gl.stop()
+    }
+
+    /// Whether GL calls are being recorded.
+    pub fn tracing(&self) -> bool {
+        self.inner.gl.is_on()
     }
 
     /// If checks are on: the first pending GL error, named, with what was being done.

@@ -4,7 +4,6 @@
 //! drawn from there.
 
 use super::{Buffer, Context, GlError, Program};
-use glow::HasContext;
 
 /// Run `program` (made by [`Program::feedback`]) over `count` vertices with no vertex buffer
 /// (the shader builds each from `gl_VertexID`), capturing its varyings into `buffer` from

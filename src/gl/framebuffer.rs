@@ -2,7 +2,6 @@
 //! (multiple render targets) and a depth or depth-stencil attachment.
 
 use super::{Buffer, Context, GlError, Pass, Program, Texture, TextureFormat};
-use glow::HasContext;
 
 /// A pixel rectangle: `w x h` pixels from (`x`, `y`), the origin at the bottom left as in GL.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -44,6 +44,7 @@ pub mod reduce_shared;
 pub mod shaders;
 mod storage;
 mod texture;
+pub mod trace;
 mod uniforms;
 pub mod window;
 

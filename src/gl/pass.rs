@@ -7,7 +7,6 @@ use super::{
     Context, Framebuffer, GlError, MeshBuffers, OcclusionQuery, Program, Rect, Texture, VertexArray,
 };
 use glam::{Vec2, Vec4};
-use glow::HasContext;
 
 /// A comparison function (depth and stencil tests).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -229,6 +228,7 @@ impl<'a> Pass<'a> {
         if ctx.checks() {
             target.check_complete()?;
         }
+        ctx.gl().enter_pass(name);
         Ok(Pass {
             ctx,
             target,
@@ -497,7 +497,9 @@ impl<'a> Pass<'a> {
             draw_index_range(gl, primitive, (first, count));
         }
         unsafe { gl.bind_vertex_array(None) };
-        self.ctx.check(&format!("pass {}", self.name))
+        let checked = self.ctx.check(&format!("pass {}", self.name));
+        gl.leave_pass();
+        checked
     }
 
     /// Draw every triangle of `mesh`.
@@ -514,7 +516,7 @@ impl<'a> Pass<'a> {
     fn draw(
         &mut self,
         vao: glow::VertexArray,
-        call: impl FnOnce(&glow::Context),
+        call: impl FnOnce(&super::trace::Gl),
     ) -> Result<(), GlError> {
         if let Some(e) = self.error.take() {
             return Err(e);
@@ -528,13 +530,15 @@ impl<'a> Pass<'a> {
             call(gl);
             gl.bind_vertex_array(None);
         }
-        self.ctx.check(&format!("pass {}", self.name))
+        let checked = self.ctx.check(&format!("pass {}", self.name));
+        gl.leave_pass();
+        checked
     }
 }
 
 /// One `glDrawElements` of the `count` 32-bit indices from index `first` of the bound
 /// vertex array's index buffer.
-fn draw_index_range(gl: &glow::Context, primitive: Primitive, (first, count): (usize, usize)) {
+fn draw_index_range(gl: &super::trace::Gl, primitive: Primitive, (first, count): (usize, usize)) {
     unsafe {
         gl.draw_elements(
             primitive.gl(),
@@ -549,6 +553,7 @@ impl Pass<'_> {
     /// Bind the framebuffer, program, viewport, textures and fixed-function state.
     fn bind_all(&self) {
         let gl = self.ctx.gl();
+        gl.enter_pass(self.name);
         self.target.bind();
         self.program.bind();
         unsafe {
@@ -563,7 +568,7 @@ impl Pass<'_> {
     }
 }
 
-unsafe fn apply_state(gl: &glow::Context, s: &DrawState) {
+unsafe fn apply_state(gl: &super::trace::Gl, s: &DrawState) {
     let toggle = |cap, on: bool| {
         if on {
             gl.enable(cap)

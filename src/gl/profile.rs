@@ -20,7 +20,6 @@
 //!   Each kind of wait also has its own row, so the waits of a run add up in one place.
 
 use super::Context;
-use glow::HasContext;
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::fmt;

@@ -5,7 +5,6 @@
 use super::uniforms::{base_name, Declared};
 use super::{Context, GlError};
 use glam::{IVec2, IVec4, Mat3, Mat4, Vec2, Vec3, Vec4};
-use glow::HasContext;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt;
@@ -282,6 +281,7 @@ impl Program {
     pub fn set_if_used<U: Uniform>(&self, name: &str, value: U) {
         if let Some(location) = self.location(name) {
             self.bind();
+            self.ctx.gl().name_uniform(name);
             unsafe { value.apply(self.ctx.gl(), &location) };
         }
     }
@@ -501,13 +501,13 @@ fn excerpt(source: &str, line: u32, context: u32) -> String {
 pub trait Uniform {
     /// # Safety
     /// The program owning `location` must be current.
-    unsafe fn apply(&self, gl: &glow::Context, location: &glow::UniformLocation);
+    unsafe fn apply(&self, gl: &super::trace::Gl, location: &glow::UniformLocation);
 }
 
 macro_rules! uniform {
     ($t:ty, |$v:ident, $gl:ident, $l:ident| $body:expr) => {
         impl Uniform for $t {
-            unsafe fn apply(&self, $gl: &glow::Context, $l: &glow::UniformLocation) {
+            unsafe fn apply(&self, $gl: &super::trace::Gl, $l: &glow::UniformLocation) {
                 let $v = self;
                 $body
             }

@@ -3,7 +3,6 @@
 //! queries (how often a shader ran: pipeline statistics).
 
 use super::{Context, GlError};
-use glow::HasContext;
 
 struct Query {
     ctx: Context,

@@ -3,7 +3,6 @@
 //! "append here" that fragment programs of 2007 did not have.
 
 use super::{Buffer, BufferUsage, Context, GlError};
-use glow::HasContext;
 
 /// `count` 32-bit atomic counters in one buffer (`layout(binding = b, offset = 4 * i)
 /// uniform atomic_uint ...` in GLSL, or `atomicAdd` on a storage block).

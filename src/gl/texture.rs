@@ -1,7 +1,6 @@
 //! 1D and 2D textures: the GPGPU programmer's arrays.
 
 use super::{Buffer, Context, GlError};
-use glow::HasContext;
 use std::rc::Rc;
 
 /// The texel formats the papers use.

@@ -5,7 +5,6 @@
 //! resizing and buffer swaps.
 
 use super::{Context, Framebuffer, GlError, Renderer};
-use glow::HasContext;
 use glutin::config::{Config, ConfigTemplateBuilder, GlConfig};
 use glutin::context::{
     ContextApi, ContextAttributesBuilder, GlProfile, NotCurrentGlContext, PossiblyCurrentContext,

@@ -202,6 +202,7 @@ fn reduce_shared(ctx: &Context, values: &[f32]) -> anyhow::Result<(f32, f32, u32
     let mut input = Buffer::from_slice(ctx, &pairs, BufferUsage::Static)?;
     let mut count = values.len() as u32;
     let mut passes = 0;
+    // region: reduce-passes
     while count > 1 || passes == 0 {
         let groups = count.div_ceil(PER_GROUP);
         let output = Buffer::new(ctx, groups as usize * 8, BufferUsage::GpuCopy)?;
@@ -215,6 +216,7 @@ fn reduce_shared(ctx: &Context, values: &[f32]) -> anyhow::Result<(f32, f32, u32
         input = output;
         count = groups;
         passes += 1;
+        // endregion
     }
     let result: Vec<[f32; 2]> = input.read()?;
     Ok((result[0][0], result[0][1], passes))

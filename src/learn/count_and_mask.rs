@@ -95,6 +95,7 @@ impl Lesson for CountAndMask {
             ctx,
             &[shader!("glsl/learn/count-and-mask/count_above.frag")],
         )?;
+        // region: count-pass
         let counted = Texture::new_2d(ctx, SIDE, SIDE, TextureFormat::R32F)?;
         let count_target = Framebuffer::new(ctx, "count", &[&counted], None)?;
         count_target.clear_colors([0.0; 4])?;
@@ -107,6 +108,7 @@ impl Lesson for CountAndMask {
             .draw_full()?;
         query.end();
         let gpu_count = query.samples()?;
+        // endregion
         let picture = Some(kit::buffer(&counted)?);
         run.pass(
             "count",
@@ -307,6 +309,7 @@ impl<'a> Masks<'a> {
 
     /// The depth pass: always passes, writes the condition as depth, no colour.
     fn write_depth(&self) -> anyhow::Result<()> {
+        // region: depth-pass
         self.target.clear_depth_stencil(1.0, 0)?;
         self.target
             .pass(&self.mask_depth, "depth mask")?
@@ -321,11 +324,13 @@ impl<'a> Masks<'a> {
             .texture("u_values", self.values)
             .uniform("u_threshold", THRESHOLD)
             .draw_full()?;
+        // endregion
         Ok(())
     }
 
     /// The stencil pass: 1 where the slot is real; depth kept as the depth pass left it.
     fn write_stencil(&self) -> anyhow::Result<()> {
+        // region: stencil-pass
         self.target
             .pass(&self.mark, "stencil mark")?
             .state(DrawState {
@@ -335,12 +340,14 @@ impl<'a> Masks<'a> {
             })
             .texture("u_valid", self.valid)
             .draw_full()?;
+        // endregion
         Ok(())
     }
 
     /// The work pass at depth 0.5 with LESS (and stencil == 1 when `stencil`), counted by a
     /// query: the result read back and how many pixels it ran on.
     fn work(&self, stencil: bool) -> anyhow::Result<(Vec<f32>, u64)> {
+        // region: work-pass
         self.target.clear_color(0, [UNTOUCHED; 4])?;
         let query = OcclusionQuery::new(self.target.context())?;
         let mut pass = self.target.pass(&self.work, "work")?;
@@ -358,6 +365,7 @@ impl<'a> Masks<'a> {
         query.end();
         drawn?;
         let result = self.target.read_f32(0, self.target.rect())?;
+        // endregion
         Ok((result, query.samples()?))
     }
 }
@@ -368,6 +376,7 @@ fn compute(ctx: &Context, data: &Data, n: usize) -> anyhow::Result<(Vec<f32>, u3
         ctx,
         &[shader!("glsl/learn/count-and-mask/count_and_mask.comp")],
     )?;
+    // region: count-and-mask-compute
     let values = Buffer::from_slice(ctx, &data.values, BufferUsage::Static)?;
     let valid = Buffer::from_slice(ctx, &data.valid, BufferUsage::Static)?;
     let result = Buffer::new(ctx, n * 4, BufferUsage::GpuCopy)?;
@@ -382,6 +391,7 @@ fn compute(ctx: &Context, data: &Data, n: usize) -> anyhow::Result<(Vec<f32>, u3
         .uniform("u_count", n as u32)
         .uniform("u_threshold", THRESHOLD)
         .run_over(n as u32)?;
+    // endregion
     crate::gl::memory_barrier(
         ctx,
         &[

@@ -127,6 +127,7 @@ fn off_centre(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
     let input = Texture::from_f32(ctx, ROW, 1, TextureFormat::R32F, &row)?;
     input.set_filter(Filter::Linear);
     let program = Program::rect(ctx, &[shader!("glsl/learn/texel_sample.frag")])?;
+    // region: sample-off-centre
     let sample = |offset: f32| -> anyhow::Result<Vec<f32>> {
         let target = Texture::new_2d(ctx, ROW, 1, TextureFormat::R32F)?;
         let fb = Framebuffer::new(ctx, "sampled row", &[&target], None)?;
@@ -137,6 +138,7 @@ fn off_centre(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
             .draw_full()?;
         Ok(target.download_f32()?)
     };
+    // endregion
     let grid = Grid::new(ROW, 1, 1);
     // As in lesson 0: weights 0 and 1/2 are exact, fp32's rounding of the mean is all.
     let tolerance = 1e-6 * (ROW * ROW) as f64;
@@ -240,9 +242,11 @@ fn feedback_loop(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
     let size = glam::IVec2::new(GRID as i32, GRID as i32);
     let one = Texture::from_f32(ctx, GRID, GRID, TextureFormat::R32F, &start)?;
     let fb = Framebuffer::new(ctx, "one texture", &[&one], None)?;
+    // region: feedback-loop-found
     let mut pass = fb.pass(&program, "jacobi in place")?;
     pass.texture("u_current", &one).uniform("u_size", size);
     let loops = pass.feedback_loops();
+    // endregion
     // Found before drawing: GL leaves the result undefined, so it is not drawn at all.
     drop(pass);
     found(
@@ -265,6 +269,7 @@ fn feedback_loop(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
         Texture::from_f32(ctx, GRID, GRID, TextureFormat::R32F, &start)?,
         Texture::new_2d(ctx, GRID, GRID, TextureFormat::R32F)?,
     );
+    // region: ping-pong-fix
     let fb = Framebuffer::new(ctx, "ping-pong target", &[&b], None)?;
     let mut pass = fb.pass(&program, "jacobi, ping-pong")?;
     pass.texture("u_current", &a).uniform("u_size", size);
@@ -273,6 +278,7 @@ fn feedback_loop(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
         "the ping-pong pass reads the texture it draws into"
     );
     pass.draw_full()?;
+    // endregion
     let gpu = b.download_f32()?;
     let cpu = jacobi_cpu(&start, GRID, 1);
     run.pass(
@@ -374,7 +380,9 @@ fn incomplete_framebuffer(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<
     let values = super::kit::values((SIDE * SIDE) as usize, 5);
     let input = Texture::from_f32(ctx, SIDE, SIDE, TextureFormat::R32F, &values)?;
     let depth = Texture::new_2d(ctx, SIDE, SIDE, TextureFormat::Depth32F)?;
+    // region: incomplete-refused
     let refused = Framebuffer::new(ctx, "depth as colour", &[&depth], None).err();
+    // endregion
     found(
         run,
         (5, "an incomplete framebuffer"),
@@ -390,11 +398,13 @@ fn incomplete_framebuffer(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<
         ),
     );
     let colour = Texture::new_2d(ctx, SIDE, SIDE, TextureFormat::R32F)?;
+    // region: complete-framebuffer
     let fb = Framebuffer::new(ctx, "colour and depth", &[&colour], Some(&depth))?;
     let program = Program::rect(ctx, &[shader!("glsl/learn/texture_copy.frag")])?;
     fb.pass(&program, "copy")?
         .texture("u_input", &input)
         .draw_full()?;
+    // endregion
     let gpu = colour.download_f32()?;
     run.check_texels(
         "fault 5 fixed: the copy through the complete framebuffer = the values (exact)",

@@ -290,6 +290,7 @@ fn peel(ctx: &Context, view: &View) -> anyhow::Result<Vec<Vec<f32>>> {
     )?;
     let mesh = MeshBuffers::new(ctx, view.mesh.positions_f32(), &view.mesh.triangles)?;
     let picture = Texture::new_2d(ctx, SIZE, SIZE, TextureFormat::R32F)?;
+    // region: peel-targets
     let depth = [
         Texture::new_2d(ctx, SIZE, SIZE, TextureFormat::Depth32F)?,
         Texture::new_2d(ctx, SIZE, SIZE, TextureFormat::Depth32F)?,
@@ -300,8 +301,10 @@ fn peel(ctx: &Context, view: &View) -> anyhow::Result<Vec<Vec<f32>>> {
         Framebuffer::new(ctx, "peel (odd layers)", &[&picture], Some(&depth[1]))?,
     ];
     let query = OcclusionQuery::new(ctx)?;
+    // endregion
     let mvp = ortho_box(view.min, view.max);
     let mut layers = Vec::new();
+    // region: peel-pass
     for k in 0..MAX_LAYERS {
         let target = &targets[k % 2];
         target.clear_colors([EMPTY; 4])?;
@@ -325,6 +328,7 @@ fn peel(ctx: &Context, view: &View) -> anyhow::Result<Vec<Vec<f32>>> {
             break;
         }
         layers.push(target.read_f32(0, target.rect())?);
+        // endregion
     }
     Ok(layers)
 }
@@ -340,6 +344,7 @@ fn ray_cast_compute(ctx: &Context, view: &View) -> anyhow::Result<(Vec<u32>, Vec
         })
         .collect();
     let n = (SIZE * SIZE) as usize;
+    // region: ray-cast
     let corners = Buffer::from_slice(ctx, &corners, BufferUsage::Static)?;
     let layers = Buffer::new(ctx, n * RAY_LAYERS * 4, BufferUsage::GpuCopy)?;
     let counts = Buffer::new(ctx, n * 4, BufferUsage::GpuCopy)?;
@@ -351,6 +356,7 @@ fn ray_cast_compute(ctx: &Context, view: &View) -> anyhow::Result<(Vec<u32>, Vec
         .uniform("u_triangles", view.mesh.triangles.len() as u32)
         .uniform("u_size", glam::IVec2::splat(SIZE as i32))
         .run([SIZE.div_ceil(8), SIZE.div_ceil(8), 1])?;
+    // endregion
     crate::gl::memory_barrier(ctx, &[crate::gl::Barrier::BufferUpdate]);
     Ok((counts.read()?, layers.read()?))
 }

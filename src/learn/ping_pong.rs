@@ -167,16 +167,19 @@ fn jacobi_gpu(
     steps: u32,
 ) -> anyhow::Result<Vec<f32>> {
     let program = Program::rect(ctx, &[shader!("glsl/learn/jacobi.frag")])?;
+    // region: ping-pong-setup
     let a = Texture::from_f32(ctx, N, N, TextureFormat::R32F, start)?;
     let b = Texture::new_2d(ctx, N, N, TextureFormat::R32F)?;
     let fb_a = Framebuffer::new(ctx, "A", &[&a], None)?;
     let fb_b = Framebuffer::new(ctx, "B", &[&b], None)?;
+    // endregion
     run.pass(
         "start",
         "",
         &format!("a {N}x{N} grid into texture A: zero inside, the top row held at 1"),
         Some(PassBuffer::floats(N, N, 1, start.to_vec()).in_set("grid")),
     );
+    // region: ping-pong-step
     // (read, write) for step k: A -> B on even steps, B -> A on odd ones.
     let roles = [(&a, &fb_b, "A", "B"), (&b, &fb_a, "B", "A")];
     for k in 0..steps {
@@ -186,6 +189,7 @@ fn jacobi_gpu(
             .texture("u_current", read)
             .uniform("u_size", glam::IVec2::new(N as i32, N as i32))
             .draw_full()?;
+        // endregion
         // Steps 1, 2 and the last are shown; the ones between are alike.
         let shown = k < 2 || k + 1 == steps;
         if shown {
@@ -257,6 +261,7 @@ fn jacobi_compute(
     steps: u32,
 ) -> anyhow::Result<String> {
     let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute/jacobi.comp")])?;
+    // region: jacobi-compute
     let a = Buffer::from_slice(ctx, start, BufferUsage::Dynamic)?;
     let b = Buffer::from_slice(ctx, start, BufferUsage::Dynamic)?;
     let groups = N.div_ceil(8);
@@ -271,6 +276,7 @@ fn jacobi_compute(
         memory_barrier(ctx, &[Barrier::Storage]);
     }
     memory_barrier(ctx, &[Barrier::BufferUpdate]);
+    // endregion
     let last = if steps % 2 == 1 { &b } else { &a };
     let gpu: Vec<f32> = last.read()?;
     run.pass(

@@ -100,8 +100,10 @@ fn saxpy(
     y: &[f32],
     cpu: &[f32],
 ) -> anyhow::Result<()> {
+    // region: saxpy-upload
     let tx = Texture::from_f32(ctx, W, H, TextureFormat::R32F, x)?;
     let ty = Texture::from_f32(ctx, W, H, TextureFormat::R32F, y)?;
+    // endregion
     run.pass(
         "upload x and y",
         "",
@@ -111,6 +113,7 @@ fn saxpy(
         ),
         Some(PassBuffer::floats(W, H, 1, x.to_vec())),
     );
+    // region: saxpy-pass
     let out = Texture::new_2d(ctx, W, H, TextureFormat::R32F)?;
     let fb = Framebuffer::new(ctx, "saxpy", &[&out], None)?;
     let program = Program::rect(ctx, &[shader!("glsl/learn/saxpy.frag")])?;
@@ -120,6 +123,7 @@ fn saxpy(
         .uniform("u_a", A)
         .draw_full()?;
     let gpu = out.download_f32()?;
+    // endregion
     run.pass(
         "saxpy",
         SAXPY,
@@ -147,6 +151,7 @@ fn gather(ctx: &Context, run: &mut LessonRun, values: &[f32]) -> anyhow::Result<
     index.shuffle(&mut rand_chacha::ChaCha8Rng::seed_from_u64(3));
     let index_f: Vec<f32> = index.iter().map(|&k| k as f32).collect();
     let cpu: Vec<f32> = index.iter().map(|&k| values[k as usize]).collect();
+    // region: gather-pass
     let tv = Texture::from_f32(ctx, W, H, TextureFormat::R32F, values)?;
     let ti = Texture::from_f32(ctx, W, H, TextureFormat::R32F, &index_f)?;
     let out = Texture::new_2d(ctx, W, H, TextureFormat::R32F)?;
@@ -158,6 +163,7 @@ fn gather(ctx: &Context, run: &mut LessonRun, values: &[f32]) -> anyhow::Result<
         .uniform("u_width", W as i32)
         .draw_full()?;
     let gpu = out.download_f32()?;
+    // endregion
     run.pass(
         "gather",
         GATHER,
@@ -183,6 +189,7 @@ fn saxpy_compute(
     y: &[f32],
     cpu: &[f32],
 ) -> anyhow::Result<String> {
+    // region: saxpy-compute
     let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute/saxpy.comp")])?;
     let bx = Buffer::from_slice(ctx, x, BufferUsage::Static)?;
     let by = Buffer::from_slice(ctx, y, BufferUsage::Dynamic)?;
@@ -195,6 +202,7 @@ fn saxpy_compute(
         .run_over(x.len() as u32)?;
     memory_barrier(ctx, &[Barrier::BufferUpdate]);
     let gpu: Vec<f32> = by.read()?;
+    // endregion
     run.pass(
         "compute: saxpy",
         SAXPY_COMPUTE,

@@ -105,10 +105,12 @@ impl Lesson for ReadbackAndUpload {
             kit::bytes_differing(&direct.download_f32()?, &source),
             0.0,
         );
+        // region: upload-pbo
         let through_pbo = Texture::new_2d(ctx, SIDE, SIDE, TextureFormat::Rgba32F)?;
         let unpack = Buffer::from_slice(ctx, &source, BufferUsage::Dynamic)?;
         let start = Instant::now();
         through_pbo.upload_from_buffer(&unpack, 0)?;
+        // endregion
         timed(
             &mut run,
             "upload from a PBO: the call (queued)",
@@ -127,10 +129,12 @@ impl Lesson for ReadbackAndUpload {
         );
 
         // Readbacks of the whole array.
+        // region: full-readback
         let target = Framebuffer::new(ctx, "data", &[&direct], None)?;
         ctx.finish_all();
         let start = Instant::now();
         let full = target.read_f32(0, target.rect())?;
+        // endregion
         let full_ms = wall_ms(start);
         timed(
             &mut run,
@@ -282,6 +286,7 @@ fn reduced_readback(
     data: &Texture,
     data_side: u32,
 ) -> anyhow::Result<(Texture, Vec<f32>, usize, Option<f64>)> {
+    // region: block-flags
     let side = data_side / BLOCK;
     let flags = Texture::new_2d(ctx, side, side, TextureFormat::R32F)?;
     let flags_target = Framebuffer::new(ctx, "block flags", &[&flags], None)?;
@@ -294,12 +299,15 @@ fn reduced_readback(
         .draw_full()?;
     timer.end();
     let flag_values = flags_target.read_f32(0, flags_target.rect())?;
+    // endregion
     let mut bytes_read = flag_values.len() * 4;
     let source = Framebuffer::new(ctx, "data", &[data], None)?;
     let mut out = vec![0f32; (data_side * data_side * 4) as usize];
+    // region: read-blocks
     for (b, _) in flag_values.iter().enumerate().filter(|(_, &f)| f > 0.5) {
         let (bx, by) = (b as u32 % side * BLOCK, b as u32 / side * BLOCK);
         let block = source.read_f32(0, Rect::new(bx, by, BLOCK, BLOCK))?;
+        // endregion
         bytes_read += block.len() * 4;
         for (row, texels) in block.chunks_exact((BLOCK * 4) as usize).enumerate() {
             let at = (((by + row as u32) * data_side + bx) * 4) as usize;
@@ -316,6 +324,7 @@ fn compact_mismatches(ctx: &Context, source: &[f32]) -> anyhow::Result<usize> {
         &[shader!("glsl/learn/readback-and-upload/compact.comp")],
     )?;
     let n = source.len() / 4;
+    // region: compact
     let data = Buffer::from_slice(ctx, source, BufferUsage::Static)?;
     let indices = Buffer::new(ctx, n * 4, BufferUsage::GpuCopy)?;
     let values = Buffer::new(ctx, n * 16, BufferUsage::GpuCopy)?;
@@ -329,6 +338,7 @@ fn compact_mismatches(ctx: &Context, source: &[f32]) -> anyhow::Result<usize> {
         .counters(0, counter.buffer())
         .uniform("u_count", n as u32)
         .run_over(n as u32)?;
+    // endregion
     crate::gl::memory_barrier(
         ctx,
         &[

@@ -136,6 +136,7 @@ fn ladder(
 ) -> anyhow::Result<Ladder> {
     let mut level = input.clone();
     let mut sizes = Vec::new();
+    // region: reduce-level
     while level.width() > 1 || level.height() > 1 {
         let (w, h) = (level.width().div_ceil(fan), level.height().div_ceil(fan));
         let next = Texture::new_2d(ctx, w, h, TextureFormat::Rgba32F)?;
@@ -147,6 +148,7 @@ fn ladder(
             .uniform_if_used("u_fan", fan as i32)
             .draw_full()?;
         let rgba = next.download_f32()?;
+        // endregion
         let rg: Vec<f32> = rgba.chunks_exact(4).flat_map(|t| [t[0], t[1]]).collect();
         sizes.push((w, h));
         run.pass(
@@ -230,12 +232,14 @@ fn compute(
     values: &[f32],
     expected: (f64, f32),
 ) -> anyhow::Result<String> {
+    // region: reduce-compute
     let reducer = SharedReducer::new(ctx)?;
     let vec4s: Vec<f32> = values.iter().flat_map(|&v| [v; 4]).collect();
     let buffer = Buffer::from_slice(ctx, &vec4s, BufferUsage::Static)?;
     let n = values.len() as u32;
     let sum = reducer.reduce(&buffer, n, ReduceOp::Sum)?[0];
     let max = reducer.reduce(&buffer, n, ReduceOp::Max)?[0];
+    // endregion
     let passes = crate::gl::reduce_shared::passes_for(n);
     run.pass(
         "compute: shared-memory reduction",

@@ -84,12 +84,14 @@ impl Lesson for RenderToVertexBuffer {
             ctx,
             &[shader!("glsl/learn/render-to-vertex-buffer/grid.frag")],
         )?;
+        // region: pass-1
         let positions = Texture::new_2d(ctx, N, N, TextureFormat::Rgba32F)?;
         let target = Framebuffer::new(ctx, "pass 1 positions", &[&positions], None)?;
         target
             .pass(&program, "pass 1")?
             .uniform("u_n", N as i32)
             .draw_full()?;
+        // endregion
         let picture = Some(kit::buffer(&positions)?.named(&["x", "y", "z (height)", "w"]));
         run.pass(
             "pass 1",
@@ -99,10 +101,12 @@ impl Lesson for RenderToVertexBuffer {
         );
 
         // Target -> PBO -> VBO, all on the GPU.
+        // region: pbo-to-vbo
         let pbo = Buffer::new(ctx, bytes, BufferUsage::GpuCopy)?;
         target.read_into_buffer(0, target.rect(), &pbo, 0)?;
         let vbo = Buffer::new(ctx, bytes, BufferUsage::GpuCopy)?;
         vbo.copy_from(&pbo, 0, 0, bytes)?;
+        // endregion
         run.pass(
             "PBO -> VBO",
             "",
@@ -136,6 +140,7 @@ impl Lesson for RenderToVertexBuffer {
         );
 
         // Transform feedback: the vertex shader's outputs captured.
+        // region: transform-feedback
         let capture = Program::feedback(
             ctx,
             &[shader!("glsl/learn/render-to-vertex-buffer/feedback.vert")],
@@ -144,6 +149,7 @@ impl Lesson for RenderToVertexBuffer {
         capture.set("u_n", N as i32)?;
         let captured = Buffer::new(ctx, bytes, BufferUsage::GpuCopy)?;
         let written = feedback::capture_points(ctx, &capture, &captured, count)?;
+        // endregion
         run.pass(
             "transform feedback",
             "glsl/learn/render-to-vertex-buffer/feedback.vert",
@@ -168,6 +174,7 @@ impl Lesson for RenderToVertexBuffer {
                     ctx,
                     &[shader!("glsl/learn/render-to-vertex-buffer/positions.comp")],
                 )?;
+                // region: positions-compute
                 let storage = Buffer::new(ctx, bytes, BufferUsage::GpuCopy)?;
                 program
                     .dispatch("positions")
@@ -175,6 +182,7 @@ impl Lesson for RenderToVertexBuffer {
                     .uniform("u_n", N as i32)
                     .run_over(count as u32)?;
                 crate::gl::memory_barrier(ctx, &[Barrier::VertexAttrib, Barrier::BufferUpdate]);
+                // endregion
                 run.pass(
                     "compute positions",
                     "glsl/learn/render-to-vertex-buffer/positions.comp",
@@ -239,6 +247,7 @@ impl PointDrawer {
 
     /// Draw `count` xyzw vertices of `vertices`; the picture read back.
     fn draw(&self, vertices: &Buffer, count: usize) -> anyhow::Result<Vec<f32>> {
+        // region: pass-2
         let mut array = VertexArray::new(self.target.context())?;
         array.float_attribute(0, vertices, 4, 16, 0, 0)?;
         self.target.clear_colors([NOTHING; 4])?;
@@ -249,5 +258,6 @@ impl PointDrawer {
             count,
         )?;
         Ok(self.target.read_f32(0, self.target.rect())?)
+        // endregion
     }
 }

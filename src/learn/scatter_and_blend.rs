@@ -84,13 +84,16 @@ impl Lesson for ScatterAndBlend {
             ),
             Some(PassBuffer::floats(W, H, 1, values.clone())),
         );
+        // region: scatter-program
         let program = Program::new(
             ctx,
             &[shader!("glsl/learn/scatter_points.vert")],
             &[shader!("glsl/learn/count_one.frag")],
         )?;
+        // endregion
         let mut blended = Vec::new();
         for blend in [Some(Blend::Add), None] {
+            // region: scatter-pass
             let bins = Texture::new_2d(ctx, BINS, 1, TextureFormat::R32F)?;
             let fb = Framebuffer::new(ctx, "histogram", &[&bins], None)?;
             fb.pass(&program, "scatter points")?
@@ -103,6 +106,7 @@ impl Lesson for ScatterAndBlend {
                 .uniform("u_bins", BINS as i32)
                 .draw_attributeless(Primitive::Points, values.len(), 1)?;
             let gpu = bins.download_f32()?;
+            // endregion
             if blend.is_some() {
                 run.pass(
                     "scatter with additive blending",
@@ -181,6 +185,7 @@ fn compute(
     cpu: &[f32],
 ) -> anyhow::Result<String> {
     let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute/histogram.comp")])?;
+    // region: histogram-compute
     let bv = Buffer::from_slice(ctx, values, BufferUsage::Static)?;
     let bc = Buffer::from_slice(ctx, &vec![0u32; BINS as usize], BufferUsage::Dynamic)?;
     program
@@ -192,6 +197,7 @@ fn compute(
         .run_over(values.len() as u32)?;
     memory_barrier(ctx, &[Barrier::BufferUpdate]);
     let counts: Vec<u32> = bc.read()?;
+    // endregion
     let counts: Vec<f32> = counts.into_iter().map(|c| c as f32).collect();
     run.pass(
         "compute: atomic histogram",

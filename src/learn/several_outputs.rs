@@ -78,6 +78,7 @@ impl Lesson for SeveralOutputs {
             &format!("a {N}x{N} height field z(x, y) in [0.2, 0.8] into an R32F texture"),
             Some(PassBuffer::floats(N, N, 1, height.clone())),
         );
+        // region: mrt-pass
         let t0 = Texture::new_2d(ctx, N, N, TextureFormat::Rgba32F)?;
         let t1 = Texture::new_2d(ctx, N, N, TextureFormat::Rgba32F)?;
         let fb = Framebuffer::new(ctx, "integrands", &[&t0, &t1], None)?;
@@ -88,6 +89,7 @@ impl Lesson for SeveralOutputs {
             .draw_full()?;
         let gpu0 = t0.download_f32()?;
         let gpu1 = t1.download_f32()?;
+        // endregion
         run.pass(
             "integrands: target 0",
             INTEGRANDS,
@@ -180,6 +182,7 @@ fn compute(
     height: &Texture,
     (first, second): (&[f32], &[f32]),
 ) -> anyhow::Result<String> {
+    // region: integrands-compute
     let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute/integrands.comp")])?;
     let b0 = Buffer::new(ctx, first.len() * 4, BufferUsage::Dynamic)?;
     let b1 = Buffer::new(ctx, second.len() * 4, BufferUsage::Dynamic)?;
@@ -194,6 +197,7 @@ fn compute(
     memory_barrier(ctx, &[Barrier::BufferUpdate]);
     let gpu0: Vec<f32> = b0.read()?;
     let gpu1: Vec<f32> = b1.read()?;
+    // endregion
     run.pass(
         "compute: integrands",
         INTEGRANDS_COMPUTE,

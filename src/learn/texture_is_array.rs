@@ -72,7 +72,9 @@ impl Lesson for TextureIsArray {
         chosen_exercise(&INFO, opts)?;
         let mut run = LessonRun::new(&INFO, ctx);
         let values = test_values();
+        // region: upload
         let input = Texture::from_f32(ctx, SIDE, SIDE, TextureFormat::R32F, &values)?;
+        // endregion
         run.pass(
             "upload",
             "",
@@ -151,6 +153,7 @@ fn formats(
         TextureFormat::R16F,
         TextureFormat::R32F,
     ] {
+        // region: copy-into-format
         let target = Texture::new_2d(ctx, SIDE, SIDE, format)?;
         let fb = Framebuffer::new(ctx, format.name(), &[&target], None)?;
         fb.pass(&copy, "copy")?
@@ -167,6 +170,7 @@ fn formats(
             ),
             _ => (target.download_f32()?, true),
         };
+        // endregion
         let name = format!("copy into {}", format.name());
         let buffer = PassBuffer {
             float,
@@ -321,6 +325,7 @@ fn texel_centres(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
         (0.5f32, "sample at (i + 0.5) / N"),
         (0.0, "sample at i / N"),
     ] {
+        // region: sample-texel-centres
         let target = Texture::new_2d(ctx, ROW, 1, TextureFormat::R32F)?;
         let fb = Framebuffer::new(ctx, name, &[&target], None)?;
         fb.pass(&sample, name)?
@@ -329,6 +334,7 @@ fn texel_centres(ctx: &Context, run: &mut LessonRun) -> anyhow::Result<()> {
             .uniform("u_offset", offset)
             .draw_full()?;
         let back = target.download_f32()?;
+        // endregion
         let expected: Vec<f32> = if offset == 0.5 {
             row.clone()
         } else {
@@ -375,6 +381,7 @@ fn compute(
     input: &Texture,
     values: &[f32],
 ) -> anyhow::Result<String> {
+    // region: compute-read
     let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute/texture_read.comp")])?;
     let out = Buffer::new(ctx, values.len() * 4, BufferUsage::Dynamic)?;
     program
@@ -385,6 +392,7 @@ fn compute(
         .run_over(values.len() as u32)?;
     memory_barrier(ctx, &[Barrier::BufferUpdate]);
     let back: Vec<f32> = out.read()?;
+    // endregion
     run.pass(
         "compute: read by index",
         READ_COMPUTE,

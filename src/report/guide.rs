@@ -4,7 +4,10 @@
 //! the papers with what to run and read for each, and a glossary of the papers' terms that
 //! every page links to where it uses them. No scripts, no external files.
 
+pub mod code;
+
 use super::html::{escape, STYLE};
+use crate::gl::trace::{self, TracedCall};
 use crate::gl::Context;
 use crate::learn::{LessonOptions, LessonRun};
 use std::path::{Path, PathBuf};
@@ -26,13 +29,21 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
     let staging = folder.path();
     let lessons = crate::learn::all();
     let mut runs = Vec::new();
+    let mut traces = Vec::new();
+    // Each lesson's GL calls are recorded for its page, unless a trace of the whole command
+    // (`--trace`) is already recording them.
+    let record = !ctx.tracing();
     for lesson in &lessons {
         let info = lesson.info();
         let opts = LessonOptions {
             png_dir: Some(staging.join("pictures").join(info.id)),
             exercise: None,
         };
+        if record {
+            ctx.trace_start();
+        }
         runs.push(lesson.run(ctx, &opts).map_err(|e| format!("{e:#}")));
+        traces.push(if record { ctx.trace_stop() } else { Vec::new() });
     }
     let mut pages = Vec::new();
     let mut write = |name: &str, html: String| -> anyhow::Result<()> {
@@ -50,7 +61,7 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
         let ladder = super::ladder_page::section(ctx, lesson.info().id, staging);
         write(
             &lesson_file(lesson.info().id),
-            lesson_page(lesson.info(), &runs[k], neighbours, &ladder),
+            lesson_page(lesson.info(), &runs[k], &traces[k], neighbours, &ladder),
         )?;
     }
     write("reading.html", reading_page())?;
@@ -85,7 +96,10 @@ const GUIDE_STYLE: &str = "nav a{margin-right:1.5em}.flow{display:flex;flex-wrap
 align-items:center;gap:.4em;margin:.6em 0}.box{border:1px solid #99a;border-radius:4px;\
 padding:.4em .6em;background:#f4f6fb;max-width:16em;font-size:90%}.box img{width:96px;\
 image-rendering:pixelated;display:block;margin-top:.3em}.arrow{font-size:140%;color:#667}\
-.pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}";
+.pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}\
+pre.code{background:#f7f7f2;border:1px solid #ccc;padding:.5em;overflow-x:auto;margin-top:0}\
+pre.code code{background:none;padding:0}.where{font-size:85%;color:#555;margin-top:.8em}\
+mark{background:#ffe08a}details{margin:.5em 0}";
 
 fn verdict(run: &Result<LessonRun, String>) -> String {
     match run {
@@ -143,6 +157,7 @@ fn index_page(
 fn lesson_page(
     info: &crate::learn::LessonInfo,
     run: &Result<LessonRun, String>,
+    calls: &[TracedCall],
     (previous, next): (
         Option<&crate::learn::LessonInfo>,
         Option<&crate::learn::LessonInfo>,
@@ -163,6 +178,14 @@ fn lesson_page(
         Ok(run) => body.push_str(&run_sections(info, run)),
     }
     body.push_str(ladder);
+    body.push_str(&trace_section(info, calls));
+    match code::code_section(info) {
+        Ok(section) => body.push_str(&section),
+        Err(e) => body.push_str(&format!(
+            "<p class=\"fail\">The code of this page could not be cut: {}</p>\n",
+            escape(&e)
+        )),
+    }
     body.push_str("<h2>Where the papers use it</h2>\n<ul>\n");
     for step in info.paper_steps {
         body.push_str(&format!(
@@ -202,6 +225,56 @@ fn lesson_page(
     }
     body.push_str("</p>\n");
     page(&format!("Lesson {}: {}", info.number, info.title), &body)
+}
+
+/// The lesson whose page shows the calls behind one pass in full, and that pass.
+pub const CALLS_SHOWN: (&str, &str) = ("quad-is-loop", "saxpy");
+
+/// The GL calls of one pass of the lesson, as recorded while the guide ran: in full on the
+/// lesson of [`CALLS_SHOWN`], behind a `<details>` (its first pass) on the others.
+pub fn trace_section(info: &crate::learn::LessonInfo, calls: &[TracedCall]) -> String {
+    let groups = trace::grouped(calls);
+    let (pass, list) = if info.id == CALLS_SHOWN.0 {
+        (CALLS_SHOWN.1, trace::first_pass(calls, CALLS_SHOWN.1))
+    } else {
+        match groups.iter().find(|(pass, _)| pass.is_some()) {
+            Some((Some(name), list)) => (&**name, list.clone()),
+            _ => return String::new(),
+        }
+    };
+    if list.is_empty() {
+        return String::new();
+    }
+    let text: Vec<String> = list.iter().map(|c| escape(&c.to_string())).collect();
+    let block = format!(
+        "<pre class=\"code trace\"><code>{}</code></pre>\n",
+        text.join("\n")
+    );
+    let summary = format!(
+        "the {} GL calls of pass '{}', recorded while this guide ran ({} calls in the whole \
+         lesson; <code>classic-gpgpu learn {} --trace</code> prints them all)",
+        list.len(),
+        escape(pass),
+        calls.len(),
+        info.id
+    );
+    if info.id == CALLS_SHOWN.0 {
+        format!(
+            "<h2>What one pass is made of</h2>\n<p>The call <code>fb.pass(&amp;program, \
+             \"{}\")?...draw_full()</code> hides the calls that make a quad a loop. Here are \
+             {summary}. Read them in order: the program made current and each uniform set by \
+             name (a sampler uniform holds a texture unit's number; <code>u_rect</code> is the \
+             rectangle to cover), then the framebuffer bound as the target, the viewport set to \
+             the array's size, each input texture bound to its unit, the fixed-function state \
+             reset (no depth or stencil test, no blending), and one draw of four vertices: a \
+             triangle strip covering the target, so the fragment shader runs once per \
+             element. Objects are shown by their ids, enums \
+             by their GL names.</p>\n{block}",
+            escape(pass)
+        )
+    } else {
+        format!("<details><summary>The GL calls: {summary}</summary>\n{block}</details>\n")
+    }
 }
 
 /// The passes as a diagram, the checks, the notes and the compute counterpart of a run.
@@ -295,6 +368,13 @@ fn exercises(info: &crate::learn::LessonInfo) -> String {
             info.id,
             e.number
         ));
+        match code::exercise_code(e.shader) {
+            Ok(code) => out.push_str(&code),
+            Err(why) => out.push_str(&format!(
+                "<p class=\"fail\">The template could not be shown: {}</p>\n",
+                escape(&why)
+            )),
+        }
     }
     out
 }
