@@ -53,6 +53,9 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
     }
     write("reading.html", reading_page())?;
     write("glossary.html", glossary_page())?;
+    for name in super::walks::write_pages(ctx, staging)? {
+        pages.push(dir.join(name));
+    }
     let verdicts = lessons
         .iter()
         .zip(&runs)
@@ -135,6 +138,7 @@ fn index_page(
         "<p>Then: the <a href=\"reading.html\">reading order</a> from the lessons into the \
          papers, and the <a href=\"glossary.html\">glossary</a>.</p>\n",
     );
+    body.push_str(&walk_links());
     page("Learn classic GPGPU", &body)
 }
 
@@ -498,8 +502,26 @@ fn reading_page() -> String {
         body.push_str("</p></li>\n");
     }
     body.push_str("</ol>\n");
+    body.push_str(&walk_links());
     body.push_str(&terms_used(&all_text));
     page("Reading order", &body)
+}
+
+/// The papers and lectures walked pass by pass ([`super::walks`]), as a list of links.
+fn walk_links() -> String {
+    let mut out = String::from(
+        "<h2>Each paper walked pass by pass</h2>\n<p>Every pass in the order it runs: its \
+         section, its code, the buffer it wrote and the lesson it builds on.</p>\n<ul>\n",
+    );
+    for walk in super::walks::all() {
+        out.push_str(&format!(
+            "<li><a href=\"{}\">{}</a></li>\n",
+            super::walks::page_file(walk.id),
+            escape(walk.title)
+        ));
+    }
+    out.push_str("</ul>\n");
+    out
 }
 
 /// A glossary entry: the term, its anchor, the words that show a page uses it, and what it
