@@ -170,3 +170,35 @@ fn assert_picture(dir: &Path, src: &str) {
         image.width()
     );
 }
+
+/// Item 7 on the lesson pages: every buffer picture a lesson writes is drawn at least 640
+/// pixels wide, so its key's numbers are 16 pixels high where the guide shows it at its own
+/// size.
+#[test]
+fn lesson_pictures_are_wide_enough_for_legible_keys() {
+    let ctx = common::context();
+    let dir = common::temp_dir("guide-walks", "lesson-pictures");
+    for id in ["texture-is-array", "reduction"] {
+        let lesson = classic_gpgpu::learn::find(id).unwrap();
+        let opts = classic_gpgpu::learn::LessonOptions {
+            png_dir: Some(dir.join(id)),
+            exercise: None,
+        };
+        std::fs::create_dir_all(dir.join(id)).unwrap();
+        let run = lesson.run(&ctx, &opts).unwrap();
+        let pictures: Vec<&String> = run
+            .passes
+            .iter()
+            .filter_map(|p| p.picture.as_ref())
+            .collect();
+        assert!(!pictures.is_empty(), "{id}: no picture");
+        for picture in pictures {
+            let image = image::open(dir.join(id).join(picture)).unwrap();
+            assert!(
+                image.width() >= 640,
+                "{id}: {picture} is {} wide",
+                image.width()
+            );
+        }
+    }
+}

@@ -86,7 +86,8 @@ const GUIDE_STYLE: &str = "nav a{margin-right:1.5em}.flow{display:flex;flex-wrap
 align-items:center;gap:.4em;margin:.6em 0}.box{border:1px solid #99a;border-radius:4px;\
 padding:.4em .6em;background:#f4f6fb;max-width:16em;font-size:90%}.box img{width:96px;\
 image-rendering:pixelated;display:block;margin-top:.3em}.arrow{font-size:140%;color:#667}\
-.pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}";
+.pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}\
+.full{overflow-x:auto}.full img{max-width:none;image-rendering:pixelated}";
 
 fn verdict(run: &Result<LessonRun, String>) -> String {
     match run {
@@ -227,14 +228,15 @@ fn run_sections(info: &crate::learn::LessonInfo, run: &LessonRun) -> String {
         if let Some(picture) = &pass.picture {
             let src = format!("pictures/{}/{}", info.id, picture);
             out.push_str(&format!(
-                "<span class=\"arrow\">&rarr;</span><div class=\"box\">buffer<img src=\"{}\" \
-                 alt=\"{}\"></div>",
+                "<span class=\"arrow\">&rarr;</span><div class=\"box\">buffer<a href=\"{0}\">\
+                 <img src=\"{0}\" alt=\"{1}\"></a></div>",
                 escape(&src),
                 escape(&pass.name)
             ));
         }
         out.push_str("</div>\n");
     }
+    out.push_str(&full_size_buffers(info, run));
     out.push_str(
         "<h2>The checks against the CPU</h2>\n<table><tr><th>check</th><th>error</th>\
          <th>tolerance</th><th>verdict</th></tr>\n",
@@ -271,6 +273,28 @@ fn run_sections(info: &crate::learn::LessonInfo, run: &LessonRun) -> String {
         ));
     }
     out
+}
+
+/// Every buffer of the passes at its own size, its key's numbers as drawn (16 pixels high:
+/// the lessons draw their pictures at least [`crate::gl::picture::LEGIBLE_WIDTH`] wide), each
+/// opening by itself.
+fn full_size_buffers(info: &crate::learn::LessonInfo, run: &LessonRun) -> String {
+    let mut out = String::new();
+    for pass in &run.passes {
+        if let Some(picture) = &pass.picture {
+            let src = escape(&format!("pictures/{}/{}", info.id, picture));
+            out.push_str(&format!(
+                "<figure><figcaption>{}</figcaption><div class=\"full\"><a href=\"{src}\">\
+                 <img src=\"{src}\" alt=\"{}\"></a></div></figure>\n",
+                escape(&pass.name),
+                escape(&pass.name)
+            ));
+        }
+    }
+    if out.is_empty() {
+        return out;
+    }
+    format!("<h2>The buffers at full size</h2>\n{out}")
 }
 
 fn exercises(info: &crate::learn::LessonInfo) -> String {

@@ -17,7 +17,7 @@ pub const WALK: Walk = Walk {
              GPUs\", The Visual Computer 22(2), 2006, as this project reconstructs it (only the \
              paper's record and paper 1's account of it are public: see lecture1-sources.md, \
              section 3).",
-    run_is: "two tori of 120 triangles through each other: a 120 x 120 quad of triangle pairs",
+    run_is: "two tori of about 120 triangles whose tubes cross: a quad of about 120 x 120 triangle pairs",
     steps: STEPS,
     run,
 };
@@ -69,11 +69,12 @@ const STEPS: &[Step] = &[
     },
 ];
 
-/// The two models: tori of 120 triangles, one turned a quarter and moved through the other.
+/// The two models: tori of 120 triangles, one turned a quarter and moved
+/// half its radius, so that the tubes cross.
 pub fn models() -> (Mesh, Mesh) {
     let a = mesh::torus_with_triangles(1.0, 0.3, 120);
     let turn = glam::Affine3A::from_rotation_x(std::f32::consts::FRAC_PI_2);
-    let b = a.transformed(&turn).translated(Vec3::new(1.0, 0.0, 0.0));
+    let b = a.transformed(&turn).translated(Vec3::new(0.5, 0.0, 0.0));
     (a, b)
 }
 
