@@ -1,5 +1,5 @@
-//! Paper 1 walked (Zhang & Kim 2007): one frame of two small tori through each other, pass by pass,
-//! with the AABB overlap pass (Sec. 5.2) checked against the CPU's interval test.
+//! Paper 1 walked (Zhang & Kim 2007): one frame of two small tori through each other, pass by
+//! pass, with the AABB overlap pass (Sec. 5.2) checked against the CPU's interval test.
 
 use super::{buffer_png, Check, Shot, Step, Walk};
 use crate::collide::pipeline::{Options, StreamingCollider};
