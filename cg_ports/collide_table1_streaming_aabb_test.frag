@@ -13,6 +13,7 @@ uniform sampler1D maxTextureA;
 uniform sampler1D minTextureB;
 uniform sampler1D maxTextureB;
 
+// region: table1
 void main()
 {
   vec3 aabbMinA = texture(minTextureA, uvA).xyz;
@@ -25,3 +26,4 @@ void main()
     discard; // no overlap
   color = vec4(1.0, 0.0, 0.0, 0.0);
 }
+// endregion

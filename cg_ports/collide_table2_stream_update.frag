@@ -14,6 +14,7 @@ uniform int nMax;
 layout(location = 0) out vec4 COLOR0;
 layout(location = 1) out vec4 COLOR1;
 
+// region: table2
 void main()
 {
   int k = int(gl_FragCoord.x);
@@ -30,3 +31,4 @@ void main()
   COLOR0 = vec4(lower, 1.0);
   COLOR1 = vec4(upper, 1.0);
 }
+// endregion

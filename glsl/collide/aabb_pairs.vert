@@ -10,6 +10,7 @@ uniform vec2 u_viewport; // viewport size in pixels
 out float uvA;           // TEXCOORD0 of paper Table I
 out float uvB;           // TEXCOORD1
 
+// region: stream-pairing
 void main() {
     vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
     vec2 pixel = mix(u_rect.xy, u_rect.zw, corner);
@@ -17,3 +18,4 @@ void main() {
     uvB = corner.x;
     gl_Position = vec4(pixel / u_viewport * 2.0 - 1.0, 0.0, 1.0);
 }
+// endregion

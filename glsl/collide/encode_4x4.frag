@@ -7,6 +7,7 @@
 uniform sampler2D u_level; // P_i
 out vec4 o_mask;
 
+// region: encode-4x4
 void main() {
     ivec2 size = textureSize(u_level, 0);
     ivec2 base = ivec2(gl_FragCoord.xy) * 4;
@@ -24,3 +25,4 @@ void main() {
     }
     o_mask = vec4(float(m), 0.0, 0.0, 0.0);
 }
+// endregion

@@ -10,7 +10,9 @@ in vec2 v_uv;
 uniform sampler1D u_stencil_a; // rows: S^X
 uniform sampler1D u_stencil_b; // columns: S^Y
 
+// region: stencil-mask
 void main() {
     if (texture(u_stencil_a, v_uv.y).r < 0.5 || texture(u_stencil_b, v_uv.x).r < 0.5)
         discard;
 }
+// endregion

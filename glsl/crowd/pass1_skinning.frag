@@ -23,6 +23,7 @@ uniform int u_row_characters; // characters per row
 layout(location = 0) out vec4 o_position;
 layout(location = 1) out vec4 o_normal;
 
+// region: pass1-main
 void main() {
     int block = int(gl_FragCoord.y) / u_vertices;
     int v = int(gl_FragCoord.y) - block * u_vertices;            // vertex index
@@ -44,3 +45,4 @@ void main() {
     o_position = vec4(position, 1.0);
     o_normal = vec4(normalize(normal), 0.0);
 }
+// endregion

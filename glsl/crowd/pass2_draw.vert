@@ -11,7 +11,9 @@ uniform mat4 u_view_projection;
 
 out vec3 v_normal;
 
+// region: pass2-main
 void main() {
     v_normal = a_normal.xyz;
     gl_Position = u_view_projection * vec4(a_position.xyz, 1.0);
 }
+// endregion

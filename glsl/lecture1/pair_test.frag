@@ -24,6 +24,7 @@ vec4 corner(sampler2D tris, int per_row, int t, int c) {
     return texelFetch(tris, ivec2(3 * (t % per_row) + c, t / per_row), 0);
 }
 
+// region: pair-test-main
 void main() {
     int i = u_first.x + int(gl_FragCoord.y);
     int j = u_first.y + int(gl_FragCoord.x);
@@ -38,3 +39,4 @@ void main() {
         discard;
     color = vec4(1.0, 0.0, 0.0, 0.0);
 }
+// endregion

@@ -20,6 +20,7 @@ vec2 covered(ivec2 c) {
     return vec2(clamp(u_image - c * u_below_span, ivec2(0), u_below_span));
 }
 
+// region: pyramid-level
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy) * 2;
     ivec2 q = min(p + 1, u_below_size - 1);
@@ -41,3 +42,4 @@ void main() {
         o_value = total > 0.0 ? (w.x * a + w.y * b + w.z * c + w.w * d) / total : vec4(0.0);
     }
 }
+// endregion

@@ -16,6 +16,7 @@ layout(location = 1) out vec4 o_sum1;
 layout(location = 2) out vec4 o_sum2;
 #endif
 
+// region: accumulate
 void main()
 {
     // Only pixels this peel reached; their targets are added by the blend.
@@ -27,3 +28,4 @@ void main()
     o_sum2 = texelFetch(u_peel2, pixel, 0);
 #endif
 }
+// endregion

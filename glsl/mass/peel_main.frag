@@ -14,6 +14,7 @@ uniform float u_facing_sign;
 // the kept fragment is a back face (n_z < 0, seen from above) and 0 where it is a front
 // face (src/mass/peel.rs), so this shader writes no mark of its own.
 
+// region: peel-main
 void main()
 {
     // Peel away everything up to the previous layer.
@@ -32,3 +33,4 @@ void main()
         for (int i = 0; i < FragData.length(); ++i) FragData[i] = -FragData[i];
     }
 }
+// endregion

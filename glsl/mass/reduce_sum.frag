@@ -39,6 +39,7 @@ vec4 block_sum(sampler2D source, ivec2 corner)
     return s;
 }
 
+// region: reduce-sum
 void main()
 {
     // Output texel (x, y) covers input texels FAN_IN (x, y) .. FAN_IN (x, y) + FAN_IN - 1.
@@ -50,3 +51,4 @@ void main()
     o_sum2 = block_sum(u_source2, corner);
 #endif
 }
+// endregion

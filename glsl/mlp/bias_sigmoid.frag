@@ -15,7 +15,9 @@ in float v_bias;
 
 layout(location = 0) out float o_result; // R, L wide, M high: the next layer's texture X
 
+// region: bias-sigmoid
 void main() {
     float m = R24(R24(texture(u_product, v_product).r) + R24(texture(u_bias, v_bias).r));
     o_result = u_sigmoid ? R24(1.0 / R24(1.0 + R24(exp(-m)))) : m;
 }
+// endregion

@@ -11,6 +11,7 @@ uniform sampler2D u_w; // N wide, M high, R32F: texel (k, i) = w_ik
 uniform sampler2D u_x; // L wide, N high, R32F: texel (j, k) = x_kj
 uniform int u_n;       // N, the inputs of the layer
 
+// region: inner-product
 float inner_product(float w_row, float x_column, int k_begin, int k_end, float sum) {
     float dk = 1.0 / float(u_n);
     for (int k = k_begin; k < k_end; ++k) {
@@ -23,3 +24,4 @@ float inner_product(float w_row, float x_column, int k_begin, int k_end, float s
     }
     return sum;
 }
+// endregion

@@ -13,6 +13,8 @@ in float v_x_column;
 
 layout(location = 0) out float o_product; // texture W x X, L wide, M high
 
+// region: product-main
 void main() {
     o_product = inner_product(v_w_row, v_x_column, u_k_begin, u_k_end, 0.0);
 }
+// endregion

@@ -197,12 +197,14 @@ impl Reduction {
     }
 
     fn encode_hierarchical(&self, p0: &Texture) -> Result<(), GlError> {
+        // region: encode-hierarchical
         let mut source = p0;
         for (level, name) in self.levels.iter().zip(ENCODE_4X4_PASSES) {
             self.encode(&self.encode4, source, level, name)?;
             source = &level.texture;
         }
         Ok(())
+        // endregion
     }
 
     fn encode(

@@ -24,6 +24,7 @@ impl StreamUpdate {
 
     /// Refit the boxes of one segment to its (already uploaded) vertex texture.
     pub fn run(&self, vertices: &VertexTexture, aabb: &AabbTextures) -> Result<(), GlError> {
+        // region: stream-update
         let mut pass = aabb
             .targets
             .pass(&self.program, "stream update (Table II)")?;
@@ -31,5 +32,6 @@ impl StreamUpdate {
             .uniform("nMax", vertices.layout.height as i32)
             .uniform("u_pad", 1.0 / vertices.layout.width as f32);
         pass.draw_attributeless(Primitive::Lines, 2, 1)
+        // endregion
     }
 }

@@ -74,6 +74,7 @@ impl StreamingTest {
         x: &AabbTextures,
         y: &AabbTextures,
     ) -> Result<(), GlError> {
+        // region: stencil-arrays
         target.framebuffer.clear_depth_stencil(1.0, 0)?;
         let mut pass = target.framebuffer.pass(&self.mask, "stencil arrays")?;
         pass.state(DrawState {
@@ -84,6 +85,7 @@ impl StreamingTest {
         .texture("u_stencil_a", &x.stencil)
         .texture("u_stencil_b", &y.stencil);
         pass.draw_full()
+        // endregion
     }
 
     /// The overlap pass (Table I) over the stencil set by [`StreamingTest::set_stencil`];
@@ -106,6 +108,7 @@ impl StreamingTest {
         y: &AabbTextures,
         rect: Option<Rect>,
     ) -> Result<u64, GlError> {
+        // region: overlap-pass
         target.framebuffer.clear_color(0, [0.0; 4])?;
         let mut pass = target.framebuffer.pass(&self.overlap, OVERLAP_PASS)?;
         pass.state(DrawState {
@@ -124,5 +127,6 @@ impl StreamingTest {
         self.query.end();
         drawn?;
         self.query.samples()
+        // endregion
     }
 }

@@ -127,6 +127,7 @@ pub fn test_caps(
     predicate: Predicate,
 ) -> PrimitiveResult {
     let mut out = PrimitiveResult::default();
+    // region: primitive-test
     for &(lx, ly) in caps {
         let tx = &x.stream.leaves[lx as usize].triangles;
         let ty = &y.stream.leaves[ly as usize].triangles;
@@ -141,6 +142,7 @@ pub fn test_caps(
         }
     }
     out.pairs.sort_unstable();
+    // endregion
     out
 }
 

@@ -53,9 +53,11 @@ impl BoneTextures {
         if characters == 0 {
             return Ok(());
         }
+        // region: bone-textures
         for (texture, data) in self.rows.iter().zip(pack_rows(matrices)) {
             texture.upload_region_f32(0, 0, self.bones, characters, &data)?;
         }
+        // endregion
         Ok(())
     }
 }

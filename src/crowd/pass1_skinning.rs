@@ -112,6 +112,7 @@ impl Pass1 {
                 vertices.vertices, target.characters, target.vertices, bones.capacity
             )));
         }
+        // region: pass1
         let mut pass = target.framebuffer.pass(&self.program, SKINNING_PASS)?;
         pass.texture("u_position", &vertices.position)
             .texture("u_normal", &vertices.normal)
@@ -126,5 +127,6 @@ impl Pass1 {
             target.row_characters.min(n),
             target.rows_for(n),
         ))
+        // endregion
     }
 }

@@ -78,6 +78,7 @@ impl Pass2 {
         n: usize,
         index_count: usize,
     ) -> Result<(), GlError> {
+        // region: pass2
         let mut pass = scene.pass(&self.program, "crowd pass 2 (draw from VBO)")?;
         pass.state(scene_state())
             .uniform("u_view_projection", shading.view_projection)
@@ -86,5 +87,6 @@ impl Pass2 {
         // One draw per character; the state is the same for all of them, so it is set once.
         let characters: Vec<&VertexArray> = arrays.arrays[..n].iter().collect();
         pass.draw_elements_each(&characters, Primitive::Triangles, 0, index_count)
+        // endregion
     }
 }

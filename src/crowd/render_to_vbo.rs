@@ -60,6 +60,7 @@ impl SkinnedVbo {
                 self.vertices
             )));
         }
+        // region: copy-to-vbo
         let rows = Rect::sized(self.row_characters, target.rows_for(n));
         target
             .framebuffer
@@ -68,6 +69,7 @@ impl SkinnedVbo {
         target
             .framebuffer
             .read_into_buffer(1, rows, &self.buffer, normals)
+        // endregion
     }
 
     /// Bytes between consecutive vertices of one character (a row of the target).

@@ -45,6 +45,7 @@ pub struct VertexTextures {
 
 impl VertexTextures {
     pub fn upload(ctx: &Context, mesh: &SkinnedMesh) -> Result<Self, GlError> {
+        // region: vertex-textures
         let texels = pack(mesh);
         let m = mesh.vertex_count() as u32;
         let texture = |data: &[f32]| -> Result<Texture, GlError> {
@@ -59,5 +60,6 @@ impl VertexTextures {
             bone_weight: texture(&texels.bone_weight)?,
             vertices: m,
         })
+        // endregion
     }
 }

@@ -226,6 +226,17 @@ pub fn glyph_for(width: u32) -> u32 {
     }
 }
 
+/// The width from which a picture's text is 16 pixels high ([`glyph_for`]).
+pub const LEGIBLE_WIDTH: u32 = 640;
+
+/// `size` grown by the smallest whole factor that makes it at least [`LEGIBLE_WIDTH`] wide:
+/// shown at its own size, the picture's titles and key numbers are then 16 pixels high, and
+/// texels enlarged by a whole factor stay whole.
+pub fn legible_size((width, height): (u32, u32)) -> (u32, u32) {
+    let k = LEGIBLE_WIDTH.div_ceil(width.max(1));
+    (width * k, height * k)
+}
+
 const MARGIN: u32 = 4;
 const BAR: u32 = 8;
 
@@ -633,6 +644,14 @@ pub fn rows_from_bottom(image: &RgbaImage) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn legible_sizes_grow_by_whole_factors_to_the_large_font() {
+        assert_eq!(legible_size((256, 100)), (768, 300));
+        assert_eq!(legible_size((640, 10)), (640, 10));
+        assert_eq!(legible_size((900, 10)), (900, 10));
+        assert_eq!(glyph_for(legible_size((1, 1)).0), 16);
+    }
 
     fn panel(values: Vec<f32>, w: u32, h: u32) -> Panel {
         let scale = Scale::of([values.as_slice()]);

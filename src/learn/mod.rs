@@ -359,7 +359,7 @@ impl LessonRun {
             let Some(d) = &self.checks[k].difference else {
                 continue;
             };
-            let size = picture_size(d.width, d.height, d.channels);
+            let size = picture::legible_size(picture_size(d.width, d.height, d.channels));
             let panels = self.checks[k].difference_panels();
             let image = image::DynamicImage::ImageRgba8(picture::picture(&panels, size).0);
             let png = LessonRun::difference_file(k);
@@ -402,7 +402,7 @@ impl LessonRun {
     /// Buffer `i`'s picture: its panels with titles and colour keys.
     pub fn picture(&self, i: usize) -> image::RgbaImage {
         let b = &self.buffers[i];
-        let size = picture_size(b.width, b.height, b.channels);
+        let size = picture::legible_size(picture_size(b.width, b.height, b.channels));
         picture::picture(&self.panels(i), size).0
     }
 

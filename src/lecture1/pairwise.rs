@@ -62,6 +62,7 @@ impl TriangleTexture {
             ))
             .into());
         }
+        // region: triangle-texture
         let mut texels = vec![0.0f32; 4 * 3 * per_row * rows];
         for (t, tri) in mesh.triangles.iter().enumerate() {
             for (c, &v) in tri.iter().enumerate() {
@@ -70,6 +71,7 @@ impl TriangleTexture {
                 texels[at..at + 4].copy_from_slice(&[p.x, p.y, p.z, v as f32]);
             }
         }
+        // endregion
         let texture = Texture::from_f32(
             ctx,
             (3 * per_row) as u32,
@@ -264,6 +266,7 @@ impl PairwiseTester {
         first: IVec2,
         self_test: bool,
     ) -> Result<u64, GlError> {
+        // region: pair-test
         target.framebuffer.clear_color(0, [0.0; 4])?;
         let mut pass = target
             .framebuffer
@@ -280,6 +283,7 @@ impl PairwiseTester {
         self.query.end();
         drawn?;
         self.query.samples()
+        // endregion
     }
 }
 
@@ -291,6 +295,7 @@ pub(super) fn confirm(
     self_test: bool,
     candidates: &[(u32, u32)],
 ) -> Vec<(u32, u32)> {
+    // region: confirm
     let corners = |m: &Mesh, t: u32| -> [Vec3; 3] { m.triangle(t as usize) };
     let mut pairs: Vec<(u32, u32)> = candidates
         .iter()
@@ -302,4 +307,5 @@ pub(super) fn confirm(
         .collect();
     pairs.sort_unstable();
     pairs
+    // endregion
 }

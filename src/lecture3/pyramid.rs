@@ -281,11 +281,13 @@ impl PyramidBuilder {
                 values.len()
             )));
         }
+        // region: pyramid-upload
         let pyramid = self.allocate(width, height, extreme)?;
         pyramid
             .texture
             .upload_f32(&padded(width, height, values, extreme).values)?;
         self.build_levels(&pyramid)?;
+        // endregion
         Ok(pyramid)
     }
 
@@ -294,6 +296,7 @@ impl PyramidBuilder {
     /// its render target).
     pub fn build_levels(&self, pyramid: &Pyramid) -> Result<(), GlError> {
         let texture = &pyramid.texture;
+        // region: pyramid-levels
         let result = (1..texture.levels()).try_for_each(|level| {
             texture.set_level_range(level - 1, level - 1)?;
             let (below_w, below_h) = texture.level_size(level - 1);
@@ -315,6 +318,7 @@ impl PyramidBuilder {
                 )
                 .draw_full()
         });
+        // endregion
         texture.set_level_range(0, texture.levels() - 1)?;
         result
     }

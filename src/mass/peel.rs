@@ -586,6 +586,7 @@ impl Peeler {
             let drawing: Vec<usize> = (0..groups.len()).filter(|&g| active[g]).collect();
             let counted = &queries[..drawing.len()];
             self.pass("mass: one peel (all bodies)", || {
+                // region: peel-pass
                 let mut pass = target.pass(&self.peel_program, PEEL_PASS)?;
                 pass.state(peel_state(layer == 0))
                     .texture("u_peel_depth", &previous)
@@ -606,6 +607,7 @@ impl Peeler {
                     self.peel_end.test(&target, &drawing)?;
                 }
                 Ok(())
+                // endregion
             })?;
             let (samples, more) = self.pass("mass: occlusion queries", || {
                 let samples = OcclusionQuery::samples_of(counted)?;

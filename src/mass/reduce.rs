@@ -171,6 +171,7 @@ impl Accumulator {
         depth: &Texture,
         tiles: &[Rect],
     ) -> Result<(), GlError> {
+        // region: add-peel
         let mut pass = self.target.pass(&self.program, "mass: accumulate a peel")?;
         pass.state(DrawState {
             blend: Some(Blend::Add),
@@ -184,6 +185,7 @@ impl Accumulator {
             pass.draw_rect(tile)?;
         }
         Ok(())
+        // endregion
     }
 
     /// The running sums' textures (the water patch adds into them).
@@ -213,6 +215,7 @@ impl Accumulator {
             None => fan_ins(passes_for(w, h)),
         };
         let mut index = 0;
+        // region: reduce-passes
         for (level, &fan_in) in levels.iter().enumerate() {
             let (out_w, out_h) = (w.div_ceil(fan_in), h.div_ceil(fan_in));
             let source = if level == 0 {
@@ -231,6 +234,7 @@ impl Accumulator {
             (w, h) = (out_w, out_h);
             index = 1 - index;
         }
+        // endregion
         let result = if levels.is_empty() {
             source_target
         } else {

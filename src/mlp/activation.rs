@@ -31,10 +31,12 @@ pub fn activation_pass(
     product: &Texture,
     target: &Framebuffer,
 ) -> Result<(), GlError> {
+    // region: activation-pass
     target
         .pass(program, ACTIVATION_PASS)?
         .texture("u_product", product)
         .texture("u_bias", &layer.bias)
         .uniform("u_sigmoid", layer.activation == Activation::Sigmoid)
         .draw_full()
+    // endregion
 }

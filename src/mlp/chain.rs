@@ -260,6 +260,7 @@ impl GpuNetwork<'_> {
         times.texture_creation = start.elapsed().as_secs_f64() * 1e3;
         let mut timers = PassTimers::new();
         let mut last = None;
+        // region: layer-chain
         for layer in layers {
             let ranges = pass_ranges(layer.n as usize, self.inputs_per_pass);
             let targets = product_targets(ctx, l, layer.m, ranges.len())?;
@@ -273,6 +274,7 @@ impl GpuNetwork<'_> {
             x = result.color(0).clone();
             last = Some(result);
         }
+        // endregion
         let result = last.expect("a network has layers");
         let start = Instant::now();
         let data = result.read_f32(0, result.rect())?; // M rows of L

@@ -94,6 +94,7 @@ pub fn product_passes<'t>(
 ) -> Result<&'t Framebuffer, GlError> {
     debug_assert_eq!(x.height(), layer.n);
     debug_assert!(ranges.len() == 1 || targets.len() == 2);
+    // region: product-passes
     for (p, k) in ranges.iter().enumerate() {
         let target = &targets[p % targets.len()];
         debug_assert_eq!(target.height(), layer.m);
@@ -112,6 +113,7 @@ pub fn product_passes<'t>(
             .uniform("u_k_end", k.end as i32)
             .draw_full()?;
     }
+    // endregion
     Ok(&targets[(ranges.len() - 1) % targets.len()])
 }
 

@@ -27,11 +27,13 @@ pub struct LayerTextures {
 
 /// Texture W and the bias texture of a layer.
 pub fn layer_textures(ctx: &Context, layer: &Layer) -> Result<LayerTextures, GlError> {
+    // region: weight-textures
     let (m, n) = (layer.outputs() as u32, layer.inputs() as u32);
     let weights: Vec<f32> = layer.weights.iter().copied().collect(); // row-major: texel (k, i)
     let w = Texture::from_f32(ctx, n, m, TextureFormat::R32F, &weights)?;
     let bias = Texture::new_1d(ctx, m, TextureFormat::R32F)?;
     bias.upload_f32(layer.bias.as_slice().expect("contiguous bias"))?;
+    // endregion
     Ok(LayerTextures {
         w,
         bias,
@@ -44,7 +46,9 @@ pub fn layer_textures(ctx: &Context, layer: &Layer) -> Result<LayerTextures, GlE
 /// Texture X of a batch (L x N, row j = input vector j): the input vectors become the
 /// texture's columns, the paper's "accumulating a lot of input feature vectors".
 pub fn input_texture(ctx: &Context, batch: ArrayView2<f32>) -> Result<Texture, GlError> {
+    // region: input-texture
     let (l, n) = batch.dim();
     let transposed: Vec<f32> = batch.t().iter().copied().collect(); // texel (j, k) = x_kj
     Texture::from_f32(ctx, l as u32, n as u32, TextureFormat::R32F, &transposed)
+    // endregion
 }

@@ -66,6 +66,9 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
     }
     write("reading.html", reading_page())?;
     write("glossary.html", glossary_page())?;
+    for name in super::walks::write_pages(ctx, staging)? {
+        pages.push(dir.join(name));
+    }
     let verdicts = lessons
         .iter()
         .zip(&runs)
@@ -99,7 +102,8 @@ image-rendering:pixelated;display:block;margin-top:.3em}.arrow{font-size:140%;co
 .pass{color:#070}td,th{text-align:left}.fail{color:#b00}code{background:#f2f2f2;padding:0 .2em}\
 pre.code{background:#f7f7f2;border:1px solid #ccc;padding:.5em;overflow-x:auto;margin-top:0}\
 pre.code code{background:none;padding:0}.where{font-size:85%;color:#555;margin-top:.8em}\
-mark{background:#ffe08a}details{margin:.5em 0}";
+mark{background:#ffe08a}details{margin:.5em 0}\
+.full{overflow-x:auto}.full img{max-width:none;image-rendering:pixelated}";
 
 fn verdict(run: &Result<LessonRun, String>) -> String {
     match run {
@@ -151,6 +155,7 @@ fn index_page(
         "<p>Then: the <a href=\"reading.html\">reading order</a> from the lessons into the \
          papers, and the <a href=\"glossary.html\">glossary</a>.</p>\n",
     );
+    body.push_str(&walk_links());
     page("Learn classic GPGPU", &body)
 }
 
@@ -300,14 +305,15 @@ fn run_sections(info: &crate::learn::LessonInfo, run: &LessonRun) -> String {
         if let Some(picture) = &pass.picture {
             let src = format!("pictures/{}/{}", info.id, picture);
             out.push_str(&format!(
-                "<span class=\"arrow\">&rarr;</span><div class=\"box\">buffer<img src=\"{}\" \
-                 alt=\"{}\"></div>",
+                "<span class=\"arrow\">&rarr;</span><div class=\"box\">buffer<a href=\"{0}\">\
+                 <img src=\"{0}\" alt=\"{1}\"></a></div>",
                 escape(&src),
                 escape(&pass.name)
             ));
         }
         out.push_str("</div>\n");
     }
+    out.push_str(&full_size_buffers(info, run));
     out.push_str(
         "<h2>The checks against the CPU</h2>\n<table><tr><th>check</th><th>error</th>\
          <th>tolerance</th><th>verdict</th></tr>\n",
@@ -344,6 +350,28 @@ fn run_sections(info: &crate::learn::LessonInfo, run: &LessonRun) -> String {
         ));
     }
     out
+}
+
+/// Every buffer of the passes at its own size, its key's numbers as drawn (16 pixels high:
+/// the lessons draw their pictures at least [`crate::gl::picture::LEGIBLE_WIDTH`] wide), each
+/// opening by itself.
+fn full_size_buffers(info: &crate::learn::LessonInfo, run: &LessonRun) -> String {
+    let mut out = String::new();
+    for pass in &run.passes {
+        if let Some(picture) = &pass.picture {
+            let src = escape(&format!("pictures/{}/{}", info.id, picture));
+            out.push_str(&format!(
+                "<figure><figcaption>{}</figcaption><div class=\"full\"><a href=\"{src}\">\
+                 <img src=\"{src}\" alt=\"{}\"></a></div></figure>\n",
+                escape(&pass.name),
+                escape(&pass.name)
+            ));
+        }
+    }
+    if out.is_empty() {
+        return out;
+    }
+    format!("<h2>The buffers at full size</h2>\n{out}")
 }
 
 fn exercises(info: &crate::learn::LessonInfo) -> String {
@@ -582,8 +610,26 @@ fn reading_page() -> String {
         body.push_str("</p></li>\n");
     }
     body.push_str("</ol>\n");
+    body.push_str(&walk_links());
     body.push_str(&terms_used(&all_text));
     page("Reading order", &body)
+}
+
+/// The papers and lectures walked pass by pass ([`super::walks`]), as a list of links.
+fn walk_links() -> String {
+    let mut out = String::from(
+        "<h2>Each paper walked pass by pass</h2>\n<p>Every pass in the order it runs: its \
+         section, its code, the buffer it wrote and the lesson it builds on.</p>\n<ul>\n",
+    );
+    for walk in super::walks::all() {
+        out.push_str(&format!(
+            "<li><a href=\"{}\">{}</a></li>\n",
+            super::walks::page_file(walk.id),
+            escape(walk.title)
+        ));
+    }
+    out.push_str("</ul>\n");
+    out
 }
 
 /// A glossary entry: the term, its anchor, the words that show a page uses it, and what it

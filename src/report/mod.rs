@@ -30,6 +30,7 @@ pub mod report_folder;
 pub mod reproduce;
 pub mod selftest;
 pub mod then_and_now;
+pub mod walks;
 /// The timing policy lives below the papers ([`crate::timing`]); this path stays for the
 /// report's own imports.
 pub use crate::timing;
