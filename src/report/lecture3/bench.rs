@@ -106,6 +106,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         |p| p.display().to_string(),
     );
     let stage = |name: &str| {
+        crate::timing::mark(&format!("lecture3: before {name}"));
         let bar = opts.progress.add(indicatif::ProgressBar::new_spinner());
         bar.set_message(format!("lecture 3: {name}"));
         bar
@@ -130,11 +131,13 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
 
     let bar = stage("pyramidal displacement mapping");
     let prefilter = super::prefilter::measure(opts, &map, runs)?;
+    crate::timing::mark("lecture3: prefilter");
     let displacement = displacement(opts, map, map_name, runs)?;
     load = Load::worst(load, Load::now());
     bar.finish_and_clear();
     let bar = stage("light hierarchy");
     let light = light(opts, runs)?;
+    crate::timing::mark("lecture3: light");
     let light_uses = super::light_uses::measure(opts, ctx)?;
     bar.finish_and_clear();
     let bar = stage("function in a texture");
@@ -166,6 +169,7 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
         })
         .collect::<anyhow::Result<_>>()?;
     bar.finish_and_clear();
+    crate::timing::mark("lecture3: histogram");
     Ok(Lecture3Results {
         renderer: ctx.info().renderer_line(),
         renderer_name: ctx.info().renderer.clone(),

@@ -295,6 +295,7 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
     }
     drop(scope);
     bar.finish_and_clear();
+    crate::timing::mark("paper1: Table III scenes");
     let scenes_load = Load::now();
     let tori_leaf_size = args.leaf_size.unwrap_or(DEFAULT_LEAF_SIZE);
     let cullide_resolutions = study(opts, "CULLIDE resolutions", || {
@@ -380,7 +381,9 @@ fn study<T>(
     run: impl FnOnce() -> anyhow::Result<T>,
 ) -> anyhow::Result<T> {
     let _scope = profile::scope(opts.gl, name);
-    run()
+    let out = run();
+    crate::timing::mark(&format!("paper1: {name}"));
+    out
 }
 
 /// One model as the tests see it: mesh, current positions, stream.

@@ -192,6 +192,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         models::PAPER_OBJECTS.len() as u64
     ));
     bar.set_message("mass properties, paper objects");
+    crate::timing::mark("paper4: start");
     let mut objects = Vec::new();
     for name in models::PAPER_OBJECTS {
         objects.push(measure_object(
@@ -201,6 +202,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
             opts.runs(QUICK_RUNS),
         )?);
         bar.inc(1);
+        crate::timing::mark(&format!("paper4: object {name}"));
     }
     bar.finish_and_clear();
     let objects_load = Load::now();
@@ -208,23 +210,29 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let bunny = models::paper_object("bunny").expect("bunny");
     let peel_orders = peel_orders(opts.gl, &bunny, opts.runs(QUICK_RUNS))?;
     let profile_bunny_64 = profile_bunny(opts.gl, &bunny)?;
+    crate::timing::mark("paper4: peel orders, bunny profile");
     let mut scene = measure_scene(opts, steps)?;
+    crate::timing::mark("paper4: buoyancy scene");
     let targets = speed_targets(opts, &objects)?;
+    crate::timing::mark("paper4: race");
     // The CPU solver's rate is the race's: it runs that solver on the same scene already.
     scene.run.cpu_solver_steps_per_second = targets.buoyancy_cpu_steps_per_second;
     scene.run.race_gpu_steps_per_second = targets.buoyancy_gpu_steps_per_second;
+    let fig10_peels = buoyant_bunny_peels(opts)?;
+    let then_and_now = super::then_and_now::measure(opts)?;
+    crate::timing::mark("paper4: fig10, then and now");
+    let then_and_now_buoyancy =
+        super::then_and_now_buoyancy::measure(opts, (!opts.quick).then_some(scene.settled))?;
+    crate::timing::mark("paper4: then and now, buoyancy");
     Ok(Paper4Results {
         renderer: opts.gl.info().renderer_line(),
         quick: opts.quick,
         objects,
         objects_load,
         buoyancy: scene.run,
-        fig10_peels: buoyant_bunny_peels(opts)?,
-        then_and_now: super::then_and_now::measure(opts)?,
-        then_and_now_buoyancy: super::then_and_now_buoyancy::measure(
-            opts,
-            (!opts.quick).then_some(scene.settled),
-        )?,
+        fig10_peels,
+        then_and_now,
+        then_and_now_buoyancy,
         peel_orders,
         targets,
         profile_bunny_64,
