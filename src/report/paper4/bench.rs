@@ -59,6 +59,10 @@ pub struct PeelOrderRun {
 pub struct SpeedTargets {
     /// `mass bunny --resolution 64`: GPU wall clock over Mirtich's analytic time.
     pub mass_bunny_64_gpu_over_analytic: f64,
+    /// The same passes with the layer count given in advance (no stopping test: no occlusion
+    /// query read between two peels), over Mirtich's time: what the test's waits cost.
+    #[serde(default)]
+    pub mass_bunny_64_without_stopping_test: f64,
     /// Buoyancy, 50 bodies at 32x32 over the first `buoyancy_steps` steps (drop and
     /// plunge included): GPU solver steps/s over the CPU reference solver's.
     pub buoyancy_gpu_over_cpu: f64,
@@ -301,6 +305,7 @@ fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<S
         .find(|r| r.resolution == 64)
         .map(|r| r.gpu_wall_ms / bunny.analytic_ms)
         .ok_or_else(|| anyhow::anyhow!("paper 4: no 64x64 run of the bunny"))?;
+    let without_test = without_stopping_test(opts, 64)? / bunny.analytic_ms;
     let (steps, rounds) = if opts.quick { (30, 1) } else { (120, 3) };
     let setup = race::RaceSetup {
         bodies: 50,
@@ -313,12 +318,27 @@ fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<S
     let race = race::run(opts.gl, setup, PeelSettings::default()).map_err(anyhow::Error::msg)?;
     Ok(SpeedTargets {
         mass_bunny_64_gpu_over_analytic: at64,
+        mass_bunny_64_without_stopping_test: without_test,
         buoyancy_gpu_over_cpu: race.gpu_over_cpu.median,
         buoyancy_steps: steps,
         buoyancy_gpu_steps_per_second: race.gpu_steps_per_second,
         buoyancy_cpu_steps_per_second: race.cpu_steps_per_second,
         buoyancy_target: 1.0,
         buoyancy_race: race,
+    })
+}
+
+/// Median wall clock (ms) of the bunny at `resolution` with the layer count of a first run
+/// given in advance: the same passes without the stopping test's occlusion queries.
+fn without_stopping_test(opts: &BenchOptions, resolution: u32) -> anyhow::Result<f64> {
+    let bunny = models::paper_object("bunny").expect("bunny");
+    let gpu = GpuMass::new(opts.gl, resolution)?;
+    let first = gpu.integrate(&bunny, None, None)?;
+    gpu.set_known_layers(Some(first.peels));
+    median_ms(opts.runs(QUICK_RUNS), || {
+        let start = Instant::now();
+        gpu.integrate(&bunny, None, None)?;
+        Ok(start.elapsed().as_secs_f64() * 1e3)
     })
 }
 
