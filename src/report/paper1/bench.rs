@@ -301,7 +301,9 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
     let cullide_resolutions = study(opts, "CULLIDE resolutions", || {
         cullide_resolutions(opts, tori_leaf_size)
     })?;
+    crate::timing::mark("paper1: CULLIDE resolutions");
     let fig7 = study(opts, "Fig. 7 readback curves", || fig7(opts))?;
+    crate::timing::mark("paper1: Fig. 7 readback curves");
     let fig7_load = Load::now();
     let software = opts.gl.info().is_software();
     Ok(Paper1Results {
@@ -381,9 +383,7 @@ fn study<T>(
     run: impl FnOnce() -> anyhow::Result<T>,
 ) -> anyhow::Result<T> {
     let _scope = profile::scope(opts.gl, name);
-    let out = run();
-    crate::timing::mark(&format!("paper1: {name}"));
-    out
+    run()
 }
 
 /// One model as the tests see it: mesh, current positions, stream.
