@@ -376,6 +376,54 @@ pub fn judge_under_load(holds: bool, load: Option<Load>) -> TimedVerdict {
     }
 }
 
+/// The environment variable that turns on [`mark`]: `CLASSIC_GPGPU_MARKS=1`.
+pub const MARKS_ENV: &str = "CLASSIC_GPGPU_MARKS";
+
+/// With `CLASSIC_GPGPU_MARKS=1` set, prints to stderr the wall clock and the process's CPU
+/// time (every thread: the software renderer's too) since the previous mark, labelled
+/// `what`: where a section's time goes, step by step, counted in CPU seconds (less
+/// sensitive than wall time to other work on a shared machine). Nothing without the
+/// variable.
+pub fn mark(what: &str) {
+    use std::sync::Mutex;
+    static LAST: Mutex<Option<(Instant, f64)>> = Mutex::new(None);
+    if std::env::var_os(MARKS_ENV).is_none() {
+        return;
+    }
+    let now = (Instant::now(), process_cpu_s());
+    let mut last = LAST.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((wall, cpu)) = *last {
+        eprintln!(
+            "mark {what}: {:.2} s wall, {:.2} s CPU",
+            now.0.duration_since(wall).as_secs_f64(),
+            now.1 - cpu
+        );
+    } else {
+        eprintln!("mark {what}: first mark");
+    }
+    *last = Some(now);
+}
+
+/// CPU time of this process so far (user + system, all threads), s, from `/proc/self/stat`
+/// (USER_HZ ticks, 100 per second on Linux); 0 where there is no such file.
+pub fn process_cpu_s() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // The fields after the command name (which may hold spaces) follow its ')'.
+    let Some((_, rest)) = stat.rsplit_once(')') else {
+        return 0.0;
+    };
+    // utime and stime: fields 14 and 15 of the line, 11 and 12 after the name.
+    let ticks: f64 = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|f| f.parse::<f64>().ok())
+        .sum();
+    ticks / 100.0
+}
+
 /// What `--runs` makes of the timings, as the report states it.
 pub fn runs_policy(runs: Option<usize>, quick: bool) -> String {
     match runs {

@@ -227,6 +227,46 @@ fn the_race_gives_a_ratio_per_round() {
     assert!(race::run(&ctx, empty, PeelSettings::default()).is_err());
 }
 
+/// A round taken beside another run of the GPU solver (the report's scene): the CPU solver
+/// steps only while the round lasts and is timed on its own copy of the scene; the race then
+/// runs only the rounds left, and its rates count the round given with its own.
+#[test]
+fn a_round_run_beside_the_scene_counts_as_the_race_s_first() {
+    let ctx = context();
+    let setup = RaceSetup {
+        bodies: 2,
+        resolution: 16,
+        steps: 3,
+        rounds: 2,
+        dt: 1.0 / 60.0,
+        extra_damping: false,
+    };
+    let mut beside = race::Beside::new(&setup).unwrap();
+    for k in 0..5 {
+        assert_eq!(beside.round().is_some(), k >= 3, "after {k} steps");
+        beside.step(10.0).unwrap();
+    }
+    let round = beside.round().unwrap();
+    assert_eq!(round.gpu_ms, 30.0, "only the round's three steps count");
+    assert!(round.cpu_ms.is_finite() && round.cpu_ms > 0.0);
+    let r = race::run_after(&ctx, setup, PeelSettings::default(), vec![round], None).unwrap();
+    assert_eq!(r.gpu_over_cpu.runs, 2);
+    let own = |rate: f64| rate.is_finite() && rate > 0.0;
+    assert!(own(r.gpu_steps_per_second) && own(r.cpu_steps_per_second));
+    // Every round given: nothing is run, the rates are the given rounds' (3 steps in 30 ms).
+    let all_given = race::run_after(
+        &ctx,
+        setup,
+        PeelSettings::default(),
+        vec![round, round],
+        None,
+    )
+    .unwrap();
+    assert_eq!(all_given.gpu_over_cpu.runs, 2);
+    assert!((all_given.gpu_steps_per_second - 100.0).abs() < 1e-9);
+    assert_eq!(all_given.gpu_over_cpu.median, round.cpu_ms / round.gpu_ms);
+}
+
 /// `buoyancy --race`: a bad round count and a race asked to draw are clear errors; a tiny
 /// race prints its ratio and the load.
 #[test]

@@ -65,6 +65,34 @@ fn mass_json_has_every_documented_field() {
         assert_eq!(v["timings_ms"][key].as_f64(), Some(median), "{key}");
     }
     assert!(v["timings_ms"]["load"]["cores"].as_u64().unwrap() >= 1);
+    // Where the wall time goes: one run with the stopping test by pass, and the same
+    // passes timed with the layer count given in advance, by pass too.
+    let names = |passes: &serde_json::Value| -> Vec<String> {
+        passes
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p[0].as_str().unwrap().to_string())
+            .collect()
+    };
+    let with_test = &v["timings_ms"]["stop_test_waits"];
+    let with_names = names(&with_test["passes"]);
+    assert!(
+        with_names.contains(&"occlusion queries".to_string()),
+        "{with_test}"
+    );
+    let known = &v["timings_ms"]["known_layers"];
+    assert!(known["runs"]["runs"].as_u64().unwrap() >= 3, "{known}");
+    assert!(known["runs"]["median"].as_f64().unwrap() > 0.0, "{known}");
+    let known_names = names(&known["passes"]);
+    assert!(
+        known_names.contains(&"one peel (all bodies)".to_string()),
+        "{known}"
+    );
+    assert!(
+        !known_names.contains(&"occlusion queries".to_string()),
+        "{known}"
+    );
     assert!(v["framing"]["pixel_size"].as_f64().unwrap() > 0.0);
     assert_eq!(v["analytic"]["reliable"], true);
 }

@@ -404,3 +404,50 @@ fn peeling_ends_with_the_last_layer_without_an_empty_peel() {
         assert_integrals_close(name, &got.integrals, &cpu, 1e-3);
     }
 }
+
+/// The passes with the layer count given in advance (what `mass` times to show what the
+/// stopping test's waits cost) draw the same peels and give the same integrals as the
+/// paper's stopping test, read no occlusion query between peels, and draw no stencil-count
+/// quad; the test
+/// is back once the count is taken away. A wrong count gives a different result (so the
+/// count is really used). A tilted torus (4 layers at some pixels) and the same below a plane.
+#[test]
+fn peeling_with_a_known_layer_count_equals_the_stopping_test() {
+    let ctx = context();
+    let torus_mesh = torus(1.0, 0.35, 40, 20);
+    let tilted = transformed(&torus_mesh, DQuat::from_rotation_x(0.4), DVec3::ZERO);
+    for (name, below) in [
+        ("tilted torus", None),
+        ("tilted torus below z = 0.1", Some(0.1)),
+    ] {
+        let gpu = GpuMass::new(&ctx, 32).unwrap();
+        let tested = gpu.integrate(&tilted, below, None).unwrap();
+        gpu.set_known_layers(Some(tested.peels));
+        classic_gpgpu::gl::profile::start(&ctx);
+        let known = gpu.integrate(&tilted, below, None).unwrap();
+        let table = classic_gpgpu::gl::profile::finish(&ctx).unwrap();
+        assert_eq!(known.peels, tested.peels, "{name}");
+        assert_integrals_close(name, &known.integrals, &tested.integrals, 1e-6);
+        let calls = |row: &str| table.row(row).map_or(0, |r| r.calls);
+        assert_eq!(
+            calls("mass: passes 1..n, depth peel"),
+            tested.peels as u64,
+            "{name}\n{table}"
+        );
+        assert_eq!(calls("mass: occlusion queries"), 0, "{name}\n{table}");
+        assert_eq!(
+            calls("mass: another layer? (stencil count)"),
+            0,
+            "{name}\n{table}"
+        );
+        // One layer short misses the deepest layer's integrals.
+        gpu.set_known_layers(Some(tested.peels - 1));
+        let short = gpu.integrate(&tilted, below, None).unwrap();
+        assert_eq!(short.peels, tested.peels - 1, "{name}");
+        assert_ne!(short.integrals, tested.integrals, "{name}");
+        gpu.set_known_layers(None);
+        let again = gpu.integrate(&tilted, below, None).unwrap();
+        assert_eq!(again.peels, tested.peels, "{name}");
+        assert_integrals_close(name, &again.integrals, &tested.integrals, 1e-6);
+    }
+}

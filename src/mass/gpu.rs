@@ -98,6 +98,12 @@ impl GpuMass {
         self.peeler.set_settings(settings)
     }
 
+    /// Peel exactly `layers` layers, without the stopping test ([`Peeler::set_known_layers`]);
+    /// `None`: the paper's test.
+    pub fn set_known_layers(&self, layers: Option<usize>) {
+        self.peeler.set_known_layers(layers);
+    }
+
     /// The depth peeler (to capture its peels).
     pub fn peeler(&self) -> &Peeler {
         &self.peeler

@@ -59,29 +59,89 @@ fn timed_step(sim: &mut Simulation, solver: &mut dyn SubmergedSolver) -> Result<
 /// Runs the race: `setup.rounds` rounds of `setup.steps` interleaved steps of each solver.
 /// The GPU solver is made (and its programs compiled) once, before the first round.
 pub fn run(ctx: &Context, setup: RaceSetup, settings: PeelSettings) -> Result<Race, String> {
+    run_after(ctx, setup, settings, Vec::new(), Load::now())
+}
+
+/// The GPU and the CPU solver's time (ms) over one round's steps.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Round {
+    pub gpu_ms: f64,
+    pub cpu_ms: f64,
+}
+
+/// A round run beside another run of the GPU solver from the drop (the report's scene,
+/// which steps that solver anyway): after each of its first `setup.steps` steps, timed by
+/// the caller as [`Simulation::step`] times it, the CPU solver takes the same step on its
+/// own copy of the scene, timed here. The caller's solver must have made one step before
+/// (compiled and allocated), as [`run`]'s does.
+pub struct Beside {
+    sim: Simulation,
+    steps_left: usize,
+    round: Round,
+}
+
+impl Beside {
+    pub fn new(setup: &RaceSetup) -> Result<Beside, String> {
+        Ok(Beside {
+            sim: fresh(setup)?,
+            steps_left: setup.steps,
+            round: Round::default(),
+        })
+    }
+
+    /// After the caller's GPU step, which took `gpu_ms`: the CPU solver's same step, while
+    /// the round lasts.
+    pub fn step(&mut self, gpu_ms: f64) -> Result<(), String> {
+        if self.steps_left == 0 {
+            return Ok(());
+        }
+        self.steps_left -= 1;
+        self.round.gpu_ms += gpu_ms;
+        self.round.cpu_ms += timed_step(&mut self.sim, &mut AnalyticSolver)?;
+        Ok(())
+    }
+
+    /// The round, once every step of it was taken.
+    pub fn round(&self) -> Option<Round> {
+        (self.steps_left == 0).then_some(self.round)
+    }
+}
+
+/// The race of `setup` whose first rounds were run already (`done`, beside another run:
+/// [`Beside`]), from the load `load_before` of the first: the rounds left are run here.
+pub fn run_after(
+    ctx: &Context,
+    setup: RaceSetup,
+    settings: PeelSettings,
+    done: Vec<Round>,
+    load_before: Option<Load>,
+) -> Result<Race, String> {
     if setup.rounds == 0 || setup.steps == 0 {
         return Err("a race needs at least one round of one step".into());
     }
-    let shapes = fresh(&setup)?.shapes;
-    let mut gpu =
-        GpuSolver::new(ctx, &shapes, setup.bodies, setup.resolution).map_err(|e| e.to_string())?;
-    gpu.set_settings(settings).map_err(|e| e.to_string())?;
-    // One step to compile and allocate, untimed.
-    fresh(&setup)?.step(&mut gpu)?;
-    let load_before = Load::now();
-    let (mut ratios, mut gpu_total, mut cpu_total) = (Vec::new(), 0.0, 0.0);
-    for _ in 0..setup.rounds {
-        let (mut on_gpu, mut on_cpu) = (fresh(&setup)?, fresh(&setup)?);
-        let (mut g, mut c) = (0.0, 0.0);
-        for _ in 0..setup.steps {
-            g += timed_step(&mut on_gpu, &mut gpu)?;
-            c += timed_step(&mut on_cpu, &mut AnalyticSolver)?;
+    let mut rounds = done;
+    if rounds.len() < setup.rounds {
+        let shapes = fresh(&setup)?.shapes;
+        let mut gpu = GpuSolver::new(ctx, &shapes, setup.bodies, setup.resolution)
+            .map_err(|e| e.to_string())?;
+        gpu.set_settings(settings).map_err(|e| e.to_string())?;
+        // One step to compile and allocate, untimed.
+        fresh(&setup)?.step(&mut gpu)?;
+        while rounds.len() < setup.rounds {
+            let (mut on_gpu, mut on_cpu) = (fresh(&setup)?, fresh(&setup)?);
+            let mut round = Round::default();
+            for _ in 0..setup.steps {
+                round.gpu_ms += timed_step(&mut on_gpu, &mut gpu)?;
+                round.cpu_ms += timed_step(&mut on_cpu, &mut AnalyticSolver)?;
+            }
+            rounds.push(round);
         }
-        ratios.push(c / g);
-        gpu_total += g;
-        cpu_total += c;
     }
-    let steps = (setup.rounds * setup.steps) as f64;
+    let ratios: Vec<f64> = rounds.iter().map(|r| r.cpu_ms / r.gpu_ms).collect();
+    let steps = (rounds.len() * setup.steps) as f64;
+    let (gpu_total, cpu_total) = rounds
+        .iter()
+        .fold((0.0, 0.0), |(g, c), r| (g + r.gpu_ms, c + r.cpu_ms));
     Ok(Race {
         setup,
         gpu_over_cpu: Spread::of(&ratios),

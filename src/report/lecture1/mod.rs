@@ -221,12 +221,14 @@ impl Paper for Lecture1 {
             renderer: info.renderer_line(),
             software: info.is_software(),
         };
+        crate::timing::mark("lecture1: start");
         let blocks = BLOCKS
             .iter()
             .map(|(id, measure)| {
                 let mut block =
                     measure(&setting).map_err(|e| e.context(format!("lecture 1, block {id}")))?;
                 block.id = id.to_string();
+                crate::timing::mark(&format!("lecture1: {id}"));
                 Ok(block)
             })
             .collect::<anyhow::Result<Vec<_>>>()?;

@@ -28,7 +28,7 @@ pub fn table(results: &Lecture3Results) -> Table {
             "3. Indirect light from {} VPLs ({1}x{1} image) at {2}x{3} receivers: relative RMS \
              error against the brute-force sum, nodes visited per receiver, GPU time, on {4}; \
              CPU brute force (f64) {5:.0} ms, GPU brute force within {6:.1e} of it; hierarchy \
-             built in {7:.2} ms",
+             built in {7:.2} ms{8}",
             l.vpls,
             l.vpl_side,
             l.image.0,
@@ -36,7 +36,8 @@ pub fn table(results: &Lecture3Results) -> Table {
             results.renderer,
             l.brute_cpu_ms,
             l.brute_gpu_vs_cpu,
-            l.build_ms
+            l.build_ms,
+            once(l)
         ),
         header: [
             "gather",
@@ -49,6 +50,25 @@ pub fn table(results: &Lecture3Results) -> Table {
         .to_vec(),
         rows,
     }
+}
+
+/// The criteria timed once ([`super::bench::theta_runs`]: theta 0, the check against the
+/// brute force), said in the caption when others ran more.
+fn once(l: &super::results::LightRun) -> String {
+    let once: Vec<String> = l
+        .rows
+        .iter()
+        .filter(|r| r.gpu_spread.runs == 1)
+        .map(|r| r.theta.to_string())
+        .collect();
+    if once.is_empty() || l.rows.iter().all(|r| r.gpu_spread.runs == 1) {
+        return String::new();
+    }
+    format!(
+        "; theta {} timed once: it opens every cluster, a check of the tree against the brute \
+         force, and no claim takes its time",
+        once.join(", ")
+    )
 }
 
 pub fn figures(opts: &BenchOptions, results: &Lecture3Results) -> anyhow::Result<Vec<Figure>> {

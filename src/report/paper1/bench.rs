@@ -295,12 +295,15 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
     }
     drop(scope);
     bar.finish_and_clear();
+    crate::timing::mark("paper1: Table III scenes");
     let scenes_load = Load::now();
     let tori_leaf_size = args.leaf_size.unwrap_or(DEFAULT_LEAF_SIZE);
     let cullide_resolutions = study(opts, "CULLIDE resolutions", || {
         cullide_resolutions(opts, tori_leaf_size)
     })?;
+    crate::timing::mark("paper1: CULLIDE resolutions");
     let fig7 = study(opts, "Fig. 7 readback curves", || fig7(opts))?;
+    crate::timing::mark("paper1: Fig. 7 readback curves");
     let fig7_load = Load::now();
     let software = opts.gl.info().is_software();
     Ok(Paper1Results {

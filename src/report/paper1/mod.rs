@@ -87,7 +87,12 @@ impl Paper for Paper1 {
     type Results = WithPeriod<Paper1Results>;
 
     fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Self::Results> {
-        WithPeriod::measure(bench::measure(opts, args)?, opts, period::measure)
+        crate::timing::mark("paper1: start");
+        let results = bench::measure(opts, args)?;
+        crate::timing::mark("paper1: measured");
+        let with = WithPeriod::measure(results, opts, period::measure);
+        crate::timing::mark("paper1: period");
+        with
     }
 
     fn section(opts: &BenchOptions, results: &Self::Results) -> anyhow::Result<Section> {

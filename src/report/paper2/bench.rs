@@ -376,6 +376,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
             )?);
             bar.inc(Variant::ALL.len() as u64);
         }
+        crate::timing::mark(&format!("paper2: Table 1, {}", kind.name()));
         results.table1_load = [results.table1_load, Load::now()]
             .into_iter()
             .flatten()
@@ -443,9 +444,11 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
             results.sprite_runs.extend(runs.split_off(2));
             results.lod_runs.extend(runs);
         }
+        crate::timing::mark(&format!("paper2: snapshots and LOD runs, {}", kind.name()));
     }
     bar.finish_and_clear();
     results.snapshots = snapshots;
     results.then_and_now = super::then_and_now::measure(opts)?;
+    crate::timing::mark("paper2: then and now");
     Ok(results)
 }

@@ -40,9 +40,13 @@ impl Paper for Paper2 {
     type Results = WithPeriod<Paper2Results>;
 
     fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Self::Results> {
+        crate::timing::mark("paper2: start");
         let (mut results, table) = super::profile::profiled(opts.gl, || bench::measure(opts))?;
         results.profile = Some(table);
-        WithPeriod::measure(results, opts, period::measure)
+        crate::timing::mark("paper2: measured");
+        let with = WithPeriod::measure(results, opts, period::measure);
+        crate::timing::mark("paper2: period");
+        with
     }
 
     fn section(opts: &BenchOptions, results: &Self::Results) -> anyhow::Result<Section> {

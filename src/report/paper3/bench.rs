@@ -181,6 +181,7 @@ struct Case {
 const QUICK_RUNS: usize = 1;
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
+    crate::timing::mark("paper3: start");
     let ctx = opts.gl;
     let gpu = GpuMlp::new(ctx)?;
     let photo = image::load_from_memory(TEXT_PNG)
@@ -207,6 +208,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
                 None => crate::gl::profile::cpu_scope(ctx, &label),
             };
             measured.push(measure_case(&gpu, case, method, runs)?);
+            crate::timing::mark(&format!("paper3: {} / {label}", case.name));
             bar.inc(1);
         }
         // every method against the plain CPU loop's outputs, measured above (not run again)
@@ -230,6 +232,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
         }
     }
     bar.finish_and_clear();
+    crate::timing::mark("paper3: detection");
     let period = if crate::report::period::requested() {
         let _scope = crate::gl::profile::scope(ctx, "period: text.png at fp24 (R300)");
         Some(super::period::measure(opts, &photo)?)

@@ -59,6 +59,10 @@ pub struct PeelOrderRun {
 pub struct SpeedTargets {
     /// `mass bunny --resolution 64`: GPU wall clock over Mirtich's analytic time.
     pub mass_bunny_64_gpu_over_analytic: f64,
+    /// The same passes with the layer count given in advance (no stopping test: no occlusion
+    /// query read between two peels), over Mirtich's time: what the test's waits cost.
+    #[serde(default)]
+    pub mass_bunny_64_without_stopping_test: f64,
     /// Buoyancy, 50 bodies at 32x32 over the first `buoyancy_steps` steps (drop and
     /// plunge included): GPU solver steps/s over the CPU reference solver's.
     pub buoyancy_gpu_over_cpu: f64,
@@ -192,6 +196,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
         models::PAPER_OBJECTS.len() as u64
     ));
     bar.set_message("mass properties, paper objects");
+    crate::timing::mark("paper4: start");
     let mut objects = Vec::new();
     for name in models::PAPER_OBJECTS {
         objects.push(measure_object(
@@ -201,6 +206,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
             opts.runs(QUICK_RUNS),
         )?);
         bar.inc(1);
+        crate::timing::mark(&format!("paper4: object {name}"));
     }
     bar.finish_and_clear();
     let objects_load = Load::now();
@@ -208,23 +214,30 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let bunny = models::paper_object("bunny").expect("bunny");
     let peel_orders = peel_orders(opts.gl, &bunny, opts.runs(QUICK_RUNS))?;
     let profile_bunny_64 = profile_bunny(opts.gl, &bunny)?;
-    let mut scene = measure_scene(opts, steps)?;
-    let targets = speed_targets(opts, &objects)?;
+    crate::timing::mark("paper4: peel orders, bunny profile");
+    let setup = race_setup(opts.quick);
+    let mut scene = measure_scene(opts, steps, &setup)?;
+    crate::timing::mark("paper4: buoyancy scene");
+    let targets = speed_targets(opts, &objects, setup, &scene)?;
+    crate::timing::mark("paper4: race");
     // The CPU solver's rate is the race's: it runs that solver on the same scene already.
     scene.run.cpu_solver_steps_per_second = targets.buoyancy_cpu_steps_per_second;
     scene.run.race_gpu_steps_per_second = targets.buoyancy_gpu_steps_per_second;
+    let fig10_peels = buoyant_bunny_peels(opts)?;
+    let then_and_now = super::then_and_now::measure(opts)?;
+    crate::timing::mark("paper4: fig10, then and now");
+    let then_and_now_buoyancy =
+        super::then_and_now_buoyancy::measure(opts, (!opts.quick).then_some(scene.settled))?;
+    crate::timing::mark("paper4: then and now, buoyancy");
     Ok(Paper4Results {
         renderer: opts.gl.info().renderer_line(),
         quick: opts.quick,
         objects,
         objects_load,
         buoyancy: scene.run,
-        fig10_peels: buoyant_bunny_peels(opts)?,
-        then_and_now: super::then_and_now::measure(opts)?,
-        then_and_now_buoyancy: super::then_and_now_buoyancy::measure(
-            opts,
-            (!opts.quick).then_some(scene.settled),
-        )?,
+        fig10_peels,
+        then_and_now,
+        then_and_now_buoyancy,
         peel_orders,
         targets,
         profile_bunny_64,
@@ -279,10 +292,30 @@ fn profile_bunny(ctx: &Context, bunny: &Mesh) -> anyhow::Result<Vec<ProfileRow>>
     Ok(profile::finish(ctx).map(|t| t.rows).unwrap_or_default())
 }
 
+/// The race of the speed targets: the first steps of the 50-body scene (drop and plunge
+/// included), the two solvers in interleaved pairs, in rounds.
+fn race_setup(quick: bool) -> race::RaceSetup {
+    let (steps, rounds) = if quick { (30, 1) } else { (120, 3) };
+    race::RaceSetup {
+        bodies: 50,
+        resolution: 32,
+        steps,
+        rounds,
+        dt: 1.0 / 60.0,
+        extra_damping: false,
+    }
+}
+
 /// The speed targets' ratios: the bunny at 64x64 against Mirtich (from the Fig. 5 rows), and the
 /// first steps of the 50-body scene (drop and plunge included), the two solvers in
-/// interleaved pairs ([`race`]).
-fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<SpeedTargets> {
+/// interleaved pairs ([`race`]): the first round is the scene's own run from the drop
+/// ([`measure_scene`]), the others are run here.
+fn speed_targets(
+    opts: &BenchOptions,
+    objects: &[ObjectRun],
+    setup: race::RaceSetup,
+    scene: &SceneRuns,
+) -> anyhow::Result<SpeedTargets> {
     let bunny = objects
         .iter()
         .find(|o| o.object == "bunny")
@@ -293,24 +326,39 @@ fn speed_targets(opts: &BenchOptions, objects: &[ObjectRun]) -> anyhow::Result<S
         .find(|r| r.resolution == 64)
         .map(|r| r.gpu_wall_ms / bunny.analytic_ms)
         .ok_or_else(|| anyhow::anyhow!("paper 4: no 64x64 run of the bunny"))?;
-    let (steps, rounds) = if opts.quick { (30, 1) } else { (120, 3) };
-    let setup = race::RaceSetup {
-        bodies: 50,
-        resolution: 32,
-        steps,
-        rounds,
-        dt: 1.0 / 60.0,
-        extra_damping: false,
-    };
-    let race = race::run(opts.gl, setup, PeelSettings::default()).map_err(anyhow::Error::msg)?;
+    let without_test = without_stopping_test(opts, 64)? / bunny.analytic_ms;
+    let steps = setup.steps;
+    let race = race::run_after(
+        opts.gl,
+        setup,
+        PeelSettings::default(),
+        vec![scene.race_round],
+        scene.race_load,
+    )
+    .map_err(anyhow::Error::msg)?;
     Ok(SpeedTargets {
         mass_bunny_64_gpu_over_analytic: at64,
+        mass_bunny_64_without_stopping_test: without_test,
         buoyancy_gpu_over_cpu: race.gpu_over_cpu.median,
         buoyancy_steps: steps,
         buoyancy_gpu_steps_per_second: race.gpu_steps_per_second,
         buoyancy_cpu_steps_per_second: race.cpu_steps_per_second,
         buoyancy_target: 1.0,
         buoyancy_race: race,
+    })
+}
+
+/// Median wall clock (ms) of the bunny at `resolution` with the layer count of a first run
+/// given in advance: the same passes without the stopping test's occlusion queries.
+fn without_stopping_test(opts: &BenchOptions, resolution: u32) -> anyhow::Result<f64> {
+    let bunny = models::paper_object("bunny").expect("bunny");
+    let gpu = GpuMass::new(opts.gl, resolution)?;
+    let first = gpu.integrate(&bunny, None, None)?;
+    gpu.set_known_layers(Some(first.peels));
+    median_ms(opts.runs(QUICK_RUNS), || {
+        let start = Instant::now();
+        gpu.integrate(&bunny, None, None)?;
+        Ok(start.elapsed().as_secs_f64() * 1e3)
     })
 }
 
@@ -425,6 +473,10 @@ struct SceneRuns {
     profile: Vec<ProfileRow>,
     /// The scene when the settling steps ended (the then-and-now table's poses).
     settled: Simulation,
+    /// The race's first round ([`race::Beside`]): the first steps of this run, the CPU
+    /// solver beside them; and the load when it began.
+    race_round: race::Round,
+    race_load: Option<Load>,
 }
 
 /// Every step of one run: wall clock of the step, of its buoyancy half and of the whole
@@ -438,13 +490,15 @@ struct StepTimes {
 }
 
 /// `total` steps of the paper scene with `solver` (`peels` reads its last step's peels),
-/// each followed by a drawing of the scene by `draw` when given (one step per frame).
+/// each followed by a drawing of the scene by `draw` when given (one step per frame), then
+/// by the CPU solver's same step in the race's round `beside` while it lasts (untimed here).
 fn run_scene<S: SubmergedSolver>(
     sim: &mut Simulation,
     solver: &mut S,
     total: usize,
     peels: impl Fn(&S) -> usize,
     draw: Option<&FrameRenderer>,
+    beside: &mut race::Beside,
     bar: &indicatif::ProgressBar,
 ) -> anyhow::Result<StepTimes> {
     let mut times = StepTimes::default();
@@ -461,6 +515,8 @@ fn run_scene<S: SubmergedSolver>(
         }
         times.frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
         times.peels.push(peels(solver));
+        let step_ms = *times.step_ms.last().expect("pushed above");
+        beside.step(step_ms).map_err(anyhow::Error::msg)?;
         bar.inc(1);
     }
     Ok(times)
@@ -472,8 +528,13 @@ pub const SETTLE_STEPS: usize = 60;
 /// The size of the frames drawn in the timed run (the CLI's `--png-every` frames).
 pub const FRAME_SIZE: (u32, u32) = (640, 400);
 
-/// The buoyancy scene: mean step time, the buoyancy share, peels, against the CPU solver.
-fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns> {
+/// The buoyancy scene: mean step time, the buoyancy share, peels, against the CPU solver;
+/// the race's first round (`setup`) runs beside its first steps.
+fn measure_scene(
+    opts: &BenchOptions,
+    steps: usize,
+    setup: &race::RaceSetup,
+) -> anyhow::Result<SceneRuns> {
     let ctx = opts.gl;
     // The bodies start in the air; time them once they are in the water (after 1 s, past
     // the first plunge), as the paper's average over its interactive run would.
@@ -484,18 +545,36 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
     let mut sim = scene::paper_scene(50, 1.0 / 60.0).map_err(anyhow::Error::msg)?;
     let mut solver = GpuSolver::new(ctx, &sim.shapes, sim.bodies.len(), 32)?;
     let renderer = FrameRenderer::new(ctx, &sim.shapes, FRAME_SIZE.0, FRAME_SIZE.1)?;
-    // The settling steps are not timed, so not drawn either; one drawing warms the renderer.
-    run_scene(&mut sim, &mut solver, settle, |s| s.last_peels, None, &bar)?;
+    // One step of another copy compiles and allocates, untimed (as the race's solver does),
+    // so that the race's round timed beside this run counts steps only.
+    scene::paper_scene(50, 1.0 / 60.0)
+        .map_err(anyhow::Error::msg)?
+        .step(&mut solver)
+        .map_err(anyhow::Error::msg)?;
+    let race_load = Load::now();
+    let mut beside = race::Beside::new(setup).map_err(anyhow::Error::msg)?;
+    // The settling steps are not timed as frames, so not drawn either; one drawing warms the
+    // renderer.
+    let s = |s: &GpuSolver| s.last_peels;
+    run_scene(&mut sim, &mut solver, settle, s, None, &mut beside, &bar)?;
     let settled = sim.clone();
     renderer.draw_frame(&sim)?;
     let gpu = run_scene(
         &mut sim,
         &mut solver,
         steps,
-        |s| s.last_peels,
+        s,
         Some(&renderer),
+        &mut beside,
         &bar,
     )?;
+    let race_round = beside.round().ok_or_else(|| {
+        anyhow::anyhow!(
+            "paper 4: the race's round of {} steps is longer than the scene's run of {}",
+            setup.steps,
+            settle + steps
+        )
+    })?;
     let load = Load::now();
     bar.finish_and_clear();
     // Ten more steps, profiled per pass, of the bodies now in the water.
@@ -539,6 +618,8 @@ fn measure_scene(opts: &BenchOptions, steps: usize) -> anyhow::Result<SceneRuns>
         run,
         profile,
         settled,
+        race_round,
+        race_load,
     })
 }
 

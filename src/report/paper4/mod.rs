@@ -35,7 +35,12 @@ impl Paper for Paper4 {
     type Results = WithPeriod<Paper4Results>;
 
     fn measure(opts: &BenchOptions, _: &NoOptions) -> anyhow::Result<Self::Results> {
-        WithPeriod::measure(bench::measure(opts)?, opts, period::measure)
+        crate::timing::mark("paper4: start");
+        let results = bench::measure(opts)?;
+        crate::timing::mark("paper4: measured");
+        let with = WithPeriod::measure(results, opts, period::measure);
+        crate::timing::mark("paper4: period");
+        with
     }
 
     fn section(opts: &BenchOptions, results: &Self::Results) -> anyhow::Result<Section> {
