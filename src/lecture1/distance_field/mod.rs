@@ -20,6 +20,8 @@
 pub mod compute;
 pub mod grid;
 pub mod independent;
+pub mod mesh_slices;
+pub mod meshes;
 pub mod point_triangle;
 pub mod reference;
 pub mod slices;
