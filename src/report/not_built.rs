@@ -116,12 +116,13 @@ pub const LECTURE1: &[NotBuilt] = &[
                  connected region of the grid field and extracting each region's boundary",
     },
     NotBuilt {
-        what: "Hoff's distance meshes in 3D, and DiFi's Voronoi-region bounds",
-        source: "Hoff et al., SIGGRAPH 1999; Sud, Otaduy & Manocha, EG 2004",
-        instead: "3D fields by exact per-fragment distances over each triangle's rectangle \
-                  grown by the clamp; Hoff's meshes only in 2D (voronoi --method mesh)",
-        needed: "per slice, each triangle's distance function as a tessellated surface with a \
-                 bounded error, and the region of each primitive clamped by its Voronoi bound",
+        what: "DiFi's Voronoi-region bounds for the distance field",
+        source: "Sud, Otaduy & Manocha, EG 2004",
+        instead: "each triangle's rectangle (exact method) or each feature's mesh (Hoff's \
+                  method, `--method mesh`) grown by the clamp, or over the whole slice without \
+                  one",
+        needed: "the region of each primitive bounded by its Voronoi region (the distance \
+                 beyond which a neighbour is surely nearer), culled per slice",
     },
 ];
 

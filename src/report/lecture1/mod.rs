@@ -83,6 +83,7 @@ pub mod paths {
     pub const PAIRWISE_COMPUTE: &str = "pairwise: one compute dispatch";
     pub const FIELD_SLICES: &str = "distance field: slices, exact distances, GL_MIN";
     pub const FIELD_COMPUTE: &str = "distance field: one compute dispatch";
+    pub const FIELD_MESHES: &str = "distance field: Hoff's distance meshes, depth test";
     pub const FIELD_PARRY3D: &str = "distance field: parry3d's closest points as reference";
     pub const VORONOI_EXACT: &str = "voronoi: exact distances as depth";
     pub const VORONOI_MESH: &str = "voronoi: Hoff's distance meshes";
@@ -118,6 +119,12 @@ pub const CHECKS: &[Check] = &[
         id: "distance field vs parry3d",
         says: "the slices' distance field against parry3d's closest-point query on the mesh \
                (an independent library)",
+    },
+    Check {
+        id: "distance meshes vs exact field",
+        says: "the distance field by Hoff's distance meshes against the exact field (brute \
+               force in f64), every voxel within the meshes' stated bound (the tessellation \
+               error asked, plus the rasterizer's coverage error)",
     },
     Check {
         id: "voronoi vs brute force",
@@ -164,6 +171,7 @@ pub const ALL_PATHS: &[&str] = &[
     paths::PAIRWISE_COMPUTE,
     paths::FIELD_SLICES,
     paths::FIELD_COMPUTE,
+    paths::FIELD_MESHES,
     paths::FIELD_PARRY3D,
     paths::VORONOI_EXACT,
     paths::VORONOI_MESH,
