@@ -216,8 +216,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
     let meshes_within = rows.iter().filter_map(|r| r.within_bound).all(|w| w);
     let time = |prefix: &str| {
         rows.iter()
-            .filter(|r| r.formulation.starts_with(prefix))
-            .last()
+            .rev()
+            .find(|r| r.formulation.starts_with(prefix))
             .map_or(0.0, |r| {
                 r.timings.passes_ms + r.timings.readback_ms + r.timings.upload_ms
             })
