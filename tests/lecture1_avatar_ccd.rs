@@ -459,3 +459,56 @@ fn a_turn_beyond_the_advancements_range_is_refused_naming_the_keyframe_and_the_a
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The published scale (Presence 2007: a 16-link avatar among hundreds of thousands of
+/// polygons; generated here): 16 links and over 100k triangles; the first contact against
+/// brute force on the triangles near the motion (the subset cannot change it, see
+/// `near_the_motion`), and the same wall as in the default room.
+#[test]
+fn the_published_scale_matches_brute_force_on_the_triangles_near_the_motion() {
+    use classic_gpgpu::lecture1::avatar_ccd::environment::published_room;
+    use classic_gpgpu::lecture1::avatar_ccd::reference::near_the_motion;
+    let body = Body::avatar16();
+    assert_eq!(body.links.len(), 16);
+    body.validate().unwrap();
+    let keyframes = Keyframes::walk(&body, DVec3::new(0.0, 1.06, 0.0), 8, 0.35);
+    let env = Environment::new(&published_room()).unwrap();
+    assert!(env.triangles.len() >= 100_000, "{}", env.triangles.len());
+    let c = run(&body, &keyframes, &env, true);
+    let near = near_the_motion(&body, &keyframes, &env, 256, 0.25).unwrap();
+    assert!(
+        near.triangles.len() < env.triangles.len() / 10,
+        "{} triangles near the motion",
+        near.triangles.len()
+    );
+    assert_matches_reference(&body, &keyframes, &near, &c);
+    let s = c.time_of_contact.expect("the walk reaches the wall");
+    assert!((c.contact_point.unwrap()[2] - 2.5).abs() < 1e-9, "{c:?}");
+    assert!(s > 0.0 && s < keyframes.end());
+    // The BVH kept the tori out: no more pairs than the default room's scene would give
+    // plus the floor's and the wall's.
+    assert!(c.counts.pairs_after_bvh > 0 && c.counts.occlusion_queries > 0);
+}
+
+#[test]
+fn the_command_counts_links_and_triangles_at_the_published_scale() {
+    let report = json_of(&[
+        "--json",
+        "lecture1",
+        "avatar-ccd",
+        "--scale",
+        "published",
+        "--check",
+        "8",
+    ]);
+    assert_eq!(report["links"], 16);
+    assert!(report["triangles"].as_u64().unwrap() >= 100_000, "{report}");
+    let reference = &report["reference"];
+    assert!(
+        reference["reference_triangles"].as_u64().unwrap() < 1000,
+        "{reference}"
+    );
+    let s = report["time_of_contact"].as_f64().unwrap();
+    let overlap = reference["first_overlap"].as_f64().unwrap();
+    assert!(s <= overlap + 1e-12, "{report}");
+}

@@ -89,6 +89,11 @@ fn the_rows_the_issue_asked_for_are_there_and_say_what_the_code_does() {
         .deviation
         .contains("parry3d"));
     assert!(row(&l1, "the avatar's scene").deviation.contains("13-link"));
+    // Built since: Hoff's meshes in 3D and the avatar at the published scale.
+    assert!(row(&l1, "distance field by Hoff's distance meshes")
+        .deviation
+        .contains("depth buffer"));
+    assert!(row(&l1, "published scale").deviation.contains("16 links"));
     let l3 = lecture3::fidelity_rows();
     assert!(row(&l3, "octree").deviation.contains("reconstruction"));
     let p4 = paper4::fidelity_rows();
@@ -182,7 +187,7 @@ fn the_not_built_tables_name_what_the_issue_lists() {
         "interval arithmetic",
         "general arrangements",
         "16-link",
-        "38",
+        "DiFi",
     ] {
         assert!(
             l1.contains(named),
@@ -196,4 +201,31 @@ fn the_not_built_tables_name_what_the_issue_lists() {
     for r in not_built::LECTURE1.iter().chain(not_built::LECTURE3) {
         assert!(!r.needed.trim().is_empty(), "{r:?}");
     }
+}
+
+/// Papers 1 to 3 list their checks too: a run whose made checks differ from the list fails.
+#[test]
+fn papers_1_to_3_fail_when_their_list_and_their_checks_differ() {
+    for (section, list) in [
+        ("paper1", checks::PAPER1),
+        ("paper2", checks::PAPER2),
+        ("paper3", checks::PAPER3),
+    ] {
+        let listed = checks::ids(list);
+        checks::verify(section, &listed, &listed, &[], &[]).unwrap();
+        for (i, a) in list.iter().enumerate() {
+            assert!(list[i + 1..].iter().all(|b| b.id != a.id), "{section}");
+            // One listed check not made.
+            let fewer: Vec<String> = listed.iter().filter(|id| *id != a.id).cloned().collect();
+            let e = checks::verify(section, &listed, &fewer, &[], &[]).unwrap_err();
+            assert!(e.to_string().contains(a.id), "{e}");
+            assert!(checks::sentence(list).contains(a.says));
+        }
+        // One made check not listed.
+        let mut more = listed.clone();
+        more.push("an unlisted check".into());
+        let e = checks::verify(section, &listed, &more, &[], &[]).unwrap_err();
+        assert!(e.to_string().contains("an unlisted check"), "{e}");
+    }
+    assert!(checks::made(&[(true, "a"), (false, "b")]) == vec!["a".to_string()]);
 }

@@ -47,10 +47,12 @@ pub enum Lecture1Command {
     /// tenth of its side on every side. Site ids are list positions; on a tie (equal fp32
     /// depth) the smaller id wins.
     Voronoi(VoronoiArgs),
-    /// The unsigned distance field of a mesh on an N^3 grid, slice by slice with exact
-    /// per-fragment distances kept by GL_MIN blending (DiFi-style, a reconstruction; not
-    /// Hoff's distance meshes), written as float32 .npy indexed [z][y][x]; the grid is the cube over
-    /// the model's box grown by the margin, voxel centres at origin + spacing * (x, y, z).
+    /// The unsigned distance field of a mesh on an N^3 grid, slice by slice: by default exact
+    /// per-fragment distances kept by GL_MIN blending (DiFi-style, a reconstruction); with
+    /// --method mesh Hoff's distance meshes (every vertex, edge and face's distance drawn as
+    /// triangles, the depth test keeping the nearest), its error against the exact field
+    /// printed. Written as float32 .npy indexed [z][y][x]; the grid is the cube over the
+    /// model's box grown by the margin, voxel centres at origin + spacing * (x, y, z).
     DistanceField(DistanceFieldArgs),
     /// The swept volume of a model moving along a path (Kim, Varadhan, Lin & Manocha 2003, a
     /// reconstruction): ruled surfaces and posed faces, their distance field, a flood fill

@@ -7,7 +7,10 @@ use classic_gpgpu::files;
 use classic_gpgpu::gl::picture::{picture, Panel, Scale};
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::lecture1::distance_field::compute::ComputeField;
+use classic_gpgpu::lecture1::distance_field::mesh_slices::{MeshBound, MeshSlices};
+use classic_gpgpu::lecture1::distance_field::meshes::DEFAULT_ERROR_VOXELS;
 use classic_gpgpu::lecture1::distance_field::slices::SliceRasterizer;
+use classic_gpgpu::lecture1::distance_field::DistanceField;
 use classic_gpgpu::lecture1::distance_field::{reference as field_reference, Grid};
 use classic_gpgpu::lecture1::swept_volume::{self, path::Path3, Options, DEFAULT_POSES};
 use classic_gpgpu::lecture1::voronoi::mesh::DEFAULT_ERROR_PIXELS;
@@ -82,6 +85,16 @@ pub struct DistanceFieldArgs {
     pub margin: Option<f64>,
     #[arg(long, value_enum, default_value_t = Formulation::Classic)]
     pub formulation: Formulation,
+    /// How each slice is drawn (classic formulation): `exact`, every triangle's exact
+    /// distance per fragment kept by GL_MIN blending; `mesh`, Hoff's distance meshes kept by
+    /// the depth test, within --mesh-error of the distance (the exact slices are then also
+    /// computed and the difference printed).
+    #[arg(long, value_enum, default_value_t = VoronoiMethod::Exact)]
+    pub method: VoronoiMethod,
+    /// The distance meshes' tessellation error, voxels [default: 0.5] (only with --method
+    /// mesh).
+    #[arg(long)]
+    pub mesh_error: Option<f64>,
     /// Also compute the field by brute force on the CPU and report the largest difference.
     #[arg(long)]
     pub check: bool,
@@ -235,12 +248,49 @@ pub fn distance_field(args: &DistanceFieldArgs, ctx: &Context, json: bool) -> an
     let margin = args.margin.unwrap_or_else(|| Grid::default_margin(&mesh));
     let grid = Grid::around(&mesh, args.resolution, margin)
         .with_context(|| format!("the grid of model {}", args.model.display()))?;
+    let mesh_error = match (args.method, args.mesh_error, args.formulation) {
+        (VoronoiMethod::Exact, None, _) => None,
+        (VoronoiMethod::Exact, Some(_), _) => {
+            anyhow::bail!("--mesh-error applies to --method mesh only")
+        }
+        (VoronoiMethod::Mesh, _, Formulation::Compute) => {
+            anyhow::bail!("--method mesh draws slices: it has no compute formulation")
+        }
+        (VoronoiMethod::Mesh, error, Formulation::Classic) => {
+            let error = error.unwrap_or(DEFAULT_ERROR_VOXELS);
+            anyhow::ensure!(
+                error.is_finite() && error > 0.0,
+                "--mesh-error {error}: give a positive number of voxels (for example 0.5)"
+            );
+            Some(error)
+        }
+    };
     let start = Instant::now();
-    let (field, timings) = match args.formulation {
-        Formulation::Classic => SliceRasterizer::new(ctx)?.field(&mesh, &grid, args.clamp)?,
-        Formulation::Compute => ComputeField::new(ctx)?.field(&mesh, &grid, args.clamp)?,
+    let (field, timings, meshes) = match (args.formulation, mesh_error) {
+        (Formulation::Classic, Some(error)) => {
+            let (f, t, b) = MeshSlices::new(ctx)?.field(&mesh, &grid, args.clamp, error)?;
+            (f, t, Some(b))
+        }
+        (Formulation::Classic, None) => {
+            let (f, t) = SliceRasterizer::new(ctx)?.field(&mesh, &grid, args.clamp)?;
+            (f, t, None)
+        }
+        (Formulation::Compute, _) => {
+            let (f, t) = ComputeField::new(ctx)?.field(&mesh, &grid, args.clamp)?;
+            (f, t, None)
+        }
     };
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    // The meshes against the exact slices, in voxels.
+    let against_exact = match &meshes {
+        Some(bound) => {
+            let start = Instant::now();
+            let (exact, _) = SliceRasterizer::new(ctx)?.field(&mesh, &grid, args.clamp)?;
+            let exact_ms = start.elapsed().as_secs_f64() * 1e3;
+            Some(MeshCheck::of(&field, &exact, bound, exact_ms))
+        }
+        None => None,
+    };
     let check = if args.check {
         let reference = field_reference::brute_force(&mesh, &grid, args.clamp);
         let error = field
@@ -276,7 +326,20 @@ pub fn distance_field(args: &DistanceFieldArgs, ctx: &Context, json: bool) -> an
             "max_error_vs_cpu": check,
             "timings_ms": {"passes": timings.passes_ms, "readback": timings.readback_ms,
                            "upload": timings.upload_ms, "total_wall": wall_ms},
-            "triangle_rectangles_drawn": timings.triangles_drawn,
+            "method": if meshes.is_some() { "mesh" } else { "exact" },
+            "triangles_drawn": timings.triangles_drawn,
+            "mesh": against_exact.as_ref().map(|c| json!({
+                "asked_error_voxels": c.bound.asked_voxels,
+                "tessellation_bound_voxels": c.bound.tessellation_voxels,
+                "coverage_voxels": c.bound.coverage_voxels,
+                "features": {"vertices": c.bound.features[0], "edges": c.bound.features[1],
+                             "faces": c.bound.features[2]},
+                "max_error_vs_exact_voxels": c.max,
+                "mean_error_vs_exact_voxels": c.mean,
+                "lowest_vs_exact_voxels": c.lowest,
+                "within_bound": c.within,
+                "exact_slices_wall_ms": c.exact_ms,
+            })),
             "npy": args.npy,
         });
         println!("{}", serde_json::to_string(&report)?);
@@ -291,11 +354,82 @@ pub fn distance_field(args: &DistanceFieldArgs, ctx: &Context, json: bool) -> an
         args.clamp
             .map_or(String::new(), |d| format!(", clamped at {d}"))
     );
+    if let Some(c) = &against_exact {
+        println!(
+            "Hoff's distance meshes ({} vertices, {} edges, {} faces, {} triangles drawn, \
+             {wall_ms:.0} ms; the exact slices {:.0} ms): against the exact field max {:.4} \
+             and mean {:.4} voxels, lowest {:.4} ({} the bound [-{:.4}, +{:.4}]: tessellation \
+             {:.4} of the asked {}, rasterizer coverage {:.4})",
+            c.bound.features[0],
+            c.bound.features[1],
+            c.bound.features[2],
+            timings.triangles_drawn,
+            c.exact_ms,
+            c.max,
+            c.mean,
+            c.lowest,
+            if c.within { "within" } else { "BEYOND" },
+            c.tolerance.0,
+            c.tolerance.1,
+            c.bound.tessellation_voxels,
+            c.bound.asked_voxels,
+            c.bound.coverage_voxels,
+        );
+    }
     if let Some(e) = check {
         println!("largest difference from brute force on the CPU: {e:.3e}");
     }
     println!("written to {}", args.npy.display());
+    if let Some(c) = against_exact.filter(|c| !c.within) {
+        anyhow::bail!(
+            "the distance meshes left their bound: {:.4} .. {:.4} voxels from the exact field",
+            c.lowest,
+            c.max
+        );
+    }
     Ok(())
+}
+
+/// The distance meshes' field against the exact slices (voxels).
+struct MeshCheck {
+    bound: MeshBound,
+    /// Largest and mean |mesh - exact|, and the lowest mesh - exact.
+    max: f64,
+    mean: f64,
+    lowest: f64,
+    tolerance: (f64, f64),
+    within: bool,
+    exact_ms: f64,
+}
+
+impl MeshCheck {
+    fn of(
+        meshes: &DistanceField,
+        exact: &DistanceField,
+        bound: &MeshBound,
+        exact_ms: f64,
+    ) -> MeshCheck {
+        let h = exact.grid.spacing;
+        let diffs: Vec<f64> = meshes
+            .values
+            .iter()
+            .zip(&exact.values)
+            .map(|(&m, &e)| (m as f64 - e as f64) / h)
+            .collect();
+        let deepest = exact.values.iter().fold(0.0f64, |a, &v| a.max(v as f64)) / h;
+        let tolerance = bound.tolerance(deepest);
+        let lowest = diffs.iter().copied().fold(f64::INFINITY, f64::min);
+        let highest = diffs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        MeshCheck {
+            bound: bound.clone(),
+            max: diffs.iter().map(|d| d.abs()).fold(0.0, f64::max),
+            mean: diffs.iter().map(|d| d.abs()).sum::<f64>() / diffs.len().max(1) as f64,
+            lowest,
+            tolerance,
+            within: lowest >= -tolerance.0 && highest <= tolerance.1,
+            exact_ms,
+        }
+    }
 }
 
 pub fn swept_volume(args: &SweptVolumeArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {

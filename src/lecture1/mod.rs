@@ -16,7 +16,8 @@
 //! - [`pairwise_compute`]: the same pair test as one OpenGL 4.3 compute dispatch with an
 //!   atomic-append pair list (then and now; not a part of the sources).
 //! - [`distance_field`]: the unsigned distance field of a mesh slice by slice, exact
-//!   per-fragment distances kept by GL_MIN blending (DiFi's style; not Hoff's meshes), and
+//!   per-fragment distances kept by GL_MIN blending (DiFi's style, the default) or Hoff's
+//!   distance meshes kept by the depth test (`--method mesh`), and
 //!   [`voronoi`]: Hoff et al.'s 2D generalized Voronoi diagram, by exact distances as depth
 //!   (the default) or by Hoff's distance meshes.
 //! - [`swept_volume`]: Kim, Varadhan, Lin & Manocha 2003: ruled surfaces, their distance
@@ -25,7 +26,8 @@
 //! - [`penetration`]: Kim, Otaduy, Lin & Manocha 2002: convex pieces' Minkowski sums on a
 //!   cube map, refined on the CPU.
 //! - [`avatar_ccd`]: Kim, Redon et al. 2007: swept capsule bounds, a BVH, occlusion-query
-//!   culling, conservative advancement.
+//!   culling, conservative advancement; a 13-link walker in a small room, or the published
+//!   scale (16 links, 102,438 generated triangles).
 //!
 //! Each part has its own CPU reference, not all of the same kind: self-collision and the
 //! pairwise tests against [`mod@reference`], brute force with paper 1's exact predicate; the

@@ -69,3 +69,64 @@ pub fn verify(
 pub fn covered(rows: &[Fidelity]) -> Vec<String> {
     rows.iter().flat_map(|r| r.paths.iter().cloned()).collect()
 }
+
+/// The ids of the checks whose condition holds (the comparison's numbers are in the
+/// results), in the given order.
+pub fn made(conditions: &[(bool, &'static str)]) -> Vec<String> {
+    conditions
+        .iter()
+        .filter(|(made, _)| *made)
+        .map(|(_, id)| id.to_string())
+        .collect()
+}
+
+/// Paper 1's checks in a report run (the streaming pairs against brute force are tests'
+/// work, not the run's).
+pub const PAPER1: &[Check] = &[
+    Check {
+        id: "solid vs streaming",
+        says: "SOLID's pairs against the streaming pairs, frame by frame (the frames where \
+               they agree are counted)",
+    },
+    Check {
+        id: "cullide vs streaming",
+        says: "CULLIDE's pairs against the streaming pairs (the share it misses)",
+    },
+    Check {
+        id: "then and now same pairs",
+        says: "the then-and-now workload's pairs, the same from every formulation",
+    },
+];
+
+/// Paper 2's checks in a report run: none (the skinned vertices are compared with CPU
+/// linear blend skinning by the tests, `tests/crowd_gpu.rs`; the run times, it does not
+/// compare).
+pub const PAPER2: &[Check] = &[];
+
+/// Paper 3's checks in a report run.
+pub const PAPER3: &[Check] = &[
+    Check {
+        id: "outputs vs CPU",
+        says: "every measured formulation's network outputs against the CPU forward pass \
+               (the largest difference, in the tables)",
+    },
+    Check {
+        id: "detection vs CPU",
+        says: "text.png's classes from both GPU formulations against the CPU's (the share \
+               that agree)",
+    },
+    Check {
+        id: "then and now same outputs",
+        says: "the then-and-now workload's outputs, classic against compute within their \
+               bound",
+    },
+];
+
+/// The summary's sentence for a list that may be empty.
+pub fn sentence_or_none(checks: &[Check], none: &str) -> String {
+    if checks.is_empty() {
+        none.to_string()
+    } else {
+        sentence(checks)
+    }
+}

@@ -100,13 +100,11 @@ pub const LECTURE1: &[NotBuilt] = &[
                  angles), giving an interval box per link and sub-interval",
     },
     NotBuilt {
-        what: "avatar CCD at the published scale: a 16-link avatar among hundreds of \
-               thousands of polygons",
-        source: "Presence 2007 (abstract)",
-        instead: "the default room: a 13-link walking figure and an environment of 38 \
-                  triangles (an OBJ environment of any size can be given to the command)",
-        needed: "a 16-link body (hands and feet as links) and an environment mesh of 100k+ \
-                 triangles shipped or generated; the BVH and the culling are built for it",
+        what: "avatar CCD on the paper's own models",
+        source: "Presence 2007 (abstract: a 16-link avatar, hundreds of thousands of polygons)",
+        instead: "the published scale with generated models (`avatar-ccd --scale published`: \
+                  16 links, 102,438 triangles), run in the full report",
+        needed: "the paper's avatar and environment meshes, which are not public",
     },
     NotBuilt {
         what: "general arrangements of surfaces (the lecture's 'arrangement computation')",
@@ -116,12 +114,13 @@ pub const LECTURE1: &[NotBuilt] = &[
                  connected region of the grid field and extracting each region's boundary",
     },
     NotBuilt {
-        what: "Hoff's distance meshes in 3D, and DiFi's Voronoi-region bounds",
-        source: "Hoff et al., SIGGRAPH 1999; Sud, Otaduy & Manocha, EG 2004",
-        instead: "3D fields by exact per-fragment distances over each triangle's rectangle \
-                  grown by the clamp; Hoff's meshes only in 2D (voronoi --method mesh)",
-        needed: "per slice, each triangle's distance function as a tessellated surface with a \
-                 bounded error, and the region of each primitive clamped by its Voronoi bound",
+        what: "DiFi's Voronoi-region bounds for the distance field",
+        source: "Sud, Otaduy & Manocha, EG 2004",
+        instead: "each triangle's rectangle (exact method) or each feature's mesh (Hoff's \
+                  method, `--method mesh`) grown by the clamp, or over the whole slice without \
+                  one",
+        needed: "the region of each primitive bounded by its Voronoi region (the distance \
+                 beyond which a neighbour is surely nearer), culled per slice",
     },
 ];
 

@@ -133,6 +133,33 @@ impl Body {
         Body { links }
     }
 
+    /// The published scale's avatar (Presence 2007: 16 links): the walker with a neck and
+    /// two hands (capsules at the forearms' ends), 16 links in all.
+    pub fn avatar16() -> Body {
+        let mut body = Body::walker();
+        let v = DVec3::new;
+        let index = |body: &Body, name: &str| body.links.iter().position(|l| l.name == name);
+        let torso = index(&body, "torso");
+        body.links.push(Link {
+            name: "neck".into(),
+            parent: torso,
+            joint: v(0.0, 0.45, 0.0),
+            segment: [v(0.0, 0.0, 0.0), v(0.0, 0.08, 0.0)],
+            radius: 0.05,
+        });
+        for side in ["left", "right"] {
+            let forearm = index(&body, &format!("{side} forearm"));
+            body.links.push(Link {
+                name: format!("{side} hand"),
+                parent: forearm,
+                joint: v(0.0, -0.28, 0.0),
+                segment: [v(0.0, 0.0, 0.0), v(0.0, -0.09, 0.0)],
+                radius: 0.04,
+            });
+        }
+        body
+    }
+
     /// Check the body: parents first, finite offsets, positive radii.
     pub fn validate(&self) -> anyhow::Result<()> {
         anyhow::ensure!(!self.links.is_empty(), "the body has no links");

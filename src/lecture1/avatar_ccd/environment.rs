@@ -6,6 +6,7 @@
 
 use super::body::Capsule;
 use super::sweep_bound::capsule_box;
+use crate::mesh::generate::torus_closed;
 use crate::mesh::{cuboid, Mesh};
 use glam::{DVec3, Vec3};
 use parry3d::bounding_volume::Aabb;
@@ -97,6 +98,26 @@ pub fn room() -> Mesh {
         mesh.positions.extend(part.positions);
         mesh.triangles
             .extend(part.triangles.iter().map(|t| t.map(|v| v + base)));
+    }
+    mesh
+}
+
+/// The published scale's environment (Presence 2007: "hundreds of thousands of polygons";
+/// generated here, not the paper's): the built-in room and, around it, eight finely
+/// tessellated tori standing on the floor (2 x 160 x 40 triangles each, 102,400 in all,
+/// the room's 38 beside them). The nearest stands 1.2 units beside the walk, so the BVH and
+/// the culling see them while the first contact stays the room's wall.
+pub fn published_room() -> Mesh {
+    let mut mesh = room();
+    for k in 0..8 {
+        let side = if k % 2 == 0 { 1.0 } else { -1.0 };
+        let z = -1.5 + 1.2 * (k / 2) as f32;
+        // Upright (the ring in the x-y plane, facing the walk), its lowest point on the floor.
+        let upright = torus_closed(0.45, 0.12, 160, 40).translated(Vec3::new(side * 1.9, 0.57, z));
+        let base = mesh.positions.len() as u32;
+        mesh.positions.extend(upright.positions);
+        mesh.triangles
+            .extend(upright.triangles.iter().map(|t| t.map(|v| v + base)));
     }
     mesh
 }

@@ -79,3 +79,41 @@ pub fn sample(
     }
     out
 }
+
+/// The environment's triangles near the motion, for brute force on a large scene: those
+/// whose box comes within `margin` of the box of every link's capsule at `per_interval`
+/// sampled times per keyframe interval. Between two samples no link moves more than its
+/// speed over the step, so with a margin far above that and above the tolerance a triangle
+/// left out is never within the tolerance: the first contact is the same on the subset.
+/// The box test is this function's own (no BVH), so the subset does not lean on the
+/// query's culling.
+pub fn near_the_motion(
+    body: &Body,
+    keyframes: &Keyframes,
+    env: &Environment,
+    per_interval: usize,
+    margin: f64,
+) -> anyhow::Result<Environment> {
+    let step = 1.0 / per_interval.max(1) as f64;
+    let count = (keyframes.end() / step).round() as usize;
+    let (mut lo, mut hi) = (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY);
+    for i in 0..=count {
+        let t = (i as f64 * step).min(keyframes.end());
+        for c in body.capsules(&keyframes.pose_at(t)) {
+            let r = glam::DVec3::splat(c.radius + margin);
+            lo = lo.min(c.a.min(c.b) - r);
+            hi = hi.max(c.a.max(c.b) + r);
+        }
+    }
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for t in &env.triangles {
+        let (a, b) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+        if a.cmple(hi).all() && b.cmpge(lo).all() {
+            let base = positions.len() as u32;
+            positions.extend(t.iter().map(|p| p.as_vec3()));
+            triangles.push([base, base + 1, base + 2]);
+        }
+    }
+    Environment::new(&crate::mesh::Mesh::new(positions, triangles))
+}

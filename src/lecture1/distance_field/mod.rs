@@ -10,7 +10,9 @@
 //! triangle's region (its screen rectangle in a slice grown by the clamp distance, or the whole
 //! slice without a clamp), GL_MIN blending into an R32F target, one readback per slice
 //! ([`slices`]); and the compute-shader counterpart ([`compute`], OpenGL 4.3, one invocation
-//! per voxel over every triangle). [`reference`](mod@reference) is brute force on the CPU in f64
+//! per voxel over every triangle). Hoff's own method is [`meshes`] and [`mesh_slices`]
+//! (`--method mesh`): every vertex, edge and face's distance drawn as a bounded-error mesh,
+//! the depth test keeping the nearest. [`reference`](mod@reference) is brute force on the CPU in f64
 //! with the same point-triangle distance (it checks the GPU's arithmetic, not the method);
 //! [`independent`] is the independent check, parry3d's closest-point query on the mesh.
 //!
@@ -20,6 +22,8 @@
 pub mod compute;
 pub mod grid;
 pub mod independent;
+pub mod mesh_slices;
+pub mod meshes;
 pub mod point_triangle;
 pub mod reference;
 pub mod slices;

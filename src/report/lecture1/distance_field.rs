@@ -2,11 +2,13 @@
 //! (slice passes or the compute dispatch, upload, readback), how the field's error against
 //! brute force on the CPU (the same point-triangle distance in f64) behaves as the resolution
 //! grows, on a torus, and its difference from parry3d's closest points (an independent
-//! reference); then the 2D Voronoi rows.
+//! reference); Hoff's distance meshes beside the exact slices, with their error against the
+//! exact field; then the 2D Voronoi rows.
 
 use super::{Block, Setting};
 use crate::lecture1::distance_field::compute::ComputeField;
 use crate::lecture1::distance_field::independent::parry_field;
+use crate::lecture1::distance_field::mesh_slices::MeshSlices;
 use crate::lecture1::distance_field::reference::brute_force;
 use crate::lecture1::distance_field::slices::SliceRasterizer;
 use crate::lecture1::distance_field::{DistanceField, FieldTimings, Grid};
@@ -23,11 +25,33 @@ pub struct FieldRow {
     pub resolution: usize,
     /// Largest |GPU - CPU| over the grid, in voxels (spacing units).
     pub max_error_voxels: f64,
-    /// The tessellation bound of Hoff's distance meshes (pixels); `None` for exact methods.
+    /// The tessellation bound of Hoff's distance meshes (pixels or voxels); `None` for exact
+    /// methods.
     pub tessellation_bound: Option<f64>,
+    /// Mean |GPU - CPU| over the grid, in voxels (the 3D distance meshes' rows).
+    pub mean_error_voxels: Option<f64>,
+    /// Whether every voxel of the distance meshes' field lies within their stated bound
+    /// (3D meshes' rows).
+    pub within_bound: Option<bool>,
     /// Largest |GPU - parry3d's closest points| over the grid, in voxels (3D rows).
     pub parry3d_error_voxels: Option<f64>,
     pub timings: FieldTimings,
+}
+
+/// The lowest and highest `a - b` and the mean `|a - b|` over the grid, in voxels.
+fn signed_differences(a: &DistanceField, b: &DistanceField) -> (f64, f64, f64) {
+    let h = a.grid.spacing;
+    let d: Vec<f64> = a
+        .values
+        .iter()
+        .zip(&b.values)
+        .map(|(&x, &y)| (x as f64 - y as f64) / h)
+        .collect();
+    (
+        d.iter().copied().fold(f64::INFINITY, f64::min),
+        d.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        d.iter().map(|v| v.abs()).sum::<f64>() / d.len().max(1) as f64,
+    )
 }
 
 fn largest_difference(a: &DistanceField, b: &DistanceField) -> f64 {
@@ -51,6 +75,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         &[16, 32, 48]
     };
     let slices = SliceRasterizer::new(ctx)?;
+    let meshes = MeshSlices::new(ctx)?;
     let compute = ComputeField::new(ctx).ok();
     let mut rows = Vec::new();
     for &n in resolutions {
@@ -65,6 +90,24 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             resolution: n,
             max_error_voxels: largest_difference(&field, &cpu),
             tessellation_bound: None,
+            mean_error_voxels: None,
+            within_bound: None,
+            parry3d_error_voxels: Some(largest_difference(&field, &parry)),
+            timings,
+        });
+        // Hoff's distance meshes, within MESH_ERROR_VOXELS.
+        meshes.field(&mesh, &grid, None, MESH_ERROR_VOXELS)?;
+        let (field, timings, bound) = meshes.field(&mesh, &grid, None, MESH_ERROR_VOXELS)?;
+        let (lowest, highest, mean) = signed_differences(&field, &cpu);
+        let deepest = cpu.values.iter().fold(0.0f64, |a, &v| a.max(v as f64)) / grid.spacing;
+        let (below, above) = bound.tolerance(deepest);
+        rows.push(FieldRow {
+            formulation: "classic, Hoff's distance meshes (depth test)".into(),
+            resolution: n,
+            max_error_voxels: lowest.abs().max(highest.abs()),
+            tessellation_bound: Some(bound.tessellation_voxels),
+            mean_error_voxels: Some(mean),
+            within_bound: Some(lowest >= -below && highest <= above),
             parry3d_error_voxels: Some(largest_difference(&field, &parry)),
             timings,
         });
@@ -76,6 +119,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                 resolution: n,
                 max_error_voxels: largest_difference(&field, &cpu),
                 tessellation_bound: None,
+                mean_error_voxels: None,
+                within_bound: None,
                 parry3d_error_voxels: Some(largest_difference(&field, &parry)),
                 timings,
             });
@@ -93,7 +138,9 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
              (ms; slice passes by GL timer queries, compute by glFinish wall clock, readback \
              and upload by wall clock; one run each, {}), the largest difference from \
              brute force in f64 (the same point-triangle distance) and from parry3d's closest \
-             points (an independent library, fp32), in voxels; the Voronoi rows (2D, {VORONOI_SITES} random \
+             points (an independent library, fp32), in voxels; Hoff's distance meshes in 3D \
+             within {MESH_ERROR_VOXELS} voxel (their rows: the largest and mean difference \
+             from brute force; upload holds building the meshes on the CPU); the Voronoi rows (2D, {VORONOI_SITES} random \
              points, segments and triangles, N x N pixels, measured in the same run) in \
              pixels, with Hoff's distance meshes within {MESH_ERROR_PIXELS} pixel",
             mesh.triangles.len(),
@@ -108,6 +155,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             "upload ms",
             "triangles drawn",
             "max error (voxels or pixels)",
+            "mean error (voxels)",
             "max |GPU - parry3d| (voxels)",
         ]
         .map(String::from)
@@ -123,6 +171,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
                     format!("{:.2}", r.timings.upload_ms),
                     r.timings.triangles_drawn.to_string(),
                     format!("{:.2e}", r.max_error_voxels),
+                    r.mean_error_voxels
+                        .map_or("-".into(), |e| format!("{e:.2e}")),
                     r.parry3d_error_voxels
                         .map_or("-".into(), |e| format!("{e:.2e}")),
                 ]
@@ -145,10 +195,14 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         y_label: "max |GPU - CPU| (voxels)".into(),
         log_x: false,
         log_y: true,
-        series: vec![series("classic", "classic"), series("compute", "compute")]
-            .into_iter()
-            .filter(|s| !s.points.is_empty())
-            .collect(),
+        series: vec![
+            series("classic, exact", "classic (slices"),
+            series("classic, Hoff's meshes", "classic, Hoff"),
+            series("compute", "compute"),
+        ]
+        .into_iter()
+        .filter(|s| !s.points.is_empty())
+        .collect(),
     }
     .write_png(&setting.opts.out_dir.join(file))?;
     let worst = |prefix: &str, f: fn(&FieldRow) -> Option<f64>| {
@@ -158,15 +212,37 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             .fold(0.0, f64::max)
     };
     let mesh_error = worst("voronoi 2D, Hoff", |r| Some(r.max_error_voxels));
+    let meshes_3d = |f: fn(&FieldRow) -> Option<f64>| worst("classic, Hoff", f);
+    let meshes_within = rows.iter().filter_map(|r| r.within_bound).all(|w| w);
+    let time = |prefix: &str| {
+        rows.iter()
+            .rev()
+            .find(|r| r.formulation.starts_with(prefix))
+            .map_or(0.0, |r| {
+                r.timings.passes_ms + r.timings.readback_ms + r.timings.upload_ms
+            })
+    };
+    let largest = resolutions.last().copied().unwrap_or(0);
     let summary = format!(
-        "The unsigned distance field of a mesh, rasterized slice by slice with exact \
-         per-fragment distances (a reconstruction in DiFi's style): at most {:.1e} voxels from \
-         brute force in f64 and {:.1e} voxels from parry3d's closest points. In 2D, the exact \
-         per-fragment Voronoi distances are at most {:.1e} pixels from brute force, and Hoff's \
-         distance meshes (cones and tents, the depth interpolated) {mesh_error:.2} pixels, \
-         {} their tessellation bound of {MESH_ERROR_PIXELS} pixel.",
-        worst("classic", |r| Some(r.max_error_voxels)),
-        worst("classic", |r| r.parry3d_error_voxels),
+        "The unsigned distance field of a mesh, slice by slice, by two methods. Exact \
+         per-fragment distances kept by GL_MIN blending (the default, a reconstruction in \
+         DiFi's style): at most {:.1e} voxels from brute force in f64 and {:.1e} voxels from \
+         parry3d's closest points. Hoff's distance meshes (every vertex, edge and face's \
+         distance drawn as triangles, the depth test keeping the nearest): at most {:.3} and \
+         on average {:.3} voxels from brute force, {} their bound (a tessellation error of \
+         {MESH_ERROR_VOXELS} voxel plus the rasterizer's coverage); at N = {largest} the exact \
+         slices took {:.0} ms and the meshes {:.0} ms (passes, readback and upload; the \
+         meshes' upload includes building them). In 2D, the exact per-fragment Voronoi \
+         distances are at most {:.1e} pixels from brute force, and Hoff's distance meshes \
+         (cones and tents, the depth interpolated) {mesh_error:.2} pixels, {} their \
+         tessellation bound of {MESH_ERROR_PIXELS} pixel.",
+        worst("classic (slices", |r| Some(r.max_error_voxels)),
+        worst("classic (slices", |r| r.parry3d_error_voxels),
+        meshes_3d(|r| Some(r.max_error_voxels)),
+        meshes_3d(|r| r.mean_error_voxels),
+        if meshes_within { "within" } else { "BEYOND" },
+        time("classic (slices"),
+        time("classic, Hoff"),
         worst("voronoi 2D, exact", |r| Some(r.max_error_voxels)),
         if mesh_error <= MESH_ERROR_PIXELS {
             "within"
@@ -176,6 +252,7 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
     );
     let mut paths = vec![
         super::paths::FIELD_SLICES,
+        super::paths::FIELD_MESHES,
         super::paths::FIELD_PARRY3D,
         super::paths::VORONOI_EXACT,
         super::paths::VORONOI_MESH,
@@ -191,14 +268,16 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         checks_made: vec![
             "distance field vs f64",
             "distance field vs parry3d",
+            "distance meshes vs exact field",
             "voronoi vs brute force",
         ],
         paths,
         tables: vec![table],
         figures: vec![Figure {
             file: file.into(),
-            caption: "Distance field: the error stays at fp32 rounding as N grows (it is \
-                      exact per voxel, not an approximation that converges)"
+            caption: "Distance field: the exact methods' error stays at fp32 rounding as N \
+                      grows (exact per voxel, not an approximation that converges); Hoff's \
+                      meshes stay under their tessellation bound, in voxels, at every N"
                 .into(),
         }],
         ..Block::default()
@@ -207,6 +286,8 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
 
 /// Sites of the 2D rows.
 const VORONOI_SITES: usize = 30;
+/// Hoff's distance meshes' tessellation error in the 3D rows, voxels.
+const MESH_ERROR_VOXELS: f64 = 0.5;
 /// The distance meshes' tessellation error in the 2D rows, pixels.
 const MESH_ERROR_PIXELS: f64 = 0.5;
 
@@ -258,6 +339,8 @@ fn voronoi_rows(ctx: &crate::gl::Context, n: usize) -> anyhow::Result<Vec<FieldR
             resolution: n,
             max_error_voxels: error,
             tessellation_bound: (diagram.mesh_error > 0.0).then_some(diagram.mesh_error / pixel),
+            mean_error_voxels: None,
+            within_bound: None,
             parry3d_error_voxels: None,
             timings: FieldTimings {
                 passes_ms: t.pass_ms,

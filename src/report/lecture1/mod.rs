@@ -83,6 +83,7 @@ pub mod paths {
     pub const PAIRWISE_COMPUTE: &str = "pairwise: one compute dispatch";
     pub const FIELD_SLICES: &str = "distance field: slices, exact distances, GL_MIN";
     pub const FIELD_COMPUTE: &str = "distance field: one compute dispatch";
+    pub const FIELD_MESHES: &str = "distance field: Hoff's distance meshes, depth test";
     pub const FIELD_PARRY3D: &str = "distance field: parry3d's closest points as reference";
     pub const VORONOI_EXACT: &str = "voronoi: exact distances as depth";
     pub const VORONOI_MESH: &str = "voronoi: Hoff's distance meshes";
@@ -90,6 +91,8 @@ pub mod paths {
     pub const PENETRATION: &str = "penetration depth: Minkowski sums on a cube map";
     pub const AVATAR_CCD: &str = "avatar CCD: swept capsules, BVH, occlusion culling";
     pub const AVATAR_SCENE: &str = "avatar CCD: the 13-link figure in the room";
+    pub const AVATAR_PUBLISHED: &str =
+        "avatar CCD: the published scale, 16 links among 102k generated triangles";
 }
 
 /// Every check the section can make; the summary names the ones a run made from this list
@@ -118,6 +121,12 @@ pub const CHECKS: &[Check] = &[
         id: "distance field vs parry3d",
         says: "the slices' distance field against parry3d's closest-point query on the mesh \
                (an independent library)",
+    },
+    Check {
+        id: "distance meshes vs exact field",
+        says: "the distance field by Hoff's distance meshes against the exact field (brute \
+               force in f64), every voxel within the meshes' stated bound (the tessellation \
+               error asked, plus the rasterizer's coverage error)",
     },
     Check {
         id: "voronoi vs brute force",
@@ -164,6 +173,7 @@ pub const ALL_PATHS: &[&str] = &[
     paths::PAIRWISE_COMPUTE,
     paths::FIELD_SLICES,
     paths::FIELD_COMPUTE,
+    paths::FIELD_MESHES,
     paths::FIELD_PARRY3D,
     paths::VORONOI_EXACT,
     paths::VORONOI_MESH,
@@ -171,6 +181,7 @@ pub const ALL_PATHS: &[&str] = &[
     paths::PENETRATION,
     paths::AVATAR_CCD,
     paths::AVATAR_SCENE,
+    paths::AVATAR_PUBLISHED,
 ];
 
 /// How a block is measured.

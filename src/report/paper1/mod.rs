@@ -26,7 +26,7 @@ pub use bench::{
 
 use super::period::WithPeriod;
 use super::published::Published;
-use super::{BenchOptions, Paper, Section};
+use super::{checks, BenchOptions, Paper, Section};
 use crate::collide::cullide::PAPER_RESOLUTION;
 
 /// What `collide-bench` can change; `reproduce` uses the defaults for its size.
@@ -123,9 +123,24 @@ impl Paper for Paper1 {
             claims: claims::claims(results),
             figures,
             fidelity: fidelity::rows(),
+            checks_listed: checks::ids(checks::PAPER1),
+            checks_made: checks_made(results),
             ..Section::default()
         })
     }
+}
+
+/// The checks of [`checks::PAPER1`] whose comparisons are in `results`.
+pub fn checks_made(results: &Paper1Results) -> Vec<String> {
+    let frames = results.scenes.iter().any(|s| s.frames > 0);
+    checks::made(&[
+        (frames, "solid vs streaming"),
+        (frames, "cullide vs streaming"),
+        (
+            results.then_and_now.same_answer.is_some(),
+            "then and now same pairs",
+        ),
+    ])
 }
 
 fn summary(results: &Paper1Results) -> String {
@@ -156,7 +171,7 @@ fn summary(results: &Paper1Results) -> String {
          leaves in a CPU tree, refitted bottom-up and traversed as a tree pair each frame. \
          CULLIDE: {res}x{res} views along x, y, z over the overlap of the two global boxes, two \
          passes per view, pruning objects, then leaves, then triangles. GPU passes are timed \
-         with timer queries; CPU stages and whole frames by wall clock.",
+         with timer queries; CPU stages and whole frames by wall clock. ",
         setup.frames,
         if results.quick {
             ", quick mode (small models)"
@@ -166,7 +181,7 @@ fn summary(results: &Paper1Results) -> String {
         results.renderer,
         res = setup.cullide_resolution,
         clustering = clustering(results),
-    )
+    ) + &checks::sentence(checks::PAPER1)
 }
 
 /// The range of the scenes' CAPs per set `P1` texel, "2.1-3.7".

@@ -19,7 +19,7 @@ mod then_and_now;
 pub use bench::{Detection, DetectionRun, Measurement, Method, Paper3Results};
 
 use super::published::Published;
-use super::{BenchOptions, NoOptions, Paper, Section};
+use super::{checks, BenchOptions, NoOptions, Paper, Section};
 use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 
 /// The paper-3 section.
@@ -59,9 +59,23 @@ impl Paper for Paper3 {
             claims: claims::claims(results, paper),
             figures,
             fidelity: fidelity::rows(),
+            checks_listed: checks::ids(checks::PAPER3),
+            checks_made: checks_made(results),
             ..Section::default()
         })
     }
+}
+
+/// The checks of [`checks::PAPER3`] whose comparisons are in `results`.
+pub fn checks_made(results: &Paper3Results) -> Vec<String> {
+    checks::made(&[
+        (!results.measurements.is_empty(), "outputs vs CPU"),
+        (results.detection.width > 0, "detection vs CPU"),
+        (
+            results.then_and_now.same_answer.is_some(),
+            "then and now same outputs",
+        ),
+    ])
 }
 
 fn summary(results: &Paper3Results) -> String {
@@ -77,7 +91,7 @@ fn summary(results: &Paper3Results) -> String {
          and CPU work with the wall clock; each figure is the median of its runs after a \
          warm-up run ({} runs per measurement, as the throughput table lists); {} at the \
          end (a software renderer shares the CPU with whatever else runs).{} The batches are \
-         windows of scikit-image's text.png.",
+         windows of scikit-image's text.png. {}",
         results.renderer,
         RADEON_9700_INPUTS_PER_PASS,
         runs_range(results),
@@ -88,7 +102,8 @@ fn summary(results: &Paper3Results) -> String {
             " QUICK MODE: reduced sizes."
         } else {
             ""
-        }
+        },
+        checks::sentence(checks::PAPER3),
     )
 }
 
