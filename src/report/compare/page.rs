@@ -67,7 +67,10 @@ fn machines(c: &Comparison) -> String {
                     String::new(),
                     format!("<code>{}</code>", escape_cell(&m.command())),
                 ),
-                (String::new(), format!("<code>{}</code>", escape_cell(&m.file))),
+                (
+                    String::new(),
+                    format!("<code>{}</code>", escape_cell(&m.file)),
+                ),
             ]
         })
         .collect();
