@@ -15,7 +15,7 @@
 //! - a vertex, everywhere: `sqrt(|q|^2 + h^2)` with `q` the pixel's offset from the vertex's
 //!   shadow and `h` its height, a hyperboloid.
 //!
-//! Both curved functions are meshed the same way ([`polar`]): `k` sectors in `q`, each cut
+//! Both curved functions are meshed the same way (`polar`): `k` sectors in `q`, each cut
 //! into bands at rings `r_0 = 0 < r_1 < ... < r_m`. In a sector the gauge of the regular
 //! `k`-gon whose corners lie on the circle, `ρ(q) = q · m_j / cos(π/k)` (`m_j` the sector's
 //! middle direction), is linear, and `|q| <= ρ <= |q| / cos(π/k)`; across a band the profile
