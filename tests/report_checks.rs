@@ -229,3 +229,23 @@ fn papers_1_to_3_fail_when_their_list_and_their_checks_differ() {
     }
     assert!(checks::made(&[(true, "a"), (false, "b")]) == vec!["a".to_string()]);
 }
+
+/// Where the compute formulation cannot run (softpipe, OpenGL 3.3), papers 1 and 3 neither
+/// name nor ask for the then-and-now check; the others are still required.
+#[test]
+fn a_check_the_context_cannot_make_is_left_out_of_the_list_and_the_summary() {
+    for (section, list, compute_check) in [
+        ("paper1", checks::PAPER1, "then and now same pairs"),
+        ("paper3", checks::PAPER3, "then and now same outputs"),
+    ] {
+        let kept = checks::without(list, &[compute_check]);
+        assert_eq!(kept.len(), list.len() - 1, "{section}");
+        let listed = checks::ids(&kept);
+        checks::verify(section, &listed, &listed, &[], &[]).unwrap();
+        let says = list.iter().find(|c| c.id == compute_check).unwrap().says;
+        assert!(!checks::sentence(&kept).contains(says), "{section}");
+        // The full list still asks for it.
+        let e = checks::verify(section, &checks::ids(list), &listed, &[], &[]).unwrap_err();
+        assert!(e.to_string().contains(compute_check), "{e}");
+    }
+}
