@@ -147,6 +147,14 @@ impl Gl {
         }
     }
 
+    /// Records `function` with the arguments `args` shows, only while a trace is on: off, the
+    /// arguments are never formatted.
+    fn record(&self, function: &'static str, args: impl FnOnce() -> String) {
+        if self.on.get() {
+            self.push(function, args(), None);
+        }
+    }
+
     #[cold]
     fn push(&self, function: &'static str, args: String, result: Option<String>) {
         let pass = self.pass.borrow().clone();
@@ -177,53 +185,35 @@ impl Gl {
     }
 
     pub(super) unsafe fn active_texture(&self, unit: u32) {
-        if self.on.get() {
-            self.push("glActiveTexture", [unit_name(unit)].join(", "), None);
-        }
+        self.record("glActiveTexture", || [unit_name(unit)].join(", "));
         self.raw.active_texture(unit)
     }
 
     pub(super) unsafe fn attach_shader(&self, program: glow::Program, shader: glow::Shader) {
-        if self.on.get() {
-            self.push(
-                "glAttachShader",
-                [program.id().to_string(), shader.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glAttachShader", || {
+            [program.id().to_string(), shader.id().to_string()].join(", ")
+        });
         self.raw.attach_shader(program, shader)
     }
 
     pub(super) unsafe fn begin_query(&self, target: u32, query: glow::Query) {
-        if self.on.get() {
-            self.push(
-                "glBeginQuery",
-                [name_of(target), query.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glBeginQuery", || {
+            [name_of(target), query.id().to_string()].join(", ")
+        });
         self.raw.begin_query(target, query)
     }
 
     pub(super) unsafe fn begin_transform_feedback(&self, primitive_mode: u32) {
-        if self.on.get() {
-            self.push(
-                "glBeginTransformFeedback",
-                [primitive_name(primitive_mode)].join(", "),
-                None,
-            );
-        }
+        self.record("glBeginTransformFeedback", || {
+            [primitive_name(primitive_mode)].join(", ")
+        });
         self.raw.begin_transform_feedback(primitive_mode)
     }
 
     pub(super) unsafe fn bind_buffer(&self, target: u32, buffer: Option<glow::Buffer>) {
-        if self.on.get() {
-            self.push(
-                "glBindBuffer",
-                [name_of(target), id_of(buffer)].join(", "),
-                None,
-            );
-        }
+        self.record("glBindBuffer", || {
+            [name_of(target), id_of(buffer)].join(", ")
+        });
         self.raw.bind_buffer(target, buffer)
     }
 
@@ -233,13 +223,9 @@ impl Gl {
         index: u32,
         buffer: Option<glow::Buffer>,
     ) {
-        if self.on.get() {
-            self.push(
-                "glBindBufferBase",
-                [name_of(target), index.to_string(), id_of(buffer)].join(", "),
-                None,
-            );
-        }
+        self.record("glBindBufferBase", || {
+            [name_of(target), index.to_string(), id_of(buffer)].join(", ")
+        });
         self.raw.bind_buffer_base(target, index, buffer)
     }
 
@@ -248,49 +234,33 @@ impl Gl {
         target: u32,
         framebuffer: Option<glow::Framebuffer>,
     ) {
-        if self.on.get() {
-            self.push(
-                "glBindFramebuffer",
-                [name_of(target), id_of(framebuffer)].join(", "),
-                None,
-            );
-        }
+        self.record("glBindFramebuffer", || {
+            [name_of(target), id_of(framebuffer)].join(", ")
+        });
         self.raw.bind_framebuffer(target, framebuffer)
     }
 
     pub(super) unsafe fn bind_texture(&self, target: u32, texture: Option<glow::Texture>) {
-        if self.on.get() {
-            self.push(
-                "glBindTexture",
-                [name_of(target), id_of(texture)].join(", "),
-                None,
-            );
-        }
+        self.record("glBindTexture", || {
+            [name_of(target), id_of(texture)].join(", ")
+        });
         self.raw.bind_texture(target, texture)
     }
 
     pub(super) unsafe fn bind_vertex_array(&self, vertex_array: Option<glow::VertexArray>) {
-        if self.on.get() {
-            self.push("glBindVertexArray", [id_of(vertex_array)].join(", "), None);
-        }
+        self.record("glBindVertexArray", || [id_of(vertex_array)].join(", "));
         self.raw.bind_vertex_array(vertex_array)
     }
 
     pub(super) unsafe fn blend_equation(&self, mode: u32) {
-        if self.on.get() {
-            self.push("glBlendEquation", [primitive_name(mode)].join(", "), None);
-        }
+        self.record("glBlendEquation", || [primitive_name(mode)].join(", "));
         self.raw.blend_equation(mode)
     }
 
     pub(super) unsafe fn blend_func(&self, src: u32, dst: u32) {
-        if self.on.get() {
-            self.push(
-                "glBlendFunc",
-                [factor_name(src), factor_name(dst)].join(", "),
-                None,
-            );
-        }
+        self.record("glBlendFunc", || {
+            [factor_name(src), factor_name(dst)].join(", ")
+        });
         self.raw.blend_func(src, dst)
     }
 
@@ -307,49 +277,37 @@ impl Gl {
         mask: u32,
         filter: u32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glBlitFramebuffer",
-                [
-                    src_x0.to_string(),
-                    src_y0.to_string(),
-                    src_x1.to_string(),
-                    src_y1.to_string(),
-                    dst_x0.to_string(),
-                    dst_y0.to_string(),
-                    dst_x1.to_string(),
-                    dst_y1.to_string(),
-                    hex(mask),
-                    name_of(filter),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glBlitFramebuffer", || {
+            [
+                src_x0.to_string(),
+                src_y0.to_string(),
+                src_x1.to_string(),
+                src_y1.to_string(),
+                dst_x0.to_string(),
+                dst_y0.to_string(),
+                dst_x1.to_string(),
+                dst_y1.to_string(),
+                hex(mask),
+                name_of(filter),
+            ]
+            .join(", ")
+        });
         self.raw.blit_framebuffer(
             src_x0, src_y0, src_x1, src_y1, dst_x0, dst_y0, dst_x1, dst_y1, mask, filter,
         )
     }
 
     pub(super) unsafe fn buffer_data_size(&self, target: u32, size: i32, usage: u32) {
-        if self.on.get() {
-            self.push(
-                "glBufferData",
-                [name_of(target), size.to_string(), name_of(usage)].join(", "),
-                None,
-            );
-        }
+        self.record("glBufferData", || {
+            [name_of(target), size.to_string(), name_of(usage)].join(", ")
+        });
         self.raw.buffer_data_size(target, size, usage)
     }
 
     pub(super) unsafe fn buffer_data_u8_slice(&self, target: u32, data: &[u8], usage: u32) {
-        if self.on.get() {
-            self.push(
-                "glBufferData",
-                [name_of(target), byte_count(data.len()), name_of(usage)].join(", "),
-                None,
-            );
-        }
+        self.record("glBufferData", || {
+            [name_of(target), byte_count(data.len()), name_of(usage)].join(", ")
+        });
         self.raw.buffer_data_u8_slice(target, data, usage)
     }
 
@@ -359,18 +317,14 @@ impl Gl {
         offset: i32,
         src_data: &[u8],
     ) {
-        if self.on.get() {
-            self.push(
-                "glBufferSubData",
-                [
-                    name_of(target),
-                    offset.to_string(),
-                    byte_count(src_data.len()),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glBufferSubData", || {
+            [
+                name_of(target),
+                offset.to_string(),
+                byte_count(src_data.len()),
+            ]
+            .join(", ")
+        });
         self.raw.buffer_sub_data_u8_slice(target, offset, src_data)
     }
 
@@ -393,19 +347,15 @@ impl Gl {
         depth: f32,
         stencil: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glClearBufferfi",
-                [
-                    name_of(target),
-                    draw_buffer.to_string(),
-                    depth.to_string(),
-                    stencil.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glClearBufferfi", || {
+            [
+                name_of(target),
+                draw_buffer.to_string(),
+                depth.to_string(),
+                stencil.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .clear_buffer_depth_stencil(target, draw_buffer, depth, stencil)
     }
@@ -416,13 +366,9 @@ impl Gl {
         draw_buffer: u32,
         values: &[f32],
     ) {
-        if self.on.get() {
-            self.push(
-                "glClearBufferfv",
-                [name_of(target), draw_buffer.to_string(), list(values)].join(", "),
-                None,
-            );
-        }
+        self.record("glClearBufferfv", || {
+            [name_of(target), draw_buffer.to_string(), list(values)].join(", ")
+        });
         self.raw.clear_buffer_f32_slice(target, draw_buffer, values)
     }
 
@@ -432,41 +378,27 @@ impl Gl {
         draw_buffer: u32,
         values: &[u32],
     ) {
-        if self.on.get() {
-            self.push(
-                "glClearBufferuiv",
-                [name_of(target), draw_buffer.to_string(), list(values)].join(", "),
-                None,
-            );
-        }
+        self.record("glClearBufferuiv", || {
+            [name_of(target), draw_buffer.to_string(), list(values)].join(", ")
+        });
         self.raw.clear_buffer_u32_slice(target, draw_buffer, values)
     }
 
     pub(super) unsafe fn color_mask(&self, red: bool, green: bool, blue: bool, alpha: bool) {
-        if self.on.get() {
-            self.push(
-                "glColorMask",
-                [
-                    red.to_string(),
-                    green.to_string(),
-                    blue.to_string(),
-                    alpha.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glColorMask", || {
+            [
+                red.to_string(),
+                green.to_string(),
+                blue.to_string(),
+                alpha.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw.color_mask(red, green, blue, alpha)
     }
 
     pub(super) unsafe fn compile_shader(&self, shader: glow::Shader) {
-        if self.on.get() {
-            self.push(
-                "glCompileShader",
-                [shader.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glCompileShader", || [shader.id().to_string()].join(", "));
         self.raw.compile_shader(shader)
     }
 
@@ -478,20 +410,16 @@ impl Gl {
         dst_offset: i32,
         size: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glCopyBufferSubData",
-                [
-                    name_of(src_target),
-                    name_of(dst_target),
-                    src_offset.to_string(),
-                    dst_offset.to_string(),
-                    size.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glCopyBufferSubData", || {
+            [
+                name_of(src_target),
+                name_of(dst_target),
+                src_offset.to_string(),
+                dst_offset.to_string(),
+                size.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .copy_buffer_sub_data(src_target, dst_target, src_offset, dst_offset, size)
     }
@@ -578,137 +506,87 @@ impl Gl {
     }
 
     pub(super) unsafe fn cull_face(&self, value: u32) {
-        if self.on.get() {
-            self.push("glCullFace", [name_of(value)].join(", "), None);
-        }
+        self.record("glCullFace", || [name_of(value)].join(", "));
         self.raw.cull_face(value)
     }
 
     pub(super) unsafe fn delete_buffer(&self, buffer: glow::Buffer) {
-        if self.on.get() {
-            self.push(
-                "glDeleteBuffers",
-                [buffer.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glDeleteBuffers", || [buffer.id().to_string()].join(", "));
         self.raw.delete_buffer(buffer)
     }
 
     pub(super) unsafe fn delete_framebuffer(&self, framebuffer: glow::Framebuffer) {
-        if self.on.get() {
-            self.push(
-                "glDeleteFramebuffers",
-                [framebuffer.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glDeleteFramebuffers", || {
+            [framebuffer.id().to_string()].join(", ")
+        });
         self.raw.delete_framebuffer(framebuffer)
     }
 
     pub(super) unsafe fn delete_program(&self, program: glow::Program) {
-        if self.on.get() {
-            self.push(
-                "glDeleteProgram",
-                [program.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glDeleteProgram", || [program.id().to_string()].join(", "));
         self.raw.delete_program(program)
     }
 
     pub(super) unsafe fn delete_query(&self, query: glow::Query) {
-        if self.on.get() {
-            self.push("glDeleteQueries", [query.id().to_string()].join(", "), None);
-        }
+        self.record("glDeleteQueries", || [query.id().to_string()].join(", "));
         self.raw.delete_query(query)
     }
 
     pub(super) unsafe fn delete_shader(&self, shader: glow::Shader) {
-        if self.on.get() {
-            self.push("glDeleteShader", [shader.id().to_string()].join(", "), None);
-        }
+        self.record("glDeleteShader", || [shader.id().to_string()].join(", "));
         self.raw.delete_shader(shader)
     }
 
     pub(super) unsafe fn delete_texture(&self, texture: glow::Texture) {
-        if self.on.get() {
-            self.push(
-                "glDeleteTextures",
-                [texture.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glDeleteTextures", || [texture.id().to_string()].join(", "));
         self.raw.delete_texture(texture)
     }
 
     pub(super) unsafe fn delete_vertex_array(&self, vertex_array: glow::VertexArray) {
-        if self.on.get() {
-            self.push(
-                "glDeleteVertexArrays",
-                [vertex_array.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glDeleteVertexArrays", || {
+            [vertex_array.id().to_string()].join(", ")
+        });
         self.raw.delete_vertex_array(vertex_array)
     }
 
     pub(super) unsafe fn depth_func(&self, func: u32) {
-        if self.on.get() {
-            self.push("glDepthFunc", [name_of(func)].join(", "), None);
-        }
+        self.record("glDepthFunc", || [name_of(func)].join(", "));
         self.raw.depth_func(func)
     }
 
     pub(super) unsafe fn depth_mask(&self, value: bool) {
-        if self.on.get() {
-            self.push("glDepthMask", [value.to_string()].join(", "), None);
-        }
+        self.record("glDepthMask", || [value.to_string()].join(", "));
         self.raw.depth_mask(value)
     }
 
     pub(super) unsafe fn detach_shader(&self, program: glow::Program, shader: glow::Shader) {
-        if self.on.get() {
-            self.push(
-                "glDetachShader",
-                [program.id().to_string(), shader.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glDetachShader", || {
+            [program.id().to_string(), shader.id().to_string()].join(", ")
+        });
         self.raw.detach_shader(program, shader)
     }
 
     pub(super) unsafe fn disable(&self, parameter: u32) {
-        if self.on.get() {
-            self.push("glDisable", [name_of(parameter)].join(", "), None);
-        }
+        self.record("glDisable", || [name_of(parameter)].join(", "));
         self.raw.disable(parameter)
     }
 
     pub(super) unsafe fn dispatch_compute(&self, groups_x: u32, groups_y: u32, groups_z: u32) {
-        if self.on.get() {
-            self.push(
-                "glDispatchCompute",
-                [
-                    groups_x.to_string(),
-                    groups_y.to_string(),
-                    groups_z.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glDispatchCompute", || {
+            [
+                groups_x.to_string(),
+                groups_y.to_string(),
+                groups_z.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw.dispatch_compute(groups_x, groups_y, groups_z)
     }
 
     pub(super) unsafe fn draw_arrays(&self, mode: u32, first: i32, count: i32) {
-        if self.on.get() {
-            self.push(
-                "glDrawArrays",
-                [primitive_name(mode), first.to_string(), count.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glDrawArrays", || {
+            [primitive_name(mode), first.to_string(), count.to_string()].join(", ")
+        });
         self.raw.draw_arrays(mode, first, count)
     }
 
@@ -719,34 +597,26 @@ impl Gl {
         count: i32,
         instance_count: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glDrawArraysInstanced",
-                [
-                    primitive_name(mode),
-                    first.to_string(),
-                    count.to_string(),
-                    instance_count.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glDrawArraysInstanced", || {
+            [
+                primitive_name(mode),
+                first.to_string(),
+                count.to_string(),
+                instance_count.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .draw_arrays_instanced(mode, first, count, instance_count)
     }
 
     pub(super) unsafe fn draw_buffer(&self, buffer: u32) {
-        if self.on.get() {
-            self.push("glDrawBuffer", [name_of(buffer)].join(", "), None);
-        }
+        self.record("glDrawBuffer", || [name_of(buffer)].join(", "));
         self.raw.draw_buffer(buffer)
     }
 
     pub(super) unsafe fn draw_buffers(&self, buffers: &[u32]) {
-        if self.on.get() {
-            self.push("glDrawBuffers", [names_of(buffers)].join(", "), None);
-        }
+        self.record("glDrawBuffers", || [names_of(buffers)].join(", "));
         self.raw.draw_buffers(buffers)
     }
 
@@ -757,19 +627,15 @@ impl Gl {
         element_type: u32,
         offset: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glDrawElements",
-                [
-                    primitive_name(mode),
-                    count.to_string(),
-                    name_of(element_type),
-                    offset.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glDrawElements", || {
+            [
+                primitive_name(mode),
+                count.to_string(),
+                name_of(element_type),
+                offset.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw.draw_elements(mode, count, element_type, offset)
     }
 
@@ -781,67 +647,49 @@ impl Gl {
         offset: i32,
         instance_count: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glDrawElementsInstanced",
-                [
-                    primitive_name(mode),
-                    count.to_string(),
-                    name_of(element_type),
-                    offset.to_string(),
-                    instance_count.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glDrawElementsInstanced", || {
+            [
+                primitive_name(mode),
+                count.to_string(),
+                name_of(element_type),
+                offset.to_string(),
+                instance_count.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .draw_elements_instanced(mode, count, element_type, offset, instance_count)
     }
 
     pub(super) unsafe fn enable(&self, parameter: u32) {
-        if self.on.get() {
-            self.push("glEnable", [name_of(parameter)].join(", "), None);
-        }
+        self.record("glEnable", || [name_of(parameter)].join(", "));
         self.raw.enable(parameter)
     }
 
     pub(super) unsafe fn enable_vertex_attrib_array(&self, index: u32) {
-        if self.on.get() {
-            self.push(
-                "glEnableVertexAttribArray",
-                [index.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glEnableVertexAttribArray", || {
+            [index.to_string()].join(", ")
+        });
         self.raw.enable_vertex_attrib_array(index)
     }
 
     pub(super) unsafe fn end_query(&self, target: u32) {
-        if self.on.get() {
-            self.push("glEndQuery", [name_of(target)].join(", "), None);
-        }
+        self.record("glEndQuery", || [name_of(target)].join(", "));
         self.raw.end_query(target)
     }
 
     pub(super) unsafe fn end_transform_feedback(&self) {
-        if self.on.get() {
-            self.push("glEndTransformFeedback", String::new(), None);
-        }
+        self.record("glEndTransformFeedback", String::new);
         self.raw.end_transform_feedback()
     }
 
     pub(super) unsafe fn finish(&self) {
-        if self.on.get() {
-            self.push("glFinish", String::new(), None);
-        }
+        self.record("glFinish", String::new);
         self.raw.finish()
     }
 
     pub(super) unsafe fn flush(&self) {
-        if self.on.get() {
-            self.push("glFlush", String::new(), None);
-        }
+        self.record("glFlush", String::new);
         self.raw.flush()
     }
 
@@ -852,19 +700,15 @@ impl Gl {
         texture: Option<glow::Texture>,
         level: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glFramebufferTexture",
-                [
-                    name_of(target),
-                    name_of(attachment),
-                    id_of(texture),
-                    level.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glFramebufferTexture", || {
+            [
+                name_of(target),
+                name_of(attachment),
+                id_of(texture),
+                level.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .framebuffer_texture(target, attachment, texture, level)
     }
@@ -874,24 +718,14 @@ impl Gl {
         program: glow::Program,
         index: u32,
     ) -> Option<glow::ActiveUniform> {
-        if self.on.get() {
-            self.push(
-                "glGetActiveUniform",
-                [program.id().to_string(), index.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glGetActiveUniform", || {
+            [program.id().to_string(), index.to_string()].join(", ")
+        });
         self.raw.get_active_uniform(program, index)
     }
 
     pub(super) unsafe fn get_active_uniforms(&self, program: glow::Program) -> u32 {
-        if self.on.get() {
-            self.push(
-                "glGetProgramiv",
-                [program.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glGetProgramiv", || [program.id().to_string()].join(", "));
         self.raw.get_active_uniforms(program)
     }
 
@@ -901,30 +735,22 @@ impl Gl {
         uniforms: &[u32],
         pname: u32,
     ) -> Vec<i32> {
-        if self.on.get() {
-            self.push(
-                "glGetActiveUniformsiv",
-                [program.id().to_string(), list(uniforms), name_of(pname)].join(", "),
-                None,
-            );
-        }
+        self.record("glGetActiveUniformsiv", || {
+            [program.id().to_string(), list(uniforms), name_of(pname)].join(", ")
+        });
         self.raw
             .get_active_uniforms_parameter(program, uniforms, pname)
     }
 
     pub(super) unsafe fn get_buffer_sub_data(&self, target: u32, offset: i32, dst_data: &mut [u8]) {
-        if self.on.get() {
-            self.push(
-                "glGetBufferSubData",
-                [
-                    name_of(target),
-                    offset.to_string(),
-                    byte_count(dst_data.len()),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glGetBufferSubData", || {
+            [
+                name_of(target),
+                offset.to_string(),
+                byte_count(dst_data.len()),
+            ]
+            .join(", ")
+        });
         self.raw.get_buffer_sub_data(target, offset, dst_data)
     }
 
@@ -937,60 +763,38 @@ impl Gl {
     }
 
     pub(super) unsafe fn get_parameter_i32(&self, parameter: u32) -> i32 {
-        if self.on.get() {
-            self.push("glGetIntegerv", [name_of(parameter)].join(", "), None);
-        }
+        self.record("glGetIntegerv", || [name_of(parameter)].join(", "));
         self.raw.get_parameter_i32(parameter)
     }
 
     pub(super) unsafe fn get_parameter_i64(&self, parameter: u32) -> i64 {
-        if self.on.get() {
-            self.push("glGetInteger64v", [name_of(parameter)].join(", "), None);
-        }
+        self.record("glGetInteger64v", || [name_of(parameter)].join(", "));
         self.raw.get_parameter_i64(parameter)
     }
 
     pub(super) unsafe fn get_parameter_indexed_i32(&self, parameter: u32, index: u32) -> i32 {
-        if self.on.get() {
-            self.push(
-                "glGetIntegeri_v",
-                [name_of(parameter), index.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glGetIntegeri_v", || {
+            [name_of(parameter), index.to_string()].join(", ")
+        });
         self.raw.get_parameter_indexed_i32(parameter, index)
     }
 
     pub(super) unsafe fn get_program_info_log(&self, program: glow::Program) -> String {
-        if self.on.get() {
-            self.push(
-                "glGetProgramInfoLog",
-                [program.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glGetProgramInfoLog", || {
+            [program.id().to_string()].join(", ")
+        });
         self.raw.get_program_info_log(program)
     }
 
     pub(super) unsafe fn get_program_link_status(&self, program: glow::Program) -> bool {
-        if self.on.get() {
-            self.push(
-                "glGetProgramiv",
-                [program.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glGetProgramiv", || [program.id().to_string()].join(", "));
         self.raw.get_program_link_status(program)
     }
 
     pub(super) unsafe fn get_query_parameter_u32(&self, query: glow::Query, parameter: u32) -> u32 {
-        if self.on.get() {
-            self.push(
-                "glGetQueryObjectuiv",
-                [query.id().to_string(), name_of(parameter)].join(", "),
-                None,
-            );
-        }
+        self.record("glGetQueryObjectuiv", || {
+            [query.id().to_string(), name_of(parameter)].join(", ")
+        });
         self.raw.get_query_parameter_u32(query, parameter)
     }
 
@@ -1000,37 +804,27 @@ impl Gl {
         parameter: u32,
         offset: usize,
     ) {
-        if self.on.get() {
-            self.push(
-                "glGetQueryObjectui64v",
-                [
-                    query.id().to_string(),
-                    name_of(parameter),
-                    offset.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glGetQueryObjectui64v", || {
+            [
+                query.id().to_string(),
+                name_of(parameter),
+                offset.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .get_query_parameter_u64_with_offset(query, parameter, offset)
     }
 
     pub(super) unsafe fn get_shader_compile_status(&self, shader: glow::Shader) -> bool {
-        if self.on.get() {
-            self.push("glGetShaderiv", [shader.id().to_string()].join(", "), None);
-        }
+        self.record("glGetShaderiv", || [shader.id().to_string()].join(", "));
         self.raw.get_shader_compile_status(shader)
     }
 
     pub(super) unsafe fn get_shader_info_log(&self, shader: glow::Shader) -> String {
-        if self.on.get() {
-            self.push(
-                "glGetShaderInfoLog",
-                [shader.id().to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glGetShaderInfoLog", || {
+            [shader.id().to_string()].join(", ")
+        });
         self.raw.get_shader_info_log(shader)
     }
 
@@ -1042,20 +836,16 @@ impl Gl {
         ty: u32,
         pixels: glow::PixelPackData<'_>,
     ) {
-        if self.on.get() {
-            self.push(
-                "glGetTexImage",
-                [
-                    name_of(target),
-                    level.to_string(),
-                    name_of(format),
-                    name_of(ty),
-                    pack_into(&pixels),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glGetTexImage", || {
+            [
+                name_of(target),
+                level.to_string(),
+                name_of(format),
+                name_of(ty),
+                pack_into(&pixels),
+            ]
+            .join(", ")
+        });
         self.raw.get_tex_image(target, level, format, ty, pixels)
     }
 
@@ -1079,56 +869,38 @@ impl Gl {
     }
 
     pub(super) unsafe fn link_program(&self, program: glow::Program) {
-        if self.on.get() {
-            self.push("glLinkProgram", [program.id().to_string()].join(", "), None);
-        }
+        self.record("glLinkProgram", || [program.id().to_string()].join(", "));
         self.raw.link_program(program)
     }
 
     pub(super) unsafe fn memory_barrier(&self, barriers: u32) {
-        if self.on.get() {
-            self.push("glMemoryBarrier", [hex(barriers)].join(", "), None);
-        }
+        self.record("glMemoryBarrier", || [hex(barriers)].join(", "));
         self.raw.memory_barrier(barriers)
     }
 
     pub(super) unsafe fn pixel_store_i32(&self, parameter: u32, value: i32) {
-        if self.on.get() {
-            self.push(
-                "glPixelStorei",
-                [name_of(parameter), value.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glPixelStorei", || {
+            [name_of(parameter), value.to_string()].join(", ")
+        });
         self.raw.pixel_store_i32(parameter, value)
     }
 
     pub(super) unsafe fn polygon_offset(&self, factor: f32, units: f32) {
-        if self.on.get() {
-            self.push(
-                "glPolygonOffset",
-                [factor.to_string(), units.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glPolygonOffset", || {
+            [factor.to_string(), units.to_string()].join(", ")
+        });
         self.raw.polygon_offset(factor, units)
     }
 
     pub(super) unsafe fn query_counter(&self, query: glow::Query, target: u32) {
-        if self.on.get() {
-            self.push(
-                "glQueryCounter",
-                [query.id().to_string(), name_of(target)].join(", "),
-                None,
-            );
-        }
+        self.record("glQueryCounter", || {
+            [query.id().to_string(), name_of(target)].join(", ")
+        });
         self.raw.query_counter(query, target)
     }
 
     pub(super) unsafe fn read_buffer(&self, src: u32) {
-        if self.on.get() {
-            self.push("glReadBuffer", [name_of(src)].join(", "), None);
-        }
+        self.record("glReadBuffer", || [name_of(src)].join(", "));
         self.raw.read_buffer(src)
     }
 
@@ -1142,34 +914,26 @@ impl Gl {
         gltype: u32,
         pixels: glow::PixelPackData<'_>,
     ) {
-        if self.on.get() {
-            self.push(
-                "glReadPixels",
-                [
-                    x.to_string(),
-                    y.to_string(),
-                    width.to_string(),
-                    height.to_string(),
-                    name_of(format),
-                    name_of(gltype),
-                    pack_into(&pixels),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glReadPixels", || {
+            [
+                x.to_string(),
+                y.to_string(),
+                width.to_string(),
+                height.to_string(),
+                name_of(format),
+                name_of(gltype),
+                pack_into(&pixels),
+            ]
+            .join(", ")
+        });
         self.raw
             .read_pixels(x, y, width, height, format, gltype, pixels)
     }
 
     pub(super) unsafe fn shader_source(&self, shader: glow::Shader, source: &str) {
-        if self.on.get() {
-            self.push(
-                "glShaderSource",
-                [shader.id().to_string(), format!("{} chars", source.len())].join(", "),
-                None,
-            );
-        }
+        self.record("glShaderSource", || {
+            [shader.id().to_string(), format!("{} chars", source.len())].join(", ")
+        });
         self.raw.shader_source(shader, source)
     }
 
@@ -1180,37 +944,27 @@ impl Gl {
         reference: i32,
         mask: u32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glStencilFuncSeparate",
-                [
-                    name_of(face),
-                    name_of(func),
-                    reference.to_string(),
-                    hex(mask),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glStencilFuncSeparate", || {
+            [
+                name_of(face),
+                name_of(func),
+                reference.to_string(),
+                hex(mask),
+            ]
+            .join(", ")
+        });
         self.raw.stencil_func_separate(face, func, reference, mask)
     }
 
     pub(super) unsafe fn stencil_mask(&self, mask: u32) {
-        if self.on.get() {
-            self.push("glStencilMask", [hex(mask)].join(", "), None);
-        }
+        self.record("glStencilMask", || [hex(mask)].join(", "));
         self.raw.stencil_mask(mask)
     }
 
     pub(super) unsafe fn stencil_mask_separate(&self, face: u32, mask: u32) {
-        if self.on.get() {
-            self.push(
-                "glStencilMaskSeparate",
-                [name_of(face), hex(mask)].join(", "),
-                None,
-            );
-        }
+        self.record("glStencilMaskSeparate", || {
+            [name_of(face), hex(mask)].join(", ")
+        });
         self.raw.stencil_mask_separate(face, mask)
     }
 
@@ -1221,19 +975,15 @@ impl Gl {
         depth_fail: u32,
         pass: u32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glStencilOpSeparate",
-                [
-                    name_of(face),
-                    name_of(stencil_fail),
-                    name_of(depth_fail),
-                    name_of(pass),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glStencilOpSeparate", || {
+            [
+                name_of(face),
+                name_of(stencil_fail),
+                name_of(depth_fail),
+                name_of(pass),
+            ]
+            .join(", ")
+        });
         self.raw
             .stencil_op_separate(face, stencil_fail, depth_fail, pass)
     }
@@ -1249,23 +999,19 @@ impl Gl {
         ty: u32,
         pixels: glow::PixelUnpackData<'_>,
     ) {
-        if self.on.get() {
-            self.push(
-                "glTexImage1D",
-                [
-                    name_of(target),
-                    level.to_string(),
-                    name_of(internal_format as u32),
-                    width.to_string(),
-                    border.to_string(),
-                    name_of(format),
-                    name_of(ty),
-                    unpack_from(&pixels),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glTexImage1D", || {
+            [
+                name_of(target),
+                level.to_string(),
+                name_of(internal_format as u32),
+                width.to_string(),
+                border.to_string(),
+                name_of(format),
+                name_of(ty),
+                unpack_from(&pixels),
+            ]
+            .join(", ")
+        });
         self.raw.tex_image_1d(
             target,
             level,
@@ -1290,24 +1036,20 @@ impl Gl {
         ty: u32,
         pixels: glow::PixelUnpackData<'_>,
     ) {
-        if self.on.get() {
-            self.push(
-                "glTexImage2D",
-                [
-                    name_of(target),
-                    level.to_string(),
-                    name_of(internal_format as u32),
-                    width.to_string(),
-                    height.to_string(),
-                    border.to_string(),
-                    name_of(format),
-                    name_of(ty),
-                    unpack_from(&pixels),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glTexImage2D", || {
+            [
+                name_of(target),
+                level.to_string(),
+                name_of(internal_format as u32),
+                width.to_string(),
+                height.to_string(),
+                border.to_string(),
+                name_of(format),
+                name_of(ty),
+                unpack_from(&pixels),
+            ]
+            .join(", ")
+        });
         self.raw.tex_image_2d(
             target,
             level,
@@ -1322,18 +1064,14 @@ impl Gl {
     }
 
     pub(super) unsafe fn tex_parameter_i32(&self, target: u32, parameter: u32, value: i32) {
-        if self.on.get() {
-            self.push(
-                "glTexParameteri",
-                [
-                    name_of(target),
-                    name_of(parameter),
-                    parameter_value(parameter, value),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glTexParameteri", || {
+            [
+                name_of(target),
+                name_of(parameter),
+                parameter_value(parameter, value),
+            ]
+            .join(", ")
+        });
         self.raw.tex_parameter_i32(target, parameter, value)
     }
 
@@ -1349,24 +1087,20 @@ impl Gl {
         ty: u32,
         pixels: glow::PixelUnpackData<'_>,
     ) {
-        if self.on.get() {
-            self.push(
-                "glTexSubImage2D",
-                [
-                    name_of(target),
-                    level.to_string(),
-                    x_offset.to_string(),
-                    y_offset.to_string(),
-                    width.to_string(),
-                    height.to_string(),
-                    name_of(format),
-                    name_of(ty),
-                    unpack_from(&pixels),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glTexSubImage2D", || {
+            [
+                name_of(target),
+                level.to_string(),
+                x_offset.to_string(),
+                y_offset.to_string(),
+                width.to_string(),
+                height.to_string(),
+                name_of(format),
+                name_of(ty),
+                unpack_from(&pixels),
+            ]
+            .join(", ")
+        });
         self.raw.tex_sub_image_2d(
             target, level, x_offset, y_offset, width, height, format, ty, pixels,
         )
@@ -1378,30 +1112,22 @@ impl Gl {
         varyings: &[&str],
         buffer_mode: u32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glTransformFeedbackVaryings",
-                [
-                    program.id().to_string(),
-                    format!("{varyings:?}"),
-                    name_of(buffer_mode),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glTransformFeedbackVaryings", || {
+            [
+                program.id().to_string(),
+                format!("{varyings:?}"),
+                name_of(buffer_mode),
+            ]
+            .join(", ")
+        });
         self.raw
             .transform_feedback_varyings(program, varyings, buffer_mode)
     }
 
     pub(super) unsafe fn uniform_1_f32(&self, location: Option<&glow::UniformLocation>, x: f32) {
-        if self.on.get() {
-            self.push(
-                "glUniform1f",
-                [self.location(location), x.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform1f", || {
+            [self.location(location), x.to_string()].join(", ")
+        });
         self.raw.uniform_1_f32(location, x)
     }
 
@@ -1410,24 +1136,16 @@ impl Gl {
         location: Option<&glow::UniformLocation>,
         v: &[f32],
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform1fv",
-                [self.location(location), list(v)].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform1fv", || {
+            [self.location(location), list(v)].join(", ")
+        });
         self.raw.uniform_1_f32_slice(location, v)
     }
 
     pub(super) unsafe fn uniform_1_i32(&self, location: Option<&glow::UniformLocation>, x: i32) {
-        if self.on.get() {
-            self.push(
-                "glUniform1i",
-                [self.location(location), x.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform1i", || {
+            [self.location(location), x.to_string()].join(", ")
+        });
         self.raw.uniform_1_i32(location, x)
     }
 
@@ -1436,24 +1154,16 @@ impl Gl {
         location: Option<&glow::UniformLocation>,
         v: &[i32],
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform1iv",
-                [self.location(location), list(v)].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform1iv", || {
+            [self.location(location), list(v)].join(", ")
+        });
         self.raw.uniform_1_i32_slice(location, v)
     }
 
     pub(super) unsafe fn uniform_1_u32(&self, location: Option<&glow::UniformLocation>, x: u32) {
-        if self.on.get() {
-            self.push(
-                "glUniform1ui",
-                [self.location(location), x.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform1ui", || {
+            [self.location(location), x.to_string()].join(", ")
+        });
         self.raw.uniform_1_u32(location, x)
     }
 
@@ -1463,13 +1173,9 @@ impl Gl {
         x: f32,
         y: f32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform2f",
-                [self.location(location), x.to_string(), y.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform2f", || {
+            [self.location(location), x.to_string(), y.to_string()].join(", ")
+        });
         self.raw.uniform_2_f32(location, x, y)
     }
 
@@ -1479,13 +1185,9 @@ impl Gl {
         x: i32,
         y: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform2i",
-                [self.location(location), x.to_string(), y.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform2i", || {
+            [self.location(location), x.to_string(), y.to_string()].join(", ")
+        });
         self.raw.uniform_2_i32(location, x, y)
     }
 
@@ -1496,19 +1198,15 @@ impl Gl {
         y: f32,
         z: f32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform3f",
-                [
-                    self.location(location),
-                    x.to_string(),
-                    y.to_string(),
-                    z.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glUniform3f", || {
+            [
+                self.location(location),
+                x.to_string(),
+                y.to_string(),
+                z.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw.uniform_3_f32(location, x, y, z)
     }
 
@@ -1520,20 +1218,16 @@ impl Gl {
         z: f32,
         w: f32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform4f",
-                [
-                    self.location(location),
-                    x.to_string(),
-                    y.to_string(),
-                    z.to_string(),
-                    w.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glUniform4f", || {
+            [
+                self.location(location),
+                x.to_string(),
+                y.to_string(),
+                z.to_string(),
+                w.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw.uniform_4_f32(location, x, y, z, w)
     }
 
@@ -1542,13 +1236,9 @@ impl Gl {
         location: Option<&glow::UniformLocation>,
         v: &[f32],
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform4fv",
-                [self.location(location), list(v)].join(", "),
-                None,
-            );
-        }
+        self.record("glUniform4fv", || {
+            [self.location(location), list(v)].join(", ")
+        });
         self.raw.uniform_4_f32_slice(location, v)
     }
 
@@ -1560,20 +1250,16 @@ impl Gl {
         z: i32,
         w: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniform4i",
-                [
-                    self.location(location),
-                    x.to_string(),
-                    y.to_string(),
-                    z.to_string(),
-                    w.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glUniform4i", || {
+            [
+                self.location(location),
+                x.to_string(),
+                y.to_string(),
+                z.to_string(),
+                w.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw.uniform_4_i32(location, x, y, z, w)
     }
 
@@ -1583,13 +1269,9 @@ impl Gl {
         transpose: bool,
         v: &[f32],
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniformMatrix3fv",
-                [self.location(location), transpose.to_string(), list(v)].join(", "),
-                None,
-            );
-        }
+        self.record("glUniformMatrix3fv", || {
+            [self.location(location), transpose.to_string(), list(v)].join(", ")
+        });
         self.raw.uniform_matrix_3_f32_slice(location, transpose, v)
     }
 
@@ -1599,31 +1281,21 @@ impl Gl {
         transpose: bool,
         v: &[f32],
     ) {
-        if self.on.get() {
-            self.push(
-                "glUniformMatrix4fv",
-                [self.location(location), transpose.to_string(), list(v)].join(", "),
-                None,
-            );
-        }
+        self.record("glUniformMatrix4fv", || {
+            [self.location(location), transpose.to_string(), list(v)].join(", ")
+        });
         self.raw.uniform_matrix_4_f32_slice(location, transpose, v)
     }
 
     pub(super) unsafe fn use_program(&self, program: Option<glow::Program>) {
-        if self.on.get() {
-            self.push("glUseProgram", [id_of(program)].join(", "), None);
-        }
+        self.record("glUseProgram", || [id_of(program)].join(", "));
         self.raw.use_program(program)
     }
 
     pub(super) unsafe fn vertex_attrib_divisor(&self, index: u32, divisor: u32) {
-        if self.on.get() {
-            self.push(
-                "glVertexAttribDivisor",
-                [index.to_string(), divisor.to_string()].join(", "),
-                None,
-            );
-        }
+        self.record("glVertexAttribDivisor", || {
+            [index.to_string(), divisor.to_string()].join(", ")
+        });
         self.raw.vertex_attrib_divisor(index, divisor)
     }
 
@@ -1636,21 +1308,17 @@ impl Gl {
         stride: i32,
         offset: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glVertexAttribPointer",
-                [
-                    index.to_string(),
-                    size.to_string(),
-                    name_of(data_type),
-                    normalized.to_string(),
-                    stride.to_string(),
-                    offset.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glVertexAttribPointer", || {
+            [
+                index.to_string(),
+                size.to_string(),
+                name_of(data_type),
+                normalized.to_string(),
+                stride.to_string(),
+                offset.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .vertex_attrib_pointer_f32(index, size, data_type, normalized, stride, offset)
     }
@@ -1663,38 +1331,30 @@ impl Gl {
         stride: i32,
         offset: i32,
     ) {
-        if self.on.get() {
-            self.push(
-                "glVertexAttribIPointer",
-                [
-                    index.to_string(),
-                    size.to_string(),
-                    name_of(data_type),
-                    stride.to_string(),
-                    offset.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glVertexAttribIPointer", || {
+            [
+                index.to_string(),
+                size.to_string(),
+                name_of(data_type),
+                stride.to_string(),
+                offset.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw
             .vertex_attrib_pointer_i32(index, size, data_type, stride, offset)
     }
 
     pub(super) unsafe fn viewport(&self, x: i32, y: i32, width: i32, height: i32) {
-        if self.on.get() {
-            self.push(
-                "glViewport",
-                [
-                    x.to_string(),
-                    y.to_string(),
-                    width.to_string(),
-                    height.to_string(),
-                ]
-                .join(", "),
-                None,
-            );
-        }
+        self.record("glViewport", || {
+            [
+                x.to_string(),
+                y.to_string(),
+                width.to_string(),
+                height.to_string(),
+            ]
+            .join(", ")
+        });
         self.raw.viewport(x, y, width, height)
     }
 }
