@@ -409,24 +409,14 @@ impl MeshCheck {
         bound: &MeshBound,
         exact_ms: f64,
     ) -> MeshCheck {
-        let h = exact.grid.spacing;
-        let diffs: Vec<f64> = meshes
-            .values
-            .iter()
-            .zip(&exact.values)
-            .map(|(&m, &e)| (m as f64 - e as f64) / h)
-            .collect();
-        let deepest = exact.values.iter().fold(0.0f64, |a, &v| a.max(v as f64)) / h;
-        let tolerance = bound.tolerance(deepest);
-        let lowest = diffs.iter().copied().fold(f64::INFINITY, f64::min);
-        let highest = diffs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let error = bound.compare(meshes, exact);
         MeshCheck {
             bound: bound.clone(),
-            max: diffs.iter().map(|d| d.abs()).fold(0.0, f64::max),
-            mean: diffs.iter().map(|d| d.abs()).sum::<f64>() / diffs.len().max(1) as f64,
-            lowest,
-            tolerance,
-            within: lowest >= -tolerance.0 && highest <= tolerance.1,
+            max: error.max(),
+            mean: error.mean,
+            lowest: error.lowest,
+            tolerance: error.tolerance,
+            within: error.within(),
             exact_ms,
         }
     }

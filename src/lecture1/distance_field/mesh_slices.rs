@@ -40,6 +40,49 @@ impl MeshBound {
             self.tessellation_voxels + self.coverage_voxels + rounding,
         )
     }
+
+    /// The meshes' field `meshes` against the exact field `exact` on the same grid, in voxels,
+    /// with what this bound allows there.
+    pub fn compare(&self, meshes: &DistanceField, exact: &DistanceField) -> MeshError {
+        let h = exact.grid.spacing;
+        let diffs: Vec<f64> = meshes
+            .values
+            .iter()
+            .zip(&exact.values)
+            .map(|(&m, &e)| (m as f64 - e as f64) / h)
+            .collect();
+        let deepest = exact.values.iter().fold(0.0f64, |a, &v| a.max(v as f64)) / h;
+        MeshError {
+            lowest: diffs.iter().copied().fold(f64::INFINITY, f64::min),
+            highest: diffs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            mean: diffs.iter().map(|d| d.abs()).sum::<f64>() / diffs.len().max(1) as f64,
+            tolerance: self.tolerance(deepest),
+        }
+    }
+}
+
+/// The distance meshes' field against the exact field, in voxels ([`MeshBound::compare`]).
+#[derive(Clone, Copy, Debug)]
+pub struct MeshError {
+    /// The lowest and highest `mesh - exact`.
+    pub lowest: f64,
+    pub highest: f64,
+    /// The mean `|mesh - exact|`.
+    pub mean: f64,
+    /// How far below and above the exact field the bound allows ([`MeshBound::tolerance`]).
+    pub tolerance: (f64, f64),
+}
+
+impl MeshError {
+    /// The largest `|mesh - exact|`.
+    pub fn max(&self) -> f64 {
+        self.lowest.abs().max(self.highest.abs())
+    }
+
+    /// Whether every value kept within the bound.
+    pub fn within(&self) -> bool {
+        self.lowest >= -self.tolerance.0 && self.highest <= self.tolerance.1
+    }
 }
 
 /// The mesh program of one context.

@@ -38,22 +38,6 @@ pub struct FieldRow {
     pub timings: FieldTimings,
 }
 
-/// The lowest and highest `a - b` and the mean `|a - b|` over the grid, in voxels.
-fn signed_differences(a: &DistanceField, b: &DistanceField) -> (f64, f64, f64) {
-    let h = a.grid.spacing;
-    let d: Vec<f64> = a
-        .values
-        .iter()
-        .zip(&b.values)
-        .map(|(&x, &y)| (x as f64 - y as f64) / h)
-        .collect();
-    (
-        d.iter().copied().fold(f64::INFINITY, f64::min),
-        d.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        d.iter().map(|v| v.abs()).sum::<f64>() / d.len().max(1) as f64,
-    )
-}
-
 fn largest_difference(a: &DistanceField, b: &DistanceField) -> f64 {
     a.values
         .iter()
@@ -98,16 +82,14 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         // Hoff's distance meshes, within MESH_ERROR_VOXELS.
         meshes.field(&mesh, &grid, None, MESH_ERROR_VOXELS)?;
         let (field, timings, bound) = meshes.field(&mesh, &grid, None, MESH_ERROR_VOXELS)?;
-        let (lowest, highest, mean) = signed_differences(&field, &cpu);
-        let deepest = cpu.values.iter().fold(0.0f64, |a, &v| a.max(v as f64)) / grid.spacing;
-        let (below, above) = bound.tolerance(deepest);
+        let error = bound.compare(&field, &cpu);
         rows.push(FieldRow {
             formulation: "classic, Hoff's distance meshes (depth test)".into(),
             resolution: n,
-            max_error_voxels: lowest.abs().max(highest.abs()),
+            max_error_voxels: error.max(),
             tessellation_bound: Some(bound.tessellation_voxels),
-            mean_error_voxels: Some(mean),
-            within_bound: Some(lowest >= -below && highest <= above),
+            mean_error_voxels: Some(error.mean),
+            within_bound: Some(error.within()),
             parry3d_error_voxels: Some(largest_difference(&field, &parry)),
             timings,
         });
