@@ -739,8 +739,8 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
         format!(
             "{} VPLs, {} receivers; theta {}: {:.1} nodes per receiver, relative RMS error \
              {:.2e} against the brute force\nGPU: tree {:.2} ms, brute force {:.2} ms; CPU \
-             brute force (f64) {:.1} ms: CPU / tree {:.1}, CPU / GPU brute force {:.1} \
-             (renderer: {renderer})",
+             brute force (f64, on {} cores) {:.1} ms: CPU / tree {:.1}, CPU / GPU brute force \
+             {:.1} (renderer: {renderer})",
             run.vpls,
             run.receivers,
             row.theta,
@@ -748,6 +748,7 @@ fn light(a: &LightArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
             row.relative_rms_error,
             row.gpu_ms,
             run.brute_gpu_ms,
+            run.brute_cpu_threads,
             run.brute_cpu_ms,
             run.brute_cpu_ms / row.gpu_ms,
             run.brute_cpu_ms / run.brute_gpu_ms

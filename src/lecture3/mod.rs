@@ -59,3 +59,34 @@ pub mod random_texture;
 
 pub use error::Error;
 pub use height_map::HeightMap;
+
+/// `f` of every item, in the items' order, on every core of the machine (scoped threads;
+/// item k goes to thread k mod n, so that costly and cheap stretches of the input are shared
+/// out evenly): for the CPU references, whose items are independent and which nothing times
+/// as one core's work. Returns the results and the number of threads.
+pub fn map_on_all_cores<T: Sync, R: Send>(
+    items: &[T],
+    f: impl Fn(&T) -> R + Sync,
+) -> (Vec<R>, usize) {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, items.len().max(1));
+    let f = &f;
+    let parts: Vec<Vec<R>> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..threads)
+            .map(|t| scope.spawn(move || items.iter().skip(t).step_by(threads).map(f).collect()))
+            .collect();
+        workers
+            .into_iter()
+            .map(|w| {
+                w.join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            })
+            .collect()
+    });
+    let mut parts: Vec<_> = parts.into_iter().map(Vec::into_iter).collect();
+    let results = (0..items.len())
+        .map(|k| parts[k % threads].next().expect("one result per item"))
+        .collect();
+    (results, threads)
+}

@@ -226,39 +226,16 @@ impl ReferenceImage {
     ) -> ReferenceImage {
         let rule = prefilter.as_ref();
         let (width, height) = (camera.width as usize, camera.height as usize);
-        let threads = std::thread::available_parallelism()
-            .map_or(1, |n| n.get())
-            .clamp(1, height.max(1));
-        let mut rows: Vec<Vec<Option<Reference>>> = (0..height).map(|_| Vec::new()).collect();
-        std::thread::scope(|scope| {
-            let workers: Vec<_> = (0..threads)
-                .map(|t| {
-                    scope.spawn(move || {
-                        (t..height)
-                            .step_by(threads)
-                            .map(|y| {
-                                let row = (0..width)
-                                    .map(|x| reference(surface, camera, rule, x as u32, y as u32))
-                                    .collect::<Vec<_>>();
-                                (y, row)
-                            })
-                            .collect::<Vec<_>>()
-                    })
-                })
-                .collect();
-            for worker in workers {
-                let done = worker
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-                for (y, row) in done {
-                    rows[y] = row;
-                }
-            }
+        let rows: Vec<usize> = (0..height).collect();
+        let (pixels, _) = crate::lecture3::map_on_all_cores(&rows, |&y| {
+            (0..width)
+                .map(|x| reference(surface, camera, rule, x as u32, y as u32))
+                .collect::<Vec<_>>()
         });
         ReferenceImage {
             surface: surface.clone(),
             prefilter,
-            pixels: rows.into_iter().flatten().collect(),
+            pixels: pixels.into_iter().flatten().collect(),
         }
     }
 

@@ -35,6 +35,18 @@ pub fn brute_force(r: &Receiver, vpls: &ClusterLevel, min_distance: f64) -> DVec
         .sum()
 }
 
+/// [`brute_force`] at every receiver (`None` where a pixel holds none), on every core of the
+/// machine; also returns the number of threads.
+pub fn brute_force_all(
+    receivers: &[Option<Receiver>],
+    vpls: &ClusterLevel,
+    min_distance: f64,
+) -> (Vec<Option<DVec3>>, usize) {
+    crate::lecture3::map_on_all_cores(receivers, |r| {
+        r.map(|r| brute_force(&r, vpls, min_distance))
+    })
+}
+
 /// What a light (a VPL or a cluster) gives a receiver, and how far it is for the criterion:
 /// the indirect light's irradiance here, the dipole of [`super::subsurface`] and the
 /// directional sky lights of [`super::environment`] on the same traversal.

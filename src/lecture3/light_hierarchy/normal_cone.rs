@@ -82,11 +82,12 @@ pub fn compare_clustering(
             let criterion = gather
                 .criterion()
                 .ok_or_else(|| Error::Result("a tree gather has a criterion".into()))?;
-            let lights: u64 = receivers
-                .iter()
-                .flatten()
-                .map(|r| tree_gather_with(r, &levels, criterion, &kernel).gathered as u64)
-                .sum();
+            let (gathered, _) = crate::lecture3::map_on_all_cores(&receivers, |r| {
+                r.map_or(0, |r| {
+                    tree_gather_with(&r, &levels, criterion, &kernel).gathered as u64
+                })
+            });
+            let lights: u64 = gathered.iter().sum();
             let nodes: f64 = gpu
                 .iter()
                 .zip(&covered)

@@ -14,7 +14,7 @@ use crate::lecture3::function_texture::{
     error_against_exact, sample_x, Evaluation, Function, FunctionPasses, FunctionTable,
 };
 use crate::lecture3::light_hierarchy::gather::MIN_DISTANCE;
-use crate::lecture3::light_hierarchy::light::brute_force;
+use crate::lecture3::light_hierarchy::light::brute_force_all;
 use crate::lecture3::light_hierarchy::{Gather, IndirectLighting, Scene};
 use crate::lecture3::pyramid::{cpu_pyramid, Extreme, PyramidBuilder};
 use crate::lecture3::random_texture::statistics::{
@@ -452,12 +452,9 @@ pub fn light_run_in<T>(
     let seen = with_brute_force(&lighting)?;
     let receivers = lighting.gbuffer.receivers()?;
     let levels = lighting.clusters.read_atlas_levels()?;
-    let mut cpu = Vec::new();
+    let (mut cpu, mut brute_cpu_threads) = (Vec::new(), 1);
     let brute_cpu_ms = wall_once_ms(|| {
-        cpu = receivers
-            .iter()
-            .map(|r| r.map(|r| brute_force(&r, &levels[0], MIN_DISTANCE as f64)))
-            .collect::<Vec<_>>();
+        (cpu, brute_cpu_threads) = brute_force_all(&receivers, &levels[0], MIN_DISTANCE as f64);
     });
     let brute_gpu_vs_cpu = brute
         .iter()
@@ -512,6 +509,7 @@ pub fn light_run_in<T>(
             brute_gpu_ms: brute_gpu.median,
             brute_gpu_spread: brute_gpu,
             brute_cpu_ms,
+            brute_cpu_threads,
             brute_gpu_vs_cpu,
             rows,
         },

@@ -712,6 +712,7 @@ mod tests {
             brute_gpu_ms: 10.0,
             brute_gpu_spread: Spread::default(),
             brute_cpu_ms: 100.0,
+            brute_cpu_threads: 2,
             brute_gpu_vs_cpu: 1e-6,
             rows: rows
                 .iter()

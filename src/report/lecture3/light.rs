@@ -27,8 +27,8 @@ pub fn table(results: &Lecture3Results) -> Table {
         caption: format!(
             "3. Indirect light from {} VPLs ({1}x{1} image) at {2}x{3} receivers: relative RMS \
              error against the brute-force sum, nodes visited per receiver, GPU time, on {4}; \
-             CPU brute force (f64) {5:.0} ms, GPU brute force within {6:.1e} of it; hierarchy \
-             built in {7:.2} ms{8}",
+             CPU brute force (f64, on {9} cores) {5:.0} ms, GPU brute force within {6:.1e} \
+             of it; hierarchy built in {7:.2} ms{8}",
             l.vpls,
             l.vpl_side,
             l.image.0,
@@ -37,7 +37,8 @@ pub fn table(results: &Lecture3Results) -> Table {
             l.brute_cpu_ms,
             l.brute_gpu_vs_cpu,
             l.build_ms,
-            once(l)
+            once(l),
+            l.brute_cpu_threads
         ),
         header: [
             "gather",

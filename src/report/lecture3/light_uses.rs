@@ -12,6 +12,7 @@ use crate::lecture3::light_hierarchy::normal_cone::{
 };
 use crate::lecture3::light_hierarchy::shade::Terms;
 use crate::lecture3::light_hierarchy::{Gather, IndirectLighting, LightUse, Scene};
+use crate::lecture3::map_on_all_cores;
 use crate::mesh::obj::load_bunny;
 use crate::report::{BenchOptions, Figure, Table};
 use glam::{DVec3, Vec3};
@@ -75,10 +76,9 @@ pub fn use_run(
     let covered: Vec<bool> = receivers.iter().map(Option::is_some).collect();
     let levels = lighting.clusters.read_atlas_levels()?;
     let kernel = light_use.kernel();
-    let cpu_brute: Vec<[f32; 4]> = receivers
-        .iter()
-        .map(|r| r.map_or([0.0; 4], |r| rgb(brute_force_with(&r, &levels[0], &kernel))))
-        .collect();
+    let (cpu_brute, _) = map_on_all_cores(&receivers, |r| {
+        r.map_or([0.0; 4], |r| rgb(brute_force_with(&r, &levels[0], &kernel)))
+    });
     let largest = cpu_brute
         .iter()
         .flat_map(|c| [c[0], c[1], c[2]])
@@ -102,10 +102,9 @@ pub fn use_run(
         let criterion = gather.criterion().expect("a tree gather");
         lighting.gather(gather)?;
         let gpu = lighting.gathers.read()?;
-        let cpu: Vec<_> = receivers
-            .iter()
-            .map(|r| r.map(|r| tree_gather_with(&r, &levels, criterion, &kernel)))
-            .collect();
+        let (cpu, _) = map_on_all_cores(&receivers, |r| {
+            r.map(|r| tree_gather_with(&r, &levels, criterion, &kernel))
+        });
         let cpu_rgb: Vec<[f32; 4]> = cpu
             .iter()
             .map(|t| t.map_or([0.0; 4], |t| rgb(t.irradiance)))

@@ -115,8 +115,10 @@ pub struct LightRun {
     pub build_spread: Spread,
     pub brute_gpu_ms: f64,
     pub brute_gpu_spread: Spread,
-    /// The brute-force sum on the CPU (f64, one thread) over every receiver.
+    /// The brute-force sum on the CPU (f64, on every core: `brute_cpu_threads` threads, as
+    /// the software renderer's passes use them) over every receiver.
     pub brute_cpu_ms: f64,
+    pub brute_cpu_threads: usize,
     /// Largest |GPU - CPU| of the brute force, relative to the pixel's value.
     pub brute_gpu_vs_cpu: f64,
     pub rows: Vec<LightRow>,
