@@ -61,13 +61,20 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
     let slices = SliceRasterizer::new(ctx)?;
     let meshes = MeshSlices::new(ctx)?;
     let compute = ComputeField::new(ctx).ok();
+    // One untimed run of each formulation on a small grid first: it compiles their shaders,
+    // which is all a warm-up buys (each run makes its own textures), so the runs below are
+    // each measured once.
+    let small = Grid::around(&mesh, WARM_UP_VOXELS, Grid::default_margin(&mesh))?;
+    slices.field(&mesh, &small, None)?;
+    meshes.field(&mesh, &small, None, MESH_ERROR_VOXELS)?;
+    if let Some(c) = &compute {
+        c.field(&mesh, &small, None)?;
+    }
     let mut rows = Vec::new();
     for &n in resolutions {
         let grid = Grid::around(&mesh, n, Grid::default_margin(&mesh))?;
         let cpu = brute_force(&mesh, &grid, None);
         let parry = parry_field(&mesh, &grid, None)?;
-        // An untimed first run (shader compilation), then the measured one.
-        slices.field(&mesh, &grid, None)?;
         let (field, timings) = slices.field(&mesh, &grid, None)?;
         rows.push(FieldRow {
             formulation: "classic (slices, GL_MIN)".into(),
@@ -80,7 +87,6 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             timings,
         });
         // Hoff's distance meshes, within MESH_ERROR_VOXELS.
-        meshes.field(&mesh, &grid, None, MESH_ERROR_VOXELS)?;
         let (field, timings, bound) = meshes.field(&mesh, &grid, None, MESH_ERROR_VOXELS)?;
         let error = bound.compare(&field, &cpu);
         rows.push(FieldRow {
@@ -94,7 +100,6 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
             timings,
         });
         if let Some(c) = &compute {
-            c.field(&mesh, &grid, None)?;
             let (field, timings) = c.field(&mesh, &grid, None)?;
             rows.push(FieldRow {
                 formulation: "compute (one invocation per voxel)".into(),
@@ -270,6 +275,10 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
 const VORONOI_SITES: usize = 30;
 /// Hoff's distance meshes' tessellation error in the 3D rows, voxels.
 const MESH_ERROR_VOXELS: f64 = 0.5;
+
+/// The grid (voxels a side) and image (pixels a side) of the untimed warm-up runs.
+const WARM_UP_VOXELS: usize = 8;
+const WARM_UP_PIXELS: usize = 16;
 /// The distance meshes' tessellation error in the 2D rows, pixels.
 const MESH_ERROR_PIXELS: f64 = 0.5;
 
@@ -305,8 +314,8 @@ fn voronoi_rows(ctx: &crate::gl::Context, n: usize) -> anyhow::Result<Vec<FieldR
     ];
     let mut rows = Vec::new();
     for (name, method) in methods {
-        // An untimed first run (shader compilation), then the measured one.
-        raster.diagram_by(&sites, domain, n, method)?;
+        // An untimed first run on a small image (shader compilation), then the measured one.
+        raster.diagram_by(&sites, domain, WARM_UP_PIXELS, method)?;
         let (diagram, t) = raster.diagram_by(&sites, domain, n, method)?;
         let pixel = domain.pixel(n);
         let error = diagram

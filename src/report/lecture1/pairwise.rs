@@ -4,7 +4,7 @@
 //! the swelling knot at its thickest, as a table and a plot; the pair quad's buffers as a
 //! figure.
 
-use super::self_collision::{ms, timed};
+use super::self_collision::{ms, timed, timed_answer};
 use super::{Block, Setting};
 use crate::collide::pipeline::{Options as PairOptions, StreamingCollider};
 use crate::collide::reduction_gpu::ReadbackMode;
@@ -206,7 +206,6 @@ fn count_row(
             ..Options::default()
         },
     )?;
-    let brute = self_pairs(&collider.mesh, &mesh.positions);
     // One untimed run of each GPU path (shader compilation, first draws), whose answers are
     // the ones compared.
     let streaming = collider.frame(&mesh.positions)?;
@@ -215,7 +214,8 @@ fn count_row(
         Some(c) => Some(c.run(mesh, None)?),
         None => None,
     };
-    let brute_force_ms = timed(setting, || Ok(self_pairs(&collider.mesh, &mesh.positions)))?;
+    let (brute_force_ms, brute) =
+        timed_answer(setting, || Ok(self_pairs(&collider.mesh, &mesh.positions)))?;
     let streaming_aabb_ms = timed(setting, || collider.frame(&mesh.positions))?;
     let mut passes = Vec::new();
     let pairwise_ms = timed(setting, || {

@@ -167,10 +167,9 @@ fn scene(
     for f in 0..frames {
         let t = f as f32 * motion.dt;
         let positions = (motion.at)(t);
-        let cpu = self_pairs(&collider.mesh, &positions);
-        let cpu_ms = timed(setting, || Ok(self_pairs(&collider.mesh, &positions)))?;
-        let gpu = collider.frame(&positions)?;
-        let gpu_frame_ms = timed(setting, || collider.frame(&positions))?;
+        // The answers compared are those of the first timed runs.
+        let (cpu_ms, cpu) = timed_answer(setting, || Ok(self_pairs(&collider.mesh, &positions)))?;
+        let (gpu_frame_ms, gpu) = timed_answer(setting, || collider.frame(&positions))?;
         rows.push(FrameRow {
             frame: f,
             t,
@@ -220,6 +219,24 @@ pub(super) fn timed<T>(
         Ok(start.elapsed().as_secs_f64() * 1e3)
     })?;
     Ok(Spread::of(&times))
+}
+
+/// [`timed`], and the first run's answer: a timing's runs give the answer that is checked,
+/// so no run is made for it alone.
+pub(super) fn timed_answer<T>(
+    setting: &Setting,
+    mut work: impl FnMut() -> anyhow::Result<T>,
+) -> anyhow::Result<(Spread, T)> {
+    let mut first = None;
+    let spread = timed(setting, || {
+        let answer = work()?;
+        if first.is_none() {
+            first = Some(answer);
+        }
+        Ok(())
+    })?;
+    let answer = first.ok_or_else(|| anyhow::anyhow!("a timing made no run"))?;
+    Ok((spread, answer))
 }
 
 /// "12.3 (11.9-13.0)": a median and its runs' range.
