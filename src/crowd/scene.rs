@@ -232,11 +232,16 @@ pub(crate) fn range(values: &[f64]) -> [f64; 2] {
 }
 
 /// How one measured configuration renders: the method, and for the vertex-shader method
-/// how many characters go in one draw call (`u32::MAX`: as many as the uniforms hold).
+/// how many characters go in one draw call (`u32::MAX`: as many as the uniforms hold);
+/// whether its runs end with a frame timed stage by stage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Config {
     pub method: Method,
     pub vertex_shader_batch: u32,
+    /// A last frame with every stage inside a timer query and between `glFinish` calls,
+    /// untimed as a frame: its stage times fill [`RunStats::passes`]. Without it they are
+    /// zero, and the run is its timed frames alone.
+    pub stage_times: bool,
 }
 
 impl Config {
@@ -244,12 +249,14 @@ impl Config {
         Self {
             method,
             vertex_shader_batch: u32::MAX,
+            stage_times: true,
         }
     }
 }
 
-/// Runs a warm-up (see `warm_up`), `frames` wall-clock-timed frames and one frame with
-/// per-stage timing. The crowd walks `dt` seconds per frame.
+/// Runs a warm-up (see `warm_up`), `frames` wall-clock-timed frames and (where the
+/// configuration asks for stage times) one frame with per-stage timing. The crowd walks `dt`
+/// seconds per frame.
 pub fn run(
     ctx: &Context,
     renderer: &mut CrowdRenderer,
@@ -338,10 +345,21 @@ pub fn run_side_by_side<E: From<GlError>>(
     }
     let mut out = Vec::with_capacity(configs.len());
     for (i, (config, times)) in configs.iter().zip(&mut times_ms).enumerate() {
-        step_crowd(scenes, &sources, i, dt, stride);
+        let (passes, plan) = if config.stage_times {
+            step_crowd(scenes, &sources, i, dt, stride);
+            let stats = frame(renderer, &scenes[i], config, true)?;
+            shown(i, target)?;
+            stats
+        } else {
+            // The last timed frame's plan (what it drew), with its draw size.
+            renderer.set_vertex_shader_batch(config.vertex_shader_batch);
+            let (models, _) = placements(&scenes[i].crowd);
+            (
+                FrameStats::default(),
+                plan_of(renderer, &scenes[i], &models),
+            )
+        };
         let scene = &scenes[i];
-        let (passes, plan) = frame(renderer, scene, config, true)?;
-        shown(i, target)?;
         let frame_ms = median(times);
         out.push(RunStats {
             frame_ms_range: range(times),
