@@ -93,6 +93,13 @@ fn mass_json_has_every_documented_field() {
         !known_names.contains(&"occlusion queries".to_string()),
         "{known}"
     );
+    // The same passes with no arithmetic (the integrands written as constants): their floor,
+    // timed as they are.
+    let turns = &v["timings_ms"]["no_arithmetic"];
+    for key in ["passes", "floor"] {
+        assert!(turns[key]["runs"].as_u64().unwrap() >= 3, "{turns}");
+        assert!(turns[key]["median"].as_f64().unwrap() > 0.0, "{turns}");
+    }
     assert!(v["framing"]["pixel_size"].as_f64().unwrap() > 0.0);
     assert_eq!(v["analytic"]["reliable"], true);
 }

@@ -9,6 +9,7 @@ use classic_gpgpu::mass::buoyancy::{batch::GpuSolver, render, scene};
 use classic_gpgpu::mass::compute::ComputeMass;
 use classic_gpgpu::mass::framing::Framing;
 use classic_gpgpu::mass::gpu::{GpuMass, GpuResult};
+use classic_gpgpu::mass::integrands::Integrands;
 use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings, DEFAULT_MAX_PEELS};
 use classic_gpgpu::mass::{analytic, clip, models, surface};
 use classic_gpgpu::report::report_folder::Staged;
@@ -196,11 +197,17 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
             })?;
             let known =
                 known_layer_runs(&gpu, &mesh, args.below, &result, ctx).with_context(model)?;
-            (result, (gpu_runs, wall, waits, Some(known)), profile)
+            let floor = no_arithmetic_runs(ctx, &gpu, settings, &mesh, args.below, &result)
+                .with_context(model)?;
+            (
+                result,
+                (gpu_runs, wall, waits, Some(known), Some(floor)),
+                profile,
+            )
         }
         super::Formulation::Compute => {
             let (result, (gpu, wall)) = compute_mass(args, ctx, &mesh).with_context(model)?;
-            (result, (gpu, wall, None, None), None)
+            (result, (gpu, wall, None, None, None), None)
         }
     };
     let exact = match args.below {
@@ -228,6 +235,7 @@ pub fn run_mass(args: &MassArgs, ctx: &Context, json_out: bool) -> anyhow::Resul
         load: Load::now(),
         stop_test: timings.2,
         known_layers: timings.3,
+        no_arithmetic: timings.4,
     };
 
     let got = MassProperties::from_integrals(&result.integrals, args.density);
@@ -423,6 +431,57 @@ fn known_layer_runs(
     })
 }
 
+/// How far above the floor of its passes (the same passes with no arithmetic) the command
+/// counts its passes as at the floor.
+const AT_THE_FLOOR: f64 = 1.3;
+
+/// The passes of `first` with the layer count given in advance, timed (wall clock) in turns
+/// with the same passes with the integrands' arithmetic taken out ([`Integrands::Constant`]:
+/// the listing's targets written with constants), so that a change of load hits both alike:
+/// how far the passes are from their floor on the renderer.
+fn no_arithmetic_runs(
+    ctx: &Context,
+    gpu: &GpuMass,
+    settings: PeelSettings,
+    mesh: &classic_gpgpu::mesh::Mesh,
+    below: Option<f64>,
+    first: &GpuResult,
+) -> anyhow::Result<NoArithmetic> {
+    let mut floor = GpuMass::with_integrands(ctx, first.framing.resolution, Integrands::Constant)
+        .context("setting up the passes without the integrands")?;
+    floor.set_settings(settings)?;
+    floor.set_known_layers(Some(first.peels));
+    let untimed = floor.integrate(mesh, below, None)?;
+    anyhow::ensure!(
+        untimed.peels == first.peels,
+        "the passes without the integrands peeled {} layers where the first run peeled {}",
+        untimed.peels,
+        first.peels
+    );
+    gpu.set_known_layers(Some(first.peels));
+    let wall = |g: &GpuMass| -> anyhow::Result<f64> {
+        let start = Instant::now();
+        g.integrate(mesh, below, None)?;
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    };
+    let pairs =
+        Runs::PAPER.run(|_| -> anyhow::Result<(f64, f64)> { Ok((wall(gpu)?, wall(&floor)?)) });
+    gpu.set_known_layers(None);
+    let (with, without): (Vec<f64>, Vec<f64>) = pairs?.into_iter().unzip();
+    Ok(NoArithmetic {
+        passes: Spread::of(&with),
+        floor: Spread::of(&without),
+    })
+}
+
+/// The passes (with the layer count given in advance) and the same passes with no
+/// arithmetic, timed in turns (wall clock).
+#[derive(Clone, Debug, serde::Serialize)]
+struct NoArithmetic {
+    passes: Spread,
+    floor: Spread,
+}
+
 /// `integrate` (returning its GPU ms) timed as the report times it ([`Runs::PAPER`]: 3
 /// runs, up to 5 within a second), after the caller's untimed first run: (GPU ms, wall ms).
 fn timed_runs(
@@ -435,6 +494,33 @@ fn timed_runs(
         Ok(start.elapsed().as_secs_f64() * 1e3)
     })?;
     Ok((Spread::of(&gpu), Spread::of(&wall)))
+}
+
+/// The line that sets the passes' runs (`passes`, wall clock) against the same passes with
+/// no arithmetic taken in turns with them (`floor`): within [`AT_THE_FLOOR`] of it, the
+/// passes themselves are the time.
+fn no_arithmetic_text(peels: usize, passes: &Spread, floor: &Spread) -> String {
+    let ratio = passes.median / floor.median.max(f64::MIN_POSITIVE);
+    let verdict = if ratio <= AT_THE_FLOOR {
+        format!(
+            "within {AT_THE_FLOOR}x of them: the integrands' arithmetic is not the time; the \
+             peeling passes are (the body drawn once per layer, the peel and water tests of \
+             every fragment, three float targets and their accumulation)"
+        )
+    } else {
+        format!(
+            "the integrands' arithmetic is {:.0}% of the passes' time",
+            100.0 * (1.0 - 1.0 / ratio)
+        )
+    };
+    format!(
+        "no arithmetic   the same {peels} peels with the listing's integrands replaced by \
+         constants (the same draws, tests, targets and sums: these passes' floor on this \
+         renderer), in turns with the passes above: {} against {}; the passes with the \
+         integrands take {ratio:.2}x them: {verdict}\n",
+        runs_text(floor),
+        runs_text(passes)
+    )
 }
 
 /// "9.812 ms (median of 5 runs, 9.501-10.420)".
@@ -455,6 +541,9 @@ struct Timings {
     stop_test: Option<StopTestWaits>,
     /// The same passes with the layer count given in advance (classic only).
     known_layers: Option<KnownLayers>,
+    /// Those passes in turns with the same passes with the integrands' arithmetic taken out:
+    /// their floor on this renderer (classic only).
+    no_arithmetic: Option<NoArithmetic>,
 }
 
 /// The waits of one run for the occlusion-query results that decide whether another layer
@@ -621,6 +710,7 @@ impl MassOutput<'_> {
                 "load": self.timings.load,
                 "stop_test_waits": self.timings.stop_test,
                 "known_layers": self.timings.known_layers,
+                "no_arithmetic": self.timings.no_arithmetic,
             },
             "warnings": self.warnings,
             "profile": self.profile,
@@ -749,6 +839,9 @@ impl MassOutput<'_> {
                 by_pass_text(&k.passes),
                 k.wall_ms
             );
+            if let Some(n) = &t.no_arithmetic {
+                s += &no_arithmetic_text(self.result.peels, &n.passes, &n.floor);
+            }
         }
         if let Some(table) = &self.profile {
             s += &profile_text(table, "one more run");
@@ -1076,4 +1169,29 @@ fn race(
         println!("race            {}", race.in_words());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn runs(median: f64) -> Spread {
+        Spread::of(&[median, median, median])
+    }
+
+    #[test]
+    fn the_no_arithmetic_line_says_what_the_time_is() {
+        let near = no_arithmetic_text(6, &runs(10.5), &runs(10.0));
+        assert!(near.contains("1.05x"), "{near}");
+        assert!(
+            near.contains("the integrands' arithmetic is not the time"),
+            "{near}"
+        );
+        let far = no_arithmetic_text(6, &runs(20.0), &runs(10.0));
+        assert!(far.contains("2.00x"), "{far}");
+        assert!(
+            far.contains("arithmetic is 50% of the passes' time"),
+            "{far}"
+        );
+    }
 }

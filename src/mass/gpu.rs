@@ -10,7 +10,7 @@
 
 use super::framing::{covers_pixel_centre, Framing, PixelVertex};
 use super::integrals::VolumeIntegrals;
-use super::integrands::{Placement, Soup};
+use super::integrands::{Integrands, Placement, Soup};
 use super::peel::{Job, PeelSettings, Peeler, PeelerOptions};
 use super::peel_depth::PeelDepth;
 use crate::gl::{profile, query, Context, GlError, Rect, TextureFormat};
@@ -48,6 +48,24 @@ pub struct GpuMass {
 impl GpuMass {
     pub fn new(ctx: &Context, resolution: u32) -> Result<GpuMass, GlError> {
         Self::with_sum_format(ctx, resolution, TextureFormat::Rgba32F)
+    }
+
+    /// The passes evaluating `integrands` ([`Integrands::Constant`]: the same passes with
+    /// no arithmetic, whose sums are no integrals).
+    pub fn with_integrands(
+        ctx: &Context,
+        resolution: u32,
+        integrands: Integrands,
+    ) -> Result<GpuMass, GlError> {
+        let options = PeelerOptions {
+            integrands,
+            ..PeelerOptions::default()
+        };
+        Ok(GpuMass {
+            peeler: Peeler::with_options(ctx, resolution, resolution, None, options)?,
+            soup: Soup::new(ctx)?,
+            resolution,
+        })
     }
 
     /// Running sums stored as `sum_format` (RGBA16F: the float format a GeForce 7800 could

@@ -18,6 +18,8 @@ pub const PRELUDE: ShaderSource<'static> = shader!("glsl/mass/peel_prelude.frag"
 pub const LISTING: ShaderSource<'static> = shader!("cg_ports/mass_integrands.frag");
 /// Section 5.2's pass 1: eq. 4's four integrands alone (the listing's first target).
 pub const LISTING_EQ4: ShaderSource<'static> = shader!("glsl/mass/integrands_eq4.frag");
+/// The listing's targets written with constants: the passes' floor, not integrals.
+pub const CONSTANT: ShaderSource<'static> = shader!("glsl/mass/integrands_constant.frag");
 /// Peel test + water test + the listing.
 pub const PEEL_MAIN: ShaderSource<'static> = shader!("glsl/mass/peel_main.frag");
 /// The fluid surface quad of one tile.
@@ -50,13 +52,17 @@ pub enum Integrands {
     /// Eq. 4's four (volume and first moments) in one target: what pass 1 of section 5.2
     /// evaluates, all a buoyancy step needs (volume and centre of buoyancy).
     Eq4,
+    /// No integrands: the listing's three targets written with constants. The same passes
+    /// with no arithmetic, a floor to time the passes against (`mass` prints it); the sums
+    /// are no integrals.
+    Constant,
 }
 
 impl Integrands {
     /// The render targets the passes write.
     pub fn targets(self) -> usize {
         match self {
-            Integrands::All => TARGETS,
+            Integrands::All | Integrands::Constant => TARGETS,
             Integrands::Eq4 => 1,
         }
     }
@@ -66,6 +72,7 @@ impl Integrands {
         match self {
             Integrands::All => LISTING,
             Integrands::Eq4 => LISTING_EQ4,
+            Integrands::Constant => CONSTANT,
         }
     }
 }
