@@ -240,7 +240,7 @@ pub struct Config {
     pub vertex_shader_batch: u32,
     /// A last frame with every stage inside a timer query and between `glFinish` calls,
     /// untimed as a frame: its stage times fill [`RunStats::passes`]. Without it they are
-    /// zero, and the run is its timed frames alone.
+    /// zero (the counts are the last timed frame's), and the run is its timed frames alone.
     pub stage_times: bool,
 }
 
@@ -335,29 +335,31 @@ pub fn run_side_by_side<E: From<GlError>>(
         ctx.finish_all();
     }
     let sources = crowd_sources(scenes);
+    // Each configuration's last timed frame: its counts (draws, sprites) and plan.
+    let mut last = vec![None; configs.len()];
     for _ in 0..frames {
         for (i, (config, times)) in configs.iter().zip(&mut times_ms).enumerate() {
             step_crowd(scenes, &sources, i, dt, stride);
             let started = Instant::now();
-            frame(renderer, &scenes[i], config, false)?;
+            let stats = frame(renderer, &scenes[i], config, false)?;
             times.push(started.elapsed().as_secs_f64() * 1e3);
+            last[i] = Some(stats);
         }
     }
     let mut out = Vec::with_capacity(configs.len());
     for (i, (config, times)) in configs.iter().zip(&mut times_ms).enumerate() {
-        let (passes, plan) = if config.stage_times {
-            step_crowd(scenes, &sources, i, dt, stride);
-            let stats = frame(renderer, &scenes[i], config, true)?;
-            shown(i, target)?;
-            stats
-        } else {
-            // The last timed frame's plan (what it drew), with its draw size.
-            renderer.set_vertex_shader_batch(config.vertex_shader_batch);
-            let (models, _) = placements(&scenes[i].crowd);
-            (
-                FrameStats::default(),
-                plan_of(renderer, &scenes[i], &models),
-            )
+        let (passes, plan) = match last[i].take() {
+            // The last timed frame's counts and plan; no stage times.
+            Some(stats) if !config.stage_times => {
+                renderer.set_vertex_shader_batch(config.vertex_shader_batch);
+                stats
+            }
+            _ => {
+                step_crowd(scenes, &sources, i, dt, stride);
+                let stats = frame(renderer, &scenes[i], config, true)?;
+                shown(i, target)?;
+                stats
+            }
         };
         let scene = &scenes[i];
         let frame_ms = median(times);
