@@ -61,11 +61,7 @@ impl GpuMass {
             integrands,
             ..PeelerOptions::default()
         };
-        Ok(GpuMass {
-            peeler: Peeler::with_options(ctx, resolution, resolution, None, options)?,
-            soup: Soup::new(ctx)?,
-            resolution,
-        })
+        Self::with_options(ctx, resolution, options)
     }
 
     /// Running sums stored as `sum_format` (RGBA16F: the float format a GeForce 7800 could
@@ -75,20 +71,11 @@ impl GpuMass {
         resolution: u32,
         sum_format: TextureFormat,
     ) -> Result<GpuMass, GlError> {
-        Ok(GpuMass {
-            peeler: Peeler::with_options(
-                ctx,
-                resolution,
-                resolution,
-                None,
-                PeelerOptions {
-                    sum_format,
-                    ..PeelerOptions::default()
-                },
-            )?,
-            soup: Soup::new(ctx)?,
-            resolution,
-        })
+        let options = PeelerOptions {
+            sum_format,
+            ..PeelerOptions::default()
+        };
+        Self::with_options(ctx, resolution, options)
     }
 
     /// Running sums stored as `sum_format` and peel depths as `depth` (24-bit: the period's
@@ -104,6 +91,15 @@ impl GpuMass {
             depth: Some(depth),
             ..PeelerOptions::default()
         };
+        Self::with_options(ctx, resolution, options)
+    }
+
+    /// A square target of `resolution` peeled with `options`, as a whole (no tiles).
+    fn with_options(
+        ctx: &Context,
+        resolution: u32,
+        options: PeelerOptions,
+    ) -> Result<GpuMass, GlError> {
         Ok(GpuMass {
             peeler: Peeler::with_options(ctx, resolution, resolution, None, options)?,
             soup: Soup::new(ctx)?,
