@@ -2,7 +2,7 @@
 
 use crate::lecture3::depth_mask::{MaskShape, RunCounter};
 use crate::lecture3::displacement::compare::Comparison;
-use crate::report::timing::{Load, Spread};
+use crate::timing::{Load, Spread};
 use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
