@@ -6,9 +6,8 @@
 use super::scene::DEPTH;
 use super::timed::gpu_ms_warm;
 use crate::lecture3::displacement::compare::{Comparison, ReferenceImage};
-use crate::lecture3::displacement::prefilter::{
-    image_error, may_act, shown_of_rgba8, supersampled,
-};
+use crate::lecture3::displacement::prefilter::{image_error, may_act, shown_of_rgba8};
+use crate::lecture3::displacement::tracer::supersampled;
 use crate::lecture3::displacement::{Camera, DisplacementRenderer, Frame, Method, Pixel, Surface};
 use crate::lecture3::HeightMap;
 use crate::report::BenchOptions;
