@@ -11,7 +11,7 @@
 #             default, as a non-interactive bash starts background jobs with it ignored);
 #   kill9     kill -9 at a random moment (two tries);
 #   twice     two runs into the same output at once.
-# And for each writer of a folder, four more (the rule of report_folder::Staged):
+# And for each writer of a folder, four more (the rule of page::folder::Staged):
 #   foreign   a file of the user's in the folder: refused without --force, the file as it was;
 #   force     the same with --force: written, the user's file untouched beside it;
 #   stale     a file the marker lists as the earlier run's and this run does not write: gone;
@@ -245,7 +245,7 @@ case_signal() { # name kind outname template signal seconds
     record "$1" "$(tr A-Z a-z <<<"$5")" "$([[ -z $why ]] && echo 1 || echo 0)" "$why" "($how)"
 }
 
-# The marker a folder writer keeps in its folder (report_folder::MARKER).
+# The marker a folder writer keeps in its folder (page::folder::MARKER).
 MARKER=.classic-gpgpu-report
 
 # A folder writer's own rule: a file of the user's refused without --force and kept with

@@ -5,15 +5,19 @@
 //! OpenGL (through `glow`), shaders in GLSL, on a headless EGL context.
 //!
 //! Layers, and which way the arrows point: the binary (`main.rs` and its `cli/`, which parse
-//! arguments and print) -> [`report`] and [`view`] (the live viewer) -> the four paper modules ([`collide`], [`crowd`],
-//! [`mlp`], [`mass`]) and the tutorial's [`lecture3`] -> [`mesh`], [`gl`]. A paper module is
-//! the algorithm alone: no command line, no report, no other paper. Only [`gl`] calls OpenGL
-//! or EGL, and it alone holds the code the compiler cannot check (raw GL calls): `unsafe` is
-//! denied everywhere else.
+//! arguments and print) -> the rooms it runs: [`report`] (the papers' reproduction), the
+//! course ([`learn`]: the lessons and their guide), [`compare`], [`selftest`] and [`view`]
+//! (the live viewer) -> the paper modules ([`collide`], [`crowd`], [`mlp`], [`mass`]) and the
+//! tutorial's lectures ([`lecture1`], [`lecture3`]) -> [`mesh`], [`gl`]. The page layer
+//! ([`page`]: HTML, plots, the folder writer) sits under report, course and `compare`;
+//! [`timing`] and [`files`] under everything. A paper module is the algorithm alone: no
+//! command line, no report, no other paper. Only [`gl`] calls OpenGL or EGL, and it alone
+//! holds the code the compiler cannot check (raw GL calls): `unsafe` is denied everywhere else.
 
 #![deny(unsafe_code)]
 
 pub mod collide;
+pub mod compare;
 pub mod crowd;
 pub mod files;
 // Raw GL and EGL calls, behind safe RAII types; GL ids never leave the module.
@@ -25,7 +29,10 @@ pub mod lecture3;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;
+pub mod page;
 pub mod report;
-// How timings are repeated, summarised and judged: used by the papers' races and the report.
+pub mod selftest;
+// How timings are repeated, summarised and judged: used by the papers' races, the report and
+// the course.
 pub mod timing;
 pub mod view;

@@ -88,7 +88,7 @@ enum Command {
     Learn(cli::learn::LearnArgs),
     /// Several machines' results.json side by side: every claim a row, each machine a column
     /// (a page in --out), or the README's table (--markdown).
-    Compare(report::compare::CompareArgs),
+    Compare(classic_gpgpu::compare::CompareArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.

@@ -2,7 +2,7 @@
 //! (mixed sizes, mixed versions of the claims, a file that is not a results.json), the
 //! folder it writes, and the README's table generated from the kept results.
 
-use classic_gpgpu::report::compare::{self, headline, markdown, run};
+use classic_gpgpu::compare::{self, headline, markdown, run};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -266,7 +266,7 @@ fn the_out_folder_is_only_ever_the_pages_own() {
     // A report of `reproduce` is never written into: its page would be lost.
     let report = dir.join("report");
     std::fs::create_dir_all(&report).unwrap();
-    let mut owned = classic_gpgpu::report::report_folder::Owned::default();
+    let mut owned = classic_gpgpu::page::folder::Owned::default();
     owned.add("-", "index.html");
     owned.add("-", "results.json");
     std::fs::write(report.join("index.html"), "the report").unwrap();

@@ -4,10 +4,11 @@
 //! coordinate's magnitude; normals 1e-5), and the image against the classic two-pass image.
 //! Below 4.3 (softpipe): the clear error, and the classic two-pass still runs.
 
+use classic_gpgpu::crowd::character::Instances;
 use classic_gpgpu::crowd::compute::ComputeCrowd;
 use classic_gpgpu::crowd::cpu_skinning;
 use classic_gpgpu::crowd::culling::FramePlan;
-use classic_gpgpu::crowd::renderer::{CrowdRenderer, Instances, Method};
+use classic_gpgpu::crowd::renderer::{CrowdRenderer, Method};
 use classic_gpgpu::crowd::scene::{self, SKY};
 use classic_gpgpu::crowd::{CharacterModel, ModelKind};
 use classic_gpgpu::gl::Rect;

@@ -1,9 +1,10 @@
 //! Paper 2 on a real headless context: pass 1 + render-to-VBO against the f64 CPU
 //! reference, both skinning methods against each other, sprites, the CLI's errors.
 
+use classic_gpgpu::crowd::character::Instances;
 use classic_gpgpu::crowd::cpu_skinning;
 use classic_gpgpu::crowd::culling::{plan_frame, Camera, FramePlan};
-use classic_gpgpu::crowd::renderer::{CrowdRenderer, Instances, Method};
+use classic_gpgpu::crowd::renderer::{CrowdRenderer, Method};
 use classic_gpgpu::crowd::scene::{self, SKY};
 use classic_gpgpu::crowd::sprites::{frame_row, view_column, FRAMES, VIEWS};
 use classic_gpgpu::crowd::{CharacterModel, LodPolicy, ModelKind};

@@ -1,4 +1,4 @@
-//! Every command that writes a folder follows one rule (`report_folder::Staged`): a folder
+//! Every command that writes a folder follows one rule (`page::folder::Staged`): a folder
 //! holding a file it did not write is refused without --force, and the file survives with
 //! it; a rerun removes the files of its own earlier run that it does not write again; a link
 //! to a folder is followed (the link stays), a link to nothing is refused. And `selftest
@@ -6,7 +6,7 @@
 
 mod common;
 
-use classic_gpgpu::report::report_folder::{list_files, MARKER};
+use classic_gpgpu::page::folder::{list_files, MARKER};
 use common::{assert_ok, assert_refused, classic_gpgpu, stderr};
 use std::path::Path;
 use std::process::Output;

@@ -6,8 +6,8 @@ mod common;
 
 use classic_gpgpu::collide::pipeline::{Options, StreamingCollider};
 use classic_gpgpu::collide::reduction_gpu::ReadbackMode;
-use classic_gpgpu::report::regions;
-use classic_gpgpu::report::walks::{self, paper1};
+use classic_gpgpu::learn::regions;
+use classic_gpgpu::learn::walks::{self, paper1};
 use std::path::Path;
 
 /// The streaming AABB overlap pass (paper 1, Sec. 5.2, Table I) writes into `P0` exactly the

@@ -152,7 +152,7 @@ fn page_ids(page: &Path) -> Vec<String> {
 fn the_guide_builds_and_every_link_and_picture_resolves() {
     let ctx = common::context();
     let dir = common::temp_dir("learn-advanced", "guide").join("guide");
-    let written = classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
+    let written = classic_gpgpu::learn::guide::write_guide(&ctx, &dir, false).unwrap();
     assert!(written.lessons.len() >= LESSONS.len());
     for id in LESSONS {
         assert!(written.lessons.iter().any(|(l, ok)| l == id && *ok), "{id}");
@@ -192,16 +192,16 @@ fn the_guide_builds_and_every_link_and_picture_resolves() {
 
     // Written again into its own folder: fine. A folder of someone else's: refused, unless
     // forced, and nothing in it lost.
-    classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
+    classic_gpgpu::learn::guide::write_guide(&ctx, &dir, false).unwrap();
     let theirs = common::temp_dir("learn-advanced", "guide-theirs");
     std::fs::write(theirs.join("notes.txt"), "mine").unwrap();
-    let err = classic_gpgpu::report::guide::write_guide(&ctx, &theirs, false).unwrap_err();
+    let err = classic_gpgpu::learn::guide::write_guide(&ctx, &theirs, false).unwrap_err();
     assert!(err.to_string().contains("--force"), "{err}");
     assert_eq!(
         std::fs::read_to_string(theirs.join("notes.txt")).unwrap(),
         "mine"
     );
-    classic_gpgpu::report::guide::write_guide(&ctx, &theirs, true).unwrap();
+    classic_gpgpu::learn::guide::write_guide(&ctx, &theirs, true).unwrap();
     assert_eq!(
         std::fs::read_to_string(theirs.join("notes.txt")).unwrap(),
         "mine"
@@ -228,7 +228,7 @@ fn the_guide_renders_in_headless_chromium() {
     let ctx = common::context();
     let root = common::temp_dir("learn-advanced", "guide-chromium");
     let dir = root.join("guide");
-    let written = classic_gpgpu::report::guide::write_guide(&ctx, &dir, false).unwrap();
+    let written = classic_gpgpu::learn::guide::write_guide(&ctx, &dir, false).unwrap();
     let checker = root.join("check.html");
     std::fs::write(&checker, CHECKER).unwrap();
     for page in &written.pages {

@@ -305,7 +305,7 @@ fn lesson_8_explains_its_own_numbers() {
 /// row, the plot written; nothing on another lesson's page.
 #[test]
 fn the_guide_section_has_one_row_per_rung_and_its_plot() {
-    use classic_gpgpu::report::ladder_page;
+    use classic_gpgpu::learn::guide::ladder_page;
     let ctx = common::context();
     let dir = common::temp_dir("learn-ladder", "guide");
     assert_eq!(ladder_page::section(&ctx, "reduction", &dir), "");

@@ -5,8 +5,8 @@
 //! calls of a run.
 
 use classic_gpgpu::gl::trace::{self, TracedCall};
+use classic_gpgpu::learn::guide::{self, code};
 use classic_gpgpu::learn::{self, LessonOptions};
-use classic_gpgpu::report::guide::{self, code};
 use common::{assert_ok, assert_refused, classic_gpgpu};
 
 mod common;

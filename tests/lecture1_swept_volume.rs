@@ -486,8 +486,8 @@ fn swept_volume_command_reports_and_refuses() {
 #[test]
 fn report_blocks_render() {
     use classic_gpgpu::report::lecture1::{distance_field, swept_volume, Setting};
-    use classic_gpgpu::report::timing::Runs;
     use classic_gpgpu::report::BenchOptions;
+    use classic_gpgpu::timing::Runs;
     let ctx = context();
     let dir = common::temp_dir("lecture1", "report");
     let opts = BenchOptions {

@@ -111,7 +111,7 @@ fn the_report_row_checks_and_leaves_the_depth_masked_picture() {
     // The section's depth-mask row checks the pictures of its last timed runs and its
     // picture is what the row leaves in the target: the depth-masked one.
     use classic_gpgpu::report::lecture3::depth_mask_row;
-    use classic_gpgpu::report::timing::Runs;
+    use classic_gpgpu::timing::Runs;
     let ctx = context();
     let (w, iterations, fraction) = (32, 64, 0.25);
     let values = mask(MaskShape::Scattered, w, w, 1);

@@ -228,7 +228,7 @@ fn the_report_run_leaves_its_last_criterion_gathered_for_the_picture() {
     // The section's picture of the coarsest criterion shades what `light_run` left in the
     // gather target: it must be that criterion's gather, as a gather of its own draws it.
     use classic_gpgpu::report::lecture3::light_run;
-    use classic_gpgpu::report::timing::Runs;
+    use classic_gpgpu::timing::Runs;
     let ctx = context();
     let (run, lighting, ()) =
         light_run(

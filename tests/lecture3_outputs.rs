@@ -9,7 +9,7 @@ use classic_gpgpu::lecture3::displacement::{Camera, DisplacementRenderer, Method
 use classic_gpgpu::lecture3::height_map::{HeightMap, SHIPPED_SIZE};
 use classic_gpgpu::lecture3::random_texture::HybridTaus;
 use classic_gpgpu::report::lecture3 as bench;
-use classic_gpgpu::report::timing::Runs;
+use classic_gpgpu::timing::Runs;
 use common::{classic_gpgpu, context, json_of};
 use std::path::PathBuf;
 

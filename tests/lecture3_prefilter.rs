@@ -10,9 +10,10 @@
 
 use classic_gpgpu::lecture3::displacement::compare::{compare_prefiltered, Comparison};
 use classic_gpgpu::lecture3::displacement::prefilter::{
-    cpu_prefiltered, cpu_supersampled, image_error, may_act, shown_of_rgba8, stop_level,
-    supersampled, Prefilter, Shown,
+    cpu_prefiltered, cpu_supersampled, image_error, may_act, shown_of_rgba8, stop_level, Prefilter,
+    Shown,
 };
+use classic_gpgpu::lecture3::displacement::tracer::supersampled;
 use classic_gpgpu::lecture3::displacement::{Camera, DisplacementRenderer, Method, Pixel, Surface};
 use classic_gpgpu::lecture3::HeightMap;
 use common::context;

@@ -199,11 +199,11 @@ fn below_4_3_the_compute_solver_is_a_clear_error_and_the_classic_one_runs() {
 }
 
 /// The buoyancy then-and-now table states which formulation is faster only as the runs and
-/// the load allow ([`classic_gpgpu::report::timing::judge_ends`]), never from the medians alone.
+/// the load allow ([`classic_gpgpu::timing::judge_ends`]), never from the medians alone.
 #[test]
 fn the_then_and_now_timing_is_judged_with_the_load() {
     use classic_gpgpu::report::then_and_now::{StageRow, ThenAndNow};
-    use classic_gpgpu::report::timing::{Load, Spread};
+    use classic_gpgpu::timing::{Load, Spread};
     let table = ThenAndNow {
         workload: "a step".into(),
         unavailable: None,

@@ -8,7 +8,7 @@ use std::process::{Command, Output};
 mod common;
 use common::{assert_ok, assert_refused, stderr};
 
-const MARKER: &str = classic_gpgpu::report::report_folder::MARKER;
+const MARKER: &str = classic_gpgpu::page::folder::MARKER;
 
 /// `reproduce --quick --only blocks --out OUT` with `extra` arguments and environment.
 fn blocks(out: &Path, extra: &[&str], env: &[(&str, &str)]) -> Output {
@@ -31,7 +31,7 @@ fn blocks(out: &Path, extra: &[&str], env: &[(&str, &str)]) -> Output {
 
 /// Every file under `dir` with its bytes.
 fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    let files = classic_gpgpu::report::report_folder::list_files(dir).unwrap();
+    let files = classic_gpgpu::page::folder::list_files(dir).unwrap();
     files
         .into_iter()
         .map(|f| {

@@ -1,7 +1,7 @@
 //! `selftest`: every paper and every GL feature the papers use, checked on this renderer
 //! against the CPU; a failing check fails the command.
 
-use classic_gpgpu::report::selftest::{self, Check};
+use classic_gpgpu::selftest::{self, Check};
 use common::{classic_gpgpu, context, json_of};
 
 mod common;

@@ -153,7 +153,7 @@ pub fn run_collide(args: &CollideArgs, ctx: &Context, json: bool) -> anyhow::Res
     };
     let dump = match &args.dump {
         Some(dir) if args.pipeline.formulation == super::Formulation::Classic => {
-            Some(classic_gpgpu::report::report_folder::Staged::begin(
+            Some(classic_gpgpu::page::folder::Staged::begin(
                 "--dump",
                 "collide --dump",
                 dir,
@@ -408,7 +408,7 @@ impl SceneSummary {
                 _ => "none".into(),
             }
         };
-        let median = classic_gpgpu::report::timing::Spread::of(&self.total_ms).median;
+        let median = classic_gpgpu::timing::Spread::of(&self.total_ms).median;
         format!(
             "{scene}: {} frames of {triangles} x {triangles} triangles, colliding triangle \
              pairs {} per frame (CAPs {}), median frame {median:.2} ms on {renderer}",

@@ -1,7 +1,7 @@
 //! `classic-gpgpu compare`: several machines' results.json side by side, as a page or as the
 //! README's table.
 
-use classic_gpgpu::report::compare::{self, CompareArgs};
+use classic_gpgpu::compare::{self, CompareArgs};
 
 pub fn run(args: &CompareArgs, json: bool) -> anyhow::Result<()> {
     if args.markdown {

@@ -6,7 +6,7 @@
 use anyhow::Context as _;
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::learn::{self, LessonOptions, LessonRun};
-use classic_gpgpu::report::report_folder::Staged;
+use classic_gpgpu::page::folder::Staged;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -120,7 +120,7 @@ pub fn run(
     if args.bench {
         return bench(lesson.info().id, args, json, context);
     }
-    // The one rule of every folder writer (report_folder), checked before any work.
+    // The one rule of every folder writer (page::folder), checked before any work.
     let folder = match &args.png {
         Some(dir) => Some(Staged::begin(
             "--png",
@@ -356,13 +356,13 @@ fn next_step(info: &learn::LessonInfo) -> Vec<String> {
             next.info().title,
             next.info().id
         )],
-        None => classic_gpgpu::report::guide::after_the_lessons(),
+        None => classic_gpgpu::learn::guide::after_the_lessons(),
     }
 }
 
 /// `learn --guide DIR`: run every lesson and write the guide; fails when a lesson failed.
 fn guide(dir: &std::path::Path, force: bool, json: bool, ctx: Context) -> anyhow::Result<()> {
-    let written = classic_gpgpu::report::guide::write_guide(&ctx, dir, force)?;
+    let written = classic_gpgpu::learn::guide::write_guide(&ctx, dir, force)?;
     let failed: Vec<&str> = written
         .lessons
         .iter()

@@ -20,12 +20,12 @@ use classic_gpgpu::lecture3::height_map::{load_grey, HeightMap, SHIPPED_SIZE};
 use classic_gpgpu::lecture3::light_hierarchy::normal_cone::compare_clustering;
 use classic_gpgpu::lecture3::light_hierarchy::shade::Terms;
 use classic_gpgpu::lecture3::light_hierarchy::{Gather, LightUse};
+use classic_gpgpu::page::folder::Staged;
 use classic_gpgpu::report::lecture3::{
     self as bench,
     images::{gpu_pyramids, pyramid_png, PYRAMID_KINDS},
 };
-use classic_gpgpu::report::report_folder::Staged;
-use classic_gpgpu::report::timing::Runs;
+use classic_gpgpu::timing::Runs;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 

@@ -8,10 +8,9 @@ use classic_gpgpu::gl::Context;
 use classic_gpgpu::lecture3::error::{check_range, Error};
 use classic_gpgpu::lecture3::light_hierarchy::model::{load_model, model_alone, room_with};
 use classic_gpgpu::lecture3::light_hierarchy::shade::Terms;
+use classic_gpgpu::lecture3::light_hierarchy::uses::{base_exposure, default_scene, model_albedo};
 use classic_gpgpu::lecture3::light_hierarchy::{LightUse, Scene};
-use classic_gpgpu::report::lecture3::light_uses::{
-    base_exposure, default_scene, model_albedo, use_run,
-};
+use classic_gpgpu::report::lecture3::light_uses::use_run;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 

@@ -1,10 +1,10 @@
-//! `classic-gpgpu selftest`: every check of [`classic_gpgpu::report::selftest`] on the chosen
+//! `classic-gpgpu selftest`: every check of [`classic_gpgpu::selftest`] on the chosen
 //! renderer; one line per check (or `--json`), a JUnit XML file with `--junit`, and a non-zero
 //! exit when any check fails.
 
 use anyhow::{bail, Context as _};
 use classic_gpgpu::gl::Context;
-use classic_gpgpu::report::selftest;
+use classic_gpgpu::selftest;
 use std::path::PathBuf;
 
 /// Arguments of `selftest`.

@@ -1,11 +1,12 @@
 //! Characters: a skeleton, a looping clip and three skinned LOD meshes built from body
-//! parts, with a bounding sphere that holds every frame of the animation.
+//! parts, with a bounding sphere that holds every frame of the animation; and the crowd's
+//! instances of one, where each stands and how far its animation is ([`Instances`]).
 
-use glam::{DVec3, Vec3};
+use glam::{DAffine3, DVec3, Vec3};
 use thiserror::Error;
 
 use super::animation::Clip;
-use super::body_part::BodyPart;
+use super::blueprint::Blueprint;
 use super::cpu_skinning;
 use super::lod::{tessellate_to_budget, LodError, LOD_TRIANGLES};
 use super::skeleton::Skeleton;
@@ -48,14 +49,6 @@ impl std::str::FromStr for ModelKind {
             .find(|k| k.name() == text)
             .ok_or_else(|| format!("unknown model '{text}' (expected soldier or horse)"))
     }
-}
-
-/// What a model is made of before tessellation.
-#[derive(Clone, Debug)]
-pub struct Blueprint {
-    pub skeleton: Skeleton,
-    pub parts: Vec<BodyPart>,
-    pub clip: Clip,
 }
 
 /// A model could not be built.
@@ -113,6 +106,27 @@ impl CharacterModel {
 
     pub fn bone_count(&self) -> usize {
         self.skeleton.len()
+    }
+}
+
+/// Where each character stands and how far its animation is.
+#[derive(Clone, Copy, Debug)]
+pub struct Instances<'a> {
+    pub models: &'a [DAffine3],
+    pub phases: &'a [f64],
+}
+
+impl Instances<'_> {
+    /// Skinning matrices of the characters `ids` of `model`, its bones per character, in
+    /// order: what pass 1 (and the compute formulation) skins with.
+    pub fn bone_matrices(&self, model: &CharacterModel, ids: &[usize]) -> Vec<DAffine3> {
+        let skeleton = &model.skeleton;
+        let mut out = Vec::with_capacity(ids.len() * skeleton.len());
+        for &i in ids {
+            let pose = model.clip.sample(skeleton, self.phases[i]);
+            out.extend(skeleton.skinning_matrices(&pose, self.models[i]));
+        }
+        out
     }
 }
 

@@ -10,11 +10,11 @@ use glam::DAffine3;
 use std::time::Instant;
 
 use super::bone_textures::matrix_row;
-use super::character::CharacterModel;
+use super::character::{CharacterModel, Instances};
 use super::culling::{plan_frame, Camera, FramePlan};
 use super::pass2_draw::{scene_state, Shading};
 use super::render_to_vbo::SkinnedColumn;
-use super::renderer::{colour_of, FrameStats, Instances};
+use super::renderer::{colour_of, FrameStats};
 use super::scene::{clear, placements, RunStats, Scene};
 use super::validate::SkinnedMesh;
 use crate::gl::{

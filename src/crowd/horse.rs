@@ -6,8 +6,8 @@
 use glam::DVec3;
 
 use super::animation::{Channel, Clip, Wave};
+use super::blueprint::Blueprint;
 use super::body_part::{BodyPart, Station};
-use super::character::Blueprint;
 use super::skeleton::{Bone, Skeleton};
 
 fn v(x: f64, y: f64, z: f64) -> DVec3 {

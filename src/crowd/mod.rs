@@ -25,8 +25,8 @@
 //! The paper's notation is kept: n characters, m vertices per character, a 3x4 bone
 //! matrix stored as three rows. One file per step:
 //!
-//! - characters: [`skeleton`], [`animation`], [`body_part`], [`soldier`], [`horse`],
-//!   [`character`]; LODs and their selection: [`lod`];
+//! - characters: [`skeleton`], [`animation`], [`body_part`], [`blueprint`], [`soldier`],
+//!   [`horse`], [`character`]; LODs and their selection: [`lod`];
 //! - correctness: [`validate`] (weights and bone indices), [`cpu_skinning`] (f64 reference);
 //! - the crowd: [`steering`] (behaviour), [`culling`] (frustum culling and LOD choice);
 //! - on the GPU: [`vertex_textures`] and [`bone_textures`] (Fig. 1), [`pass1_skinning`]
@@ -37,6 +37,7 @@
 //! report (`report::paper2`); nothing here knows of them.
 
 pub mod animation;
+pub mod blueprint;
 pub mod body_part;
 pub mod bone_textures;
 pub mod character;

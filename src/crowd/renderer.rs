@@ -18,7 +18,7 @@ use serde::Serialize;
 use crate::gl::{ensure_finite, query, Buffer, BufferUsage, Context, Framebuffer, GlError};
 
 use super::bone_textures::BoneTextures;
-use super::character::{CharacterModel, ModelKind};
+use super::character::{CharacterModel, Instances, ModelKind};
 use super::culling::{Camera, FramePlan};
 use super::pass1_skinning::{self, Pass1, SkinningTarget};
 use super::pass2_draw::{CharacterArrays, Pass2, Shading};
@@ -65,27 +65,6 @@ impl std::str::FromStr for Method {
             .ok_or_else(|| {
                 format!("unknown skinning method '{text}' (expected two-pass or vertex-shader)")
             })
-    }
-}
-
-/// Where each character stands and how far its animation is.
-#[derive(Clone, Copy, Debug)]
-pub struct Instances<'a> {
-    pub models: &'a [DAffine3],
-    pub phases: &'a [f64],
-}
-
-impl Instances<'_> {
-    /// Skinning matrices of the characters `ids` of `model`, its bones per character, in
-    /// order: what pass 1 (and the compute formulation) skins with.
-    pub fn bone_matrices(&self, model: &CharacterModel, ids: &[usize]) -> Vec<DAffine3> {
-        let skeleton = &model.skeleton;
-        let mut out = Vec::with_capacity(ids.len() * skeleton.len());
-        for &i in ids {
-            let pose = model.clip.sample(skeleton, self.phases[i]);
-            out.extend(skeleton.skinning_matrices(&pose, self.models[i]));
-        }
-        out
     }
 }
 

@@ -20,10 +20,10 @@ use serde::Serialize;
 
 use crate::gl::{Context, Framebuffer, GlError, Texture, TextureFormat};
 
-use super::character::ModelKind;
+use super::character::{Instances, ModelKind};
 use super::culling::{plan_frame, Camera, FramePlan};
 use super::lod::LodPolicy;
-use super::renderer::{CrowdRenderer, FrameStats, Instances, Method};
+use super::renderer::{CrowdRenderer, FrameStats, Method};
 use super::steering::Crowd;
 
 /// Ground spacing between characters and walking pace for each model.

@@ -13,9 +13,8 @@ use crate::gl::{
 };
 use crate::shader;
 
-use super::character::CharacterModel;
+use super::character::{CharacterModel, Instances};
 use super::pass2_draw::Shading;
-use super::renderer::Instances;
 use super::vertex_shader_skinning::VertexShaderSkinning;
 
 /// Captured view directions (atlas columns) and animation phases (rows).

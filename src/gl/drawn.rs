@@ -13,7 +13,7 @@ use std::sync::Mutex;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Drawn {
-    /// A line or point plot ([`crate::report::plot`]).
+    /// A line or point plot ([`crate::page::plot`]).
     Plot(PlotDrawn),
     /// Float buffers as panels through the colour map ([`super::picture::picture`]).
     Picture(PictureDrawn),

@@ -61,8 +61,9 @@ pub use pass::{
     Blend, Compare, DepthTest, DrawState, Face, Pass, Primitive, StencilOp, StencilTest,
 };
 pub use period::PeriodGpu;
-pub use program::{Program, ShaderError, ShaderSource};
+pub use program::{Program, ShaderError};
 pub use query::{FragmentInvocationsQuery, OcclusionQuery, TimerQuery};
+pub use shaders::ShaderSource;
 pub use storage::AtomicCounters;
 pub use texture::{Filter, Texture, TextureFormat, Wrap};
 pub use window::GlWindow;

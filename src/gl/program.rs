@@ -2,20 +2,13 @@
 //! followed by the shader that uses it); each is numbered with `#line 1 N`, so a compile error
 //! names the file and line it is really on, with the source lines around it.
 
+use super::shaders::ShaderSource;
 use super::uniforms::{base_name, Declared};
 use super::{Context, GlError};
 use glam::{IVec2, IVec4, Mat3, Mat4, Vec2, Vec3, Vec4};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt;
-
-/// A shader file and its text; [`crate::shader!`] makes one at compile time.
-#[derive(Clone, Copy, Debug)]
-pub struct ShaderSource<'a> {
-    /// The path as written in the repository, e.g. `glsl/gl/reduce.frag`.
-    pub name: &'a str,
-    pub source: &'a str,
-}
 
 /// A shader that failed to compile.
 #[derive(Debug)]

@@ -1,4 +1,5 @@
-//! Every shader file of the project, listed at build time (`build.rs` walks `glsl/` and
+//! Shader files: one file and its text ([`ShaderSource`], what programs are built from), and
+//! every shader file of the project, listed at build time (`build.rs` walks `glsl/` and
 //! `cg_ports/`), so that nothing has to keep a list: `glsl list` and `glsl export` show and
 //! write them, and a test compiles each one and checks its header.
 //!
@@ -7,8 +8,15 @@
 //! that the program generates (with a value that compiles). Snippets (`*.glsl`) are compiled
 //! only as part of the files that name them.
 
-use super::ShaderSource;
 use std::path::{Path, PathBuf};
+
+/// A shader file and its text; [`crate::shader!`] makes one at compile time.
+#[derive(Clone, Copy, Debug)]
+pub struct ShaderSource<'a> {
+    /// The path as written in the repository, e.g. `glsl/gl/reduce.frag`.
+    pub name: &'a str,
+    pub source: &'a str,
+}
 
 include!(concat!(env!("OUT_DIR"), "/shaders.rs"));
 

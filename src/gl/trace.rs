@@ -7,8 +7,22 @@
 //!
 //! Off, a call costs one test of a flag; nothing is formatted or stored.
 //!
-//! The wrappers below keep glow's names and signatures, so a call site reads as before:
-//! `ctx.gl().bind_framebuffer(glow::FRAMEBUFFER, Some(id))`.
+//! The wrappers keep glow's names and signatures, so a call site reads as before:
+//! `ctx.gl().bind_framebuffer(glow::FRAMEBUFFER, Some(id))`. The `traced!` macro makes them
+//! from one list (below `impl Gl`), one entry a call. To trace another GL call, add its entry:
+//! glow's method with its parameters (and return type), then `=` and the GL function as the
+//! trace names it, with what it shows of each argument (anything `Display`):
+//!
+//! ```text
+//! fn draw_arrays(mode: u32, first: i32, count: i32)
+//!     = glDrawArrays(primitive_name(mode), first, count);
+//! fn create_buffer() -> Result<glow::Buffer, String> = glGenBuffers() -> |made| made_id(&made);
+//! ```
+//!
+//! The first is recorded, then made. The second, ending in `-> |result| shown`, is made first
+//! and recorded with what it gave back, as that expression shows it (a new object's id, a
+//! status). The list begins with `(gl)`, the name its entries give the recorder, so that an
+//! argument can be shown by one of [`Gl`]'s methods: `gl.location(location)`, a uniform by name.
 
 use glow::HasContext;
 use std::cell::{Cell, RefCell};
@@ -93,8 +107,6 @@ pub struct Gl {
     uniform: RefCell<Option<String>>,
 }
 
-// The wrappers keep glow's signatures, however many arguments GL takes.
-#[allow(clippy::too_many_arguments)]
 impl Gl {
     pub(super) fn new(raw: glow::Context) -> Gl {
         Gl {
@@ -173,7 +185,7 @@ impl Gl {
 
     /// A uniform's location as shown: `u_a @ 2` when the program named it.
     fn location(&self, location: Option<&glow::UniformLocation>) -> String {
-        let at = location.map_or(String::from("-1"), |l| l.0.to_string());
+        let at = at_of(location);
         match self.uniform.borrow_mut().take() {
             Some(name) => format!("{name} @ {at}"),
             None => at,
@@ -183,1180 +195,228 @@ impl Gl {
     pub(super) fn supported_extensions(&self) -> &std::collections::HashSet<String> {
         self.raw.supported_extensions()
     }
+}
 
-    pub(super) unsafe fn active_texture(&self, unit: u32) {
-        self.record("glActiveTexture", || [unit_name(unit)].join(", "));
-        self.raw.active_texture(unit)
-    }
-
-    pub(super) unsafe fn attach_shader(&self, program: glow::Program, shader: glow::Shader) {
-        self.record("glAttachShader", || {
-            [program.id().to_string(), shader.id().to_string()].join(", ")
-        });
-        self.raw.attach_shader(program, shader)
-    }
-
-    pub(super) unsafe fn begin_query(&self, target: u32, query: glow::Query) {
-        self.record("glBeginQuery", || {
-            [name_of(target), query.id().to_string()].join(", ")
-        });
-        self.raw.begin_query(target, query)
-    }
-
-    pub(super) unsafe fn begin_transform_feedback(&self, primitive_mode: u32) {
-        self.record("glBeginTransformFeedback", || {
-            [primitive_name(primitive_mode)].join(", ")
-        });
-        self.raw.begin_transform_feedback(primitive_mode)
-    }
-
-    pub(super) unsafe fn bind_buffer(&self, target: u32, buffer: Option<glow::Buffer>) {
-        self.record("glBindBuffer", || {
-            [name_of(target), id_of(buffer)].join(", ")
-        });
-        self.raw.bind_buffer(target, buffer)
-    }
-
-    pub(super) unsafe fn bind_buffer_base(
-        &self,
-        target: u32,
-        index: u32,
-        buffer: Option<glow::Buffer>,
-    ) {
-        self.record("glBindBufferBase", || {
-            [name_of(target), index.to_string(), id_of(buffer)].join(", ")
-        });
-        self.raw.bind_buffer_base(target, index, buffer)
-    }
-
-    pub(super) unsafe fn bind_framebuffer(
-        &self,
-        target: u32,
-        framebuffer: Option<glow::Framebuffer>,
-    ) {
-        self.record("glBindFramebuffer", || {
-            [name_of(target), id_of(framebuffer)].join(", ")
-        });
-        self.raw.bind_framebuffer(target, framebuffer)
-    }
-
-    pub(super) unsafe fn bind_texture(&self, target: u32, texture: Option<glow::Texture>) {
-        self.record("glBindTexture", || {
-            [name_of(target), id_of(texture)].join(", ")
-        });
-        self.raw.bind_texture(target, texture)
-    }
-
-    pub(super) unsafe fn bind_vertex_array(&self, vertex_array: Option<glow::VertexArray>) {
-        self.record("glBindVertexArray", || [id_of(vertex_array)].join(", "));
-        self.raw.bind_vertex_array(vertex_array)
-    }
-
-    pub(super) unsafe fn blend_equation(&self, mode: u32) {
-        self.record("glBlendEquation", || [primitive_name(mode)].join(", "));
-        self.raw.blend_equation(mode)
-    }
-
-    pub(super) unsafe fn blend_func(&self, src: u32, dst: u32) {
-        self.record("glBlendFunc", || {
-            [factor_name(src), factor_name(dst)].join(", ")
-        });
-        self.raw.blend_func(src, dst)
-    }
-
-    pub(super) unsafe fn blit_framebuffer(
-        &self,
-        src_x0: i32,
-        src_y0: i32,
-        src_x1: i32,
-        src_y1: i32,
-        dst_x0: i32,
-        dst_y0: i32,
-        dst_x1: i32,
-        dst_y1: i32,
-        mask: u32,
-        filter: u32,
-    ) {
-        self.record("glBlitFramebuffer", || {
-            [
-                src_x0.to_string(),
-                src_y0.to_string(),
-                src_x1.to_string(),
-                src_y1.to_string(),
-                dst_x0.to_string(),
-                dst_y0.to_string(),
-                dst_x1.to_string(),
-                dst_y1.to_string(),
-                hex(mask),
-                name_of(filter),
-            ]
-            .join(", ")
-        });
-        self.raw.blit_framebuffer(
-            src_x0, src_y0, src_x1, src_y1, dst_x0, dst_y0, dst_x1, dst_y1, mask, filter,
-        )
-    }
-
-    pub(super) unsafe fn buffer_data_size(&self, target: u32, size: i32, usage: u32) {
-        self.record("glBufferData", || {
-            [name_of(target), size.to_string(), name_of(usage)].join(", ")
-        });
-        self.raw.buffer_data_size(target, size, usage)
-    }
-
-    pub(super) unsafe fn buffer_data_u8_slice(&self, target: u32, data: &[u8], usage: u32) {
-        self.record("glBufferData", || {
-            [name_of(target), byte_count(data.len()), name_of(usage)].join(", ")
-        });
-        self.raw.buffer_data_u8_slice(target, data, usage)
-    }
-
-    pub(super) unsafe fn buffer_sub_data_u8_slice(
-        &self,
-        target: u32,
-        offset: i32,
-        src_data: &[u8],
-    ) {
-        self.record("glBufferSubData", || {
-            [
-                name_of(target),
-                offset.to_string(),
-                byte_count(src_data.len()),
-            ]
-            .join(", ")
-        });
-        self.raw.buffer_sub_data_u8_slice(target, offset, src_data)
-    }
-
-    pub(super) unsafe fn check_framebuffer_status(&self, target: u32) -> u32 {
-        let status = self.raw.check_framebuffer_status(target);
-        if self.on.get() {
-            self.push(
-                "glCheckFramebufferStatus",
-                [name_of(target)].join(", "),
-                Some(name_of(status)),
-            );
+/// The wrappers, from the list below: see the module's doc for an entry's form. An entry cannot
+/// name `self` (macro hygiene), hence the recorder's name the list begins with.
+macro_rules! traced {
+    (($gl:ident)
+     $(fn $name:ident($($arg:ident: $ty:ty),*) $(-> $ret:ty)?
+       = $function:ident($($shown:expr),*) $(-> |$made:ident| $result:expr)?;)*) => {
+        // The wrappers keep glow's signatures, however many arguments GL takes.
+        #[allow(clippy::too_many_arguments)]
+        impl Gl {
+            $(pub(super) unsafe fn $name(&self, $($arg: $ty),*) $(-> $ret)? {
+                let $gl = self;
+                traced!(@call $gl, $name($($arg),*), $function($($shown),*)
+                    $(-> |$made| $result)?)
+            })*
         }
-        status
-    }
-
-    pub(super) unsafe fn clear_buffer_depth_stencil(
-        &self,
-        target: u32,
-        draw_buffer: u32,
-        depth: f32,
-        stencil: i32,
-    ) {
-        self.record("glClearBufferfi", || {
-            [
-                name_of(target),
-                draw_buffer.to_string(),
-                depth.to_string(),
-                stencil.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .clear_buffer_depth_stencil(target, draw_buffer, depth, stencil)
-    }
-
-    pub(super) unsafe fn clear_buffer_f32_slice(
-        &self,
-        target: u32,
-        draw_buffer: u32,
-        values: &[f32],
-    ) {
-        self.record("glClearBufferfv", || {
-            [name_of(target), draw_buffer.to_string(), list(values)].join(", ")
-        });
-        self.raw.clear_buffer_f32_slice(target, draw_buffer, values)
-    }
-
-    pub(super) unsafe fn clear_buffer_u32_slice(
-        &self,
-        target: u32,
-        draw_buffer: u32,
-        values: &[u32],
-    ) {
-        self.record("glClearBufferuiv", || {
-            [name_of(target), draw_buffer.to_string(), list(values)].join(", ")
-        });
-        self.raw.clear_buffer_u32_slice(target, draw_buffer, values)
-    }
-
-    pub(super) unsafe fn color_mask(&self, red: bool, green: bool, blue: bool, alpha: bool) {
-        self.record("glColorMask", || {
-            [
-                red.to_string(),
-                green.to_string(),
-                blue.to_string(),
-                alpha.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw.color_mask(red, green, blue, alpha)
-    }
-
-    pub(super) unsafe fn compile_shader(&self, shader: glow::Shader) {
-        self.record("glCompileShader", || [shader.id().to_string()].join(", "));
-        self.raw.compile_shader(shader)
-    }
-
-    pub(super) unsafe fn copy_buffer_sub_data(
-        &self,
-        src_target: u32,
-        dst_target: u32,
-        src_offset: i32,
-        dst_offset: i32,
-        size: i32,
-    ) {
-        self.record("glCopyBufferSubData", || {
-            [
-                name_of(src_target),
-                name_of(dst_target),
-                src_offset.to_string(),
-                dst_offset.to_string(),
-                size.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .copy_buffer_sub_data(src_target, dst_target, src_offset, dst_offset, size)
-    }
-
-    pub(super) unsafe fn create_buffer(&self) -> Result<glow::Buffer, String> {
-        let made = self.raw.create_buffer();
-        if self.on.get() {
-            let id = made
-                .as_ref()
-                .map_or(String::from("error"), |o| o.id().to_string());
-            self.push("glGenBuffers", String::new(), Some(id));
+    };
+    // Recorded, then made.
+    (@call $gl:ident, $name:ident($($arg:ident),*), $function:ident($($shown:expr),*)) => {{
+        $gl.record(stringify!($function), || shown(&[$(&$shown),*]));
+        $gl.raw.$name($($arg),*)
+    }};
+    // Made, then recorded with what it gave back.
+    (@call $gl:ident, $name:ident($($arg:ident),*), $function:ident($($shown:expr),*)
+        -> |$made:ident| $result:expr) => {{
+        let $made = $gl.raw.$name($($arg),*);
+        if $gl.on.get() {
+            $gl.push(stringify!($function), shown(&[$(&$shown),*]), Some($result));
         }
-        made
-    }
-
-    pub(super) unsafe fn create_framebuffer(&self) -> Result<glow::Framebuffer, String> {
-        let made = self.raw.create_framebuffer();
-        if self.on.get() {
-            let id = made
-                .as_ref()
-                .map_or(String::from("error"), |o| o.id().to_string());
-            self.push("glGenFramebuffers", String::new(), Some(id));
-        }
-        made
-    }
-
-    pub(super) unsafe fn create_program(&self) -> Result<glow::Program, String> {
-        let made = self.raw.create_program();
-        if self.on.get() {
-            let id = made
-                .as_ref()
-                .map_or(String::from("error"), |o| o.id().to_string());
-            self.push("glCreateProgram", String::new(), Some(id));
-        }
-        made
-    }
-
-    pub(super) unsafe fn create_query(&self) -> Result<glow::Query, String> {
-        let made = self.raw.create_query();
-        if self.on.get() {
-            let id = made
-                .as_ref()
-                .map_or(String::from("error"), |o| o.id().to_string());
-            self.push("glGenQueries", String::new(), Some(id));
-        }
-        made
-    }
-
-    pub(super) unsafe fn create_shader(&self, shader_type: u32) -> Result<glow::Shader, String> {
-        let made = self.raw.create_shader(shader_type);
-        if self.on.get() {
-            let id = made
-                .as_ref()
-                .map_or(String::from("error"), |o| o.id().to_string());
-            self.push(
-                "glCreateShader",
-                [name_of(shader_type)].join(", "),
-                Some(id),
-            );
-        }
-        made
-    }
-
-    pub(super) unsafe fn create_texture(&self) -> Result<glow::Texture, String> {
-        let made = self.raw.create_texture();
-        if self.on.get() {
-            let id = made
-                .as_ref()
-                .map_or(String::from("error"), |o| o.id().to_string());
-            self.push("glGenTextures", String::new(), Some(id));
-        }
-        made
-    }
-
-    pub(super) unsafe fn create_vertex_array(&self) -> Result<glow::VertexArray, String> {
-        let made = self.raw.create_vertex_array();
-        if self.on.get() {
-            let id = made
-                .as_ref()
-                .map_or(String::from("error"), |o| o.id().to_string());
-            self.push("glGenVertexArrays", String::new(), Some(id));
-        }
-        made
-    }
-
-    pub(super) unsafe fn cull_face(&self, value: u32) {
-        self.record("glCullFace", || [name_of(value)].join(", "));
-        self.raw.cull_face(value)
-    }
-
-    pub(super) unsafe fn delete_buffer(&self, buffer: glow::Buffer) {
-        self.record("glDeleteBuffers", || [buffer.id().to_string()].join(", "));
-        self.raw.delete_buffer(buffer)
-    }
-
-    pub(super) unsafe fn delete_framebuffer(&self, framebuffer: glow::Framebuffer) {
-        self.record("glDeleteFramebuffers", || {
-            [framebuffer.id().to_string()].join(", ")
-        });
-        self.raw.delete_framebuffer(framebuffer)
-    }
-
-    pub(super) unsafe fn delete_program(&self, program: glow::Program) {
-        self.record("glDeleteProgram", || [program.id().to_string()].join(", "));
-        self.raw.delete_program(program)
-    }
-
-    pub(super) unsafe fn delete_query(&self, query: glow::Query) {
-        self.record("glDeleteQueries", || [query.id().to_string()].join(", "));
-        self.raw.delete_query(query)
-    }
-
-    pub(super) unsafe fn delete_shader(&self, shader: glow::Shader) {
-        self.record("glDeleteShader", || [shader.id().to_string()].join(", "));
-        self.raw.delete_shader(shader)
-    }
-
-    pub(super) unsafe fn delete_texture(&self, texture: glow::Texture) {
-        self.record("glDeleteTextures", || [texture.id().to_string()].join(", "));
-        self.raw.delete_texture(texture)
-    }
-
-    pub(super) unsafe fn delete_vertex_array(&self, vertex_array: glow::VertexArray) {
-        self.record("glDeleteVertexArrays", || {
-            [vertex_array.id().to_string()].join(", ")
-        });
-        self.raw.delete_vertex_array(vertex_array)
-    }
-
-    pub(super) unsafe fn depth_func(&self, func: u32) {
-        self.record("glDepthFunc", || [name_of(func)].join(", "));
-        self.raw.depth_func(func)
-    }
-
-    pub(super) unsafe fn depth_mask(&self, value: bool) {
-        self.record("glDepthMask", || [value.to_string()].join(", "));
-        self.raw.depth_mask(value)
-    }
-
-    pub(super) unsafe fn detach_shader(&self, program: glow::Program, shader: glow::Shader) {
-        self.record("glDetachShader", || {
-            [program.id().to_string(), shader.id().to_string()].join(", ")
-        });
-        self.raw.detach_shader(program, shader)
-    }
-
-    pub(super) unsafe fn disable(&self, parameter: u32) {
-        self.record("glDisable", || [name_of(parameter)].join(", "));
-        self.raw.disable(parameter)
-    }
-
-    pub(super) unsafe fn dispatch_compute(&self, groups_x: u32, groups_y: u32, groups_z: u32) {
-        self.record("glDispatchCompute", || {
-            [
-                groups_x.to_string(),
-                groups_y.to_string(),
-                groups_z.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw.dispatch_compute(groups_x, groups_y, groups_z)
-    }
-
-    pub(super) unsafe fn draw_arrays(&self, mode: u32, first: i32, count: i32) {
-        self.record("glDrawArrays", || {
-            [primitive_name(mode), first.to_string(), count.to_string()].join(", ")
-        });
-        self.raw.draw_arrays(mode, first, count)
-    }
-
-    pub(super) unsafe fn draw_arrays_instanced(
-        &self,
-        mode: u32,
-        first: i32,
-        count: i32,
-        instance_count: i32,
-    ) {
-        self.record("glDrawArraysInstanced", || {
-            [
-                primitive_name(mode),
-                first.to_string(),
-                count.to_string(),
-                instance_count.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .draw_arrays_instanced(mode, first, count, instance_count)
-    }
-
-    pub(super) unsafe fn draw_buffer(&self, buffer: u32) {
-        self.record("glDrawBuffer", || [name_of(buffer)].join(", "));
-        self.raw.draw_buffer(buffer)
-    }
-
-    pub(super) unsafe fn draw_buffers(&self, buffers: &[u32]) {
-        self.record("glDrawBuffers", || [names_of(buffers)].join(", "));
-        self.raw.draw_buffers(buffers)
-    }
-
-    pub(super) unsafe fn draw_elements(
-        &self,
-        mode: u32,
-        count: i32,
-        element_type: u32,
-        offset: i32,
-    ) {
-        self.record("glDrawElements", || {
-            [
-                primitive_name(mode),
-                count.to_string(),
-                name_of(element_type),
-                offset.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw.draw_elements(mode, count, element_type, offset)
-    }
-
-    pub(super) unsafe fn draw_elements_instanced(
-        &self,
-        mode: u32,
-        count: i32,
-        element_type: u32,
-        offset: i32,
-        instance_count: i32,
-    ) {
-        self.record("glDrawElementsInstanced", || {
-            [
-                primitive_name(mode),
-                count.to_string(),
-                name_of(element_type),
-                offset.to_string(),
-                instance_count.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .draw_elements_instanced(mode, count, element_type, offset, instance_count)
-    }
-
-    pub(super) unsafe fn enable(&self, parameter: u32) {
-        self.record("glEnable", || [name_of(parameter)].join(", "));
-        self.raw.enable(parameter)
-    }
-
-    pub(super) unsafe fn enable_vertex_attrib_array(&self, index: u32) {
-        self.record("glEnableVertexAttribArray", || {
-            [index.to_string()].join(", ")
-        });
-        self.raw.enable_vertex_attrib_array(index)
-    }
-
-    pub(super) unsafe fn end_query(&self, target: u32) {
-        self.record("glEndQuery", || [name_of(target)].join(", "));
-        self.raw.end_query(target)
-    }
-
-    pub(super) unsafe fn end_transform_feedback(&self) {
-        self.record("glEndTransformFeedback", String::new);
-        self.raw.end_transform_feedback()
-    }
-
-    pub(super) unsafe fn finish(&self) {
-        self.record("glFinish", String::new);
-        self.raw.finish()
-    }
-
-    pub(super) unsafe fn flush(&self) {
-        self.record("glFlush", String::new);
-        self.raw.flush()
-    }
-
-    pub(super) unsafe fn framebuffer_texture(
-        &self,
-        target: u32,
-        attachment: u32,
-        texture: Option<glow::Texture>,
-        level: i32,
-    ) {
-        self.record("glFramebufferTexture", || {
-            [
-                name_of(target),
-                name_of(attachment),
-                id_of(texture),
-                level.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .framebuffer_texture(target, attachment, texture, level)
-    }
-
-    pub(super) unsafe fn get_active_uniform(
-        &self,
-        program: glow::Program,
-        index: u32,
-    ) -> Option<glow::ActiveUniform> {
-        self.record("glGetActiveUniform", || {
-            [program.id().to_string(), index.to_string()].join(", ")
-        });
-        self.raw.get_active_uniform(program, index)
-    }
-
-    pub(super) unsafe fn get_active_uniforms(&self, program: glow::Program) -> u32 {
-        self.record("glGetProgramiv", || [program.id().to_string()].join(", "));
-        self.raw.get_active_uniforms(program)
-    }
-
-    pub(super) unsafe fn get_active_uniforms_parameter(
-        &self,
-        program: glow::Program,
-        uniforms: &[u32],
-        pname: u32,
-    ) -> Vec<i32> {
-        self.record("glGetActiveUniformsiv", || {
-            [program.id().to_string(), list(uniforms), name_of(pname)].join(", ")
-        });
-        self.raw
-            .get_active_uniforms_parameter(program, uniforms, pname)
-    }
-
-    pub(super) unsafe fn get_buffer_sub_data(&self, target: u32, offset: i32, dst_data: &mut [u8]) {
-        self.record("glGetBufferSubData", || {
-            [
-                name_of(target),
-                offset.to_string(),
-                byte_count(dst_data.len()),
-            ]
-            .join(", ")
-        });
-        self.raw.get_buffer_sub_data(target, offset, dst_data)
-    }
-
-    pub(super) unsafe fn get_error(&self) -> u32 {
-        let status = self.raw.get_error();
-        if self.on.get() {
-            self.push("glGetError", String::new(), Some(error_name(status)));
-        }
-        status
-    }
-
-    pub(super) unsafe fn get_parameter_i32(&self, parameter: u32) -> i32 {
-        self.record("glGetIntegerv", || [name_of(parameter)].join(", "));
-        self.raw.get_parameter_i32(parameter)
-    }
-
-    pub(super) unsafe fn get_parameter_i64(&self, parameter: u32) -> i64 {
-        self.record("glGetInteger64v", || [name_of(parameter)].join(", "));
-        self.raw.get_parameter_i64(parameter)
-    }
-
-    pub(super) unsafe fn get_parameter_indexed_i32(&self, parameter: u32, index: u32) -> i32 {
-        self.record("glGetIntegeri_v", || {
-            [name_of(parameter), index.to_string()].join(", ")
-        });
-        self.raw.get_parameter_indexed_i32(parameter, index)
-    }
-
-    pub(super) unsafe fn get_program_info_log(&self, program: glow::Program) -> String {
-        self.record("glGetProgramInfoLog", || {
-            [program.id().to_string()].join(", ")
-        });
-        self.raw.get_program_info_log(program)
-    }
-
-    pub(super) unsafe fn get_program_link_status(&self, program: glow::Program) -> bool {
-        self.record("glGetProgramiv", || [program.id().to_string()].join(", "));
-        self.raw.get_program_link_status(program)
-    }
-
-    pub(super) unsafe fn get_query_parameter_u32(&self, query: glow::Query, parameter: u32) -> u32 {
-        self.record("glGetQueryObjectuiv", || {
-            [query.id().to_string(), name_of(parameter)].join(", ")
-        });
-        self.raw.get_query_parameter_u32(query, parameter)
-    }
-
-    pub(super) unsafe fn get_query_parameter_u64_with_offset(
-        &self,
-        query: glow::Query,
-        parameter: u32,
-        offset: usize,
-    ) {
-        self.record("glGetQueryObjectui64v", || {
-            [
-                query.id().to_string(),
-                name_of(parameter),
-                offset.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .get_query_parameter_u64_with_offset(query, parameter, offset)
-    }
-
-    pub(super) unsafe fn get_shader_compile_status(&self, shader: glow::Shader) -> bool {
-        self.record("glGetShaderiv", || [shader.id().to_string()].join(", "));
-        self.raw.get_shader_compile_status(shader)
-    }
-
-    pub(super) unsafe fn get_shader_info_log(&self, shader: glow::Shader) -> String {
-        self.record("glGetShaderInfoLog", || {
-            [shader.id().to_string()].join(", ")
-        });
-        self.raw.get_shader_info_log(shader)
-    }
-
-    pub(super) unsafe fn get_tex_image(
-        &self,
-        target: u32,
-        level: i32,
-        format: u32,
-        ty: u32,
-        pixels: glow::PixelPackData<'_>,
-    ) {
-        self.record("glGetTexImage", || {
-            [
-                name_of(target),
-                level.to_string(),
-                name_of(format),
-                name_of(ty),
-                pack_into(&pixels),
-            ]
-            .join(", ")
-        });
-        self.raw.get_tex_image(target, level, format, ty, pixels)
-    }
-
-    pub(super) unsafe fn get_uniform_location(
-        &self,
-        program: glow::Program,
-        name: &str,
-    ) -> Option<glow::UniformLocation> {
-        let found = self.raw.get_uniform_location(program, name);
-        if self.on.get() {
-            let at = found
-                .as_ref()
-                .map_or(String::from("-1"), |l| l.0.to_string());
-            self.push(
-                "glGetUniformLocation",
-                [program.id().to_string(), format!("{name:?}")].join(", "),
-                Some(at),
-            );
-        }
-        found
-    }
-
-    pub(super) unsafe fn link_program(&self, program: glow::Program) {
-        self.record("glLinkProgram", || [program.id().to_string()].join(", "));
-        self.raw.link_program(program)
-    }
-
-    pub(super) unsafe fn memory_barrier(&self, barriers: u32) {
-        self.record("glMemoryBarrier", || [hex(barriers)].join(", "));
-        self.raw.memory_barrier(barriers)
-    }
-
-    pub(super) unsafe fn pixel_store_i32(&self, parameter: u32, value: i32) {
-        self.record("glPixelStorei", || {
-            [name_of(parameter), value.to_string()].join(", ")
-        });
-        self.raw.pixel_store_i32(parameter, value)
-    }
-
-    pub(super) unsafe fn polygon_offset(&self, factor: f32, units: f32) {
-        self.record("glPolygonOffset", || {
-            [factor.to_string(), units.to_string()].join(", ")
-        });
-        self.raw.polygon_offset(factor, units)
-    }
-
-    pub(super) unsafe fn query_counter(&self, query: glow::Query, target: u32) {
-        self.record("glQueryCounter", || {
-            [query.id().to_string(), name_of(target)].join(", ")
-        });
-        self.raw.query_counter(query, target)
-    }
-
-    pub(super) unsafe fn read_buffer(&self, src: u32) {
-        self.record("glReadBuffer", || [name_of(src)].join(", "));
-        self.raw.read_buffer(src)
-    }
-
-    pub(super) unsafe fn read_pixels(
-        &self,
-        x: i32,
-        y: i32,
-        width: i32,
-        height: i32,
-        format: u32,
-        gltype: u32,
-        pixels: glow::PixelPackData<'_>,
-    ) {
-        self.record("glReadPixels", || {
-            [
-                x.to_string(),
-                y.to_string(),
-                width.to_string(),
-                height.to_string(),
-                name_of(format),
-                name_of(gltype),
-                pack_into(&pixels),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .read_pixels(x, y, width, height, format, gltype, pixels)
-    }
-
-    pub(super) unsafe fn shader_source(&self, shader: glow::Shader, source: &str) {
-        self.record("glShaderSource", || {
-            [shader.id().to_string(), format!("{} chars", source.len())].join(", ")
-        });
-        self.raw.shader_source(shader, source)
-    }
-
-    pub(super) unsafe fn stencil_func_separate(
-        &self,
-        face: u32,
-        func: u32,
-        reference: i32,
-        mask: u32,
-    ) {
-        self.record("glStencilFuncSeparate", || {
-            [
-                name_of(face),
-                name_of(func),
-                reference.to_string(),
-                hex(mask),
-            ]
-            .join(", ")
-        });
-        self.raw.stencil_func_separate(face, func, reference, mask)
-    }
-
-    pub(super) unsafe fn stencil_mask(&self, mask: u32) {
-        self.record("glStencilMask", || [hex(mask)].join(", "));
-        self.raw.stencil_mask(mask)
-    }
-
-    pub(super) unsafe fn stencil_mask_separate(&self, face: u32, mask: u32) {
-        self.record("glStencilMaskSeparate", || {
-            [name_of(face), hex(mask)].join(", ")
-        });
-        self.raw.stencil_mask_separate(face, mask)
-    }
-
-    pub(super) unsafe fn stencil_op_separate(
-        &self,
-        face: u32,
-        stencil_fail: u32,
-        depth_fail: u32,
-        pass: u32,
-    ) {
-        self.record("glStencilOpSeparate", || {
-            [
-                name_of(face),
-                name_of(stencil_fail),
-                name_of(depth_fail),
-                name_of(pass),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .stencil_op_separate(face, stencil_fail, depth_fail, pass)
-    }
-
-    pub(super) unsafe fn tex_image_1d(
-        &self,
-        target: u32,
-        level: i32,
-        internal_format: i32,
-        width: i32,
-        border: i32,
-        format: u32,
-        ty: u32,
-        pixels: glow::PixelUnpackData<'_>,
-    ) {
-        self.record("glTexImage1D", || {
-            [
-                name_of(target),
-                level.to_string(),
-                name_of(internal_format as u32),
-                width.to_string(),
-                border.to_string(),
-                name_of(format),
-                name_of(ty),
-                unpack_from(&pixels),
-            ]
-            .join(", ")
-        });
-        self.raw.tex_image_1d(
-            target,
-            level,
-            internal_format,
-            width,
-            border,
-            format,
-            ty,
-            pixels,
-        )
-    }
-
-    pub(super) unsafe fn tex_image_2d(
-        &self,
-        target: u32,
-        level: i32,
-        internal_format: i32,
-        width: i32,
-        height: i32,
-        border: i32,
-        format: u32,
-        ty: u32,
-        pixels: glow::PixelUnpackData<'_>,
-    ) {
-        self.record("glTexImage2D", || {
-            [
-                name_of(target),
-                level.to_string(),
-                name_of(internal_format as u32),
-                width.to_string(),
-                height.to_string(),
-                border.to_string(),
-                name_of(format),
-                name_of(ty),
-                unpack_from(&pixels),
-            ]
-            .join(", ")
-        });
-        self.raw.tex_image_2d(
-            target,
-            level,
-            internal_format,
-            width,
-            height,
-            border,
-            format,
-            ty,
-            pixels,
-        )
-    }
-
-    pub(super) unsafe fn tex_parameter_i32(&self, target: u32, parameter: u32, value: i32) {
-        self.record("glTexParameteri", || {
-            [
-                name_of(target),
-                name_of(parameter),
-                parameter_value(parameter, value),
-            ]
-            .join(", ")
-        });
-        self.raw.tex_parameter_i32(target, parameter, value)
-    }
-
-    pub(super) unsafe fn tex_sub_image_2d(
-        &self,
-        target: u32,
-        level: i32,
-        x_offset: i32,
-        y_offset: i32,
-        width: i32,
-        height: i32,
-        format: u32,
-        ty: u32,
-        pixels: glow::PixelUnpackData<'_>,
-    ) {
-        self.record("glTexSubImage2D", || {
-            [
-                name_of(target),
-                level.to_string(),
-                x_offset.to_string(),
-                y_offset.to_string(),
-                width.to_string(),
-                height.to_string(),
-                name_of(format),
-                name_of(ty),
-                unpack_from(&pixels),
-            ]
-            .join(", ")
-        });
-        self.raw.tex_sub_image_2d(
-            target, level, x_offset, y_offset, width, height, format, ty, pixels,
-        )
-    }
-
-    pub(super) unsafe fn transform_feedback_varyings(
-        &self,
-        program: glow::Program,
-        varyings: &[&str],
-        buffer_mode: u32,
-    ) {
-        self.record("glTransformFeedbackVaryings", || {
-            [
-                program.id().to_string(),
-                format!("{varyings:?}"),
-                name_of(buffer_mode),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .transform_feedback_varyings(program, varyings, buffer_mode)
-    }
-
-    pub(super) unsafe fn uniform_1_f32(&self, location: Option<&glow::UniformLocation>, x: f32) {
-        self.record("glUniform1f", || {
-            [self.location(location), x.to_string()].join(", ")
-        });
-        self.raw.uniform_1_f32(location, x)
-    }
-
-    pub(super) unsafe fn uniform_1_f32_slice(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        v: &[f32],
-    ) {
-        self.record("glUniform1fv", || {
-            [self.location(location), list(v)].join(", ")
-        });
-        self.raw.uniform_1_f32_slice(location, v)
-    }
-
-    pub(super) unsafe fn uniform_1_i32(&self, location: Option<&glow::UniformLocation>, x: i32) {
-        self.record("glUniform1i", || {
-            [self.location(location), x.to_string()].join(", ")
-        });
-        self.raw.uniform_1_i32(location, x)
-    }
-
-    pub(super) unsafe fn uniform_1_i32_slice(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        v: &[i32],
-    ) {
-        self.record("glUniform1iv", || {
-            [self.location(location), list(v)].join(", ")
-        });
-        self.raw.uniform_1_i32_slice(location, v)
-    }
-
-    pub(super) unsafe fn uniform_1_u32(&self, location: Option<&glow::UniformLocation>, x: u32) {
-        self.record("glUniform1ui", || {
-            [self.location(location), x.to_string()].join(", ")
-        });
-        self.raw.uniform_1_u32(location, x)
-    }
-
-    pub(super) unsafe fn uniform_2_f32(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        x: f32,
-        y: f32,
-    ) {
-        self.record("glUniform2f", || {
-            [self.location(location), x.to_string(), y.to_string()].join(", ")
-        });
-        self.raw.uniform_2_f32(location, x, y)
-    }
-
-    pub(super) unsafe fn uniform_2_i32(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        x: i32,
-        y: i32,
-    ) {
-        self.record("glUniform2i", || {
-            [self.location(location), x.to_string(), y.to_string()].join(", ")
-        });
-        self.raw.uniform_2_i32(location, x, y)
-    }
-
-    pub(super) unsafe fn uniform_3_f32(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        x: f32,
-        y: f32,
-        z: f32,
-    ) {
-        self.record("glUniform3f", || {
-            [
-                self.location(location),
-                x.to_string(),
-                y.to_string(),
-                z.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw.uniform_3_f32(location, x, y, z)
-    }
-
-    pub(super) unsafe fn uniform_4_f32(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        x: f32,
-        y: f32,
-        z: f32,
-        w: f32,
-    ) {
-        self.record("glUniform4f", || {
-            [
-                self.location(location),
-                x.to_string(),
-                y.to_string(),
-                z.to_string(),
-                w.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw.uniform_4_f32(location, x, y, z, w)
-    }
-
-    pub(super) unsafe fn uniform_4_f32_slice(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        v: &[f32],
-    ) {
-        self.record("glUniform4fv", || {
-            [self.location(location), list(v)].join(", ")
-        });
-        self.raw.uniform_4_f32_slice(location, v)
-    }
-
-    pub(super) unsafe fn uniform_4_i32(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        x: i32,
-        y: i32,
-        z: i32,
-        w: i32,
-    ) {
-        self.record("glUniform4i", || {
-            [
-                self.location(location),
-                x.to_string(),
-                y.to_string(),
-                z.to_string(),
-                w.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw.uniform_4_i32(location, x, y, z, w)
-    }
-
-    pub(super) unsafe fn uniform_matrix_3_f32_slice(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        transpose: bool,
-        v: &[f32],
-    ) {
-        self.record("glUniformMatrix3fv", || {
-            [self.location(location), transpose.to_string(), list(v)].join(", ")
-        });
-        self.raw.uniform_matrix_3_f32_slice(location, transpose, v)
-    }
-
-    pub(super) unsafe fn uniform_matrix_4_f32_slice(
-        &self,
-        location: Option<&glow::UniformLocation>,
-        transpose: bool,
-        v: &[f32],
-    ) {
-        self.record("glUniformMatrix4fv", || {
-            [self.location(location), transpose.to_string(), list(v)].join(", ")
-        });
-        self.raw.uniform_matrix_4_f32_slice(location, transpose, v)
-    }
-
-    pub(super) unsafe fn use_program(&self, program: Option<glow::Program>) {
-        self.record("glUseProgram", || [id_of(program)].join(", "));
-        self.raw.use_program(program)
-    }
-
-    pub(super) unsafe fn vertex_attrib_divisor(&self, index: u32, divisor: u32) {
-        self.record("glVertexAttribDivisor", || {
-            [index.to_string(), divisor.to_string()].join(", ")
-        });
-        self.raw.vertex_attrib_divisor(index, divisor)
-    }
-
-    pub(super) unsafe fn vertex_attrib_pointer_f32(
-        &self,
-        index: u32,
-        size: i32,
-        data_type: u32,
-        normalized: bool,
-        stride: i32,
-        offset: i32,
-    ) {
-        self.record("glVertexAttribPointer", || {
-            [
-                index.to_string(),
-                size.to_string(),
-                name_of(data_type),
-                normalized.to_string(),
-                stride.to_string(),
-                offset.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .vertex_attrib_pointer_f32(index, size, data_type, normalized, stride, offset)
-    }
-
-    pub(super) unsafe fn vertex_attrib_pointer_i32(
-        &self,
-        index: u32,
-        size: i32,
-        data_type: u32,
-        stride: i32,
-        offset: i32,
-    ) {
-        self.record("glVertexAttribIPointer", || {
-            [
-                index.to_string(),
-                size.to_string(),
-                name_of(data_type),
-                stride.to_string(),
-                offset.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw
-            .vertex_attrib_pointer_i32(index, size, data_type, stride, offset)
-    }
-
-    pub(super) unsafe fn viewport(&self, x: i32, y: i32, width: i32, height: i32) {
-        self.record("glViewport", || {
-            [
-                x.to_string(),
-                y.to_string(),
-                width.to_string(),
-                height.to_string(),
-            ]
-            .join(", ")
-        });
-        self.raw.viewport(x, y, width, height)
-    }
+        $made
+    }};
+}
+
+// glow's method(its parameters) -> its return = the GL function(the arguments as shown)
+traced! { (gl)
+    fn active_texture(unit: u32) = glActiveTexture(unit_name(unit));
+    fn attach_shader(program: glow::Program, shader: glow::Shader)
+        = glAttachShader(program.id(), shader.id());
+    fn begin_query(target: u32, query: glow::Query) = glBeginQuery(name_of(target), query.id());
+    fn begin_transform_feedback(primitive_mode: u32)
+        = glBeginTransformFeedback(primitive_name(primitive_mode));
+    fn bind_buffer(target: u32, buffer: Option<glow::Buffer>)
+        = glBindBuffer(name_of(target), id_of(buffer));
+    fn bind_buffer_base(target: u32, index: u32, buffer: Option<glow::Buffer>)
+        = glBindBufferBase(name_of(target), index, id_of(buffer));
+    fn bind_framebuffer(target: u32, framebuffer: Option<glow::Framebuffer>)
+        = glBindFramebuffer(name_of(target), id_of(framebuffer));
+    fn bind_texture(target: u32, texture: Option<glow::Texture>)
+        = glBindTexture(name_of(target), id_of(texture));
+    fn bind_vertex_array(vertex_array: Option<glow::VertexArray>)
+        = glBindVertexArray(id_of(vertex_array));
+    fn blend_equation(mode: u32) = glBlendEquation(primitive_name(mode));
+    fn blend_func(src: u32, dst: u32) = glBlendFunc(factor_name(src), factor_name(dst));
+    fn blit_framebuffer(src_x0: i32, src_y0: i32, src_x1: i32, src_y1: i32, dst_x0: i32,
+                        dst_y0: i32, dst_x1: i32, dst_y1: i32, mask: u32, filter: u32)
+        = glBlitFramebuffer(src_x0, src_y0, src_x1, src_y1, dst_x0, dst_y0, dst_x1, dst_y1,
+                            hex(mask), name_of(filter));
+    fn buffer_data_size(target: u32, size: i32, usage: u32)
+        = glBufferData(name_of(target), size, name_of(usage));
+    fn buffer_data_u8_slice(target: u32, data: &[u8], usage: u32)
+        = glBufferData(name_of(target), byte_count(data.len()), name_of(usage));
+    fn buffer_sub_data_u8_slice(target: u32, offset: i32, src_data: &[u8])
+        = glBufferSubData(name_of(target), offset, byte_count(src_data.len()));
+    fn check_framebuffer_status(target: u32) -> u32
+        = glCheckFramebufferStatus(name_of(target)) -> |status| name_of(status);
+    fn clear_buffer_depth_stencil(target: u32, draw_buffer: u32, depth: f32, stencil: i32)
+        = glClearBufferfi(name_of(target), draw_buffer, depth, stencil);
+    fn clear_buffer_f32_slice(target: u32, draw_buffer: u32, values: &[f32])
+        = glClearBufferfv(name_of(target), draw_buffer, list(values));
+    fn clear_buffer_u32_slice(target: u32, draw_buffer: u32, values: &[u32])
+        = glClearBufferuiv(name_of(target), draw_buffer, list(values));
+    fn color_mask(red: bool, green: bool, blue: bool, alpha: bool)
+        = glColorMask(red, green, blue, alpha);
+    fn compile_shader(shader: glow::Shader) = glCompileShader(shader.id());
+    fn copy_buffer_sub_data(src_target: u32, dst_target: u32, src_offset: i32, dst_offset: i32,
+                            size: i32)
+        = glCopyBufferSubData(name_of(src_target), name_of(dst_target), src_offset, dst_offset,
+                              size);
+    fn create_buffer() -> Result<glow::Buffer, String> = glGenBuffers() -> |made| made_id(&made);
+    fn create_framebuffer() -> Result<glow::Framebuffer, String>
+        = glGenFramebuffers() -> |made| made_id(&made);
+    fn create_program() -> Result<glow::Program, String>
+        = glCreateProgram() -> |made| made_id(&made);
+    fn create_query() -> Result<glow::Query, String> = glGenQueries() -> |made| made_id(&made);
+    fn create_shader(shader_type: u32) -> Result<glow::Shader, String>
+        = glCreateShader(name_of(shader_type)) -> |made| made_id(&made);
+    fn create_texture() -> Result<glow::Texture, String> = glGenTextures() -> |made| made_id(&made);
+    fn create_vertex_array() -> Result<glow::VertexArray, String>
+        = glGenVertexArrays() -> |made| made_id(&made);
+    fn cull_face(value: u32) = glCullFace(name_of(value));
+    fn delete_buffer(buffer: glow::Buffer) = glDeleteBuffers(buffer.id());
+    fn delete_framebuffer(framebuffer: glow::Framebuffer) = glDeleteFramebuffers(framebuffer.id());
+    fn delete_program(program: glow::Program) = glDeleteProgram(program.id());
+    fn delete_query(query: glow::Query) = glDeleteQueries(query.id());
+    fn delete_shader(shader: glow::Shader) = glDeleteShader(shader.id());
+    fn delete_texture(texture: glow::Texture) = glDeleteTextures(texture.id());
+    fn delete_vertex_array(vertex_array: glow::VertexArray)
+        = glDeleteVertexArrays(vertex_array.id());
+    fn depth_func(func: u32) = glDepthFunc(name_of(func));
+    fn depth_mask(value: bool) = glDepthMask(value);
+    fn detach_shader(program: glow::Program, shader: glow::Shader)
+        = glDetachShader(program.id(), shader.id());
+    fn disable(parameter: u32) = glDisable(name_of(parameter));
+    fn dispatch_compute(groups_x: u32, groups_y: u32, groups_z: u32)
+        = glDispatchCompute(groups_x, groups_y, groups_z);
+    fn draw_arrays(mode: u32, first: i32, count: i32)
+        = glDrawArrays(primitive_name(mode), first, count);
+    fn draw_arrays_instanced(mode: u32, first: i32, count: i32, instance_count: i32)
+        = glDrawArraysInstanced(primitive_name(mode), first, count, instance_count);
+    fn draw_buffer(buffer: u32) = glDrawBuffer(name_of(buffer));
+    fn draw_buffers(buffers: &[u32]) = glDrawBuffers(names_of(buffers));
+    fn draw_elements(mode: u32, count: i32, element_type: u32, offset: i32)
+        = glDrawElements(primitive_name(mode), count, name_of(element_type), offset);
+    fn draw_elements_instanced(mode: u32, count: i32, element_type: u32, offset: i32,
+                               instance_count: i32)
+        = glDrawElementsInstanced(primitive_name(mode), count, name_of(element_type), offset,
+                                  instance_count);
+    fn enable(parameter: u32) = glEnable(name_of(parameter));
+    fn enable_vertex_attrib_array(index: u32) = glEnableVertexAttribArray(index);
+    fn end_query(target: u32) = glEndQuery(name_of(target));
+    fn end_transform_feedback() = glEndTransformFeedback();
+    fn finish() = glFinish();
+    fn flush() = glFlush();
+    fn framebuffer_texture(target: u32, attachment: u32, texture: Option<glow::Texture>, level: i32)
+        = glFramebufferTexture(name_of(target), name_of(attachment), id_of(texture), level);
+    fn get_active_uniform(program: glow::Program, index: u32) -> Option<glow::ActiveUniform>
+        = glGetActiveUniform(program.id(), index);
+    fn get_active_uniforms(program: glow::Program) -> u32 = glGetProgramiv(program.id());
+    fn get_active_uniforms_parameter(program: glow::Program, uniforms: &[u32],
+                                     pname: u32) -> Vec<i32>
+        = glGetActiveUniformsiv(program.id(), list(uniforms), name_of(pname));
+    fn get_buffer_sub_data(target: u32, offset: i32, dst_data: &mut [u8])
+        = glGetBufferSubData(name_of(target), offset, byte_count(dst_data.len()));
+    fn get_error() -> u32 = glGetError() -> |status| error_name(status);
+    fn get_parameter_i32(parameter: u32) -> i32 = glGetIntegerv(name_of(parameter));
+    fn get_parameter_i64(parameter: u32) -> i64 = glGetInteger64v(name_of(parameter));
+    fn get_parameter_indexed_i32(parameter: u32, index: u32) -> i32
+        = glGetIntegeri_v(name_of(parameter), index);
+    fn get_program_info_log(program: glow::Program) -> String = glGetProgramInfoLog(program.id());
+    fn get_program_link_status(program: glow::Program) -> bool = glGetProgramiv(program.id());
+    fn get_query_parameter_u32(query: glow::Query, parameter: u32) -> u32
+        = glGetQueryObjectuiv(query.id(), name_of(parameter));
+    fn get_query_parameter_u64_with_offset(query: glow::Query, parameter: u32, offset: usize)
+        = glGetQueryObjectui64v(query.id(), name_of(parameter), offset);
+    fn get_shader_compile_status(shader: glow::Shader) -> bool = glGetShaderiv(shader.id());
+    fn get_shader_info_log(shader: glow::Shader) -> String = glGetShaderInfoLog(shader.id());
+    fn get_tex_image(target: u32, level: i32, format: u32, ty: u32, pixels: glow::PixelPackData<'_>)
+        = glGetTexImage(name_of(target), level, name_of(format), name_of(ty), pack_into(&pixels));
+    fn get_uniform_location(program: glow::Program, name: &str) -> Option<glow::UniformLocation>
+        = glGetUniformLocation(program.id(), format!("{name:?}")) -> |found| at_of(found.as_ref());
+    fn link_program(program: glow::Program) = glLinkProgram(program.id());
+    fn memory_barrier(barriers: u32) = glMemoryBarrier(hex(barriers));
+    fn pixel_store_i32(parameter: u32, value: i32) = glPixelStorei(name_of(parameter), value);
+    fn polygon_offset(factor: f32, units: f32) = glPolygonOffset(factor, units);
+    fn query_counter(query: glow::Query, target: u32) = glQueryCounter(query.id(), name_of(target));
+    fn read_buffer(src: u32) = glReadBuffer(name_of(src));
+    fn read_pixels(x: i32, y: i32, width: i32, height: i32, format: u32, gltype: u32,
+                   pixels: glow::PixelPackData<'_>)
+        = glReadPixels(x, y, width, height, name_of(format), name_of(gltype), pack_into(&pixels));
+    fn shader_source(shader: glow::Shader, source: &str)
+        = glShaderSource(shader.id(), format!("{} chars", source.len()));
+    fn stencil_func_separate(face: u32, func: u32, reference: i32, mask: u32)
+        = glStencilFuncSeparate(name_of(face), name_of(func), reference, hex(mask));
+    fn stencil_mask(mask: u32) = glStencilMask(hex(mask));
+    fn stencil_mask_separate(face: u32, mask: u32)
+        = glStencilMaskSeparate(name_of(face), hex(mask));
+    fn stencil_op_separate(face: u32, stencil_fail: u32, depth_fail: u32, pass: u32)
+        = glStencilOpSeparate(name_of(face), name_of(stencil_fail), name_of(depth_fail),
+                              name_of(pass));
+    fn tex_image_1d(target: u32, level: i32, internal_format: i32, width: i32, border: i32,
+                    format: u32, ty: u32, pixels: glow::PixelUnpackData<'_>)
+        = glTexImage1D(name_of(target), level, name_of(internal_format as u32), width, border,
+                       name_of(format), name_of(ty), unpack_from(&pixels));
+    fn tex_image_2d(target: u32, level: i32, internal_format: i32, width: i32, height: i32,
+                    border: i32, format: u32, ty: u32, pixels: glow::PixelUnpackData<'_>)
+        = glTexImage2D(name_of(target), level, name_of(internal_format as u32), width, height,
+                       border, name_of(format), name_of(ty), unpack_from(&pixels));
+    fn tex_parameter_i32(target: u32, parameter: u32, value: i32)
+        = glTexParameteri(name_of(target), name_of(parameter), parameter_value(parameter, value));
+    fn tex_sub_image_2d(target: u32, level: i32, x_offset: i32, y_offset: i32, width: i32,
+                        height: i32, format: u32, ty: u32, pixels: glow::PixelUnpackData<'_>)
+        = glTexSubImage2D(name_of(target), level, x_offset, y_offset, width, height,
+                          name_of(format), name_of(ty), unpack_from(&pixels));
+    fn transform_feedback_varyings(program: glow::Program, varyings: &[&str], buffer_mode: u32)
+        = glTransformFeedbackVaryings(program.id(), format!("{varyings:?}"), name_of(buffer_mode));
+    fn uniform_1_f32(location: Option<&glow::UniformLocation>, x: f32)
+        = glUniform1f(gl.location(location), x);
+    fn uniform_1_f32_slice(location: Option<&glow::UniformLocation>, v: &[f32])
+        = glUniform1fv(gl.location(location), list(v));
+    fn uniform_1_i32(location: Option<&glow::UniformLocation>, x: i32)
+        = glUniform1i(gl.location(location), x);
+    fn uniform_1_i32_slice(location: Option<&glow::UniformLocation>, v: &[i32])
+        = glUniform1iv(gl.location(location), list(v));
+    fn uniform_1_u32(location: Option<&glow::UniformLocation>, x: u32)
+        = glUniform1ui(gl.location(location), x);
+    fn uniform_2_f32(location: Option<&glow::UniformLocation>, x: f32, y: f32)
+        = glUniform2f(gl.location(location), x, y);
+    fn uniform_2_i32(location: Option<&glow::UniformLocation>, x: i32, y: i32)
+        = glUniform2i(gl.location(location), x, y);
+    fn uniform_3_f32(location: Option<&glow::UniformLocation>, x: f32, y: f32, z: f32)
+        = glUniform3f(gl.location(location), x, y, z);
+    fn uniform_4_f32(location: Option<&glow::UniformLocation>, x: f32, y: f32, z: f32, w: f32)
+        = glUniform4f(gl.location(location), x, y, z, w);
+    fn uniform_4_f32_slice(location: Option<&glow::UniformLocation>, v: &[f32])
+        = glUniform4fv(gl.location(location), list(v));
+    fn uniform_4_i32(location: Option<&glow::UniformLocation>, x: i32, y: i32, z: i32, w: i32)
+        = glUniform4i(gl.location(location), x, y, z, w);
+    fn uniform_matrix_3_f32_slice(location: Option<&glow::UniformLocation>, transpose: bool,
+                                  v: &[f32])
+        = glUniformMatrix3fv(gl.location(location), transpose, list(v));
+    fn uniform_matrix_4_f32_slice(location: Option<&glow::UniformLocation>, transpose: bool,
+                                  v: &[f32])
+        = glUniformMatrix4fv(gl.location(location), transpose, list(v));
+    fn use_program(program: Option<glow::Program>) = glUseProgram(id_of(program));
+    fn vertex_attrib_divisor(index: u32, divisor: u32) = glVertexAttribDivisor(index, divisor);
+    fn vertex_attrib_pointer_f32(index: u32, size: i32, data_type: u32, normalized: bool,
+                                 stride: i32, offset: i32)
+        = glVertexAttribPointer(index, size, name_of(data_type), normalized, stride, offset);
+    fn vertex_attrib_pointer_i32(index: u32, size: i32, data_type: u32, stride: i32, offset: i32)
+        = glVertexAttribIPointer(index, size, name_of(data_type), stride, offset);
+    fn viewport(x: i32, y: i32, width: i32, height: i32) = glViewport(x, y, width, height);
 }
 
 /// A GL object's id, as the trace shows it.
@@ -1387,6 +447,23 @@ ids!(
 
 fn id_of<T: Id>(object: Option<T>) -> String {
     object.map_or(0, |o| o.id()).to_string()
+}
+
+/// A new object's id, or `error` where GL made none.
+fn made_id<T: Id>(made: &Result<T, String>) -> String {
+    made.as_ref()
+        .map_or(String::from("error"), |o| o.id().to_string())
+}
+
+/// A uniform's location as a number, -1 for none.
+fn at_of(location: Option<&glow::UniformLocation>) -> String {
+    location.map_or(String::from("-1"), |l| l.0.to_string())
+}
+
+/// A call's arguments as the trace shows them: each as it displays, `, ` between.
+fn shown(args: &[&dyn std::fmt::Display]) -> String {
+    let shown: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+    shown.join(", ")
 }
 
 /// `GL_TEXTURE0 + n`.

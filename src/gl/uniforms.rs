@@ -4,7 +4,7 @@
 //! differs between drivers. So a name the files declare but the driver dropped is set as a
 //! no-op, and a name they do not declare is an error, on every driver alike.
 
-use super::program::ShaderSource;
+use super::shaders::ShaderSource;
 use std::collections::{BTreeSet, HashMap};
 
 /// The uniforms of one program, by the name its files give them.

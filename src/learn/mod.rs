@@ -13,6 +13,11 @@
 //! learner's file in place of the solution ([`crate::gl::Context::set_glsl_dir`]).
 //!
 //! A lesson is a [`Lesson`]; [`all`] lists them in teaching order.
+//!
+//! The course's pages live here too, beside the lessons they show: the offline guide
+//! ([`guide`]: a page per lesson, made by running it, with the reduction ladder's section),
+//! the papers walked pass by pass ([`walks`]), and the named regions of the files that both
+//! cut their code from ([`regions`]). They are written with the page layer ([`crate::page`]).
 
 // One file per lesson ([`all`] lists them in teaching order), and `kit`: what several share.
 pub mod bench;
@@ -31,6 +36,12 @@ mod render_to_vertex_buffer;
 mod scatter_and_blend;
 mod several_outputs;
 mod texture_is_array;
+
+// The lessons' pages: the guide (a page per lesson, the ladder's section), the papers walked
+// pass by pass, and the named regions of the files that both show.
+pub mod guide;
+pub mod regions;
+pub mod walks;
 
 use crate::gl::picture::{self, Panel, Scale};
 use crate::gl::Context;

@@ -1,7 +1,8 @@
 //! Layer chaining (section 3): "the result of the previous layer is saved in the form of a
 //! render target texture, which is then used as an input for the next layer", so after
 //! texture creation every operation of every layer runs on the GPU and only the last layer's
-//! output is read back.
+//! output is read back. A layer whose W does not fit a texture (N or M beyond the limit) is
+//! refused when the network is loaded, with a message that says so ([`check_network_fits`]).
 
 use super::activation::{activation_pass, activation_program};
 use super::fp24::Precision;
@@ -9,7 +10,7 @@ use super::matmul::{float_target, pass_ranges, product_passes, product_targets, 
 use super::network::Network;
 use super::packed::{
     packed_activation_pass, packed_inputs, packed_layer, packed_product_pass, packed_target,
-    read_packed, targets_of, texels, PackedLayer, PackedPrograms,
+    read_packed, targets_of, texels, PackedLayer, PackedPrograms, PACK,
 };
 use super::textures::{input_texture, layer_textures, LayerTextures};
 use crate::gl::{Context, GlError, Program, TimerQuery};
@@ -49,6 +50,48 @@ impl StepTimes {
         self.activation += other.activation;
         self.readback += other.readback;
     }
+}
+
+/// The largest side of a texture that is also a render target (under a period GPU's
+/// limits, that GPU's: 2048 on the paper's board).
+pub(super) fn max_side(ctx: &Context) -> u32 {
+    let l = &ctx.info().limits;
+    ctx.max_texture_size()
+        .min(l.max_viewport_dims[0])
+        .min(l.max_viewport_dims[1])
+}
+
+/// Why a layer is refused, if it is: its W (N wide, M high) and its output (M high) must fit.
+pub fn check_network_fits(
+    ctx: &Context,
+    net: &Network,
+    formulation: Formulation,
+) -> Result<(), GlError> {
+    let max = max_side(ctx) as usize;
+    for (index, layer) in net.layers().iter().enumerate() {
+        let (n, m) = (layer.inputs(), layer.outputs());
+        let (w_wide, w_high, what) = match formulation {
+            Formulation::Faithful => (n, m, "one texel per weight"),
+            Formulation::Packed => (texels(n), texels(m) * PACK, "four weights per texel"),
+        };
+        if w_wide > max || w_high > max {
+            let limit = match ctx.period() {
+                Some(gpu) => format!("{}'s max_texture_size, assets/period_gpus.toml", gpu.name),
+                None => "GL_MAX_TEXTURE_SIZE / viewport".to_string(),
+            };
+            let renderer = match ctx.period() {
+                Some(gpu) => gpu.name.as_str(),
+                None => "this renderer",
+            };
+            return Err(GlError::Limit(format!(
+                "layer {index} ({n} inputs, {m} outputs) does not fit {renderer}: its \
+                 texture W would be {w_wide} x {w_high} texels ({what}) but textures hold at \
+                 most {max} per side ({limit}); only the batch is split into tiles, so a layer \
+                 this wide is refused"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The compiled programs of both formulations on one context.
@@ -109,7 +152,7 @@ impl GpuMlp {
     }
 
     /// Makes the weight and bias textures of `net`, refusing layers wider than the renderer's
-    /// textures (see [`super::tiling::check_network_fits`]).
+    /// textures (see [`check_network_fits`]).
     pub fn load(&self, net: &Network, formulation: Formulation) -> Result<GpuNetwork<'_>, GlError> {
         if formulation == Formulation::Packed && self.precision != Precision::Fp32 {
             return Err(GlError::Invalid(format!(
@@ -117,7 +160,7 @@ impl GpuMlp {
                 self.precision.name()
             )));
         }
-        super::tiling::check_network_fits(&self.ctx, net, formulation)?;
+        check_network_fits(&self.ctx, net, formulation)?;
         let start = Instant::now();
         let layers = match formulation {
             Formulation::Faithful => LayerStack::Faithful(

@@ -1,12 +1,12 @@
 //! Batches larger than a texture: "the GPU's performance is maximized by accumulating a large
 //! number of input vectors to create a two-dimensional texture", up to the maximum texture
 //! size (footnote 1: 2048 on the paper's ATI RADEON 9700 PRO). Larger batches are split into
-//! tiles of input vectors, each run through all layers on the GPU in turn. A layer whose W
-//! does not fit a texture (N or M beyond the limit) is refused with a message that says so.
+//! tiles of input vectors, each run through all layers on the GPU in turn. Only the batch is
+//! split: a layer whose W does not fit a texture is refused when the network is loaded
+//! ([`super::chain::check_network_fits`]).
 
-use super::chain::{Formulation, GpuNetwork, StepTimes};
-use super::network::Network;
-use super::packed::{texels, PACK};
+use super::chain::{max_side, Formulation, GpuNetwork, StepTimes};
+use super::packed::PACK;
 use crate::gl::{ensure_finite, Context, GlError};
 use ndarray::{s, Array2, ArrayView2};
 
@@ -24,15 +24,6 @@ pub struct GpuForward {
     pub product_passes: Vec<usize>,
 }
 
-/// The largest side of a texture that is also a render target (under a period GPU's
-/// limits, that GPU's: 2048 on the paper's board).
-fn max_side(ctx: &Context) -> u32 {
-    let l = &ctx.info().limits;
-    ctx.max_texture_size()
-        .min(l.max_viewport_dims[0])
-        .min(l.max_viewport_dims[1])
-}
-
 /// Input vectors that fit one texture in `formulation`: the texture width, four times that
 /// when packed.
 pub fn max_vectors_per_texture(ctx: &Context, formulation: Formulation) -> usize {
@@ -41,39 +32,6 @@ pub fn max_vectors_per_texture(ctx: &Context, formulation: Formulation) -> usize
         Formulation::Faithful => side,
         Formulation::Packed => side * PACK,
     }
-}
-
-/// Why a layer is refused, if it is: its W (N wide, M high) and its output (M high) must fit.
-pub fn check_network_fits(
-    ctx: &Context,
-    net: &Network,
-    formulation: Formulation,
-) -> Result<(), GlError> {
-    let max = max_side(ctx) as usize;
-    for (index, layer) in net.layers().iter().enumerate() {
-        let (n, m) = (layer.inputs(), layer.outputs());
-        let (w_wide, w_high, what) = match formulation {
-            Formulation::Faithful => (n, m, "one texel per weight"),
-            Formulation::Packed => (texels(n), texels(m) * PACK, "four weights per texel"),
-        };
-        if w_wide > max || w_high > max {
-            let limit = match ctx.period() {
-                Some(gpu) => format!("{}'s max_texture_size, assets/period_gpus.toml", gpu.name),
-                None => "GL_MAX_TEXTURE_SIZE / viewport".to_string(),
-            };
-            let renderer = match ctx.period() {
-                Some(gpu) => gpu.name.as_str(),
-                None => "this renderer",
-            };
-            return Err(GlError::Limit(format!(
-                "layer {index} ({n} inputs, {m} outputs) does not fit {renderer}: its \
-                 texture W would be {w_wide} x {w_high} texels ({what}) but textures hold at \
-                 most {max} per side ({limit}); only the batch is split into tiles, so a layer \
-                 this wide is refused"
-            )));
-        }
-    }
-    Ok(())
 }
 
 impl GpuNetwork<'_> {

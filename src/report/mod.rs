@@ -6,13 +6,14 @@
 //! into tables, claims, figures and the fidelity table. Each section lives in its own folder,
 //! `report/<id>/`, with one file per table or figure. The `*-bench` commands
 //! ([`bench_command`]) and `reproduce` both go through [`run_section`].
+//!
+//! This room holds the papers' reproduction and nothing else: the course's pages are in
+//! [`crate::learn`], `compare` and `selftest` are rooms of their own, and the HTML, plots and
+//! folder writer they all use are the page layer's ([`crate::page`]).
 
 pub mod blocks;
 pub mod checks;
-pub mod compare;
-pub mod guide;
 mod html;
-pub mod ladder_page;
 pub mod lecture1;
 pub mod lecture3;
 pub mod not_built;
@@ -21,20 +22,13 @@ pub mod paper2;
 pub mod paper3;
 pub mod paper4;
 pub mod period;
-pub mod plot;
 pub mod profile;
 pub mod provenance;
 pub mod published;
-pub mod regions;
-pub mod report_folder;
 pub mod reproduce;
-pub mod selftest;
 pub mod then_and_now;
-pub mod walks;
-/// The timing policy lives below the papers ([`crate::timing`]); this path stays for the
-/// report's own imports.
-pub use crate::timing;
 
+use crate::timing;
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -405,8 +399,8 @@ pub fn bench_command<P: Paper>(
         eprintln!("{warning}");
     }
     let out_dir = args.out.as_deref().unwrap_or(Path::new(default_out));
-    // The one rule of every folder writer (report_folder): checked before any work.
-    let folder = report_folder::Staged::begin("--out", default_out, out_dir, args.force)?;
+    // The one rule of every folder writer (page::folder): checked before any work.
+    let folder = crate::page::folder::Staged::begin("--out", default_out, out_dir, args.force)?;
     let opts = BenchOptions {
         gl,
         quick: args.quick,

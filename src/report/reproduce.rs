@@ -1,11 +1,11 @@
 //! `classic-gpgpu reproduce`: every paper's benchmark, one report. The report is written into
 //! a staging folder beside the target and swapped in only when every section succeeded, so a
 //! failed run never leaves a half-written report where a good one was. The report folder is
-//! only ever the program's own ([`super::report_folder`]).
+//! only ever the program's own ([`crate::page::folder`]).
 
-use super::report_folder::{self, Owned};
 use super::{html, run_section, BenchOptions, Paper, Report, Section};
 use crate::gl;
+use crate::page::folder::{self, Owned};
 use anyhow::{bail, Context as _};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
@@ -70,7 +70,7 @@ pub struct ReproduceArgs {
     pub force: bool,
     /// Time every repeated measurement exactly this many times [default: 3, and up to 5
     /// while the runs take under a second in all].
-    #[arg(long, value_parser = super::timing::parse_runs)]
+    #[arg(long, value_parser = crate::timing::parse_runs)]
     pub runs: Option<usize>,
     /// Leave out the "period" block that papers 1 to 4 carry by default: each step of the
     /// paper's path run under the limits of the paper's own GPU (fits, the period's way, or
@@ -89,21 +89,21 @@ pub fn reproduce(
     progress: MultiProgress,
 ) -> anyhow::Result<Report> {
     super::period::set_requested(!args.no_period);
-    if let Some(warning) = super::timing::loaded_warning(super::timing::Load::now()) {
+    if let Some(warning) = crate::timing::loaded_warning(crate::timing::Load::now()) {
         eprintln!("{warning}");
     }
     // A link to a folder: the report goes into that folder, and the link stays.
     let args = &ReproduceArgs {
-        out: report_folder::resolve("--out", &args.out)?,
+        out: folder::resolve("--out", &args.out)?,
         ..args.clone()
     };
     let all = stages();
     let chosen = chosen_stages(&all, &args.only)?;
-    report_folder::check_out(&args.out, args.force)?;
-    let _lock = report_folder::Lock::take(&args.out)?;
-    report_folder::recover(&args.out)?;
+    folder::check_out(&args.out, args.force)?;
+    let _lock = folder::Lock::take(&args.out)?;
+    folder::recover(&args.out)?;
     // Checked again under the lock: a recovered report is a folder too.
-    report_folder::check_out(&args.out, args.force)?;
+    folder::check_out(&args.out, args.force)?;
     let kept = kept_sections(ctx, args, &chosen)?;
     let staging = staging_dir(&args.out)?;
     let mut owned = Owned::default();
@@ -119,7 +119,7 @@ pub fn reproduce(
         });
     match result {
         Ok(report) => {
-            report_folder::install(&staging, &args.out, &owned)?;
+            folder::install(&staging, &args.out, &owned)?;
             Ok(report)
         }
         Err(e) => {
@@ -214,7 +214,7 @@ fn kept_sections(
             shaders(glsl_dir)
         ));
     }
-    let runs = super::timing::runs_policy(args.runs, args.quick);
+    let runs = crate::timing::runs_policy(args.runs, args.quick);
     // A report made before `--runs` existed does not say how it was timed: it is refused
     // too, as another policy may have timed it.
     let old_runs = old["runs"].as_str();
@@ -297,9 +297,9 @@ fn run_stages(
                 stage.id
             );
         }
-        let before = report_folder::list_files(staging)?;
+        let before = folder::list_files(staging)?;
         let section = (stage.run)(&opts).with_context(|| format!("section {}", stage.id))?;
-        for file in report_folder::list_files(staging)? {
+        for file in folder::list_files(staging)? {
             if before.binary_search(&file).is_err() {
                 owned.add(stage.id, &file);
             }
@@ -325,7 +325,7 @@ fn run_stages(
         claims_version: super::provenance::CLAIMS_VERSION.into(),
         command_line: super::provenance::command_line(),
         quick: args.quick,
-        runs: super::timing::runs_policy(args.runs, args.quick),
+        runs: crate::timing::runs_policy(args.runs, args.quick),
         elapsed_s: start.elapsed().as_secs_f64(),
         sections,
         glsl_dir: ctx.glsl_dir().map(|d| d.display().to_string()),
@@ -342,7 +342,7 @@ fn write_report(report: &Report, staging: &Path) -> anyhow::Result<()> {
 
 /// A fresh staging folder beside `out` (same file system, so the swap is a rename).
 fn staging_dir(out: &Path) -> anyhow::Result<PathBuf> {
-    let staging = report_folder::staging_of(out, std::process::id())?;
+    let staging = folder::staging_of(out, std::process::id())?;
     if staging.exists() {
         std::fs::remove_dir_all(&staging)?;
     }

@@ -3,8 +3,8 @@
 //! at hand. Each section measures its own workload (`paperN/then_and_now.rs`); this file holds
 //! the shared result type and the table.
 
-use super::timing::{self, Load, Spread};
 use super::Table;
+use crate::timing::{self, Load, Spread};
 use serde::Serialize;
 
 /// One stage (or the whole frame) in each formulation, milliseconds; `None` where the

@@ -41,8 +41,8 @@
 //!
 //! [`Prefilter`] is the CPU reference of the same rule, in f64: the level per pixel, the covered
 //! node per patch and an exact tracer of the field they make; [`super::compare`] judges prefiltered GPU frames
-//! against it pixel by pixel. [`supersampled`] and [`image_error`] measure quality against the
-//! average of many unfiltered rays per pixel.
+//! against it pixel by pixel. [`image_error`] measures quality against the average of many
+//! unfiltered rays per pixel (the GPU tracer's supersampled frame, or [`cpu_supersampled`]).
 
 use super::bounds::cpu_bound_pyramid;
 use super::camera::Camera;
@@ -50,10 +50,8 @@ use super::exact::{self, box_interval, walk, Cells, Hit};
 use super::patch::Corners;
 use super::shading;
 use super::surface::Surface;
-use super::tracer::{DisplacementRenderer, Method};
 use super::visible_shading::{cpu_shading_levels, ShadingLevel};
 use crate::gl::{Context, GlError};
-use crate::lecture3::error::Error;
 use crate::lecture3::pyramid::{cpu_pyramid, Extreme, Level, PyramidBuilder};
 use crate::lecture3::pyramid_atlas::{AtlasBuilder, PyramidAtlas};
 use crate::lecture3::HeightMap;
@@ -406,7 +404,7 @@ pub fn shown_of_rgba8(colour: &[u8]) -> Shown {
 /// The mean of the `samples x samples` sub-pixels of a `samples`-times larger image, per
 /// pixel (where no sub-pixel shows anything the pixel shows nothing; otherwise those that
 /// show nothing count as black).
-fn box_filter(big: &Shown, width: u32, height: u32, samples: u32) -> Shown {
+pub(super) fn box_filter(big: &Shown, width: u32, height: u32, samples: u32) -> Shown {
     let (w, s) = (width as usize, samples as usize);
     let mut sum = vec![None::<[f64; 3]>; w * height as usize];
     for (i, px) in big.iter().enumerate() {
@@ -421,27 +419,6 @@ fn box_filter(big: &Shown, width: u32, height: u32, samples: u32) -> Shown {
     sum
 }
 
-/// The image of `camera` with `samples x samples` unfiltered rays per pixel, averaged: the
-/// quality reference. The rays are the pixels of one frame `samples` times larger, whose pixel
-/// centres divide each pixel evenly.
-pub fn supersampled(
-    renderer: &DisplacementRenderer,
-    camera: &Camera,
-    samples: u32,
-) -> Result<Shown, Error> {
-    let big = camera.enlarged(samples);
-    let target = renderer.target(big.width, big.height)?;
-    renderer.render(&target, &big, Method::Pyramid)?;
-    let frame = renderer.read(&target)?;
-    frame.check_finished()?;
-    Ok(box_filter(
-        &shown_of_rgba8(&frame.colour),
-        camera.width,
-        camera.height,
-        samples,
-    ))
-}
-
 /// What a CPU-traced hit shows: the wall's or `surface_normal`'s shading of the
 /// checkerboard there.
 fn hit_colour(surface: &Surface, hit: &Hit, surface_normal: DVec3) -> [f64; 3] {
@@ -453,8 +430,8 @@ fn hit_colour(surface: &Surface, hit: &Hit, surface_normal: DVec3) -> [f64; 3] {
     shading::shade(shading::albedo(hit.grid), normal)
 }
 
-/// The CPU reference of [`supersampled`]: every sub-pixel ray traced exactly (f64) and shaded
-/// as the shader shades it, then averaged the same way.
+/// The CPU reference of the GPU tracer's supersampled image: every sub-pixel ray traced
+/// exactly (f64) and shaded as the shader shades it, then averaged the same way.
 pub fn cpu_supersampled(surface: &Surface, camera: &Camera, samples: u32) -> Shown {
     let big = camera.enlarged(samples);
     let shown = exact::trace_image(surface, &big, 0.0)

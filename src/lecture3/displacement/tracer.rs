@@ -1,10 +1,13 @@
 //! The GPU tracers: the displaced box drawn with front faces culled, each fragment tracing its
 //! pixel's ray, by the pyramid traversal or by relief mapping's search, into three targets:
 //! the hit (grid position and ray parameter), statistics (iterations, surface or wall), a
-//! shaded colour and the normal shaded with, plus the hit's depth.
+//! shaded colour and the normal shaded with, plus the hit's depth. [`supersampled`] averages
+//! a frame with many rays per pixel: the reference the prefilter's quality is measured
+//! against ([`super::prefilter::image_error`]).
 
 use super::bounds::BoundPyramidBuilder;
 use super::camera::Camera;
+use super::prefilter::{box_filter, shown_of_rgba8, Shown};
 use super::surface::Surface;
 use super::visible_shading::VisibleShadingPyramid;
 use crate::gl::{
@@ -376,4 +379,25 @@ impl DisplacementRenderer {
     pub fn colour_texture<'a>(&self, target: &'a FrameTarget) -> &'a Texture {
         target.framebuffer.color(2)
     }
+}
+
+/// The image of `camera` with `samples x samples` unfiltered rays per pixel, averaged: the
+/// quality reference. The rays are the pixels of one frame `samples` times larger, whose pixel
+/// centres divide each pixel evenly.
+pub fn supersampled(
+    renderer: &DisplacementRenderer,
+    camera: &Camera,
+    samples: u32,
+) -> Result<Shown, Error> {
+    let big = camera.enlarged(samples);
+    let target = renderer.target(big.width, big.height)?;
+    renderer.render(&target, &big, Method::Pyramid)?;
+    let frame = renderer.read(&target)?;
+    frame.check_finished()?;
+    Ok(box_filter(
+        &shown_of_rgba8(&frame.colour),
+        camera.width,
+        camera.height,
+        samples,
+    ))
 }

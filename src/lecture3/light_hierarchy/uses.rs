@@ -8,8 +8,11 @@ use super::clusters::Cluster;
 use super::environment::{DirectionalKernel, Sky};
 use super::gather::{KernelShader, MIN_DISTANCE};
 use super::light::{Kernel, Receiver, VplKernel};
+use super::model::{model_alone, model_triangles};
+use super::scene::Scene;
 use super::subsurface::Material;
-use glam::DVec3;
+use crate::mesh::obj::load_bunny;
+use glam::{DVec3, Vec3};
 use serde::Serialize;
 
 /// What the light hierarchy is used for.
@@ -92,5 +95,35 @@ impl Kernel for UseKernel {
             UseKernel::Dipole(k) => k.distance(r, light),
             UseKernel::Directional(k) => k.distance(r, light),
         }
+    }
+}
+
+/// The picture's base exposure (multiplier before `--exposure`'s stops) per use: indirect
+/// light as before; subsurface light is dimmer and the sky brighter.
+pub fn base_exposure(light_use: &LightUse) -> f32 {
+    match light_use {
+        LightUse::Indirect => 1.5,
+        LightUse::Subsurface(_) => 4.0,
+        LightUse::Environment(_) => 0.6,
+    }
+}
+
+/// The default scene of a use: the room for indirect light, the shipped bunny alone for the
+/// others (white for subsurface scattering: its samples carry the power that enters).
+pub fn default_scene(light_use: &LightUse) -> Scene {
+    match light_use {
+        LightUse::Indirect => Scene::room(),
+        _ => model_alone(
+            model_triangles(&load_bunny(), "the shipped bunny", model_albedo(light_use))
+                .expect("the shipped bunny has triangles"),
+        ),
+    }
+}
+
+/// The albedo a model gets in a use.
+pub fn model_albedo(light_use: &LightUse) -> Vec3 {
+    match light_use {
+        LightUse::Subsurface(_) => Vec3::ONE,
+        _ => Vec3::splat(0.75),
     }
 }

@@ -1,7 +1,7 @@
 //! The figure: wall clock of both ways, by size.
 
 use super::bench::BlocksResults;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure};
 
 pub fn figure(opts: &BenchOptions, results: &BlocksResults) -> anyhow::Result<Figure> {

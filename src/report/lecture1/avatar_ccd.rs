@@ -11,8 +11,8 @@ use crate::lecture1::avatar_ccd::body::{Body, Keyframes};
 use crate::lecture1::avatar_ccd::environment::{published_room, room, Environment};
 use crate::lecture1::avatar_ccd::reference::{gap_at, near_the_motion, shapes};
 use crate::lecture1::avatar_ccd::{AvatarCcd, Contact, Options};
-use crate::report::timing::Load;
 use crate::report::Table;
+use crate::timing::Load;
 use glam::DVec3;
 use serde::Serialize;
 

@@ -13,9 +13,9 @@ use crate::lecture1::distance_field::reference::brute_force;
 use crate::lecture1::distance_field::slices::SliceRasterizer;
 use crate::lecture1::distance_field::{DistanceField, FieldTimings, Grid};
 use crate::mesh::generate::torus_closed;
-use crate::report::plot::{Plot, Series};
-use crate::report::timing::Load;
+use crate::page::plot::{Plot, Series};
 use crate::report::{Figure, Table};
+use crate::timing::Load;
 use serde::Serialize;
 
 /// One resolution, one formulation.

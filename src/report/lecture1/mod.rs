@@ -24,8 +24,8 @@ pub mod swept_volume;
 mod then_and_now;
 
 use super::checks::{self, Check};
-use super::timing::{Load, Runs};
 use super::{BenchOptions, Claim, Fidelity, Figure, NoOptions, Paper, Section, Table};
+use crate::timing::{Load, Runs};
 use serde::Serialize;
 
 /// What every block gets: the bench options, how often to repeat a timing, the renderer.

@@ -19,9 +19,9 @@ use crate::lecture1::pictures::pair_buffers;
 use crate::lecture1::reference::{pairs_between, self_pairs};
 use crate::lecture1::self_collision::{Options, SelfCollider};
 use crate::mesh::Mesh;
-use crate::report::plot::{Plot, Series};
-use crate::report::timing::{faster, judge_ends, Ends, Load, Spread};
+use crate::page::plot::{Plot, Series};
 use crate::report::{Basis, Claim, Figure, Table};
+use crate::timing::{faster, judge_ends, Ends, Load, Spread};
 use serde::Serialize;
 
 pub const PLOT_PNG: &str = "lecture1_pairwise_by_count.png";
@@ -492,7 +492,7 @@ fn plot(setting: &Setting, rows: &[CountRow]) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::timing::Load;
+    use crate::timing::Load;
 
     /// A count whose streaming and pair-quad runs took these times (ms).
     fn count(triangles: usize, streaming: [f64; 3], pairwise: [f64; 3]) -> CountRow {

@@ -4,7 +4,7 @@
 
 use crate::lecture1::penetration::scenes::{convex_pair, corner_pair, Scene};
 use crate::lecture1::penetration::{Formulation, Options, PenetrationQuery};
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 use serde::{Deserialize, Serialize};
 
@@ -189,7 +189,7 @@ pub fn block(setting: &super::Setting) -> anyhow::Result<super::Block> {
     Ok(super::Block {
         id: String::new(),
         results: serde_json::to_value(&errors)?,
-        load: crate::report::timing::Load::now(),
+        load: crate::timing::Load::now(),
         summary,
         tables: vec![table],
         figures: vec![figure],

@@ -13,9 +13,9 @@ use crate::lecture1::swept_volume::path::{Keyframe, Path3};
 use crate::lecture1::swept_volume::{sweep, Options, SweepTimings};
 use crate::mesh::generate::{cube, uv_sphere};
 use crate::mesh::Mesh;
-use crate::report::plot::{Plot, Series};
-use crate::report::timing::Load;
+use crate::page::plot::{Plot, Series};
 use crate::report::{Figure, Table};
+use crate::timing::Load;
 use glam::DVec3;
 use serde::Serialize;
 

@@ -9,7 +9,7 @@ use crate::lecture1::pairwise_compute::ComputePairwiseTester;
 use crate::lecture1::reference::self_pairs;
 use crate::lecture1::weld::weld;
 use crate::report::then_and_now::{median, StageRow, ThenAndNow};
-use crate::report::timing::Load;
+use crate::timing::Load;
 use std::time::Instant;
 
 const VERDICT: &str = "What compute no longer needs: the triangles as texels of a float \

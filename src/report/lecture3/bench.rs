@@ -5,7 +5,9 @@
 
 use super::images;
 use super::results::*;
-use crate::gl::{Context, TimerQuery};
+use super::scene::{DEPTH, DISTANCE, THETAS};
+use super::timed::{gpu_ms, gpu_ms_warm, gpu_timing, runs, wall_once_ms};
+use crate::gl::Context;
 use crate::lecture3::blend_histogram::{self, Bins, Histogram, Values};
 use crate::lecture3::depth_mask::{self, DepthMask, MaskShape};
 use crate::lecture3::displacement::compare::ReferenceImage;
@@ -22,75 +24,9 @@ use crate::lecture3::random_texture::statistics::{
 };
 use crate::lecture3::random_texture::{HybridTaus, RandomTexture};
 use crate::lecture3::HeightMap;
-use crate::report::timing::{wall_ms, Load, Runs, Spread};
 use crate::report::BenchOptions;
+use crate::timing::{wall_ms, Load, Runs, Spread};
 use std::path::Path;
-use std::time::Instant;
-
-/// How many times the section repeats one timing: `--runs` when given, else exactly 3
-/// under `--quick`, else the report's policy ([`Runs::PAPER`]).
-pub fn runs(opts: &BenchOptions) -> Runs {
-    opts.runs(3)
-}
-
-/// How [`gpu_ms`] times GPU work on this renderer.
-pub fn gpu_timing(ctx: &Context) -> &'static str {
-    if ctx.info().is_software() {
-        "wall clock to glFinish"
-    } else {
-        "GL timer query"
-    }
-}
-
-/// GPU time of `work` (its runs as [`Runs`] says: median and range), after one warm-up run:
-/// a GL timer query on a GPU; on a software rasterizer the wall clock from glFinish to
-/// glFinish, because llvmpipe's TIME_ELAPSED queries miss most of the rasterisation, which
-/// runs in its worker threads when the scene is flushed (measured here: 5 ms by the query for
-/// a pass that took 22 ms to finish).
-pub fn gpu_ms(
-    ctx: &Context,
-    runs: Runs,
-    mut work: impl FnMut() -> anyhow::Result<()>,
-) -> anyhow::Result<Spread> {
-    work()?;
-    gpu_ms_warm(ctx, runs, work)
-}
-
-/// [`gpu_ms`] without its warm-up run, for work whose programs have just run in the same
-/// state (their shader variants compiled, their targets allocated): a section's untimed run
-/// of the same pass (the one whose result it checks) or the previous point of a sweep.
-pub fn gpu_ms_warm(
-    ctx: &Context,
-    runs: Runs,
-    mut work: impl FnMut() -> anyhow::Result<()>,
-) -> anyhow::Result<Spread> {
-    ctx.finish_all();
-    let software = ctx.info().is_software();
-    let query = TimerQuery::new(ctx)?;
-    let times = runs.run(|_| -> anyhow::Result<f64> {
-        if software {
-            ctx.finish_all();
-            let start = Instant::now();
-            work()?;
-            ctx.finish_all();
-            Ok(start.elapsed().as_secs_f64() * 1e3)
-        } else {
-            query.begin();
-            let done = work();
-            query.end();
-            done?;
-            Ok(query.milliseconds()?)
-        }
-    })?;
-    Ok(Spread::of(&times))
-}
-
-/// Wall clock of one run of `work`, for CPU references of seconds timed once.
-pub fn wall_once_ms<T>(work: impl FnOnce() -> T) -> f64 {
-    let start = Instant::now();
-    std::hint::black_box(work());
-    start.elapsed().as_secs_f64() * 1e3
-}
 
 /// Everything, at the section's sizes.
 pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lecture3Results> {
@@ -232,11 +168,6 @@ pub fn pyramid_row(ctx: &Context, map: &HeightMap, runs: Runs) -> anyhow::Result
 
 /// The elevation of the grazing figure (degrees).
 pub const GRAZING_FIGURE: f32 = 8.0;
-
-/// Box height of a white sample in the section's views.
-pub const DEPTH: f32 = 0.3;
-/// The camera's distance from the box centre.
-pub const DISTANCE: f32 = 3.2;
 
 fn displacement(
     opts: &BenchOptions,
@@ -384,9 +315,6 @@ pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: Runs) -> anyhow::Re
 
 /// Side of the small frame that warms up the displacement programs.
 const WARM_UP_SIDE: u32 = 16;
-
-/// The criteria of the error/speed plot.
-pub const THETAS: [f32; 8] = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5];
 
 fn light(opts: &BenchOptions, runs: Runs) -> anyhow::Result<LightRun> {
     let (vpl_side, side) = if opts.quick { (32, 128) } else { (64, 256) };

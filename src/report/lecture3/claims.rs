@@ -5,8 +5,8 @@
 use super::prefilter::PrefilterRow;
 use super::results::{DepthMaskRow, Lecture3Results, LightRun};
 use crate::lecture3::depth_mask::{runs_fit_mask, RunCounter};
-use crate::report::timing::{end, faster, judge_ends, Ends, Load};
 use crate::report::{Basis, Claim};
+use crate::timing::{end, faster, judge_ends, Ends, Load};
 
 pub fn claims(r: &Lecture3Results) -> Vec<Claim> {
     vec![
@@ -699,7 +699,7 @@ fn blending_histogram(r: &Lecture3Results) -> Claim {
 mod tests {
     use super::*;
     use crate::report::lecture3::results::LightRow;
-    use crate::report::timing::Spread;
+    use crate::timing::Spread;
 
     fn light_run(rows: &[(f32, f64, f64, f64)]) -> LightRun {
         LightRun {

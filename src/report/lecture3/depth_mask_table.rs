@@ -4,7 +4,7 @@
 use super::images::DEPTH_MASK_PNG;
 use super::results::Lecture3Results;
 use crate::lecture3::depth_mask::MaskShape;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 fn shape_name(shape: MaskShape) -> &'static str {

@@ -3,7 +3,7 @@
 
 use super::images::GRAZING_PNG;
 use super::results::Lecture3Results;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 pub fn table(results: &Lecture3Results) -> Table {

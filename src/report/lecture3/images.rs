@@ -259,7 +259,7 @@ pub fn orbit_png(
         .map(|&azimuth| {
             let camera = Camera::orbit(
                 renderer.surface().centre(),
-                super::bench::DISTANCE,
+                super::scene::DISTANCE,
                 azimuth,
                 35.0,
                 side,
@@ -303,7 +303,7 @@ pub fn brute_force_pictures(lighting: &IndirectLighting) -> anyhow::Result<[Rgba
 }
 
 /// The brute-force pictures ([`brute_force_pictures`]) beside indirect light alone with the
-/// coarsest criterion of the plot, the last of [`super::bench::THETAS`]: the gather that
+/// coarsest criterion of the plot, the last of [`super::scene::THETAS`]: the gather that
 /// [`super::bench::light_run`] leaves in `lighting`'s target (its last timed run).
 pub fn light_png(
     opts: &BenchOptions,

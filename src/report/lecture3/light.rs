@@ -2,7 +2,7 @@
 
 use super::images::LIGHT_PNG;
 use super::results::Lecture3Results;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 pub fn table(results: &Lecture3Results) -> Table {
@@ -131,7 +131,7 @@ pub fn figures(opts: &BenchOptions, results: &Lecture3Results) -> anyhow::Result
             caption: format!(
                 "3. The room: direct + indirect light (brute force), indirect alone (brute \
                  force), indirect alone with theta {}",
-                super::bench::THETAS.last().expect("criteria")
+                super::scene::THETAS.last().expect("criteria")
             ),
         },
     ])

@@ -21,16 +21,23 @@ mod histogram_table;
 pub mod images;
 mod light;
 pub mod light_uses;
+mod light_uses_table;
 mod octree;
+mod octree_table;
 mod prefilter;
+mod prefilter_table;
 mod pyramid_table;
 mod random_table;
 mod results;
+mod scene;
+mod timed;
 
 pub use bench::*;
 pub use octree::OctreeRow;
 pub use prefilter::{prefilter_quality, PrefilterQuality, PrefilterRow};
 pub use results::*;
+pub use scene::*;
+pub use timed::*;
 
 use super::checks::{self, Check};
 use super::{BenchOptions, Fidelity, Paper, Section};
@@ -74,11 +81,11 @@ impl Paper for Lecture3 {
                 pyramid_table::table(results),
                 displacement_artifacts::table(results),
                 displacement_speed::table(results),
-                prefilter::table(results),
-                octree::table(results),
+                prefilter_table::table(results),
+                octree_table::table(results),
                 light::table(results),
-                light_uses::clustering_table(results),
-                light_uses::uses_table(results),
+                light_uses_table::clustering_table(results),
+                light_uses_table::uses_table(results),
                 function_table::error_table(results),
                 function_table::speed_table(results),
                 random_table::table(results),

@@ -2,16 +2,15 @@
 //! reduction passes and its ray cast against the flat voxel walk, both checked pixel by pixel
 //! against the CPU, with GPU times and steps per pixel side by side.
 
-use super::bench::gpu_ms;
-use super::results::Lecture3Results;
+use super::timed::gpu_ms;
 use crate::lecture3::displacement::Camera;
 use crate::lecture3::octree::cast::centre;
 use crate::lecture3::octree::grid::{shape_points, VoxelGrid};
 use crate::lecture3::octree::levels::cpu_levels;
 use crate::lecture3::octree::reference::{CastComparison, CastReference};
 use crate::lecture3::octree::{OctreeCaster, Search};
-use crate::report::timing::{Runs, Spread};
-use crate::report::{BenchOptions, Table};
+use crate::report::BenchOptions;
+use crate::timing::{Runs, Spread};
 use serde::Serialize;
 
 /// One grid resolution.
@@ -35,7 +34,7 @@ pub struct OctreeRow {
 }
 
 /// Points of the report's point set.
-const POINTS: usize = 20_000;
+pub const POINTS: usize = 20_000;
 
 /// Each resolution: the octree built, both casts judged and timed.
 pub fn measure(opts: &BenchOptions, runs: Runs) -> anyhow::Result<Vec<OctreeRow>> {
@@ -81,54 +80,4 @@ pub fn measure(opts: &BenchOptions, runs: Runs) -> anyhow::Result<Vec<OctreeRow>
             })
         })
         .collect()
-}
-
-pub fn table(results: &Lecture3Results) -> Table {
-    let image = results.octree.first().map_or(0, |r| r.image);
-    Table {
-        caption: format!(
-            "8. Octrees on the GPU: {POINTS} random points on a sphere, a torus and a cluster \
-             voxelized, the occupancy octree built by reduction passes, and {image}x{image} rays \
-             cast through it against the flat voxel walk; both judged against the CPU (pixels \
-             whose first voxel differs, ill-conditioned pixels apart); on {}",
-            results.renderer
-        ),
-        header: [
-            "voxels",
-            "occupied",
-            "levels (GPU = CPU)",
-            "steps per pixel, octree",
-            "steps per pixel, flat",
-            "octree (ms)",
-            "flat (ms)",
-            "flat / octree",
-            "differing from CPU: octree / flat",
-            "ill-conditioned",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: results
-            .octree
-            .iter()
-            .map(|r| {
-                let wrong = |c: &CastComparison| c.wrong_voxel + c.wrong_t + c.unfinished;
-                vec![
-                    format!("{0}^3", r.resolution),
-                    r.occupied.to_string(),
-                    format!(
-                        "{} ({})",
-                        r.levels,
-                        if r.levels_equal { "yes" } else { "NO" }
-                    ),
-                    format!("{:.1}", r.octree_steps),
-                    format!("{:.1}", r.flat_steps),
-                    format!("{:.3}", r.octree_ms),
-                    format!("{:.3}", r.flat_ms),
-                    format!("{:.2}", r.flat_ms / r.octree_ms),
-                    format!("{} / {}", wrong(&r.octree_vs_cpu), wrong(&r.flat_vs_cpu)),
-                    r.octree_vs_cpu.ambiguous.to_string(),
-                ]
-            })
-            .collect(),
-    }
 }

@@ -3,16 +3,15 @@
 //! time and traversal steps, with and without the prefilter, and the prefiltered frame judged
 //! pixel by pixel against the CPU reference of the same rule.
 
-use super::bench::{gpu_ms_warm, DEPTH};
-use super::results::Lecture3Results;
+use super::scene::DEPTH;
+use super::timed::gpu_ms_warm;
 use crate::lecture3::displacement::compare::{Comparison, ReferenceImage};
-use crate::lecture3::displacement::prefilter::{
-    image_error, may_act, shown_of_rgba8, supersampled,
-};
+use crate::lecture3::displacement::prefilter::{image_error, may_act, shown_of_rgba8};
+use crate::lecture3::displacement::tracer::supersampled;
 use crate::lecture3::displacement::{Camera, DisplacementRenderer, Frame, Method, Pixel, Surface};
 use crate::lecture3::HeightMap;
-use crate::report::timing::{Runs, Spread};
-use crate::report::{BenchOptions, Table};
+use crate::report::BenchOptions;
+use crate::timing::{Runs, Spread};
 use serde::Serialize;
 
 /// A prefiltered frame's quality beside the unfiltered frame of the same view.
@@ -164,63 +163,4 @@ pub fn measure(
             })
         })
         .collect()
-}
-
-pub fn table(results: &Lecture3Results) -> Table {
-    let d = &results.displacement;
-    let image = if results.quick { 64 } else { 128 };
-    Table {
-        caption: format!(
-            "2. The minification prefilter as the camera moves away: RMS difference (RGB in \
-             0..1) from {0}x{0} unfiltered rays per pixel averaged, frame time (GL timer \
-             query; the prefiltered frame's includes drawing its shading pyramid toward the \
-             camera) and steps per hit pixel, without and with the prefilter; {image}x{image} \
-             pixels, {1}; on {2}. The last column judges the prefiltered frame against the CPU \
-             reference of the same rule (pixels counted by what differs).",
-            SUPERSAMPLES, d.map, results.renderer
-        ),
-        header: [
-            "elevation",
-            "distance",
-            "deepest stop level",
-            "error, unfiltered",
-            "error, prefiltered",
-            "ms, unfiltered",
-            "ms, prefiltered",
-            "ms, of which the shading pyramid",
-            "steps, unfiltered",
-            "steps, prefiltered",
-            "vs CPU: wrong surface / outside tolerance / kind / normal / colour",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: results
-            .prefilter
-            .iter()
-            .map(|r| {
-                let c = &r.comparison;
-                vec![
-                    format!("{:.0}", r.elevation),
-                    format!("{:.1}", r.distance),
-                    r.max_level.to_string(),
-                    format!("{:.4}", r.quality.unfiltered_error),
-                    format!("{:.4}", r.quality.prefiltered_error),
-                    format!("{:.2}", r.unfiltered_ms),
-                    format!("{:.2}", r.prefiltered_ms),
-                    format!("{:.2}", r.shading_ms),
-                    format!("{:.1}", r.quality.unfiltered_steps),
-                    format!("{:.1}", r.quality.prefiltered_steps),
-                    format!(
-                        "{} / {} / {} / {} / {} of {}",
-                        c.wrong_surface,
-                        c.outside_tolerance,
-                        c.wrong_kind,
-                        c.wrong_normal,
-                        c.wrong_colour,
-                        c.compared
-                    ),
-                ]
-            })
-            .collect(),
-    }
 }

@@ -2,7 +2,7 @@
 
 use crate::lecture3::depth_mask::{MaskShape, RunCounter};
 use crate::lecture3::displacement::compare::Comparison;
-use crate::report::timing::{Load, Spread};
+use crate::timing::{Load, Spread};
 use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
@@ -13,7 +13,7 @@ pub struct Lecture3Results {
     pub renderer_name: String,
     /// A software rasterizer (its "GPU" passes run on the CPU cores the CPU references use).
     pub software: bool,
-    /// How GPU times were taken ([`super::bench::gpu_ms`]).
+    /// How GPU times were taken ([`super::timed::gpu_ms`]).
     pub gpu_timing: String,
     pub quick: bool,
     /// How often each repeated timing ran (the median is kept; each `*_spread` beside a

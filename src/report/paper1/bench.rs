@@ -16,8 +16,8 @@ use crate::collide::tri_test::{test_caps, ModelView, Predicate, PrimitiveResult}
 use crate::collide::{solid, AabbStream};
 use crate::gl::profile::{self, ProfileTable};
 use crate::mesh::Mesh;
-use crate::report::timing::Load;
 use crate::report::BenchOptions;
+use crate::timing::Load;
 use glam::Vec3;
 use serde::Serialize;
 use std::time::Instant;
@@ -593,7 +593,7 @@ fn run_scene(
             // Fig. 8-9: a snapshot of the last frame.
             let mx = Mesh::new(px.clone(), x.triangles.clone());
             let my = Mesh::new(py.clone(), y.triangles.clone());
-            let file = super::fig8_9::file(scene.name);
+            let file = snapshot_file(scene.name);
             crate::collide::snapshot::frame_png(
                 &stream,
                 &s,
@@ -846,4 +846,9 @@ fn leaf_sweep(
         out.push(p);
     }
     Ok(out)
+}
+
+/// Fig. 8-9's snapshot file name for scene `name` (the bench writes it; it holds the GL state).
+fn snapshot_file(name: &str) -> String {
+    format!("paper1_fig8-9_{name}.png")
 }

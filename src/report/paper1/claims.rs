@@ -6,8 +6,8 @@ use super::fig10_12::{cullide_ratio, solid_ratios};
 use super::fig7::crossover_text;
 use crate::collide::reduction::Scheme;
 use crate::collide::reduction_gpu::{paper_switch, CalibrationPoint, PAPER_ETA_THRESHOLD};
-use crate::report::timing::{end, judge_ends, Ends, Spread};
 use crate::report::{Basis, Claim};
+use crate::timing::{end, judge_ends, Ends, Spread};
 
 /// The `P0` side of the paper's readback claims (Sec. 5.3.2).
 const PAPER_P0: usize = 2048;
@@ -571,7 +571,7 @@ mod tests {
             PAPER_P0,
             &[(1e-5, [1.0, 2.0, 0.1])],
         );
-        let loaded = Some(crate::report::timing::Load {
+        let loaded = Some(crate::timing::Load {
             one_minute: 12.0,
             cores: 2,
         });

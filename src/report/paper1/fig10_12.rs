@@ -5,7 +5,7 @@
 use super::bench::{FrameTimes, Paper1Results, SceneRun};
 use super::{f2, header};
 use crate::collide::scenes::SCENES;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 /// SOLID / streaming culling time, without and with the texture download (Fig. 10-11).

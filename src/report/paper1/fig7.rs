@@ -6,7 +6,7 @@ use super::bench::{Fig7Curve, Paper1Results};
 use super::{f2, header};
 use crate::collide::reduction::P0Contents;
 use crate::collide::reduction_gpu::{SchemeCost, PAPER_ETA_THRESHOLD};
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 /// The two curves, clustered first (the paper's case).

@@ -4,11 +4,6 @@
 use super::bench::SceneRun;
 use crate::report::Figure;
 
-/// The snapshot's file name for scene `name`.
-pub fn file(name: &str) -> String {
-    format!("paper1_fig8-9_{name}.png")
-}
-
 pub fn figure(run: &SceneRun) -> Option<Figure> {
     run.snapshot.as_ref().map(|file| Figure {
         file: file.clone(),

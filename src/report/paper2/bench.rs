@@ -3,7 +3,7 @@
 //! on the same crowds, with this project's sprite level, with the snapshots that need live
 //! GL state (Fig. 2's render target, Fig. 3-5's frames, the impostor atlases).
 
-use crate::report::timing::Load;
+use crate::timing::Load;
 use anyhow::Context as _;
 use serde::Serialize;
 

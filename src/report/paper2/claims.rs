@@ -3,8 +3,8 @@
 use super::bench::{Paper2Results, Variant};
 use crate::crowd::scene::RunStats;
 use crate::crowd::ModelKind;
-use crate::report::timing::{faster, judge_ends, judge_under_load, Ends, Spread};
 use crate::report::{Basis, Claim};
+use crate::timing::{faster, judge_ends, judge_under_load, Ends, Spread};
 
 pub fn claims(results: &Paper2Results) -> Vec<Claim> {
     let mut claims = vec![
@@ -236,7 +236,7 @@ mod tests {
     use super::*;
     use crate::crowd::{LodPolicy, Method};
     use crate::report::paper2::bench::Setup;
-    use crate::report::timing::Load;
+    use crate::timing::Load;
 
     /// One Table 1 measurement: `frames` frame times as (median, fastest, slowest) ms.
     fn run(kind: ModelKind, n: usize, variant: Variant, [median, lo, hi]: [f64; 3]) -> RunStats {

@@ -3,7 +3,7 @@
 
 use super::bench::{Paper2Results, Variant};
 use crate::crowd::ModelKind;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::published::Paper2Table1;
 use crate::report::{BenchOptions, Figure, Table};
 

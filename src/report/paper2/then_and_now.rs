@@ -4,13 +4,13 @@
 //! blend skinning on the CPU, on one crowd of soldiers at full detail.
 
 use super::super::then_and_now::{StageRow, ThenAndNow};
-use super::super::timing::wall_ms;
 use super::super::BenchOptions;
 use crate::crowd::compute::{self, ComputeCrowd};
 use crate::crowd::cpu_skinning;
 use crate::crowd::renderer::{CrowdRenderer, Method};
 use crate::crowd::scene::{self, RunStats};
 use crate::crowd::{CharacterModel, ModelKind};
+use crate::timing::wall_ms;
 
 const VERDICT: &str = "What compute no longer needs: the n x m render target and its \
     128-characters-per-row cap (the vertex stride limit), batching by texture size, the copy \

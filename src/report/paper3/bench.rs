@@ -2,6 +2,7 @@
 //! side (Table 1 and the throughput table), and text.png classified on the GPU and the CPU
 //! (Fig. 2). Fig. 2's images are written here, with the outputs at hand.
 
+use super::fig2_files::{FIG2A_FILE, FIG2B_FILE};
 use crate::gl::Context;
 use crate::mlp::cpu::{forward, CpuProduct};
 use crate::mlp::detect::{classify_cpu, classify_gpu, mask_image, shipped_detector, THRESHOLD};
@@ -9,8 +10,8 @@ use crate::mlp::matmul::RADEON_9700_INPUTS_PER_PASS;
 use crate::mlp::tiling::max_vectors_per_texture;
 use crate::mlp::window::window_batch;
 use crate::mlp::{Activation, Formulation, GpuMlp, Layer, Network, StepTimes};
-use crate::report::timing::{Load, Runs, Spread};
 use crate::report::BenchOptions;
+use crate::timing::{Load, Runs, Spread};
 use anyhow::Context as _;
 use image::GrayImage;
 use ndarray::{s, Array1, Array2};
@@ -20,10 +21,6 @@ use serde::Serialize;
 
 /// The evaluation photograph (assets/mlp/README.md).
 const TEXT_PNG: &[u8] = include_bytes!("../../../assets/mlp/text.png");
-
-/// Fig. 2(a) and 2(b), written into the output folder.
-pub const FIG2A_FILE: &str = "paper3_fig2a_text.png";
-pub const FIG2B_FILE: &str = "paper3_fig2b_mask.png";
 
 /// Everything the section measures.
 #[derive(Clone, Debug, Serialize)]

@@ -4,8 +4,8 @@
 
 use super::bench::{Method, Paper3Results};
 use crate::report::published::Paper3Table1;
-use crate::report::timing;
 use crate::report::{Basis, Claim};
+use crate::timing;
 
 pub fn claims(results: &Paper3Results, paper: &Paper3Table1) -> Vec<Claim> {
     vec![twenty_fold(results, paper), same_classification(results)]

@@ -1,7 +1,8 @@
 //! Fig. 2: the test image and its classification (black = text), with how many pixels each
 //! evaluation calls text and how often the GPU agrees with the CPU.
 
-use super::bench::{DetectionRun, Paper3Results, FIG2A_FILE, FIG2B_FILE};
+use super::bench::{DetectionRun, Paper3Results};
+use super::fig2_files::{FIG2A_FILE, FIG2B_FILE};
 use super::table1::ms;
 use crate::report::{Figure, Table};
 

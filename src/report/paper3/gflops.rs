@@ -3,7 +3,7 @@
 
 use super::bench::{Method, Paper3Results};
 use super::table1::{ms, passes};
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 pub fn table(results: &Paper3Results) -> Table {

@@ -9,6 +9,7 @@ mod bench;
 mod claims;
 mod fidelity;
 mod fig2;
+mod fig2_files;
 mod gflops;
 pub mod period;
 mod profile;

@@ -7,7 +7,7 @@
 //! period's way, the other sets the outputs, the detection mask and the error against labelled
 //! windows beside today's.
 
-use super::bench::FIG2A_FILE;
+use super::fig2_files::FIG2A_FILE;
 use crate::gl::{period, Context, GlError};
 use crate::mlp::detect::{classify_gpu, mask_image, shipped_detector, THRESHOLD};
 use crate::mlp::fp24::{forward_fp24, Precision, UNIT_ROUNDOFF};

@@ -2,6 +2,7 @@
 //! method (Fig. 4-5, Table 1), the 50-body buoyancy scene (section 5.3, Fig. 9), and the peels
 //! of a buoyant bunny (Fig. 10).
 
+use super::timed::{QUICK_RUNS, SETTLE_STEPS};
 use crate::gl::profile::ProfileRow;
 use crate::gl::{profile, Context};
 use crate::mass::buoyancy::simulation::{Simulation, SubmergedSolver};
@@ -10,10 +11,13 @@ use crate::mass::gpu::GpuMass;
 use crate::mass::peel::{PeelOrder, PeelSettings};
 use crate::mass::{analytic, models, surface, MassProperties};
 use crate::mesh::Mesh;
-use crate::report::timing::{wall_ms, Load, Runs, Spread};
 use crate::report::BenchOptions;
+use crate::timing::{wall_ms, Load, Runs, Spread};
 use serde::Serialize;
 use std::time::Instant;
+
+/// The folder (under the output folder) of Fig. 10's peel dumps.
+pub const FIG10_DIR: &str = "fig10_bunny";
 
 /// Everything the section measures.
 #[derive(Clone, Debug, Serialize)]
@@ -186,10 +190,6 @@ pub fn resolutions(quick: bool) -> Vec<u32> {
         vec![8, 16, 32, 64, 128, 256, 512]
     }
 }
-
-/// Timed runs per measurement under `--quick` (the median is kept); at the papers' sizes
-/// the report's policy ([`BenchOptions::runs`]).
-pub const QUICK_RUNS: usize = 3;
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let bar = opts.progress.add(indicatif::ProgressBar::new(
@@ -524,9 +524,6 @@ fn run_scene<S: SubmergedSolver>(
     Ok(times)
 }
 
-/// Steps from the drop before the buoyancy scene is timed (1 s, past the first plunge).
-pub const SETTLE_STEPS: usize = 60;
-
 /// The size of the frames drawn in the timed run (the CLI's `--png-every` frames).
 pub const FRAME_SIZE: (u32, u32) = (640, 400);
 
@@ -681,7 +678,7 @@ fn buoyant_bunny_peels(opts: &BenchOptions) -> anyhow::Result<usize> {
     let bunny = models::paper_object("bunny").expect("bunny");
     let centre =
         MassProperties::from_integrals(&analytic::volume_integrals(&bunny), 1.0).center_of_mass;
-    let dump_dir = opts.out_dir.join(super::fig10::DIR);
+    let dump_dir = opts.out_dir.join(FIG10_DIR);
     Ok(GpuMass::new(opts.gl, 128)?
         .integrate(&bunny, Some(centre.z), Some(&dump_dir))?
         .peels)

@@ -2,8 +2,8 @@
 //! judged on this run.
 
 use super::bench::Paper4Results;
-use crate::report::timing::{self, Load, Spread, Target};
 use crate::report::{published, Basis, Claim};
+use crate::timing::{self, Load, Spread, Target};
 
 pub fn claims(results: &Paper4Results, paper: &published::Paper4) -> Vec<Claim> {
     let mut claims = vec![error_bound(results, paper)];

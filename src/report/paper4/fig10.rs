@@ -1,10 +1,7 @@
 //! Fig. 9 and 10: the buoyancy scene's last frame, and the peels of a buoyant bunny.
 
-use super::bench::Paper4Results;
+use super::bench::{Paper4Results, FIG10_DIR as DIR};
 use crate::report::Figure;
-
-/// The folder (under the output folder) of Fig. 10's peel dumps.
-pub const DIR: &str = "fig10_bunny";
 
 pub fn figures(results: &Paper4Results) -> Vec<Figure> {
     let mut figures = vec![Figure {

@@ -1,7 +1,7 @@
 //! Fig. 4: relative error of mass and the three diagonal moments against resolution.
 
 use super::bench::Paper4Results;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 /// Fig. 4's quantities, in the order of [`super::bench::RelativeErrors::all`].

@@ -1,7 +1,7 @@
 //! Fig. 5: the GPU path's time against resolution, beside Mirtich's analytic method.
 
 use super::bench::Paper4Results;
-use crate::report::plot::{Plot, Series};
+use crate::page::plot::{Plot, Series};
 use crate::report::{BenchOptions, Figure, Table};
 
 pub fn table(results: &Paper4Results) -> Table {

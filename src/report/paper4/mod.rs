@@ -16,6 +16,7 @@ mod speed;
 mod table1;
 mod then_and_now;
 pub mod then_and_now_buoyancy;
+mod timed;
 
 pub use bench::{BuoyancyRun, ObjectRun, Paper4Results, PeelOrderRun, ResolutionRow, SpeedTargets};
 
@@ -139,7 +140,7 @@ fn summary(opts: &BenchOptions, results: &Paper4Results) -> String {
          go in four parts with a flush between, so that its threads rasterize the first bodies \
          while the rest are set up (the race 1.0x -> 1.1-1.2x on llvmpipe).{}",
         bench::resolutions(opts.quick).len(),
-        opts.runs(bench::QUICK_RUNS).in_words(),
+        opts.runs(timed::QUICK_RUNS).in_words(),
         results.renderer,
         if opts.gl.info().is_software() {
             ": a software rasterizer runs the 'GPU' passes on the CPU, so the ratios are not the \

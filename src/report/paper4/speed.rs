@@ -5,8 +5,8 @@
 use super::bench::Paper4Results;
 use crate::gl::profile::ProfileRow;
 use crate::mass::buoyancy::race::Race;
-use crate::report::timing::{judge, Load, Target};
 use crate::report::Table;
+use crate::timing::{judge, Load, Target};
 
 /// The project's speed targets on llvmpipe (a fixed cost per pass must not swamp the
 /// papers' work), each a ratio measured in this run.
@@ -137,7 +137,7 @@ pub fn profile(caption: &str, rows: &[ProfileRow]) -> Table {
 mod tests {
     use super::*;
     use crate::mass::buoyancy::race::RaceSetup;
-    use crate::report::timing::Spread;
+    use crate::timing::Spread;
 
     fn race(ratios: &[f64], load: f64) -> Race {
         let load = Some(Load {

@@ -5,13 +5,13 @@
 //! on the same poses, interleaved.
 
 use super::super::then_and_now::{StageRow, ThenAndNow};
-use super::super::timing::{Load, Spread};
 use super::super::BenchOptions;
 use crate::mass::buoyancy::batch::GpuSolver;
 use crate::mass::buoyancy::compute::ComputeSolver;
 use crate::mass::buoyancy::forces::Submerged;
 use crate::mass::buoyancy::scene;
 use crate::mass::buoyancy::simulation::{AnalyticSolver, Simulation, SubmergedSolver};
+use crate::timing::{Load, Spread};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -80,9 +80,9 @@ pub fn measure(
     settled: Option<Simulation>,
 ) -> anyhow::Result<BuoyancyThenAndNow> {
     let ctx = opts.gl;
-    let runs = opts.runs(super::bench::QUICK_RUNS);
+    let runs = opts.runs(super::timed::QUICK_RUNS);
     let (sim, settle) = match settled {
-        Some(sim) => (sim, super::bench::SETTLE_STEPS),
+        Some(sim) => (sim, super::timed::SETTLE_STEPS),
         None => {
             let (bodies, settle) = (10, 30);
             let mut sim = scene::paper_scene(bodies, 1.0 / 60.0).map_err(anyhow::Error::msg)?;

@@ -10,8 +10,8 @@ use crate::lecture3::light_hierarchy::clusters::ClusterLevel;
 use crate::lecture3::light_hierarchy::light::{brute_force_with, tree_gather_with, Receiver};
 use crate::lecture3::light_hierarchy::normal_cone::MIN_COHERENCE;
 use crate::lecture3::light_hierarchy::shade::Terms;
+use crate::lecture3::light_hierarchy::uses::{base_exposure, default_scene};
 use crate::lecture3::light_hierarchy::{Gather, IndirectLighting, LightUse};
-use crate::report::lecture3::light_uses::{base_exposure, default_scene};
 use crate::view::inset::{self, Shown};
 use crate::view::{Canvas, Demo, ViewState};
 

@@ -1,11 +1,11 @@
 //! The compare page (`index.html`): the machines, the headline figures and their plots, the
 //! then-and-now ratios, and every claim with each machine's verdict, measured figure and load.
-//! The report's style (`html::STYLE`), self-contained.
+//! The style every page shares ([`crate::page::html::STYLE`]), self-contained.
 
 use super::headline::{then_and_now_text, THEN_AND_NOW};
 use super::plot::Figure;
 use super::Comparison;
-use crate::report::html::{escape, escape_cell, STYLE};
+use crate::page::html::{escape, escape_cell, STYLE};
 
 /// The verdict's class in the report's style (green, red, grey).
 fn class(holds: Option<bool>, ran: bool) -> &'static str {

@@ -1,5 +1,6 @@
-//! Line plots as PNG (plotters), for the papers' figures: one or more series of (x, y)
-//! points, optional log axes, a legend below the axes (never over the data).
+//! Line plots as PNG (plotters), for the report's figures, the guide's ladder and the compare
+//! page: one or more series of (x, y) points, optional log axes, a legend below the axes
+//! (never over the data).
 //!
 //! Made to be read without the code: every axis carries at least two labelled ticks (a log
 //! axis at its decades, or at the data's own x values when there are few: 8, 16 .. 512); the

@@ -14,10 +14,10 @@ pub mod paper2;
 pub mod paper3;
 pub mod paper4;
 
-use super::html::{escape, STYLE};
 use super::regions;
 use crate::gl::picture::{Panel, Scale};
 use crate::gl::Context;
+use crate::page::html::{escape, STYLE};
 use std::path::{Path, PathBuf};
 
 /// One pass of a walk, as the paper names it and as the code runs it.

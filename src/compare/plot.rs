@@ -152,7 +152,7 @@ impl Chart {
             10f64.powf(lo.log10().floor()),
             10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
         );
-        crate::report::plot::register_font();
+        crate::page::plot::register_font();
         let size = (SIZE.0, SIZE.1 + LEGEND_ROW * self.lines.len() as u32 + 12);
         let mut pixels = vec![0u8; (size.0 * size.1 * 3) as usize];
         {

@@ -1,7 +1,7 @@
 //! One machine's run, read back from the `results.json` that `reproduce` wrote.
 
-use crate::report::timing::Load;
 use crate::report::{provenance, Section};
+use crate::timing::Load;
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -1,9 +1,9 @@
-//! The `--out` folder of `compare`: the report's folder rule ([`report_folder`]) with a marker
+//! The `--out` folder of `compare`: the folder rule of every writer ([`crate::page::folder`]) with a marker
 //! of its own. A folder with files this program did not write is refused without `--force`;
 //! even with it, a file of someone else's is never replaced; a `reproduce` report is never
 //! written into (its page would be lost).
 
-use crate::report::report_folder::{self, Owned};
+use crate::page::folder::{self, Owned};
 use anyhow::bail;
 use std::path::{Path, PathBuf};
 
@@ -13,7 +13,7 @@ const OWNER: &str = "compare";
 /// Refuses `out` before any work: a file, a `reproduce` report, a folder of someone else's
 /// without `force`, or a folder where a file the page needs is an input.
 pub fn check(out: &Path, inputs: &[PathBuf], names: &[&str], force: bool) -> anyhow::Result<()> {
-    report_folder::check_out(out, force)?;
+    folder::check_out(out, force)?;
     let owned = Owned::read(out)?;
     if let Some(owned) = &owned {
         if let Some((section, file)) = owned.files().find(|(s, _)| *s != OWNER) {

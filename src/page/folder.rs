@@ -11,6 +11,10 @@
 //! the destination; a lock beside it keeps two runs from writing one folder at once; the
 //! final swap moves the old folder aside first, so a run killed between the two renames
 //! leaves it where the next run finds and restores it.
+//!
+//! The rule was first the report's, and its texts still say "report" for the folder being
+//! written; every command that writes a folder uses it (the guide, `compare`, `mass --dump`,
+//! the `*-bench` folders), each naming itself in the marker.
 
 use anyhow::{bail, Context as _};
 use std::collections::BTreeMap;

@@ -3,10 +3,10 @@
 //! --guide` stays quick on llvmpipe) as a table and a plot of effective bandwidth against
 //! size, with the command that times the full sweep to 2^22 named on the page.
 
-use super::html::escape;
-use super::plot::{Plot, Series};
 use crate::gl::Context;
 use crate::learn::ladder::{self, LadderBench};
+use crate::page::html::escape;
+use crate::page::plot::{Plot, Series};
 use crate::timing::Runs;
 use std::path::Path;
 

@@ -168,8 +168,8 @@ mod tests {
 
     #[test]
     fn missing_and_unknown_are_errors_naming_file_and_region() {
-        let missing = cut("src/report/regions.rs", "no-such-region").unwrap_err();
-        assert!(missing.contains("src/report/regions.rs") && missing.contains("no-such-region"));
+        let missing = cut("src/learn/regions.rs", "no-such-region").unwrap_err();
+        assert!(missing.contains("src/learn/regions.rs") && missing.contains("no-such-region"));
         assert!(cut("src/nothing.rs", "a")
             .unwrap_err()
             .contains("src/nothing.rs"));
@@ -177,7 +177,7 @@ mod tests {
 
     #[test]
     fn rust_files_and_shaders_are_both_found() {
-        assert!(file_text("src/report/regions.rs").is_some());
+        assert!(file_text("src/learn/regions.rs").is_some());
         assert!(file_text("glsl/learn/saxpy.frag").is_some());
     }
 }

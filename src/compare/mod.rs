@@ -18,7 +18,7 @@ pub mod run;
 
 pub use run::Run;
 
-use super::published::Published;
+use crate::report::published::Published;
 use anyhow::bail;
 use serde::Serialize;
 use std::path::{Path, PathBuf};

@@ -5,11 +5,12 @@
 //! every page links to where it uses them. No scripts, no external files.
 
 pub mod code;
+pub mod ladder_page;
 
-use super::html::{escape, STYLE};
 use crate::gl::trace::{self, TracedCall};
 use crate::gl::Context;
 use crate::learn::{LessonOptions, LessonRun};
+use crate::page::html::{escape, STYLE};
 use std::path::{Path, PathBuf};
 
 /// What was written: every page, and each lesson's verdict.
@@ -21,11 +22,11 @@ pub struct GuideWritten {
 }
 
 /// Run every lesson on `ctx` and write the guide into `dir` (made if missing), by the rule of
-/// every folder writer ([`super::report_folder::Staged`]): a folder holding files the guide
+/// every folder writer ([`crate::page::folder::Staged`]): a folder holding files the guide
 /// did not write is refused unless `force`, and a rewrite removes the old guide's files that
 /// the new one does not have.
 pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<GuideWritten> {
-    let folder = super::report_folder::Staged::begin("--guide", "learn --guide", dir, force)?;
+    let folder = crate::page::folder::Staged::begin("--guide", "learn --guide", dir, force)?;
     let staging = folder.path();
     let lessons = crate::learn::all();
     let mut runs = Vec::new();
@@ -58,7 +59,7 @@ pub fn write_guide(ctx: &Context, dir: &Path, force: bool) -> anyhow::Result<Gui
             lessons.get(k + 1).map(|n| n.info()),
         );
         // The reduction ladder's table and plot, on its lesson's page (empty elsewhere).
-        let ladder = super::ladder_page::section(ctx, lesson.info().id, staging);
+        let ladder = ladder_page::section(ctx, lesson.info().id, staging);
         write(
             &lesson_file(lesson.info().id),
             lesson_page(lesson.info(), &runs[k], &traces[k], neighbours, &ladder),

@@ -6,9 +6,9 @@
 //! Each block is printed with its file and first line, and holds exactly that file's lines
 //! (their shared indent removed): a page cannot drift from the code that ran.
 
-use super::super::html::escape;
+use crate::learn::regions;
 use crate::learn::LessonInfo;
-use crate::report::regions;
+use crate::page::html::escape;
 
 /// One region a page shows: the file, the region's name, and a sentence that goes above it.
 #[derive(Clone, Copy, Debug)]

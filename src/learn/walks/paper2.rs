@@ -3,12 +3,12 @@
 
 use super::{buffer_png, Check, Shot, Step, Walk};
 use crate::crowd::bone_textures::BoneTextures;
+use crate::crowd::character::Instances;
 use crate::crowd::cpu_skinning;
 use crate::crowd::culling::Camera;
 use crate::crowd::pass1_skinning::{Pass1, SkinningTarget};
 use crate::crowd::pass2_draw::{CharacterArrays, Pass2, Shading};
 use crate::crowd::render_to_vbo::SkinnedVbo;
-use crate::crowd::renderer::Instances;
 use crate::crowd::scene;
 use crate::crowd::vertex_textures::VertexTextures;
 use crate::crowd::{CharacterModel, ModelKind};
