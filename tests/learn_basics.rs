@@ -369,7 +369,7 @@ fn view_learn_shows_each_pass_and_steps_the_iterations() {
     let buffers = demo.buffers();
     assert_eq!(buffers[0], "start");
     assert!(buffers.iter().any(|b| b == "step 1"), "{buffers:?}");
-    assert!(demo.overlay().iter().any(|l| l.contains("1 iterations")));
+    assert!(demo.overlay().iter().any(|l| l.contains("1 iteration [")));
     demo.step().unwrap();
     assert!(demo.overlay().iter().any(|l| l.contains("2 iterations")));
     assert!(demo
@@ -380,7 +380,7 @@ fn view_learn_shows_each_pass_and_steps_the_iterations() {
         demo.step().unwrap();
     }
     assert!(
-        demo.buffers().iter().any(|b| b == "step 5"),
+        demo.buffers().iter().any(|b| b == "step 5 (the latest)"),
         "{:?}",
         demo.buffers()
     );

@@ -28,9 +28,11 @@ pub struct ViewArgs {
     /// No window: draw the same frame on the headless renderer (needs --screenshot).
     #[arg(long, global = true, requires = "screenshot")]
     pub headless: bool,
-    /// The buffer shown first (0 = the scene; Tab cycles in the window).
-    #[arg(long, global = true, default_value_t = 0)]
-    pub buffer: usize,
+    /// The buffer shown first (Tab cycles in the window): any the demo makes, a later step's
+    /// too. Without it, one that changes as the demo steps (the scene, a lesson's latest
+    /// iterate).
+    #[arg(long, global = true)]
+    pub buffer: Option<usize>,
     /// Draw the help text over the frame.
     #[arg(long, global = true)]
     pub help_overlay: bool,
@@ -119,7 +121,7 @@ pub enum DemoCommand {
         technique: Lecture3Technique,
     },
     /// A lesson of `learn` live: each pass's buffer (Tab), the checks against the CPU, one
-    /// more iteration per step where the lesson iterates (ping-pong).
+    /// more iteration per step where the lesson iterates (ping-pong; it opens on the latest).
     Learn {
         /// The lesson's id or number (`classic-gpgpu learn --list`).
         id: String,
@@ -244,7 +246,6 @@ pub fn run(
         )?;
     }
     let view = ViewState {
-        shown: args.buffer,
         help: args.help_overlay,
         probe: args.probe,
         ..ViewState::default()
@@ -261,9 +262,16 @@ pub fn run(
     if args.headless {
         let ctx = context()?;
         let frames = args.frames.unwrap_or(0);
-        let (pixels, probe) =
-            viewer::headless_frame(&spec, &ctx, args.size, frames, &view, &args.keys)
-                .with_context(|| format!("view {}", spec.name()))?;
+        let (pixels, probe) = viewer::headless_opening(
+            &spec,
+            &ctx,
+            args.size,
+            frames,
+            &view,
+            &args.keys,
+            args.buffer,
+        )
+        .with_context(|| format!("view {}", spec.name()))?;
         for line in probe {
             println!("probe: {line}");
         }
@@ -292,6 +300,7 @@ pub fn run(
             screenshot: args.screenshot.clone(),
             paused: args.paused,
             view,
+            buffer: args.buffer,
             keys: args.keys.clone(),
             glsl_dir,
         },

@@ -445,19 +445,61 @@ pub trait Lesson {
     fn info(&self) -> &'static LessonInfo;
     /// Run the lesson on `ctx`: every pass, every check against the CPU reference.
     fn run(&self, ctx: &Context, opts: &LessonOptions) -> anyhow::Result<LessonRun>;
-    /// Whether the lesson iterates (ping-pong): `view learn` then steps its iterations.
-    fn iterates(&self) -> bool {
-        false
-    }
-    /// Run with `iterations` steps instead of the lesson's own count (lessons that iterate;
-    /// the others run as [`Lesson::run`]).
-    fn run_iterations(
+    /// A lesson that iterates (ping-pong), started on `ctx` at iteration 0, for the viewer's
+    /// live loop to advance a step at a time; `None` for a lesson that runs once.
+    fn iteration(
         &self,
-        ctx: &Context,
-        opts: &LessonOptions,
-        _iterations: u32,
-    ) -> anyhow::Result<LessonRun> {
-        self.run(ctx, opts)
+        _ctx: &Context,
+        _opts: &LessonOptions,
+    ) -> anyhow::Result<Option<Box<dyn Iteration>>> {
+        Ok(None)
+    }
+}
+
+/// A lesson that iterates, held between iterations: its textures keep the current iterate, so
+/// that one more iteration is one more pass (`view learn`'s step), not the lesson run again
+/// from the start.
+pub trait Iteration {
+    /// Iterations run so far.
+    fn iterations(&self) -> u32;
+    /// `steps` more iterations, from the current iterate (fewer once it has stopped).
+    fn advance(&mut self, steps: u32) -> anyhow::Result<()>;
+    /// Why the iterations have stopped, once they have (the iterate reached a fixed point):
+    /// from then on [`Iteration::advance`] changes nothing.
+    fn stopped(&self) -> Option<String> {
+        None
+    }
+    /// The run as it stands, as `learn <id>` records it after this many iterations, and the
+    /// lesson's buffers as the viewer numbers them.
+    fn record(&self) -> anyhow::Result<(LessonRun, Vec<Slot>)>;
+}
+
+/// One buffer of a lesson that iterates as the viewer numbers it. The list is the same at
+/// every iteration and in the order `learn <id>` records its buffers, so that a number (`view
+/// learn <id> --buffer K`, as a failed check names it) means the same buffer at any iteration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slot {
+    /// What it holds, e.g. "step 2" or "step 7 (the latest)".
+    pub name: String,
+    /// Its index in [`LessonRun::buffers`] of the run as it stands; `None` before the
+    /// iteration that makes it.
+    pub buffer: Option<usize>,
+    /// It changes with each iteration (the viewer opens on the first that does).
+    pub changes: bool,
+}
+
+impl Slot {
+    /// Each buffer of `run` in its own slot: a lesson that runs once.
+    pub fn each(run: &LessonRun) -> Vec<Slot> {
+        run.buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| Slot {
+                name: run.passes[b.pass].name.clone(),
+                buffer: Some(i),
+                changes: false,
+            })
+            .collect()
     }
 }
 

@@ -9,8 +9,8 @@
 //! check it against.
 
 use super::{
-    chosen_exercise, max_difference, no_compute, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
-    LessonRun, PaperStep, PassBuffer,
+    chosen_exercise, max_difference, no_compute, Exercise, Grid, Iteration, Lesson, LessonInfo,
+    LessonOptions, LessonRun, PaperStep, PassBuffer, Slot,
 };
 use crate::gl::{
     memory_barrier, Barrier, Buffer, BufferUsage, ComputeProgram, Context, Framebuffer, Program,
@@ -75,51 +75,27 @@ impl Lesson for PingPong {
     }
 
     fn run(&self, ctx: &Context, opts: &LessonOptions) -> anyhow::Result<LessonRun> {
-        self.run_iterations(ctx, opts, STEPS)
+        let mut jacobi = Jacobi::start(ctx, opts)?;
+        jacobi.advance(STEPS)?;
+        Ok(jacobi.record()?.0)
     }
 
-    fn iterates(&self) -> bool {
-        true
-    }
-
-    fn run_iterations(
+    fn iteration(
         &self,
         ctx: &Context,
         opts: &LessonOptions,
-        steps: u32,
-    ) -> anyhow::Result<LessonRun> {
-        chosen_exercise(&INFO, opts)?;
-        let mut run = LessonRun::new(&INFO, ctx);
-        let start = initial_grid(N);
-        let cpu = jacobi_cpu(&start, N, steps);
-        let gpu = jacobi_gpu(ctx, &mut run, &start, steps)?;
-        run.check_texels(
-            &format!("after {steps} steps the grid = the CPU's Jacobi iterate"),
-            Grid::new(N, N, 1),
-            &gpu,
-            &cpu,
-            TOLERANCE,
-        );
-        run.check(
-            "the boundary kept its values (exact)",
-            max_difference(&boundary(&gpu, N), &boundary(&start, N)),
-            0.0,
-        );
-        in_place(ctx, &mut run, &start, &gpu, steps)?;
-        run.compute = Some(match no_compute(ctx) {
-            Some(why) => why,
-            None => jacobi_compute(ctx, &mut run, &start, &cpu, steps)?,
-        });
-        run.finish(&INFO, ctx, opts)?;
-        Ok(run)
+    ) -> anyhow::Result<Option<Box<dyn Iteration>>> {
+        Ok(Some(Box::new(Jacobi::start(ctx, opts)?)))
     }
 }
 
 /// Each step adds four values in [0, 1] and scales by 1/4: the fp32 rounding of a step is
 /// below 2^-23 (1.2e-7), and a mean does not grow earlier differences, so after k steps the
-/// GPU and CPU differ by at most k * 1.2e-7 even if the GPU adds in another order; 1e-5
-/// covers 80 steps.
-const TOLERANCE: f64 = 1e-5;
+/// GPU and CPU differ by at most k * 1.2e-7 even if the GPU adds in another order: 1e-5 up
+/// to 80 steps (the lesson's run), k * 2^-23 beyond (the viewer's, up to the fixed point).
+fn tolerance(steps: u32) -> f64 {
+    (steps as f64 * f64::from(f32::EPSILON)).max(1e-5)
+}
 
 /// The start: zero inside, the top row at 1 (a hot edge), the other edges at 0.
 pub fn initial_grid(n: u32) -> Vec<f32> {
@@ -159,87 +135,247 @@ pub fn jacobi_cpu(start: &[f32], n: u32, steps: u32) -> Vec<f32> {
     current
 }
 
-/// The ping-pong: textures A and B, `steps` passes, the roles swapped after each.
-fn jacobi_gpu(
-    ctx: &Context,
-    run: &mut LessonRun,
-    start: &[f32],
-    steps: u32,
-) -> anyhow::Result<Vec<f32>> {
-    let program = Program::rect(ctx, &[shader!("glsl/learn/jacobi.frag")])?;
-    // region: ping-pong-setup
-    let a = Texture::from_f32(ctx, N, N, TextureFormat::R32F, start)?;
-    let b = Texture::new_2d(ctx, N, N, TextureFormat::R32F)?;
-    let fb_a = Framebuffer::new(ctx, "A", &[&a], None)?;
-    let fb_b = Framebuffer::new(ctx, "B", &[&b], None)?;
-    // endregion
-    run.pass(
-        "start",
-        "",
-        &format!("a {N}x{N} grid into texture A: zero inside, the top row held at 1"),
-        Some(PassBuffer::floats(N, N, 1, start.to_vec()).in_set("grid")),
-    );
+/// The lesson between iterations: the grid `iterations` Jacobi steps from the start, on each
+/// path (the ping-pong textures, the one texture read and written in place, the compute
+/// counterpart's storage buffers) and on the CPU. `learn ping-pong` advances it [`STEPS`]
+/// steps and records the run; the viewer's live loop advances it a step a frame, from where
+/// it is.
+struct Jacobi {
+    ctx: Context,
+    opts: LessonOptions,
+    program: Program,
+    /// Iterate k is in A for even k, in B for odd k.
+    fb_a: Framebuffer,
+    fb_b: Framebuffer,
+    /// One texture read and drawn into by the same steps (undefined, shown for comparison).
+    in_place: Framebuffer,
+    /// The compute counterpart, or why it cannot run here.
+    compute: Result<JacobiCompute, String>,
+    start: Vec<f32>,
+    /// The CPU's iterate, as many steps from the start as the GPU's.
+    cpu: Vec<f32>,
+    /// Steps 1 and 2 as read back when they ran: the lesson shows them beside the latest.
+    first_steps: Vec<Vec<f32>>,
+    iterations: u32,
+    /// The CPU's iterate is a fixed point: a step changes none of its values.
+    fixed_point: bool,
+}
+
+impl Jacobi {
+    /// The start grid in texture A (and in the in-place texture and the compute buffers),
+    /// the programs compiled: iteration 0.
+    fn start(ctx: &Context, opts: &LessonOptions) -> anyhow::Result<Jacobi> {
+        chosen_exercise(&INFO, opts)?;
+        let start = initial_grid(N);
+        let program = Program::rect(ctx, &[shader!("glsl/learn/jacobi.frag")])?;
+        // region: ping-pong-setup
+        let a = Texture::from_f32(ctx, N, N, TextureFormat::R32F, &start)?;
+        let b = Texture::new_2d(ctx, N, N, TextureFormat::R32F)?;
+        let fb_a = Framebuffer::new(ctx, "A", &[&a], None)?;
+        let fb_b = Framebuffer::new(ctx, "B", &[&b], None)?;
+        // endregion
+        let one = Texture::from_f32(ctx, N, N, TextureFormat::R32F, &start)?;
+        let in_place = Framebuffer::new(ctx, "one texture", &[&one], None)?;
+        let compute = match no_compute(ctx) {
+            Some(why) => Err(why),
+            None => Ok(JacobiCompute::new(ctx, &start)?),
+        };
+        Ok(Jacobi {
+            ctx: ctx.clone(),
+            opts: opts.clone(),
+            program,
+            fb_a,
+            fb_b,
+            in_place,
+            compute,
+            cpu: start.clone(),
+            start,
+            first_steps: Vec::new(),
+            iterations: 0,
+            fixed_point: false,
+        })
+    }
+
+    /// The texture that holds iterate `k`.
+    fn iterate(&self, k: u32) -> &Texture {
+        if k.is_multiple_of(2) {
+            self.fb_a.color(0)
+        } else {
+            self.fb_b.color(0)
+        }
+    }
+
     // region: ping-pong-step
-    // (read, write) for step k: A -> B on even steps, B -> A on odd ones.
-    let roles = [(&a, &fb_b, "A", "B"), (&b, &fb_a, "B", "A")];
-    for k in 0..steps {
-        let (read, write, from, to) = roles[(k % 2) as usize];
+    /// Step k + 1: read the texture holding iterate k and draw iterate k + 1 into the other,
+    /// A -> B on even steps, B -> A on odd ones; the roles swap after every step.
+    fn ping_pong_step(&self, k: u32) -> anyhow::Result<()> {
+        let (read, write) = if k.is_multiple_of(2) {
+            (&self.fb_a, &self.fb_b)
+        } else {
+            (&self.fb_b, &self.fb_a)
+        };
         write
-            .pass(&program, "jacobi step")?
-            .texture("u_current", read)
+            .pass(&self.program, "jacobi step")?
+            .texture("u_current", read.color(0))
             .uniform("u_size", glam::IVec2::new(N as i32, N as i32))
             .draw_full()?;
-        // endregion
-        // Steps 1, 2 and the last are shown; the ones between are alike.
-        let shown = k < 2 || k + 1 == steps;
-        if shown {
-            let values = write.color(0).download_f32()?;
+        Ok(())
+    }
+    // endregion
+
+    /// The same step reading and drawing into one texture: a feedback loop.
+    fn in_place_step(&self) -> anyhow::Result<()> {
+        self.in_place
+            .pass(&self.program, "jacobi in place")?
+            .texture("u_current", self.in_place.color(0))
+            .uniform("u_size", glam::IVec2::new(N as i32, N as i32))
+            .draw_full()?;
+        Ok(())
+    }
+
+    /// The pass that made step `s` (1, 2, ...), in a sentence.
+    fn step_what(s: u32) -> String {
+        let (from, to) = if s % 2 == 1 { ("A", "B") } else { ("B", "A") };
+        format!(
+            "read {from}, draw into {to}: every interior texel becomes the mean of its four \
+             neighbours in {from}; then {to} is read and {from} written"
+        )
+    }
+}
+
+impl Iteration for Jacobi {
+    fn iterations(&self) -> u32 {
+        self.iterations
+    }
+
+    /// Each path `steps` steps further, one after the other (so a trace reads path by path).
+    /// The CPU's iterate goes first: once a step changes none of its values (in fp32 the
+    /// relaxation ends on a fixed point), every path stops there, so that no run, and no
+    /// replay of the viewer's frames after a reload, takes more steps than that.
+    fn advance(&mut self, steps: u32) -> anyhow::Result<()> {
+        let mut taken = 0;
+        while taken < steps && !self.fixed_point {
+            let next = jacobi_cpu(&self.cpu, N, 1);
+            self.fixed_point = next == self.cpu;
+            if !self.fixed_point {
+                self.cpu = next;
+                taken += 1;
+            }
+        }
+        let first = self.iterations;
+        for k in first..first + taken {
+            self.ping_pong_step(k)?;
+            // Steps 1 and 2 are shown; the ones after are alike until the latest.
+            if k < 2 {
+                self.first_steps.push(self.iterate(k + 1).download_f32()?);
+            }
+        }
+        for _ in 0..taken {
+            self.in_place_step()?;
+        }
+        if let Ok(compute) = &self.compute {
+            compute.advance(first, taken)?;
+        }
+        self.iterations += taken;
+        Ok(())
+    }
+
+    fn stopped(&self) -> Option<String> {
+        self.fixed_point.then(|| {
+            "a fixed point: one more Jacobi step changes no value of the CPU's iterate (fp32)"
+                .to_string()
+        })
+    }
+
+    fn record(&self) -> anyhow::Result<(LessonRun, Vec<Slot>)> {
+        let (ctx, k) = (&self.ctx, self.iterations);
+        let grid = |values: Vec<f32>| Some(PassBuffer::floats(N, N, 1, values).in_set("grid"));
+        let mut run = LessonRun::new(&INFO, ctx);
+        run.pass(
+            "start",
+            "",
+            &format!("a {N}x{N} grid into texture A: zero inside, the top row held at 1"),
+            grid(self.start.clone()),
+        );
+        let mut first_steps = [None, None];
+        for (s, values) in (1..).zip(&self.first_steps) {
             run.pass(
-                &format!("step {}", k + 1),
+                &format!("step {s}"),
                 JACOBI,
-                &format!(
-                    "read {from}, draw into {to}: every interior texel becomes the mean of \
-                     its four neighbours in {from}; then {to} is read and {from} written"
-                ),
-                Some(PassBuffer::floats(N, N, 1, values).in_set("grid")),
+                &Jacobi::step_what(s),
+                grid(values.clone()),
             );
-        } else if k == 2 {
+            first_steps[s as usize - 1] = Some(run.buffers.len() - 1);
+        }
+        if k >= 4 {
             run.pass(
-                &format!("steps 3 to {}", steps - 1),
+                &format!("steps 3 to {}", k - 1),
                 JACOBI,
                 "the same pass, the textures swapping roles after each",
                 None,
             );
         }
+        let gpu = self.iterate(k).download_f32()?;
+        if k >= 3 {
+            run.pass(
+                &format!("step {k}"),
+                JACOBI,
+                &Jacobi::step_what(k),
+                grid(gpu.clone()),
+            );
+        }
+        // The latest iterate: step k's buffer (the start's before any step).
+        let latest = run.buffers.len() - 1;
+        run.check_texels(
+            &format!("after {k} steps the grid = the CPU's Jacobi iterate"),
+            Grid::new(N, N, 1),
+            &gpu,
+            &self.cpu,
+            tolerance(k),
+        );
+        run.check(
+            "the boundary kept its values (exact)",
+            max_difference(&boundary(&gpu, N), &boundary(&self.start, N)),
+            0.0,
+        );
+        let in_place = self.in_place.color(0).download_f32()?;
+        record_in_place(&mut run, &in_place, &gpu, k);
+        let mut slots = vec![
+            slot("start", Some(0), false),
+            slot("step 1", first_steps[0], false),
+            slot("step 2", first_steps[1], false),
+            slot(&format!("step {k} (the latest)"), Some(latest), true),
+            slot("in place (undefined)", Some(run.buffers.len() - 1), true),
+        ];
+        run.compute = Some(match &self.compute {
+            Err(why) => why.clone(),
+            Ok(compute) => {
+                let why = compute.record(&mut run, &self.cpu, k)?;
+                slots.push(slot("compute: jacobi", Some(run.buffers.len() - 1), true));
+                why
+            }
+        });
+        run.finish(&INFO, ctx, &self.opts)?;
+        Ok((run, slots))
     }
-    let last = if steps % 2 == 1 { &b } else { &a };
-    Ok(last.download_f32()?)
+}
+
+fn slot(name: &str, buffer: Option<usize>, changes: bool) -> Slot {
+    Slot {
+        name: name.to_string(),
+        buffer,
+        changes,
+    }
 }
 
 /// What reading and writing one texture gave here: noted, not checked (undefined in GL).
-fn in_place(
-    ctx: &Context,
-    run: &mut LessonRun,
-    start: &[f32],
-    ping_pong: &[f32],
-    steps: u32,
-) -> anyhow::Result<()> {
-    let program = Program::rect(ctx, &[shader!("glsl/learn/jacobi.frag")])?;
-    let one = Texture::from_f32(ctx, N, N, TextureFormat::R32F, start)?;
-    let fb = Framebuffer::new(ctx, "one texture", &[&one], None)?;
-    for _ in 0..steps {
-        fb.pass(&program, "jacobi in place")?
-            .texture("u_current", &one)
-            .uniform("u_size", glam::IVec2::new(N as i32, N as i32))
-            .draw_full()?;
-    }
-    let values = one.download_f32()?;
+fn record_in_place(run: &mut LessonRun, values: &[f32], ping_pong: &[f32], steps: u32) {
     run.pass(
         "in place (undefined)",
         JACOBI,
         "the same steps reading and drawing into one texture: a feedback loop whose result GL \
          leaves undefined, shown for comparison only",
-        Some(PassBuffer::floats(N, N, 1, values.clone()).in_set("grid")),
+        Some(PassBuffer::floats(N, N, 1, values.to_vec()).in_set("grid")),
     );
     run.note(
         "one texture read and written",
@@ -247,52 +383,72 @@ fn in_place(
             "undefined in OpenGL (a rendering feedback loop); on this renderer {steps} steps in \
              place differ from ping-pong by up to {:.3e}: another renderer, or another grid \
              size, may give anything",
-            max_difference(&values, ping_pong)
+            max_difference(values, ping_pong)
         ),
     );
-    Ok(())
 }
 
-fn jacobi_compute(
-    ctx: &Context,
-    run: &mut LessonRun,
-    start: &[f32],
-    cpu: &[f32],
-    steps: u32,
-) -> anyhow::Result<String> {
-    let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute/jacobi.comp")])?;
-    // region: jacobi-compute
-    let a = Buffer::from_slice(ctx, start, BufferUsage::Dynamic)?;
-    let b = Buffer::from_slice(ctx, start, BufferUsage::Dynamic)?;
-    let groups = N.div_ceil(8);
-    for k in 0..steps {
-        let (read, write) = if k % 2 == 0 { (&a, &b) } else { (&b, &a) };
-        program
-            .dispatch("jacobi step")
-            .uniform("u_size", glam::IVec2::new(N as i32, N as i32))
-            .storage(0, read)
-            .storage(1, write)
-            .run([groups, groups, 1])?;
-        memory_barrier(ctx, &[Barrier::Storage]);
+/// The compute counterpart: the same steps between two storage buffers.
+struct JacobiCompute {
+    ctx: Context,
+    program: ComputeProgram,
+    /// Iterate k is in A for even k, in B for odd k.
+    a: Buffer,
+    b: Buffer,
+}
+
+impl JacobiCompute {
+    fn new(ctx: &Context, start: &[f32]) -> anyhow::Result<JacobiCompute> {
+        Ok(JacobiCompute {
+            ctx: ctx.clone(),
+            program: ComputeProgram::new(ctx, &[shader!("glsl/learn/compute/jacobi.comp")])?,
+            a: Buffer::from_slice(ctx, start, BufferUsage::Dynamic)?,
+            b: Buffer::from_slice(ctx, start, BufferUsage::Dynamic)?,
+        })
     }
-    memory_barrier(ctx, &[Barrier::BufferUpdate]);
-    // endregion
-    let last = if steps % 2 == 1 { &b } else { &a };
-    let gpu: Vec<f32> = last.read()?;
-    run.pass(
-        "compute: jacobi",
-        JACOBI_COMPUTE,
-        "the same steps between two storage buffers, a barrier between dispatches",
-        Some(PassBuffer::floats(N, N, 1, gpu.clone()).in_set("grid")),
-    );
-    run.check_texels(
-        &format!("compute: after {steps} steps the grid = the CPU's iterate"),
-        Grid::new(N, N, 1),
-        &gpu,
-        cpu,
-        TOLERANCE,
-    );
-    Ok(format!(
-        "ran {JACOBI_COMPUTE}, checked against the same CPU iterate"
-    ))
+
+    /// Steps `first + 1` to `first + steps`.
+    fn advance(&self, first: u32, steps: u32) -> anyhow::Result<()> {
+        // region: jacobi-compute
+        let groups = N.div_ceil(8);
+        for k in first..first + steps {
+            let (read, write) = if k.is_multiple_of(2) {
+                (&self.a, &self.b)
+            } else {
+                (&self.b, &self.a)
+            };
+            self.program
+                .dispatch("jacobi step")
+                .uniform("u_size", glam::IVec2::new(N as i32, N as i32))
+                .storage(0, read)
+                .storage(1, write)
+                .run([groups, groups, 1])?;
+            memory_barrier(&self.ctx, &[Barrier::Storage]);
+        }
+        memory_barrier(&self.ctx, &[Barrier::BufferUpdate]);
+        // endregion
+        Ok(())
+    }
+
+    /// Its iterate after `k` steps, recorded and checked against the CPU's.
+    fn record(&self, run: &mut LessonRun, cpu: &[f32], k: u32) -> anyhow::Result<String> {
+        let last = if k % 2 == 1 { &self.b } else { &self.a };
+        let gpu: Vec<f32> = last.read()?;
+        run.pass(
+            "compute: jacobi",
+            JACOBI_COMPUTE,
+            "the same steps between two storage buffers, a barrier between dispatches",
+            Some(PassBuffer::floats(N, N, 1, gpu.clone()).in_set("grid")),
+        );
+        run.check_texels(
+            &format!("compute: after {k} steps the grid = the CPU's iterate"),
+            Grid::new(N, N, 1),
+            &gpu,
+            cpu,
+            tolerance(k),
+        );
+        Ok(format!(
+            "ran {JACOBI_COMPUTE}, checked against the same CPU iterate"
+        ))
+    }
 }

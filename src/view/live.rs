@@ -1,18 +1,22 @@
 //! Shaders edited while the viewer runs (`view <demo> --glsl-dir DIR`): the window polls the
-//! modification times of the shader files in DIR about twice a second ([`ShaderWatch`]); when
+//! modification times of the shader files in DIR ten times a second ([`ShaderWatch`]); when
 //! one changes, [`LiveDemo::reload`] builds the demo again from its [`DemoSpec`] on the same
-//! context (which reads DIR), presses the same keys (`--keys`, then those pressed since, each at its step) and replays
-//! as many steps as the running one has taken. If any of that fails, the running demo is kept and the overlay shows why: the
-//! file and line, and the driver's first message. Nothing here knows about windows, so the
-//! headless tests drive it the same way the window does.
+//! context (which reads DIR), presses the same keys (`--keys`, then those pressed since, each
+//! at its step) and replays as many steps as the running one has taken, at once between the
+//! keys ([`Demo::advance`]: a lesson that iterates runs its passes and reads back once). If
+//! any of that fails, the running demo is kept and the overlay shows why: the file and line,
+//! and the driver's first message. Each reload is kept ([`LiveDemo::take_reload`]) for the
+//! window to log how long after the save its frame was shown. Nothing here knows about
+//! windows, so the headless tests drive it the same way the window does.
 
 use super::{draw_frame, overlay, press_keys, Canvas, Demo, DemoSpec, ViewState};
 use crate::gl::{shaders, Context, GlError};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, SystemTime};
+use std::time::{Duration, Instant, SystemTime};
 
-/// How often the window looks at the files.
-pub const POLL_INTERVAL: Duration = Duration::from_millis(500);
+/// How often the window looks at the files: a saved shader shows within this and the
+/// rebuild. A look is one `stat` per project shader, a fraction of a millisecond.
+pub const POLL_INTERVAL: Duration = Duration::from_millis(100);
 
 /// A file's modification time and length, or `None` when DIR does not have it.
 type Stamp = Option<(SystemTime, u64)>;
@@ -32,17 +36,19 @@ impl ShaderWatch {
         }
     }
 
-    /// The shader files (repository paths) whose stamp changed since the last poll.
-    pub fn poll(&mut self) -> Vec<&'static str> {
+    /// The shader files (repository paths) whose stamp changed since the last poll, and
+    /// the latest modification time among those DIR still has (when they were saved).
+    pub fn poll(&mut self) -> (Vec<&'static str>, Option<SystemTime>) {
         let now = stamps(&self.dir);
-        let changed = shaders::ALL
+        let changed: Vec<(&'static str, Stamp)> = shaders::ALL
             .iter()
             .zip(self.stamps.iter().zip(&now))
             .filter(|(_, (before, after))| before != after)
-            .map(|(s, _)| s.name)
+            .map(|(s, (_, after))| (s.name, *after))
             .collect();
         self.stamps = now;
-        changed
+        let saved = changed.iter().filter_map(|(_, s)| s.map(|s| s.0)).max();
+        (changed.into_iter().map(|(name, _)| name).collect(), saved)
     }
 }
 
@@ -68,6 +74,49 @@ pub struct LiveDemo {
     /// Why the last reload failed (cleared by one that works).
     error: Option<String>,
     watch: Option<ShaderWatch>,
+    /// The last reload, until the window takes it to log.
+    reload: Option<Reload>,
+}
+
+/// A reload as the window logs it once its frame is shown.
+#[derive(Clone, Debug)]
+pub struct Reload {
+    /// The shader files that changed.
+    pub files: Vec<&'static str>,
+    /// When the last of them was saved (its modification time).
+    pub saved: Option<SystemTime>,
+    /// How long building the demo again and replaying its steps took.
+    pub rebuild: Duration,
+    /// The frame it was rebuilt at (the steps replayed; a lesson that iterates runs no more
+    /// iterations than it has).
+    pub steps: usize,
+    /// Whether it worked (else the last good demo runs on, its error drawn).
+    pub worked: bool,
+}
+
+impl Reload {
+    /// The line the window logs once the frame after the reload is shown: how long after
+    /// the save (the file's modification time; unknown when that is ahead of the clock).
+    pub fn shown_line(&self) -> String {
+        let after = self
+            .saved
+            .and_then(|saved| SystemTime::now().duration_since(saved).ok())
+            .map_or("an unknown time".to_string(), |d| {
+                format!("{:.0} ms", d.as_secs_f64() * 1e3)
+            });
+        format!(
+            "reload shown: {} saved {after} before this frame ({}; rebuilt at frame {} in \
+             {:.0} ms)",
+            self.files.join(", "),
+            if self.worked {
+                "the new shaders run"
+            } else {
+                "it failed, its error is drawn"
+            },
+            self.steps,
+            self.rebuild.as_secs_f64() * 1e3
+        )
+    }
 }
 
 impl LiveDemo {
@@ -89,6 +138,7 @@ impl LiveDemo {
             steps: 0,
             error: None,
             watch,
+            reload: None,
         })
     }
 
@@ -130,12 +180,27 @@ impl LiveDemo {
     /// Look at the files (the window calls this every [`POLL_INTERVAL`]); reload when one
     /// changed. `Some(worked)` when a reload ran.
     pub fn poll(&mut self, ctx: &Context) -> Option<bool> {
-        let changed = self.watch.as_mut()?.poll();
-        if changed.is_empty() {
+        let (files, saved) = self.watch.as_mut()?.poll();
+        if files.is_empty() {
             return None;
         }
-        eprintln!("shader files changed: {}; reloading", changed.join(", "));
-        Some(self.reload(ctx))
+        eprintln!("shader files changed: {}; reloading", files.join(", "));
+        let started = Instant::now();
+        let worked = self.reload(ctx);
+        self.reload = Some(Reload {
+            files,
+            saved,
+            rebuild: started.elapsed(),
+            steps: self.steps,
+            worked,
+        });
+        Some(worked)
+    }
+
+    /// The last reload [`LiveDemo::poll`] ran, once: the window logs it when its frame is
+    /// shown.
+    pub fn take_reload(&mut self) -> Option<Reload> {
+        self.reload.take()
     }
 
     /// Build the demo again on `ctx` (its shaders read afresh), press the keys and replay the
@@ -180,6 +245,8 @@ impl LiveDemo {
     }
 }
 
+/// `spec` built on `ctx` with `keys` pressed, at frame `steps`: the keys pressed since at
+/// their frames, the frames between them taken at once ([`Demo::advance`]).
 fn build(
     spec: &DemoSpec,
     ctx: &Context,
@@ -190,15 +257,14 @@ fn build(
 ) -> anyhow::Result<Box<dyn Demo>> {
     let mut demo = spec.build(ctx, size)?;
     press_keys(demo.as_mut(), keys)?;
-    let mut pressed = pressed.iter().peekable();
-    for step in 0..=steps {
-        while let Some((_, key)) = pressed.next_if(|(at, _)| *at == step) {
-            demo.key(key)?;
-        }
-        if step < steps {
-            demo.step()?;
-        }
+    // The steps taken, at once between the keys pressed since (in the order of their steps).
+    let mut at = 0;
+    for (step, key) in pressed {
+        demo.advance(step - at)?;
+        demo.key(key)?;
+        at = *step;
     }
+    demo.advance(steps - at)?;
     Ok(demo)
 }
 

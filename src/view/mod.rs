@@ -26,7 +26,8 @@ use crate::gl::Context;
 /// What the user controls that changes a frame: the buffer shown, the camera, the help text.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewState {
-    /// Which of [`Demo::buffers`] is shown (Tab cycles).
+    /// Which of [`Demo::buffers`] is shown (Tab cycles); at the start `--buffer`'s, or the
+    /// demo's [`Demo::first_buffer`] (see [`first_shown`]).
     pub shown: usize,
     /// Orbit angles in radians (mouse drag) and zoom factor (wheel), for 3D demos.
     pub yaw: f32,
@@ -57,9 +58,19 @@ impl Default for ViewState {
 pub trait Demo {
     /// Advance by one frame (one step of the paper's technique).
     fn step(&mut self) -> anyhow::Result<()>;
+    /// Advance by `steps` frames at once, to the state as many [`Demo::step`]s reach (a
+    /// reload replays the frames taken so): a demo that reads back or checks at each step
+    /// does it once at the end.
+    fn advance(&mut self, steps: usize) -> anyhow::Result<()> {
+        for _ in 0..steps {
+            self.step()?;
+        }
+        Ok(())
+    }
     /// Draw the current frame into `canvas`; `view.shown` picks the buffer.
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()>;
-    /// The names of the buffers Tab cycles through; the first is the scene.
+    /// The names of the buffers Tab cycles through; the first is the scene. Every buffer the
+    /// demo makes, from the first frame on, each keeping its number at every step.
     fn buffers(&self) -> Vec<String>;
     /// Lines of text drawn in the frame's top-left corner (no timings: they differ per run).
     fn overlay(&self) -> Vec<String>;
@@ -76,6 +87,11 @@ pub trait Demo {
     /// The buffer `view.shown` picks, told before the overlay is measured, for a demo whose
     /// overlay describes the buffer shown.
     fn show(&mut self, _shown: usize) {}
+    /// The buffer shown first when `--buffer` does not say: one that changes as the demo
+    /// steps (the scene, the latest iterate).
+    fn first_buffer(&self) -> usize {
+        0
+    }
 }
 
 /// The keys every demo has, for the help text.
@@ -91,13 +107,16 @@ pub const COMMON_KEYS: [(&str, &str); 9] = [
     ("esc", "quit"),
 ];
 
-/// Refuses a first buffer (`--buffer`) that the demo does not have, naming those it has.
-pub fn check_shown(demo: &dyn Demo, view: &ViewState) -> anyhow::Result<()> {
+/// The buffer shown first: `buffer` (`--buffer`) when given, else the demo's own
+/// [`Demo::first_buffer`]. Refuses a buffer the demo does not make, naming those it makes.
+pub fn first_shown(demo: &dyn Demo, buffer: Option<usize>) -> anyhow::Result<usize> {
+    let Some(shown) = buffer else {
+        return Ok(demo.first_buffer());
+    };
     let buffers = demo.buffers();
-    if view.shown >= buffers.len() {
+    if shown >= buffers.len() {
         anyhow::bail!(
-            "--buffer {}: this demo has {} buffers, 0 to {}: {}",
-            view.shown,
+            "--buffer {shown}: this demo has {} buffers, 0 to {}: {}",
             buffers.len(),
             buffers.len().saturating_sub(1),
             buffers
@@ -108,7 +127,7 @@ pub fn check_shown(demo: &dyn Demo, view: &ViewState) -> anyhow::Result<()> {
                 .join(", ")
         );
     }
-    Ok(())
+    Ok(shown)
 }
 
 /// Draw frame `frames` of `demo` (after that many steps) on `canvas`, with the overlay text,
@@ -207,19 +226,36 @@ pub fn headless(
 pub fn headless_frame(
     spec: &DemoSpec,
     ctx: &Context,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     frames: usize,
     view: &ViewState,
     keys: &str,
 ) -> anyhow::Result<(Vec<u8>, Vec<String>)> {
+    headless_opening(spec, ctx, size, frames, view, keys, Some(view.shown))
+}
+
+/// [`headless_frame`] showing `buffer` (`--buffer`) when given, else the demo's own first
+/// buffer ([`first_shown`]), as `view --headless` does.
+pub fn headless_opening(
+    spec: &DemoSpec,
+    ctx: &Context,
+    (width, height): (u32, u32),
+    frames: usize,
+    view: &ViewState,
+    keys: &str,
+    buffer: Option<usize>,
+) -> anyhow::Result<(Vec<u8>, Vec<String>)> {
     let mut demo = spec.build(ctx, (width, height))?;
-    check_shown(demo.as_ref(), view)?;
+    let view = ViewState {
+        shown: first_shown(demo.as_ref(), buffer)?,
+        ..*view
+    };
     press_keys(demo.as_mut(), keys)?;
     for _ in 0..frames {
         demo.step()?;
     }
     let canvas = Canvas::new(ctx, width, height)?;
-    let probe = draw_frame(demo.as_mut(), &canvas, view, frames)?;
+    let probe = draw_frame(demo.as_mut(), &canvas, &view, frames)?;
     Ok((canvas.pixels()?, probe))
 }
 

@@ -26,8 +26,10 @@ pub struct WindowOptions {
     pub screenshot: Option<PathBuf>,
     /// Start paused.
     pub paused: bool,
-    /// The first view (buffer shown, help).
+    /// The first view (help, probe); the buffer it shows is `buffer`'s.
     pub view: ViewState,
+    /// `--buffer`: the buffer shown first; `None`: the demo's own ([`super::first_shown`]).
+    pub buffer: Option<usize>,
     /// The demo's own keys pressed before the first frame.
     pub keys: String,
     /// `--glsl-dir`: shaders read from this folder, and reloaded when saved there.
@@ -116,13 +118,16 @@ impl App<'_> {
         eprintln!("window: {} ({})", info.renderer_line(), info.why);
         ctx.set_glsl_dir(self.options.glsl_dir.clone());
         let mut demo = LiveDemo::new(self.spec, &ctx, size, &self.options.keys)?;
-        super::check_shown(demo.demo(), &self.options.view)?;
+        let shown = super::first_shown(demo.demo(), self.options.buffer)?;
         let canvas = Canvas::new(&ctx, size.0, size.1)?;
         Ok(Running {
             demo,
             canvas,
             window,
-            view: self.options.view,
+            view: ViewState {
+                shown,
+                ..self.options.view
+            },
             paused: self.options.paused,
             step_once: false,
             redraw: true,
@@ -172,6 +177,10 @@ impl App<'_> {
             return Ok(());
         }
         r.window.swap()?;
+        // A reload's frame is on the screen now: how long after the save.
+        if let Some(reload) = r.demo.take_reload() {
+            eprintln!("{}", reload.shown_line());
+        }
         if advance {
             r.frame_ms = started.elapsed().as_secs_f64() * 1e3;
         }

@@ -2,135 +2,104 @@
 //! the pass and the checks against the CPU in the overlay, and for a lesson that iterates
 //! (ping-pong) one more iteration per step.
 //!
-//! A lesson that iterates runs again at each step, and so reads its shaders again. With a
-//! `--glsl-dir`, the demo therefore runs from its own copy of that folder's shader files,
-//! taken when it was built (and checked by the first run): a file saved broken while it runs
-//! does not reach its steps. The live reload builds a new demo from the saved files; when that
-//! fails, this one keeps stepping with the last good shaders, and the window draws the error.
+//! A lesson that iterates is held between steps ([`learn::Iteration`]): a step is one more
+//! iteration from the current iterate, never the lesson run again from the start, and its
+//! buffers keep their numbers at every iteration ([`learn::Slot`]), the ones a later iteration
+//! makes included, so that `--buffer K` names any of them from the first frame. The viewer
+//! opens on the first buffer that changes with each iteration (the latest iterate).
+//!
+//! The demo's programs are compiled once, when it is built (from `--glsl-dir` when there is
+//! one), so a file saved broken while it runs does not reach its steps: the live reload
+//! ([`crate::view::live`]) builds a new demo from the saved files, and when that fails this
+//! one keeps stepping with the last good shaders while the window draws the error.
 
 use crate::gl::Context;
-use crate::learn::{self, Lesson, LessonOptions, LessonRun};
+use crate::learn::{self, Iteration, Lesson, LessonOptions, LessonRun, Slot};
 use crate::view::inset::{self, Shown};
 use crate::view::{Canvas, Demo, ViewState};
 
 pub struct LearnDemo {
-    ctx: Context,
-    /// The copy of the `--glsl-dir` shader files this demo runs with (none without one).
-    shaders: Option<ShaderCopy>,
     lesson: &'static dyn Lesson,
+    /// A lesson that iterates, held between steps; `None` for one that ran once.
+    iteration: Option<Box<dyn Iteration>>,
+    /// The run as it stands, and its buffers as the viewer numbers them.
     run: LessonRun,
-    /// Iterations of the last run (lessons that iterate).
-    iterations: u32,
-    /// The buffer the last frame showed, for the overlay.
+    slots: Vec<Slot>,
+    /// The slot the last frame showed, for the overlay.
     shown: usize,
 }
 
 impl LearnDemo {
+    /// The lesson `id` run on `ctx`; one that iterates is at its first iteration.
     pub fn new(ctx: &Context, id: &str) -> anyhow::Result<Self> {
         let lesson = learn::find(id)?;
-        let iterations = 1;
-        let shaders = match ctx.glsl_dir() {
-            Some(dir) => Some(ShaderCopy::of(&dir)?),
-            None => None,
-        };
-        // The first run reads the given folder itself, so that its errors name the
-        // learner's files; the copy was taken just before, of the same files.
-        let run = Self::run_lesson(ctx, None, lesson, iterations)?;
-        Ok(LearnDemo {
-            ctx: ctx.clone(),
-            shaders,
-            lesson,
-            run,
-            iterations,
-            shown: 0,
-        })
-    }
-
-    /// Run the lesson (`iterations` steps of one that iterates), its shaders read from
-    /// `shaders` when the demo has its own copy.
-    fn run_lesson(
-        ctx: &Context,
-        shaders: Option<&ShaderCopy>,
-        lesson: &'static dyn Lesson,
-        iterations: u32,
-    ) -> anyhow::Result<LessonRun> {
         let opts = LessonOptions::default();
-        let given = ctx.glsl_dir();
-        if let Some(copy) = shaders {
-            ctx.set_glsl_dir(Some(copy.dir.clone()));
-        }
-        let run = if lesson.iterates() {
-            lesson.run_iterations(ctx, &opts, iterations)
-        } else {
-            lesson.run(ctx, &opts)
-        };
-        ctx.set_glsl_dir(given);
-        run
-    }
-}
-
-/// A private copy of the project's shader files found in a `--glsl-dir` folder, removed when
-/// the demo goes.
-struct ShaderCopy {
-    dir: std::path::PathBuf,
-}
-
-impl ShaderCopy {
-    fn of(given: &std::path::Path) -> anyhow::Result<ShaderCopy> {
-        use std::sync::atomic::{AtomicUsize, Ordering};
-        static MADE: AtomicUsize = AtomicUsize::new(0);
-        let dir = std::env::temp_dir().join(format!(
-            "classic-gpgpu-view-learn-{}-{}",
-            std::process::id(),
-            MADE.fetch_add(1, Ordering::Relaxed)
-        ));
-        let copy = ShaderCopy { dir };
-        for shader in crate::gl::shaders::ALL {
-            let from = given.join(shader.name);
-            if from.is_file() {
-                let text = std::fs::read(&from)
-                    .map_err(|e| anyhow::anyhow!("reading {}: {e}", from.display()))?;
-                crate::files::write_bytes(&copy.dir.join(shader.name), &text)?;
+        let mut demo = match lesson.iteration(ctx, &opts)? {
+            Some(mut iteration) => {
+                iteration.advance(1)?;
+                let (run, slots) = iteration.record()?;
+                LearnDemo {
+                    lesson,
+                    iteration: Some(iteration),
+                    run,
+                    slots,
+                    shown: 0,
+                }
             }
-        }
-        Ok(copy)
+            None => {
+                let run = lesson.run(ctx, &opts)?;
+                LearnDemo {
+                    lesson,
+                    iteration: None,
+                    slots: Slot::each(&run),
+                    run,
+                    shown: 0,
+                }
+            }
+        };
+        demo.shown = demo.first_buffer();
+        Ok(demo)
     }
-}
 
-impl Drop for ShaderCopy {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.dir);
+    /// The buffer of the run that slot `shown` holds now, if it is made yet.
+    fn buffer(&self, shown: usize) -> Option<usize> {
+        self.slots.get(shown).and_then(|s| s.buffer)
     }
 }
 
 impl Demo for LearnDemo {
-    /// One more iteration of a lesson that iterates; the others ran once and stay.
+    /// One more iteration of a lesson that iterates, from the current one; the others ran
+    /// once and stay.
     fn step(&mut self) -> anyhow::Result<()> {
-        if self.lesson.iterates() {
-            self.iterations += 1;
-            self.run = Self::run_lesson(
-                &self.ctx,
-                self.shaders.as_ref(),
-                self.lesson,
-                self.iterations,
-            )?;
+        self.advance(1)
+    }
+
+    /// `steps` iterations at once, the run recorded (read back, checked) once at the end.
+    fn advance(&mut self, steps: usize) -> anyhow::Result<()> {
+        let Some(iteration) = self.iteration.as_mut() else {
+            return Ok(());
+        };
+        if steps == 0 {
+            return Ok(());
         }
+        iteration.advance(u32::try_from(steps)?)?;
+        (self.run, self.slots) = iteration.record()?;
         Ok(())
     }
 
     fn render(&mut self, canvas: &Canvas, view: &ViewState) -> anyhow::Result<()> {
         canvas.clear([0.1, 0.1, 0.12, 1.0])?;
-        let buffers = &self.run.buffers;
-        if buffers.is_empty() {
+        self.show(view.shown);
+        // A buffer a later iteration makes: nothing to draw yet (the overlay says so).
+        let Some(i) = self.buffer(self.shown) else {
             return Ok(());
-        }
-        self.shown = view.shown % buffers.len();
-        let b = &buffers[self.shown];
+        };
+        let b = &self.run.buffers[i];
         // Each channel a panel on its set's scale, probed against the CPU where the lesson
         // keeps its reference per texel.
         let shown: Vec<Shown> = self
             .run
-            .panels(self.shown)
+            .panels(i)
             .into_iter()
             .enumerate()
             .map(|(c, panel)| Shown {
@@ -146,30 +115,40 @@ impl Demo for LearnDemo {
         Ok(())
     }
 
+    /// Every buffer the lesson makes, the ones a later iteration makes included.
     fn buffers(&self) -> Vec<String> {
-        self.run
-            .buffers
-            .iter()
-            .map(|b| self.run.passes[b.pass].name.clone())
-            .collect()
+        self.slots.iter().map(|s| s.name.clone()).collect()
     }
 
     fn overlay(&self) -> Vec<String> {
         let r = &self.run;
         let info = self.lesson.info();
         let mut lines = vec![format!("lesson {}: {} ({})", info.number, r.title, r.id)];
-        if self.lesson.iterates() {
-            lines.push(format!("{} iterations [right: one more]", self.iterations));
+        if let Some(iteration) = &self.iteration {
+            let k = iteration.iterations();
+            let done = format!("{k} iteration{}", if k == 1 { "" } else { "s" });
+            lines.push(match iteration.stopped() {
+                Some(why) => format!("{done}, the last: {why}"),
+                None => format!("{done} [right: one more]"),
+            });
         }
-        if let Some(b) = r.buffers.get(self.shown) {
-            let pass = &r.passes[b.pass];
-            let shader = if pass.shader.is_empty() {
-                String::new()
-            } else {
-                format!(" [{}]", pass.shader)
-            };
-            lines.push(format!("pass {}: {}{shader}", b.pass, pass.name));
-            lines.extend(crate::gl::picture::wrap(&pass.what, 90));
+        match (self.slots.get(self.shown), self.buffer(self.shown)) {
+            (Some(_), Some(i)) => {
+                let b = &r.buffers[i];
+                let pass = &r.passes[b.pass];
+                let shader = if pass.shader.is_empty() {
+                    String::new()
+                } else {
+                    format!(" [{}]", pass.shader)
+                };
+                lines.push(format!("pass {}: {}{shader}", b.pass, pass.name));
+                lines.extend(crate::gl::picture::wrap(&pass.what, 90));
+            }
+            (Some(slot), None) => lines.push(format!(
+                "{}: not made yet; a later iteration makes it [right: one more]",
+                slot.name
+            )),
+            (None, _) => {}
         }
         let passed = r.checks.iter().filter(|c| c.passed).count();
         lines.push(format!(
@@ -191,6 +170,12 @@ impl Demo for LearnDemo {
     }
 
     fn show(&mut self, shown: usize) {
-        self.shown = shown % self.run.buffers.len().max(1);
+        self.shown = shown % self.slots.len().max(1);
+    }
+
+    /// The latest iterate of a lesson that iterates (the first buffer that changes); the
+    /// first buffer of one that ran once.
+    fn first_buffer(&self) -> usize {
+        self.slots.iter().position(|s| s.changes).unwrap_or(0)
     }
 }
