@@ -26,6 +26,7 @@ mod count_and_mask;
 mod debugging;
 mod depth_peeling;
 mod feedback;
+mod histogram_pyramid;
 mod kit;
 pub mod ladder;
 mod ping_pong;
