@@ -138,8 +138,11 @@ impl TwoClocks {
 }
 
 /// A timer query reading under this share of the wall clock around the same work has not
-/// seen the work (llvmpipe answers about zero around a compute dispatch).
+/// seen the work (llvmpipe answers about zero around a compute dispatch)...
 const QUERY_SEES_WORK: f64 = 0.1;
+/// ...where the wall clock reads more than this (ms): below it, a glFinish's own latency (tens
+/// of microseconds on a GPU) can be most of the wall clock around a small pass.
+const QUERY_JUDGED_ABOVE_MS: f64 = 1.0;
 
 /// Milliseconds of one run of `work` on both clocks: the timer query's and the wall clock's
 /// between two glFinish calls.
@@ -208,26 +211,33 @@ pub struct TableClock {
 /// The clock for a table whose rows were timed by both clocks (`rows`: name and times). A
 /// software renderer gets the glFinish wall clock for every row: its timer query misses what
 /// its worker threads do. A GPU gets the timer query for every row, unless the query read
-/// under a tenth of the wall clock around some row: then the wall clock, for every row too.
+/// under a tenth of a wall clock of over a millisecond around some row (it missed work): then
+/// the wall clock, for every row too.
 pub fn table_clock(ctx: &Context, rows: &[(String, TwoClocks)]) -> TableClock {
-    let renderer = &ctx.info().renderer;
-    // The row where the query saw least of the work: the evidence either way.
-    let blind = rows
-        .iter()
-        .filter(|(_, t)| t.wall.median > 0.0)
-        .min_by(|a, b| {
-            let share = |t: &TwoClocks| t.query.median / t.wall.median;
-            share(&a.1).total_cmp(&share(&b.1))
-        });
-    let evidence = blind.map_or(String::new(), |(name, t)| {
+    let info = ctx.info();
+    choose_clock(&info.renderer, info.is_software(), rows)
+}
+
+/// [`table_clock`] for a renderer named `renderer`, `software` or not.
+fn choose_clock(renderer: &str, software: bool, rows: &[(String, TwoClocks)]) -> TableClock {
+    let share = |t: &TwoClocks| t.query.median / t.wall.median;
+    // The row where the query saw least of the work, among those whose wall clock is over
+    // `above` ms: the evidence either way.
+    let least = |above: f64| {
+        rows.iter()
+            .filter(|(_, t)| t.wall.median > above)
+            .min_by(|a, b| share(&a.1).total_cmp(&share(&b.1)))
+    };
+    let words = |(name, t): &(String, TwoClocks)| {
         format!(
             " (around {name} the query read {:.3} ms against {:.3} ms of wall clock)",
             t.query.median, t.wall.median
         )
-    });
-    let query_sees_all =
-        blind.is_none_or(|(_, t)| t.query.median >= QUERY_SEES_WORK * t.wall.median);
-    if ctx.info().is_software() {
+    };
+    let missed = least(QUERY_JUDGED_ABOVE_MS).filter(|(_, t)| share(t) < QUERY_SEES_WORK);
+    let evidence = missed.or(least(0.0)).map_or(String::new(), words);
+    let query_sees_all = missed.is_none();
+    if software {
         TableClock {
             clock: Clock::FinishedWall,
             why: format!(
@@ -375,6 +385,48 @@ pub fn time_call(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn clocks(query: f64, wall: f64) -> TwoClocks {
+        let at = |ms: f64| Spread {
+            runs: 3,
+            median: ms,
+            min: ms,
+            max: ms,
+        };
+        TwoClocks {
+            query: at(query),
+            wall: at(wall),
+        }
+    }
+
+    /// One clock per table: the wall clock on a software renderer, the timer query on a GPU
+    /// unless it clearly missed work (under a tenth of a wall clock over 1 ms), whatever the
+    /// glFinish latency around small passes.
+    #[test]
+    fn a_table_gets_one_clock_and_says_why() {
+        let rows = |pairs: &[(f64, f64)]| -> Vec<(String, TwoClocks)> {
+            pairs
+                .iter()
+                .enumerate()
+                .map(|(k, &(q, w))| (format!("row {k}"), clocks(q, w)))
+                .collect()
+        };
+        // llvmpipe: wall clock, the blindest row named, even where the query saw all.
+        let c = choose_clock("llvmpipe", true, &rows(&[(0.0, 8.0), (0.9, 1.0)]));
+        assert_eq!(c.clock, Clock::FinishedWall);
+        assert!(
+            c.why.contains("software renderer") && c.why.contains("around row 0"),
+            "{}",
+            c.why
+        );
+        // A GPU: tiny passes where glFinish's latency is most of the wall clock keep the query.
+        let c = choose_clock("H200", false, &rows(&[(0.01, 0.06), (0.268, 0.31)]));
+        assert_eq!(c.clock, Clock::TimerQuery, "{}", c.why);
+        // A GPU whose query read nothing around 5 ms of work: the wall clock, for every row.
+        let c = choose_clock("odd", false, &rows(&[(0.01, 0.06), (0.0, 5.0), (2.0, 2.1)]));
+        assert_eq!(c.clock, Clock::FinishedWall);
+        assert!(c.why.contains("around row 1"), "{}", c.why);
+    }
 
     /// The property the steps' timing promises, by construction: whatever each run measured,
     /// no step's median, minimum or maximum exceeds the whole's.
