@@ -4,7 +4,12 @@
 //! names the viewer command; the hints come in three different steps for every exercise;
 //! `--solution` prints the shipped shader and a run of it says so; `learn <id>` prints the idea
 //! first and the next lesson last; a shader saved broken while `view learn ping-pong` runs
-//! leaves it stepping with the last good one, and a probe over no buffer draws nothing.
+//! leaves it stepping with the last good one, and a probe over no buffer draws nothing. Then
+//! feedback per cell in every lesson, each shown by a mistake planted in one place: saxpy's
+//! ramp shows a read one texel off as a pattern, the compute reduction names the work group
+//! whose partial is wrong (with a picture of the partials), the readback lesson the block
+//! whose flag is wrong, depth peeling the pixels whose layer count is; and no template holds
+//! its exercise's answer.
 
 mod common;
 
@@ -48,7 +53,7 @@ fn a_wrong_exercise_names_its_wrong_texels_with_both_values() {
         .find(|c| c.what == "saxpy = the CPU loop")
         .unwrap();
     assert!(!check.passed);
-    // a x - y misses a x + y by 2 |y|, y drawn from [-1, 1): nearly every element is wrong.
+    // a x - y misses a x + y by 2 |y| = 1, y a checkerboard of +-0.5: every element is wrong.
     let buffer = &run.buffers[check.buffer.expect("the check names the saxpy buffer")];
     let total = buffer.values.len();
     let wrong = check.wrong.unwrap();
@@ -342,4 +347,239 @@ fn the_debugging_lesson_finds_every_fault_and_the_fixes_pass() {
         "{}",
         note(7)
     );
+}
+
+/// A shipped shader with one line replaced: a mistake planted on purpose.
+fn planted(path: &str, from: &str, to: &str) -> String {
+    let shipped = classic_gpgpu::gl::shaders::find(path).unwrap().source;
+    assert!(shipped.contains(from), "{path} has no '{from}'");
+    shipped.replacen(from, to, 1)
+}
+
+/// Run lesson `id` with `path` replaced by `text` from a shader folder.
+fn run_planted(id: &str, path: &str, text: &str, exercise: Option<u32>) -> learn::LessonRun {
+    let ctx = common::context();
+    let dir = common::temp_dir("learn-feedback", &format!("planted-{id}"));
+    put(&dir, path, text);
+    ctx.set_glsl_dir(Some(dir.clone()));
+    let opts = LessonOptions {
+        exercise,
+        ..LessonOptions::default()
+    };
+    let run = learn::find(id).unwrap().run(&ctx, &opts);
+    ctx.set_glsl_dir(None);
+    let _ = std::fs::remove_dir_all(&dir);
+    run.unwrap()
+}
+
+fn check<'a>(run: &'a learn::LessonRun, starts: &str) -> &'a learn::Check {
+    run.checks
+        .iter()
+        .find(|c| c.what.starts_with(starts))
+        .unwrap_or_else(|| panic!("no check '{starts}': {:#?}", run.checks))
+}
+
+/// Saxpy's input is a ramp (x) and a checkerboard (y): a read one texel off along the row is
+/// wrong by exactly a / 64 at every texel but the last column, a flat difference picture that
+/// names the bug, where random input would have looked like noise.
+#[test]
+fn an_off_by_one_read_in_saxpy_shows_as_a_pattern() {
+    let wrong = planted(
+        "glsl/learn/saxpy.frag",
+        "float x = texelFetch(u_x, i, 0).r;",
+        "float x = texelFetch(u_x, i + ivec2(1, 0), 0).r;",
+    );
+    let run = run_planted("quad-is-loop", "glsl/learn/saxpy.frag", &wrong, Some(1));
+    let c = check(&run, "saxpy = the CPU loop");
+    assert!(!c.passed);
+    let d = c.difference.as_ref().expect("the difference GPU - CPU");
+    let step = 2.5f32 / 64.0;
+    for y in 0..d.height {
+        for x in 0..d.width - 1 {
+            let v = d.values[(y * d.width + x) as usize];
+            assert_eq!(
+                v, step,
+                "texel ({x}, {y}): the read one texel off shows as a / 64"
+            );
+        }
+    }
+    // The first wrong texel is the first texel, with the GPU's value a x[1] + y[0].
+    let w = c.first_wrong[0];
+    assert_eq!((w.x, w.y), (0, 0));
+    assert_eq!(w.gpu, 2.5 * (1.0 / 64.0 - 1.5) + 0.5);
+    assert_eq!(w.cpu, 2.5 * -1.5 + 0.5);
+}
+
+/// A wrong step of the tree in one work group only (group 7 folds its own value instead of
+/// its partner's): the feedback names work group 7 and no other, and `--png` writes the
+/// picture of the partials beside the difference.
+#[test]
+fn a_wrong_partner_in_the_compute_reduction_names_its_work_group() {
+    let (ctx, compute) = common::compute_context();
+    if !compute {
+        println!(
+            "skipped on {}: the exercise is a compute shader",
+            ctx.info().renderer
+        );
+        return;
+    }
+    drop(ctx);
+    let path = "glsl/learn/compute-reduction/reduce.comp";
+    let wrong = planted(
+        path,
+        "combine(s_partial[local], s_partial[local + stride])",
+        "combine(s_partial[local], s_partial[gl_WorkGroupID.x == 7u ? local : local + stride])",
+    );
+    let run = run_planted("compute-reduction", path, &wrong, Some(1));
+    let c = check(&run, "compute pass 1: each work group's partial");
+    assert!(!c.passed);
+    assert!(c.wrong.unwrap() >= 1 && c.wrong.unwrap() <= 2, "{c:?}");
+    assert!(c.first_wrong.iter().all(|w| w.x == 7 && w.y == 0), "{c:?}");
+    let lines = c.where_wrong();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("work group 7 channel 0: ")),
+        "{lines:?}"
+    );
+    // The partials are a buffer of the run (a picture under --png), the CPU's beside them.
+    let b = &run.buffers[c.buffer.expect("the partials' buffer")];
+    assert_eq!((b.width, b.height, b.channels), (40, 1, 2));
+    assert!(b.reference.is_some());
+
+    let dir = common::temp_dir("learn-feedback", "partials-png");
+    put(&dir, path, &wrong);
+    let png = dir.join("pictures");
+    let out = classic_gpgpu(&[
+        "--glsl-dir",
+        dir.to_str().unwrap(),
+        "learn",
+        "compute-reduction",
+        "--exercise",
+        "1",
+        "--png",
+        png.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("work group 7 channel 0: the GPU wrote"),
+        "{stderr}"
+    );
+    let partials = png.join(format!("{}.png", b.stem));
+    assert!(
+        image::open(&partials).unwrap().width() >= 256,
+        "{partials:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A flags shader wrong at one block only: the feedback names that block, and the steps after
+/// it, each checked on the GPU's own flags, still pass (the pyramid counts what was flagged,
+/// the list lists it): the fault is named where it is.
+#[test]
+fn a_wrong_flag_names_its_block_and_the_pyramid_checks_stay_apart() {
+    let path = "glsl/learn/readback-and-upload/block_flags.frag";
+    let wrong = planted(
+        path,
+        "    o_flag = vec4(any_set, 0.0, 0.0, 1.0);",
+        "    if (ivec2(gl_FragCoord.xy) == ivec2(5, 3)) any_set = 1.0 - any_set;\n    o_flag = \
+         vec4(any_set, 0.0, 0.0, 1.0);",
+    );
+    let run = run_planted("readback-and-upload", path, &wrong, Some(1));
+    let c = check(&run, "block flags:");
+    assert!(!c.passed);
+    assert_eq!(c.wrong, Some(1), "{c:?}");
+    assert_eq!((c.first_wrong[0].x, c.first_wrong[0].y), (5, 3));
+    assert!(
+        c.where_wrong()[1].starts_with("block (5, 3) channel 0: "),
+        "{c:?}"
+    );
+    for step in ["pyramid level", "the list:"] {
+        for k in run.checks.iter().filter(|k| k.what.starts_with(step)) {
+            assert!(k.passed, "{k:?}");
+        }
+    }
+    assert!(check(&run, "the list:").passed);
+}
+
+/// A peel that stops after two layers left of x = 24: the feedback names pixels there, each
+/// with the GPU's two layers against the ray's more.
+#[test]
+fn a_peel_that_stops_early_names_its_pixels() {
+    let path = "glsl/learn/depth-peeling/peel.frag";
+    let wrong = planted(
+        path,
+        "    // The layer's picture",
+        "    if (u_layer >= 2 && gl_FragCoord.x < 24.0) { discard; }\n    // The layer's picture",
+    );
+    let run = run_planted("depth-peeling", path, &wrong, Some(1));
+    let c = check(&run, "pixels whose layer count differs");
+    assert!(!c.passed);
+    let counts = &run.buffers[c.buffer.expect("the layer counts' buffer")];
+    let hits = counts.reference.as_ref().expect("the ray's hits");
+    let expected = hits
+        .iter()
+        .enumerate()
+        .filter(|(k, &h)| (*k as u32 % counts.width) < 24 && h > 2.0)
+        .count();
+    let wrong = c.wrong.unwrap();
+    assert!(
+        expected > 0 && wrong > 0 && wrong <= expected,
+        "{wrong} of {expected}"
+    );
+    for w in &c.first_wrong {
+        assert!(w.x < 24 && w.gpu == 2.0 && w.cpu > 2.0, "{w:?}");
+    }
+    assert!(
+        c.where_wrong()[1].starts_with("pixel ("),
+        "{:?}",
+        c.where_wrong()
+    );
+}
+
+/// Compact a line of code for comparing: no spaces, no trailing `;`.
+fn code(line: &str) -> String {
+    line.split("//")
+        .next()
+        .unwrap()
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .trim_end_matches(';')
+        .to_string()
+}
+
+/// A template holds the task, never the answer: not the third hint's line, and no line of the
+/// solution that the template lacks (nor its right-hand side), in its code or its comments.
+#[test]
+fn no_template_holds_the_answer() {
+    let mut found = Vec::new();
+    for lesson in learn::all() {
+        for e in lesson.info().exercises {
+            let solution = classic_gpgpu::gl::shaders::find(e.shader).unwrap().source;
+            let template_path = e.shader.replacen("glsl/learn/", "glsl/learn/exercises/", 1);
+            let template = classic_gpgpu::gl::shaders::find(&template_path)
+                .unwrap_or_else(|| panic!("{template_path}"))
+                .source;
+            let compact = code(&template.replace('\n', " ").replace("//", " "));
+            let mut answers = vec![code(e.hints[2])];
+            for line in solution.lines() {
+                if template.lines().any(|t| t.trim() == line.trim()) {
+                    continue;
+                }
+                let whole = code(line);
+                if let Some((_, rhs)) = whole.split_once('=') {
+                    answers.push(rhs.to_string());
+                }
+                answers.push(whole);
+            }
+            for a in answers.iter().filter(|a| a.len() >= 8) {
+                if compact.contains(a.as_str()) {
+                    found.push(format!("{template_path} holds '{a}'"));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "{}", found.join("\n"));
 }

@@ -51,7 +51,7 @@ pub struct LearnArgs {
     pub solution: bool,
     /// Time the lesson where speed is part of it (quad-is-loop: saxpy over sizes against the
     /// CPU; reduction, compute-reduction: the reduction ladder; readback-and-upload: whole,
-    /// PBO and reduced readback): plain-text tables naming the renderer and the load.
+    /// PBO and compacted readback): plain-text tables naming the renderer and the load.
     #[arg(long, conflicts_with_all = ["list", "guide", "png", "exercise", "hint", "solution"])]
     pub bench: bool,
     /// With --bench: this one size instead of the lesson's sweep (elements or values; the

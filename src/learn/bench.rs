@@ -2,8 +2,9 @@
 //! policy ([`crate::timing`]: runs, median, spread, load) and printed as plain tables naming
 //! the renderer and the load. Lesson 1 sweeps saxpy over sizes against the CPU (Göddeke's
 //! benchmark mode); lessons 3 and 10 time the reduction ladder after Harris
-//! ([`super::ladder`]); lesson 8 times the whole, the PBO and the reduced readback. Every
-//! path is checked against the CPU before it is timed. No test asserts a time.
+//! ([`super::ladder`]); lesson 8 times the whole, the PBO and the compacted readback. Every
+//! path is checked against the CPU before it is timed, and timed warm (one untimed run, then
+//! the runs' median and range). No test asserts a time.
 
 use super::ladder::{self, LadderBench};
 pub use super::quad_is_loop::SaxpyBench;
@@ -11,6 +12,10 @@ pub use super::readback_and_upload::ReadbackBench;
 use crate::gl::Context;
 use crate::timing::Runs;
 use serde::Serialize;
+
+/// How often a lesson times a path in its own run (not `--bench`), after one untimed warm-up
+/// run: its explanation quotes the median of these, never one cold sample.
+pub const LESSON_RUNS: usize = 5;
 
 /// The lessons with a bench, and what it times.
 pub const WITH_BENCH: [(&str, &str); 4] = [
@@ -24,7 +29,7 @@ pub const WITH_BENCH: [(&str, &str); 4] = [
     ),
     (
         "readback-and-upload",
-        "whole, PBO and reduced readback (--size: the array's side)",
+        "whole, PBO and compacted readback (--size: the array's side)",
     ),
     (
         "compute-reduction",

@@ -1,7 +1,9 @@
 //! Lesson 10, the bridge to CUDA: the reduction of the fragment pipeline (ping-pong passes,
 //! 2x2 blocks per pass: lesson 3, and the GL layer's [`crate::gl::reduce`]) written as a
 //! compute shader with work-group shared memory and barriers, sum and maximum at once. Both
-//! are checked against the CPU, side by side, with the passes each needs.
+//! are checked against the CPU, side by side, with the passes each needs; the compute
+//! reduction's first pass also work group by work group, so that a wrong step of the tree is
+//! named by the groups it spoils, and its partials are a picture under `--png`.
 //!
 //! On a context without OpenGL 4.3 (softpipe is 3.3) the compute shader cannot run: the
 //! lesson runs and checks the fragment reduction it starts from, sets `compute` to the
@@ -11,7 +13,7 @@
 
 use super::kit;
 use super::ladder;
-use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep};
+use super::{Exercise, Grid, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
 use crate::gl::reduce::{passes_for, ReduceOp, Reducer};
 use crate::gl::{Barrier, Buffer, BufferUsage, ComputeProgram, Context, Texture, TextureFormat};
 use crate::shader;
@@ -25,6 +27,12 @@ const PER_GROUP: u32 = 256;
 /// fragment pass, a tree of 8 levels per compute pass), each off by at most 2^-24 of the
 /// running sum: relative error under 100 * 6e-8 = 6e-6, so 1e-5. The maximum is exact.
 const SUM_TOLERANCE: f64 = 1e-5;
+/// A work group's partial sums 256 values in [0, 1), so it is below 256, where an fp32 step
+/// is 2^-24 x 256 = 1.5e-5: the load's add and the tree's seven levels round eight times on
+/// the way (1.2e-4 at most), the CPU's f64 sum once when rounded to fp32. 2e-4 allows both;
+/// a partner missed or taken twice moves a partial by a whole value, about 0.5. The partial
+/// maxima are exact and are held to the same bound here (the lesson's final maximum: exact).
+const PARTIAL_TOLERANCE: f64 = 2e-4;
 
 static INFO: LessonInfo = LessonInfo {
     id: "compute-reduction",
@@ -36,9 +44,10 @@ static INFO: LessonInfo = LessonInfo {
            256 values are folded to one inside the group, in a tree of halving strides, and \
            one pass shrinks the data 256-fold. This is how CUDA reductions are written; the \
            tree and the passes are the same idea as the ping-pong. Then the ladder after \
-           Harris: the same sum by ten kernels, each making one change to the one before \
-           (wider fan-ins, then divergence, bank conflicts, idle invocations, loop overhead \
-           and too little work per invocation removed one at a time), every one checked \
+           Harris: the same sum by four fragment rungs and his seven kernels, each making one \
+           change to the one before (wider fan-ins, then divergence, bank conflicts, idle \
+           invocations, loop overhead and too little work per invocation removed one at a \
+           time), every one checked \
            here and timed by `learn compute-reduction --bench`.",
     paper_steps: &[
         PaperStep {
@@ -61,8 +70,9 @@ static INFO: LessonInfo = LessonInfo {
         "glsl/learn/ladder/c2_interleaved_strided.comp",
         "glsl/learn/ladder/c3_sequential.comp",
         "glsl/learn/ladder/c4_first_add.comp",
-        "glsl/learn/ladder/c5_unrolled.comp",
-        "glsl/learn/ladder/c6_cascade.comp",
+        "glsl/learn/ladder/c5_unroll_last_warp.comp",
+        "glsl/learn/ladder/c6_unrolled.comp",
+        "glsl/learn/ladder/c7_cascade.comp",
     ],
     exercises: &[Exercise {
         number: 1,
@@ -127,7 +137,32 @@ impl Lesson for ComputeReduction {
         run.compute = Some(match kit::compute_missing(ctx, "the compute reduction") {
             Some(why) => why,
             None => {
-                let (sum, max, passes) = reduce_shared(ctx, &values)?;
+                let reduced = reduce_shared(ctx, &values)?;
+                let (sum, max, passes) = (reduced.sum, reduced.max, reduced.passes);
+                let groups = reduced.partials.len() as u32;
+                let cpu_partials = partials_cpu(&values);
+                let gpu_partials: Vec<f32> = reduced.partials.iter().flatten().copied().collect();
+                run.pass(
+                    "compute pass 1: a partial per work group",
+                    "glsl/learn/compute-reduction/reduce.comp",
+                    &format!(
+                        "{groups} work groups, each folding its {PER_GROUP} values to one (sum, \
+                         max) in shared memory: the partials the next pass reduces"
+                    ),
+                    Some(
+                        PassBuffer::floats(groups, 1, 2, gpu_partials.clone())
+                            .named(&["sum", "max"])
+                            .with_reference(cpu_partials.clone()),
+                    ),
+                );
+                run.check_texels(
+                    "compute pass 1: each work group's partial (channel 0 its sum, 1 its \
+                     maximum) = the CPU's over the group's 256 values (2e-4)",
+                    Grid::new(groups, 1, 2).of("work group"),
+                    &gpu_partials,
+                    &cpu_partials,
+                    PARTIAL_TOLERANCE,
+                );
                 run.pass(
                     "compute, shared memory",
                     "glsl/learn/compute-reduction/reduce.comp",
@@ -195,13 +230,36 @@ fn relative(gpu: f64, cpu: f64) -> f64 {
     (gpu - cpu).abs() / cpu.abs().max(f64::MIN_POSITIVE)
 }
 
-/// Reduce on the GPU in passes until one (sum, max) is left; and the number of passes.
-fn reduce_shared(ctx: &Context, values: &[f32]) -> anyhow::Result<(f32, f32, u32)> {
+/// Each work group's partial of the first pass as the CPU computes it: (sum, max) of its
+/// [`PER_GROUP`] values, the sum in f64 rounded once.
+fn partials_cpu(values: &[f32]) -> Vec<f32> {
+    values
+        .chunks(PER_GROUP as usize)
+        .flat_map(|group| {
+            let sum: f64 = group.iter().map(|&v| v as f64).sum();
+            let max = group.iter().copied().fold(f32::MIN, f32::max);
+            [sum as f32, max]
+        })
+        .collect()
+}
+
+/// What the passes on the GPU gave: the one (sum, max) left, the passes, and the first pass's
+/// partial per work group.
+struct Reduced {
+    sum: f32,
+    max: f32,
+    passes: u32,
+    partials: Vec<[f32; 2]>,
+}
+
+/// Reduce on the GPU in passes until one (sum, max) is left, keeping the first pass's partials.
+fn reduce_shared(ctx: &Context, values: &[f32]) -> anyhow::Result<Reduced> {
     let program = ComputeProgram::new(ctx, &[shader!("glsl/learn/compute-reduction/reduce.comp")])?;
     let pairs: Vec<[f32; 2]> = values.iter().map(|&v| [v, v]).collect();
     let mut input = Buffer::from_slice(ctx, &pairs, BufferUsage::Static)?;
     let mut count = values.len() as u32;
     let mut passes = 0;
+    let mut partials = Vec::new();
     // region: reduce-passes
     while count > 1 || passes == 0 {
         let groups = count.div_ceil(PER_GROUP);
@@ -217,7 +275,15 @@ fn reduce_shared(ctx: &Context, values: &[f32]) -> anyhow::Result<(f32, f32, u32
         count = groups;
         passes += 1;
         // endregion
+        if passes == 1 {
+            partials = input.read()?;
+        }
     }
     let result: Vec<[f32; 2]> = input.read()?;
-    Ok((result[0][0], result[0][1], passes))
+    Ok(Reduced {
+        sum: result[0][0],
+        max: result[0][1],
+        passes,
+        partials,
+    })
 }

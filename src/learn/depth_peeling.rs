@@ -1,11 +1,12 @@
 //! Lesson 7, depth peeling (Everitt 2001): the layers of a closed mesh, front to back, one
 //! pass each. A peel keeps the fragments strictly behind the depth the previous peel left,
 //! and the depth test keeps the nearest of them; an occlusion query says when a peel found
-//! nothing. Every layer is compared with a CPU ray cast through the pixel centres. Paper 4
+//! nothing. Every layer is compared with a CPU ray cast through the pixel centres, pixel by
+//! pixel: a wrong peel is named by the pixels whose layer count differs. Paper 4
 //! peels a body this way to integrate over its surface (section 3.2).
 
 use super::kit;
-use super::{Exercise, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
+use super::{Exercise, Grid, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
 use crate::gl::peel::ortho_box;
 use crate::gl::{
     Buffer, BufferUsage, Compare, ComputeProgram, Context, DepthTest, DrawState, Framebuffer,
@@ -113,16 +114,28 @@ impl Lesson for DepthPeeling {
             (layers.len() as f64 - cpu_layers as f64).abs(),
             0.0,
         );
-        let (miscounted, depth_error) =
+        let peeled =
             reference.compare(|pixel, k| layers.get(k).map(|l| l[pixel]).filter(|&d| d < 1.5));
-        run.check(
+        run.pass(
+            "layers per pixel",
+            "",
+            "how many peels drew at each pixel (the viewer's probe shows the CPU ray's hits \
+             beside it)",
+            Some(
+                PassBuffer::floats(SIZE, SIZE, 1, peeled.gpu_counts.clone())
+                    .with_reference(reference.hit_counts()),
+            ),
+        );
+        run.check_texels(
             "pixels whose layer count differs from the ray's hits (exact; edge pixels left out)",
-            miscounted as f64,
+            Grid::new(SIZE, SIZE, 1).of("pixel"),
+            &peeled.gpu_counts,
+            &peeled.cpu_counts,
             0.0,
         );
         run.check(
             "each layer's depth vs the ray's k-th hit (fp32 depth: 1e-5)",
-            depth_error,
+            peeled.depth_error,
             DEPTH_TOLERANCE,
         );
         run.notes.push((
@@ -145,18 +158,20 @@ impl Lesson for DepthPeeling {
                     "one invocation per pixel: every triangle, the hit depths sorted",
                     None,
                 );
-                let (miscounted, depth_error) = reference.compare(|pixel, k| {
+                let cast = reference.compare(|pixel, k| {
                     (k < RAY_LAYERS && counts[pixel] as usize > k)
                         .then(|| depths[pixel * RAY_LAYERS + k])
                 });
-                run.check(
+                run.check_texels(
                     "compute: pixels whose hit count differs from the CPU's (exact)",
-                    miscounted as f64,
+                    Grid::new(SIZE, SIZE, 1).of("pixel"),
+                    &cast.gpu_counts,
+                    &cast.cpu_counts,
                     0.0,
                 );
                 run.check(
                     "compute: k-th hit depth vs the CPU's (1e-5)",
-                    depth_error,
+                    cast.depth_error,
                     DEPTH_TOLERANCE,
                 );
                 "ran: every layer in one pass, one ray per pixel".into()
@@ -252,31 +267,51 @@ struct RayCast {
     ambiguous: Vec<bool>,
 }
 
+/// A GPU answer beside the ray cast, pixel by pixel.
+struct Compared {
+    /// How many layers the GPU found at each pixel, rows from the bottom.
+    gpu_counts: Vec<f32>,
+    /// The ray's hits at each pixel; at an edge pixel the GPU's count, so that it is left out.
+    cpu_counts: Vec<f32>,
+    /// The largest depth error over the pixels whose counts agree.
+    depth_error: f64,
+}
+
 impl RayCast {
-    /// Compare a GPU answer, `layer(pixel, k)` the k-th depth or `None`, over the pixels off
-    /// the edges: how many have a different number of layers, and the largest depth error.
-    fn compare(&self, layer: impl Fn(usize, usize) -> Option<f32>) -> (usize, f64) {
-        let mut miscounted = 0;
-        let mut error: f64 = 0.0;
+    /// The ray's hits at each pixel, rows from the bottom.
+    fn hit_counts(&self) -> Vec<f32> {
+        self.hits.iter().map(|&h| h as f32).collect()
+    }
+
+    /// Compare a GPU answer, `layer(pixel, k)` the k-th depth or `None`, pixel by pixel: its
+    /// layer counts beside the ray's (edge pixels left out), and the largest depth error.
+    fn compare(&self, layer: impl Fn(usize, usize) -> Option<f32>) -> Compared {
+        let mut out = Compared {
+            gpu_counts: Vec::with_capacity(self.depths.len()),
+            cpu_counts: Vec::with_capacity(self.depths.len()),
+            depth_error: 0.0,
+        };
         for (pixel, depths) in self.depths.iter().enumerate() {
+            let gpu: Vec<f32> = (0..MAX_LAYERS).map_while(|k| layer(pixel, k)).collect();
+            out.gpu_counts.push(gpu.len() as f32);
             if self.ambiguous[pixel] {
+                out.cpu_counts.push(gpu.len() as f32);
                 continue;
             }
-            let gpu: Vec<f32> = (0..MAX_LAYERS).map_while(|k| layer(pixel, k)).collect();
+            out.cpu_counts.push(depths.len() as f32);
             if gpu.len() != depths.len() {
-                miscounted += 1;
                 continue;
             }
             for (&g, &c) in gpu.iter().zip(depths) {
                 let d = (g as f64 - c).abs();
-                error = if d.is_finite() {
-                    error.max(d)
+                out.depth_error = if d.is_finite() {
+                    out.depth_error.max(d)
                 } else {
                     f64::INFINITY
                 };
             }
         }
-        (miscounted, error)
+        out
     }
 }
 

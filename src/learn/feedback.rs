@@ -1,5 +1,6 @@
-//! Feedback that points at the mistake: a check made texel by texel keeps how many values are
-//! beyond its tolerance, the first few of them (texel, channel, the GPU's value and the CPU's),
+//! Feedback that points at the mistake: a check made texel by texel (or pixel, block, work
+//! group, list slot: whatever one cell of the checked grid is) keeps how many values are
+//! beyond its tolerance, the first few of them (cell, channel, the GPU's value and the CPU's),
 //! and the difference GPU - CPU as a buffer, written as a picture with its colour key beside
 //! the pass pictures when the check fails.
 
@@ -22,12 +23,14 @@ pub struct WrongTexel {
     pub cpu: f32,
 }
 
-/// A grid's size: texels across, texels up, values per texel.
+/// A grid's size: cells across, cells up, values per cell; and what a cell is.
 #[derive(Clone, Copy, Debug)]
 pub struct Grid {
     pub width: u32,
     pub height: u32,
     pub channels: usize,
+    /// What one cell is, for the feedback's words: "texel" unless [`Grid::of`] says.
+    pub unit: &'static str,
 }
 
 impl Grid {
@@ -36,7 +39,13 @@ impl Grid {
             width,
             height,
             channels,
+            unit: "texel",
         }
+    }
+
+    /// The same grid, its cells called `unit` ("pixel", "block", "work group", "slot").
+    pub fn of(self, unit: &'static str) -> Grid {
+        Grid { unit, ..self }
     }
 }
 
@@ -90,6 +99,7 @@ impl LessonRun {
     ) {
         self.check(what, super::max_difference(gpu, cpu), tolerance);
         let check = self.checks.last_mut().expect("just recorded");
+        check.unit = grid.unit;
         let expected = (grid.width * grid.height) as usize * grid.channels;
         if gpu.len() != expected || cpu.len() != expected {
             return;
@@ -160,10 +170,17 @@ impl Check {
             self.tolerance,
             self.first_wrong.len()
         )];
+        // A grid of one row (work groups, list slots) numbers its cells; else (x, y).
+        let one_row = self.difference.as_ref().is_some_and(|d| d.height == 1);
         for w in &self.first_wrong {
+            let at = if one_row && self.unit != "texel" {
+                format!("{} {}", self.unit, w.x)
+            } else {
+                format!("{} ({}, {})", self.unit, w.x, w.y)
+            };
             lines.push(format!(
-                "texel ({}, {}) channel {}: the GPU wrote {}, the CPU expects {}",
-                w.x, w.y, w.channel, w.gpu, w.cpu
+                "{at} channel {}: the GPU wrote {}, the CPU expects {}",
+                w.channel, w.gpu, w.cpu
             ));
         }
         lines

@@ -26,6 +26,7 @@ mod count_and_mask;
 mod debugging;
 mod depth_peeling;
 mod feedback;
+mod histogram_pyramid;
 mod kit;
 pub mod ladder;
 mod ping_pong;
@@ -126,6 +127,8 @@ pub struct Check {
     pub wrong: Option<usize>,
     /// The first few of them, with the GPU's value and the CPU's.
     pub first_wrong: Vec<WrongTexel>,
+    /// What one cell of the checked grid is: "texel", "pixel", "block", "work group", "slot".
+    pub unit: &'static str,
     /// The index in [`LessonRun::buffers`] of the buffer it checked (`view learn <id>
     /// --buffer K` shows it), when a pass recorded it.
     pub buffer: Option<usize>,
@@ -433,6 +436,7 @@ impl LessonRun {
             passed,
             wrong: None,
             first_wrong: Vec::new(),
+            unit: "texel",
             buffer: None,
             difference_picture: None,
             difference: None,

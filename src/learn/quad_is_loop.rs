@@ -2,7 +2,7 @@
 //! whose fragment shader is the loop's body; then a gather (`out[k] = values[index[k]]`), the
 //! indirect read every fragment may do.
 
-use super::kit::{self, Clock};
+use super::kit::{self, Steps};
 use super::{
     chosen_exercise, no_compute, random_values, Exercise, Grid, Lesson, LessonInfo, LessonOptions,
     LessonRun, PaperStep, PassBuffer,
@@ -69,9 +69,7 @@ impl Lesson for QuadIsLoop {
     fn run(&self, ctx: &Context, opts: &LessonOptions) -> anyhow::Result<LessonRun> {
         chosen_exercise(&INFO, opts)?;
         let mut run = LessonRun::new(&INFO, ctx);
-        let n = (W * H) as usize;
-        let x = random_values(n, 1, -1.0, 1.0);
-        let y = random_values(n, 2, -1.0, 1.0);
+        let (x, y) = (ramp(W, H), checkerboard(W, H));
         let cpu = saxpy_cpu(A, &x, &y);
         saxpy(ctx, &mut run, &x, &y, &cpu)?;
         gather(ctx, &mut run, &x)?;
@@ -84,13 +82,37 @@ impl Lesson for QuadIsLoop {
     }
 }
 
+/// x: a ramp, element k (rows from the bottom) holding k / 64 - 1.5, so that a read one texel
+/// off along a row is off by a / 64 everywhere and one row off by a / 4: a difference picture
+/// of one flat colour, not noise.
+pub fn ramp(width: u32, height: u32) -> Vec<f32> {
+    (0..width * height).map(|k| k as f32 / 64.0 - 1.5).collect()
+}
+
+/// y: a checkerboard of +0.5 and -0.5, so that a read one texel off in either direction flips
+/// the sign at every texel: a difference picture of stripes or a checkerboard.
+pub fn checkerboard(width: u32, height: u32) -> Vec<f32> {
+    (0..width * height)
+        .map(|k| {
+            if (k % width + k / width).is_multiple_of(2) {
+                0.5
+            } else {
+                -0.5
+            }
+        })
+        .collect()
+}
+
 /// The CPU loop: `a x[i] + y[i]` in fp32.
 pub fn saxpy_cpu(a: f32, x: &[f32], y: &[f32]) -> Vec<f32> {
     x.iter().zip(y).map(|(&x, &y)| a * x + y).collect()
 }
 
-/// |a x + y| < 3.5 here, where an fp32 step is 2.4e-7; a fused multiply-add rounds once
-/// instead of twice, so the GPU may differ from the CPU by about one step. 1e-6 allows four.
+/// The lesson's values are multiples of 1/128 below 8 (a = 2.5, x = k/64 - 1.5, y = +-0.5), so
+/// a x + y is exact in fp32 with or without a fused multiply-add: the lesson checks exactly.
+/// The bench's random values in [-1, 1) give |a x + y| < 3.5, where an fp32 step is 2.4e-7; a
+/// fused multiply-add rounds once instead of twice, so the GPU may differ from the CPU by about
+/// one step there. 1e-6 allows four.
 const SAXPY_TOLERANCE: f64 = 1e-6;
 
 fn saxpy(
@@ -108,7 +130,8 @@ fn saxpy(
         "upload x and y",
         "",
         &format!(
-            "two arrays of {} floats into {W}x{H} R32F textures",
+            "two arrays of {} floats into {W}x{H} R32F textures: x a ramp (element k holds k/64 \
+             - 1.5), y a checkerboard of +-0.5, so a read one texel off shows as a pattern",
             x.len()
         ),
         Some(PassBuffer::floats(W, H, 1, x.to_vec())),
@@ -134,13 +157,7 @@ fn saxpy(
         ),
         Some(PassBuffer::floats(W, H, 1, gpu.clone()).with_reference(cpu.to_vec())),
     );
-    run.check_texels(
-        "saxpy = the CPU loop",
-        Grid::new(W, H, 1),
-        &gpu,
-        cpu,
-        SAXPY_TOLERANCE,
-    );
+    run.check_texels("saxpy = the CPU loop", Grid::new(W, H, 1), &gpu, cpu, 0.0);
     Ok(())
 }
 
@@ -214,7 +231,7 @@ fn saxpy_compute(
         Grid::new(W, H, 1),
         &gpu,
         cpu,
-        SAXPY_TOLERANCE,
+        0.0,
     );
     Ok(format!(
         "ran {SAXPY_COMPUTE}, checked against the same CPU loop"
@@ -233,16 +250,30 @@ pub struct SaxpyTimed {
     pub n: u32,
     pub width: u32,
     pub height: u32,
-    /// The one pass alone, x and y already on the GPU, nothing read back.
-    pub pass_ms: Spread,
-    pub clock: Clock,
-    /// Upload x and y, the pass, read y back (wall clock between glFinish calls).
-    pub with_transfers_ms: Spread,
+    /// Upload x and y, the pass, read y back: each step timed in the same runs by the wall
+    /// clock, glFinish after each; the whole of a run is the sum of its steps.
+    pub steps: Steps,
     /// The CPU loop (one core, wall clock).
     pub cpu_ms: Spread,
     /// Largest |GPU - CPU| (checked within the lesson's tolerance before timing).
     pub error: f64,
 }
+
+impl SaxpyTimed {
+    /// The pass alone: the second step of the same runs.
+    pub fn pass_ms(&self) -> Spread {
+        self.steps.steps[PASS_STEP]
+    }
+
+    /// The pass with its transfers: the whole of the same runs.
+    pub fn with_transfers_ms(&self) -> Spread {
+        self.steps.whole
+    }
+}
+
+/// The steps a bench run times, in order; the pass is [`PASS_STEP`].
+pub const SAXPY_STEPS: [&str; 3] = ["upload x and y", "the pass", "read y back"];
+const PASS_STEP: usize = 1;
 
 /// Lesson 1's bench: saxpy over sizes against the CPU.
 #[derive(Clone, Debug, Serialize)]
@@ -254,7 +285,7 @@ pub struct SaxpyBench {
 }
 
 /// Time saxpy at each of `sizes` (elements; each rounded up to a texture as square as it goes):
-/// the pass alone, with its transfers, and the CPU loop, each size checked first.
+/// its upload, pass and readback in the same runs, and the CPU loop, each size checked first.
 pub fn bench(ctx: &Context, sizes: &[u32], runs: Runs) -> anyhow::Result<SaxpyBench> {
     for &n in sizes {
         anyhow::ensure!(
@@ -290,12 +321,17 @@ pub fn bench(ctx: &Context, sizes: &[u32], runs: Runs) -> anyhow::Result<SaxpyBe
             "saxpy of {n} elements differs from the CPU loop by {error:e} (tolerance \
              {SAXPY_TOLERANCE:e}): not timed"
         );
-        let (pass_ms, clock) = kit::time_passes(ctx, runs, pass)?;
-        let with_transfers_ms = kit::time_finished(ctx, runs, || {
-            tx.upload_f32(&x)?;
-            ty.upload_f32(&y)?;
-            pass()?;
-            out.download_f32()?;
+        let steps = kit::time_steps(ctx, runs, SAXPY_STEPS.len(), |step| {
+            match step {
+                0 => {
+                    tx.upload_f32(&x)?;
+                    ty.upload_f32(&y)?;
+                }
+                PASS_STEP => pass()?,
+                _ => {
+                    out.download_f32()?;
+                }
+            }
             Ok(())
         })?;
         let cpu_ms = crate::timing::wall_ms(runs, || saxpy_cpu(A, &x, &y));
@@ -303,9 +339,7 @@ pub fn bench(ctx: &Context, sizes: &[u32], runs: Runs) -> anyhow::Result<SaxpyBe
             n: n as u32,
             width: w,
             height: h,
-            pass_ms,
-            clock,
-            with_transfers_ms,
+            steps,
             cpu_ms,
             error,
         });
@@ -322,9 +356,12 @@ impl SaxpyBench {
     /// Plain text: a row per size.
     pub fn table(&self) -> String {
         let mut out = format!(
-            "saxpy bench (lesson 1, y = a x + y) on {}\n{}\nruns: {}\nGB/s: 12 bytes per \
-             element (read x and y, write y) / the median time; each size checked against the \
-             CPU first\n",
+            "saxpy bench (lesson 1, y = a x + y) on {}\n{}\nruns: {}, after one warm-up run\n\
+             clock: the wall clock, glFinish after each step; the upload, the pass and the \
+             readback are steps of the same runs, and each run's whole is the sum of its \
+             steps, so the pass is never timed longer than the pass with its transfers\nGB/s: \
+             12 bytes per element (read x and y, write y) / the median time; each size \
+             checked against the CPU first\n",
             self.renderer,
             self.load.map_or("load: unknown".into(), |l| format!(
                 "load: {}",
@@ -333,31 +370,32 @@ impl SaxpyBench {
             self.runs
         );
         out.push_str(&format!(
-            "{:>9} {:>10} {:>21} {:>8} {:>21} {:>21} {:>8} {:>9}  {}\n",
+            "{:>9} {:>10} {:>21} {:>8} {:>21} {:>21} {:>21} {:>8} {:>9}\n",
             "n",
             "texture",
             "pass ms",
             "GB/s",
             "with transfers ms",
+            "of which upload ms",
             "CPU ms",
             "CPU GB/s",
             "CPU/pass",
-            "pass clock"
         ));
         let cell = |s: &Spread| format!("{:.3} ({:.3}-{:.3})", s.median, s.min, s.max);
         let gb_s = |n: u32, ms: f64| 12.0 * n as f64 / (ms.max(1e-9) * 1e-3) / 1e9;
         for r in &self.rows {
+            let pass = r.pass_ms();
             out.push_str(&format!(
-                "{:>9} {:>10} {:>21} {:>8.3} {:>21} {:>21} {:>8.3} {:>9.2}  {}\n",
+                "{:>9} {:>10} {:>21} {:>8.3} {:>21} {:>21} {:>21} {:>8.3} {:>9.2}\n",
                 r.n,
                 format!("{}x{}", r.width, r.height),
-                cell(&r.pass_ms),
-                gb_s(r.n, r.pass_ms.median),
-                cell(&r.with_transfers_ms),
+                cell(&pass),
+                gb_s(r.n, pass.median),
+                cell(&r.with_transfers_ms()),
+                cell(&r.steps.steps[0]),
                 cell(&r.cpu_ms),
                 gb_s(r.n, r.cpu_ms.median),
-                r.cpu_ms.median / r.pass_ms.median.max(1e-9),
-                r.clock.in_words()
+                r.cpu_ms.median / pass.median.max(1e-9),
             ));
         }
         out.push_str(

@@ -46,7 +46,7 @@ static INFO: LessonInfo = LessonInfo {
     shaders: &[POINTS, COUNT, HISTOGRAM_COMPUTE],
     exercises: &[Exercise {
         number: 1,
-        task: "Place each point on its value's bin: bin = floor(value * bins), at most bins - 1.",
+        task: "Place each point on its value's bin (u_bins equal bins over [0, 1)).",
         shader: POINTS,
         hints: [
             "A scatter writes where the data says: the vertex shader moves each point \

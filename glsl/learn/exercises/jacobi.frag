@@ -17,7 +17,7 @@ void main() {
         o_value = here;
         return;
     }
-    // EXERCISE: read the four neighbours of p from u_current and write their mean
-    // (0.25 * (((left + right) + down) + up)); this copies the value, so nothing moves.
+    // EXERCISE: write the Jacobi update of an interior value (see the header). As written it
+    // copies the value, so nothing moves.
     o_value = here;
 }

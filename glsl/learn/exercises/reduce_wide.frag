@@ -14,8 +14,8 @@ void main() {
     // Start from the identities: 0 for the sum, the lowest float for the maximum.
     float sum = 0.0;
     float largest = -3.402823e38;
-    // EXERCISE: this reads only the 2x2 corner of the block; widen the loops to the whole
-    // u_fan x u_fan block (4x4 in this lesson).
+    // EXERCISE: this reads only the 2x2 corner of each block; make it read the whole block
+    // (4x4 in this lesson).
     for (int j = 0; j < 2; ++j) {
         for (int i = 0; i < 2; ++i) {
             ivec2 p = base + ivec2(i, j);

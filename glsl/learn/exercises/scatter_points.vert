@@ -12,8 +12,8 @@ void main() {
     // The value this point stands for.
     ivec2 texel = ivec2(gl_VertexID % u_width, gl_VertexID / u_width);
     float value = texelFetch(u_values, texel, 0).r;
-    // EXERCISE: every point lands in bin 0. Compute the value's bin, floor(value * bins),
-    // at most u_bins - 1.
+    // EXERCISE: every point lands in bin 0. Compute the bin the value falls in (u_bins equal
+    // bins over [0, 1)).
     float bin = 0.0;
     // The bin's pixel centre in clip space: x from -1 to 1 across the row.
     gl_Position = vec4((bin + 0.5) / float(u_bins) * 2.0 - 1.0, 0.0, 0.0, 1.0);

@@ -38,6 +38,7 @@ const TEXTURE_IS_ARRAY: &str = "src/learn/texture_is_array.rs";
 const QUAD_IS_LOOP: &str = "src/learn/quad_is_loop.rs";
 const PING_PONG: &str = "src/learn/ping_pong.rs";
 const REDUCTION: &str = "src/learn/reduction.rs";
+const HISTOGRAM_PYRAMID: &str = "src/learn/histogram_pyramid.rs";
 const SEVERAL_OUTPUTS: &str = "src/learn/several_outputs.rs";
 const SCATTER: &str = "src/learn/scatter_and_blend.rs";
 const COUNT_AND_MASK: &str = "src/learn/count_and_mask.rs";
@@ -120,8 +121,11 @@ pub const LESSONS: &[LessonCode] = &[
         host: &[
             shown(READBACK, "upload-pbo", "An upload from a pixel unpack buffer: the call only queues the copy."),
             shown(READBACK, "full-readback", "The whole array read back with glReadPixels: the CPU waits for it."),
-            shown(READBACK, "block-flags", "A small pass flags the blocks that hold anything; only the flags are read."),
-            shown(READBACK, "read-blocks", "Then only the flagged blocks are read."),
+            shown(READBACK, "block-flags", "A small pass flags the blocks that hold anything, into level 0 of a histogram pyramid; the pyramid is built on it."),
+            shown(HISTOGRAM_PYRAMID, "pyramid-levels", "Each level of the pyramid sums 2x2 texels of the one below, up to the count at the top."),
+            shown(HISTOGRAM_PYRAMID, "pyramid-list", "Each slot of the list walks down the pyramid to its flagged block."),
+            shown(HISTOGRAM_PYRAMID, "pyramid-gather", "The flagged blocks are gathered into one small texture, in the list's order."),
+            shown(READBACK, "read-compacted", "Then two reads bring back the list and the blocks, however many are flagged."),
             shown(READBACK, "compact", "The compute counterpart compacts the non-zero texels with an atomic counter."),
         ],
     },

@@ -67,16 +67,21 @@ fn timed(bench: &LadderBench) -> String {
         escape(&bench.runs),
         escape(bench.what_is_timed)
     );
+    out.push_str(&format!(
+        "<p>One clock for every rung: the {}, because {}.</p>\n",
+        escape(bench.clock.clock.in_words()),
+        escape(&bench.clock.why)
+    ));
     if let Some(why) = &bench.compute_skipped {
         out.push_str(&format!("<p>Compute rungs: {}.</p>\n", escape(why)));
     }
     out.push_str("<table><tr><th>rung</th>");
     for n in &bench.sizes {
         out.push_str(&format!(
-            "<th>{n} values: median ms (range), passes</th><th>GB/s</th>"
+            "<th>{n} values: median ms (range), passes</th><th>GB/s</th><th>step</th>"
         ));
     }
-    out.push_str("<th>clock</th></tr>\n");
+    out.push_str("</tr>\n");
     for rung in &ladder::RUNGS {
         let rows: Vec<_> = bench
             .rungs
@@ -93,29 +98,73 @@ fn timed(bench: &LadderBench) -> String {
         ));
         for t in &rows {
             out.push_str(&format!(
-                "<td>{:.3} ({:.3}-{:.3}), {}</td><td>{:.3}</td>",
-                t.ms.median, t.ms.min, t.ms.max, t.passes, t.gb_per_s
+                "<td>{:.3} ({:.3}-{:.3}), {}</td><td>{:.3}</td><td>{}</td>",
+                t.ms.median,
+                t.ms.min,
+                t.ms.max,
+                t.passes,
+                t.gb_per_s,
+                t.step.map_or("-".into(), |s| format!("{s:.2}x"))
             ));
         }
-        let mut clocks: Vec<&str> = rows.iter().map(|t| t.clock.in_words()).collect();
-        clocks.sort_unstable();
-        clocks.dedup();
-        out.push_str(&format!("<td>{}</td></tr>\n", clocks.join(", ")));
+        out.push_str("</tr>\n");
     }
-    out.push_str("<tr><td>CPU: f64 sum, one core</td>");
+    out.push_str("<tr><td>CPU: f64 sum, one core (wall clock)</td>");
     for c in &bench.cpu {
         out.push_str(&format!(
-            "<td>{:.3} ({:.3}-{:.3}), -</td><td>{:.3}</td>",
+            "<td>{:.3} ({:.3}-{:.3}), -</td><td>{:.3}</td><td>-</td>",
             c.ms.median, c.ms.min, c.ms.max, c.gb_per_s
         ));
     }
-    out.push_str("<td>wall clock</td></tr>\n</table>\n");
+    out.push_str("</tr>\n</table>\n");
     out.push_str(&format!(
-        "<p>Effective bandwidth is the bytes of input read (4 per value) over the median time. \
-         Every rung's sum was checked equal to the CPU's before it was timed.</p>\n\
+        "<p>Effective bandwidth is the bytes of input read (4 per value) over the median time; \
+         step is the median of the rung before (of the same kind) over this one's. Every \
+         rung's sum was checked equal to the CPU's before it was timed.</p>\n\
          <p><img src=\"{PICTURE}\" alt=\"the ladder: effective bandwidth against size, one \
          line per rung and the CPU\" style=\"max-width:100%\"></p>\n"
     ));
+    for s in &bench.slower {
+        out.push_str(&format!(
+            "<p>At {} values rung {} was slower than rung {}; both rerun in turn: {} against \
+             {}: {}</p>\n",
+            s.n,
+            s.rung,
+            s.before,
+            escape(&s.rerun.0.in_words(" ms")),
+            escape(&s.rerun.1.in_words(" ms")),
+            escape(&s.why)
+        ));
+    }
+    out.push_str(&harris_table());
+    out
+}
+
+/// Harris's G80 table, to set beside the full sweep's 2^22 row.
+fn harris_table() -> String {
+    let mut out = format!(
+        "<p>{}, as published (the total from his times). <code>classic-gpgpu learn {LESSON} \
+         --bench</code> prints them beside this renderer's compute rungs at his size, 2^22 \
+         values.</p>\n<table><tr><th>kernel</th><th>compute rung</th><th>ms</th><th>GB/s</th>\
+         <th>step</th><th>total</th></tr>\n",
+        escape(ladder::HARRIS_SOURCE)
+    );
+    for p in &ladder::HARRIS {
+        let rung = ladder::RUNGS
+            .iter()
+            .find(|r| r.kernel() == Some(p.kernel))
+            .map_or("-", |r| r.name);
+        out.push_str(&format!(
+            "<tr><td>{}</td><td>{}</td><td>{:.3}</td><td>{:.3}</td><td>{}</td><td>{:.2}x</td></tr>\n",
+            p.kernel,
+            escape(rung),
+            p.ms,
+            p.gb_per_s,
+            p.step.map_or("-".into(), |s| format!("{s:.2}x")),
+            p.cumulative()
+        ));
+    }
+    out.push_str("</table>\n");
     out
 }
 

@@ -33,9 +33,8 @@ void main() {
     // The tree: half the invocations fold the upper half onto the lower, until one is left.
     for (uint stride = 64u; stride > 0u; stride >>= 1) {
         if (local < stride) {
-            // EXERCISE: fold the partner `stride` places up onto this invocation's value
-            // (combine them). As written the partner is never added, so each group's result
-            // is only what its first invocation loaded.
+            // EXERCISE: the step of the tree is missing. As written nothing is folded, so
+            // each group's result is only what its first invocation loaded.
         }
         barrier();
     }

@@ -10,8 +10,9 @@ out vec4 o_depth;
 
 void main() {
     float previous = texelFetch(u_previous_depth, ivec2(gl_FragCoord.xy), 0).r;
-    // EXERCISE: from layer 1 on, discard the fragments at or in front of `previous`.
-    // As written nothing is peeled: every layer is layer 0 again, and the peel never ends.
+    // EXERCISE: make each layer after the first keep only what lies behind the one before
+    // (see the header). As written nothing is peeled: every layer is layer 0 again, and the
+    // peel never ends.
 
     // The layer's picture: its depth (0 top, 1 bottom of the box).
     o_depth = vec4(gl_FragCoord.z, 0.0, 0.0, 1.0);
