@@ -91,7 +91,7 @@ pub fn saxpy_cpu(a: f32, x: &[f32], y: &[f32]) -> Vec<f32> {
 
 /// |a x + y| < 3.5 here, where an fp32 step is 2.4e-7; a fused multiply-add rounds once
 /// instead of twice, so the GPU may differ from the CPU by about one step. 1e-6 allows four.
-const SAXPY_TOLERANCE: f64 = 1e-6;
+pub(crate) const SAXPY_TOLERANCE: f64 = 1e-6;
 
 fn saxpy(
     ctx: &Context,
