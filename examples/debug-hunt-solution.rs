@@ -1,6 +1,7 @@
-//! The debug hunt, the solution: lesson 2's Jacobi steps, timed, with the four faults of
-//! `examples/debug-hunt.rs` fixed, each between `// region: fault-N` and `// endregion`
-//! (those lines are the third hint of the fault). Do not read it before the hunt.
+//! The debug hunt, the solution: lesson 2's Jacobi steps, and one step timed, with the four
+//! faults of `examples/debug-hunt.rs` fixed, each between `// region: fault-N` and
+//! `// endregion` (those lines are the third hint of the fault). Do not read it before the
+//! hunt.
 //!
 //! Run it from the repository: `cargo run --release --example debug-hunt-solution`.
 
@@ -14,7 +15,7 @@ fn main() -> ExitCode {
     host::hunt_main(&hunt::CARD, exercise)
 }
 
-/// `hunt::STEP_COUNT` Jacobi steps, timed: the last iterate, read back.
+/// `hunt::STEP_COUNT` Jacobi steps, then one step timed: the last iterate, read back.
 pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
     let gl = ex.gl();
     let side = hunt::SIDE;
@@ -51,9 +52,7 @@ pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
         gl.uniform_1_i32(u_current.as_ref(), 0);
         gl.viewport(0, 0, n, n);
 
-        // The steps, timed from an idle GPU.
-        gl.finish();
-        let clock = ex.start_clock();
+        // The steps, A into B, then B into A, and so on.
         for k in 0..hunt::STEP_COUNT {
             // Even steps read A and draw into B, odd steps the other way round.
             // region: fault-2
@@ -64,15 +63,26 @@ pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
             gl.bind_texture(glow::TEXTURE_2D, Some(read));
             gl.draw_arrays(glow::TRIANGLE_STRIP, 0, 4);
         }
+        let steps = hunt::STEP_COUNT;
+
+        // The speed of one step, as a benchmark measures it: the same step (the start grid
+        // into B) made many times over from an idle GPU, the time divided by their number.
+        gl.finish();
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fb_b));
+        gl.bind_texture(glow::TEXTURE_2D, Some(a));
+        let clock = ex.start_clock();
+        for _ in 0..hunt::REPEATS {
+            gl.draw_arrays(glow::TRIANGLE_STRIP, 0, 4);
+        }
         // region: fault-1
         gl.finish();
-        let ms = ex.read_clock(&clock);
+        let ms = ex.read_clock(&clock) / hunt::REPEATS as f64;
         // endregion
-        let steps = hunt::STEP_COUNT;
-        println!("{steps} Jacobi steps on a {side} x {side} grid took {ms:.3} ms");
+        println!("one Jacobi step on a {side} x {side} grid takes {ms:.4} ms");
 
-        // The last iterate: the step count is even, so the last step drew into A.
-        let last = if steps % 2 == 0 { fb_a } else { fb_b };
+        // The last iterate: the step count is even, so the last step drew into A (the
+        // benchmark drew into B only).
+        let last = if steps.is_multiple_of(2) { fb_a } else { fb_b };
         let mut grid = vec![0f32; start.len()];
         gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(last));
         let into = glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut grid)));

@@ -1,8 +1,9 @@
 //! The debug hunt (the debugging lesson's exercise: `classic-gpgpu learn debugging` shows
 //! seven faults found and fixed; here you do the finding). This program runs lesson 2's Jacobi
-//! steps between two textures, times them, and reads the grid back. Four faults are planted
-//! in it. Find each, fix it, run again: the run says which faults are still there (by what
-//! they do, not where they are) and checks the grid against the CPU, texel by texel.
+//! steps between two textures, times one step as a benchmark does, and reads the grid back.
+//! Four faults are planted in it. Find each, fix it, run again: the run says which faults are
+//! still there (by what they do, not where they are) and checks the grid against the CPU,
+//! texel by texel.
 //!
 //! Run it from the repository: `cargo run --release --example debug-hunt`. Your tools:
 //! `-- --trace` (every GL call, the stopwatch's start and reading marked among them),
@@ -21,7 +22,7 @@ fn main() -> ExitCode {
     host::hunt_main(&hunt::CARD, exercise)
 }
 
-/// `hunt::STEP_COUNT` Jacobi steps, timed: the last iterate, read back.
+/// `hunt::STEP_COUNT` Jacobi steps, then one step timed: the last iterate, read back.
 pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
     let gl = ex.gl();
     let side = hunt::SIDE;
@@ -54,9 +55,7 @@ pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
         gl.uniform_1_i32(u_current.as_ref(), 0);
         gl.viewport(0, 0, n, n);
 
-        // The steps, timed from an idle GPU.
-        gl.finish();
-        let clock = ex.start_clock();
+        // The steps, A into B, then B into A, and so on.
         for k in 0..hunt::STEP_COUNT {
             // Even steps read A and draw into B, odd steps the other way round.
             let (read, write) = if k % 2 == 0 { (a, fb_a) } else { (b, fb_b) };
@@ -65,12 +64,23 @@ pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
             gl.bind_texture(glow::TEXTURE_2D, Some(read));
             gl.draw_arrays(glow::TRIANGLE_STRIP, 0, 4);
         }
-        let ms = ex.read_clock(&clock);
         let steps = hunt::STEP_COUNT;
-        println!("{steps} Jacobi steps on a {side} x {side} grid took {ms:.3} ms");
 
-        // The last iterate: the step count is even, so the last step drew into A.
-        let last = if steps % 2 == 0 { fb_a } else { fb_b };
+        // The speed of one step, as a benchmark measures it: the same step (the start grid
+        // into B) made many times over from an idle GPU, the time divided by their number.
+        gl.finish();
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fb_b));
+        gl.bind_texture(glow::TEXTURE_2D, Some(a));
+        let clock = ex.start_clock();
+        for _ in 0..hunt::REPEATS {
+            gl.draw_arrays(glow::TRIANGLE_STRIP, 0, 4);
+        }
+        let ms = ex.read_clock(&clock) / hunt::REPEATS as f64;
+        println!("one Jacobi step on a {side} x {side} grid takes {ms:.4} ms");
+
+        // The last iterate: the step count is even, so the last step drew into A (the
+        // benchmark drew into B only).
+        let last = if steps.is_multiple_of(2) { fb_a } else { fb_b };
         let mut grid = vec![0f32; start.len()];
         gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(last));
         let into = glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut grid)));

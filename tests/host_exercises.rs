@@ -10,6 +10,10 @@
 //! a learner runs, whatever `cargo test` was asked to build (a template also includes its
 //! solution that way, to set the traces side by side).
 
+// The examples are modules here, each with the files it includes (a template its solution,
+// which is also compiled on its own; most of them `given`).
+#![allow(clippy::duplicate_mod)]
+
 mod common;
 
 #[allow(dead_code)]
@@ -52,7 +56,6 @@ mod debug_hunt;
 #[path = "../examples/debug-hunt-solution.rs"]
 mod debug_hunt_solution;
 
-#[allow(dead_code)]
 #[path = "../examples/common/given.rs"]
 mod given;
 

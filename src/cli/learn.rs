@@ -364,6 +364,14 @@ fn print_run(run: &LessonRun, info: &learn::LessonInfo, png: Option<&PathBuf>) {
         if run.passed { "passed" } else { "FAILED" },
         run.max_error
     );
+    if let Some(host) = learn::host::for_lesson(info.id) {
+        println!(
+            "your turn, on the host side ({}): {}, after editing {}",
+            host.title,
+            host.run_command(),
+            host.template()
+        );
+    }
     for line in next_step(info) {
         println!("{line}");
     }

@@ -288,6 +288,12 @@ impl LearnerGl {
         self.ctx.gl().recorded()
     }
 
+    /// Inspect the draws from now on (`true`, as from the start), or not: a stopwatch pauses
+    /// the inspections while it runs, so that it times the learner's calls alone.
+    pub fn inspect_draws(&self, on: bool) {
+        self.ctx.gl().set_inspecting(on);
+    }
+
     /// The draws inspected since the last call, in order.
     pub fn take_draws(&self) -> Vec<DrawFacts> {
         self.ctx.gl().take_draws()

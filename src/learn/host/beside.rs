@@ -138,12 +138,11 @@ pub fn lines(
     let shown = |k: usize| full || k < CONTEXT || k + CONTEXT >= rows.len() || near_difference(k);
     let mut k = 0;
     while k < rows.len() {
-        if !shown(k) {
-            let start = k;
-            while k < rows.len() && !shown(k) {
-                k += 1;
-            }
-            out.push(format!("         ... {} rows alike ...", k - start));
+        let hidden = (k..rows.len()).take_while(|&j| !shown(j)).count();
+        // A fold of fewer than three rows would save nothing.
+        if hidden >= 3 {
+            out.push(format!("         ... {hidden} rows alike ..."));
+            k += hidden;
             continue;
         }
         let row = &rows[k];

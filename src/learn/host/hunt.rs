@@ -1,6 +1,7 @@
 //! The debugging lesson's exercise (issue 51, item 4): a hunt. `examples/debug-hunt.rs` runs
-//! lesson 2's Jacobi steps with the GL calls written out, times them, and reads the grid back;
-//! four faults are planted in it. The lesson (`learn debugging`) shows seven faults found by
+//! lesson 2's Jacobi steps with the GL calls written out, times one step as a benchmark does
+//! (the same draw made [`REPEATS`] times, the time divided), and reads the grid back; four
+//! faults are planted in it. The lesson (`learn debugging`) shows seven faults found by
 //! the project's tools and fixed; here the learner does the finding and the fixing, in host
 //! code, with the same kind of tools: the texel-by-texel comparison with the CPU, the GL call
 //! trace (`-- --trace`, the stopwatch's start and reading marked among the calls), the state of
@@ -23,7 +24,8 @@
 use super::{Attempt, Body, Gap, HostExercise, Outcome};
 use crate::gl::learner::DrawProblem;
 use crate::gl::trace::TracedCall;
-use crate::learn::LessonRun;
+use crate::learn::ping_pong::{initial_grid, jacobi_cpu, TOLERANCE};
+use crate::learn::{Grid, LessonRun};
 use serde::Serialize;
 
 /// A planted fault: what the learner sees, two hints (the third is the solution's region
@@ -41,7 +43,17 @@ pub struct Fault {
     pub still_there: fn(&Attempt) -> Option<String>,
 }
 
-pub use super::ping_pong::{start, FRAGMENT, SIDE, STEP_COUNT, VERTEX};
+pub use super::ping_pong::{FRAGMENT, STEP_COUNT, VERTEX};
+
+/// The grid's side: large enough that one step is real work to time.
+pub const SIDE: u32 = 128;
+/// How many times the timed step is made.
+pub const REPEATS: u32 = 100;
+
+/// The start: lesson 2's grid at this side (zero inside, the top row held at 1).
+pub fn start() -> Vec<f32> {
+    initial_grid(SIDE)
+}
 
 /// The calls that queue GPU work.
 fn is_work(call: &TracedCall) -> bool {
@@ -92,7 +104,7 @@ fn unwaited_clock(attempt: &Attempt) -> Option<String> {
 /// The first draw with a problem `pick` keeps, described.
 fn draw_with(attempt: &Attempt, pick: fn(&DrawProblem) -> bool) -> Option<String> {
     attempt.draws.iter().find_map(|d| {
-        let problem = d.problems().into_iter().find(|p| pick(p))?;
+        let problem = d.problems().into_iter().find(pick)?;
         Some(format!(
             "the draw at call {} ({}): {problem}",
             d.call, d.function
@@ -126,8 +138,15 @@ fn uniform_without_program(attempt: &Attempt) -> Option<String> {
     None
 }
 
+/// Lesson 2's check of the grid read back after the steps, texel by texel.
 fn check(run: &mut LessonRun, grid: &[f32]) {
-    super::ping_pong::check_grid(run, grid);
+    run.check_texels(
+        &format!("after {STEP_COUNT} steps the grid = the CPU's Jacobi iterate"),
+        Grid::new(SIDE, SIDE, 1),
+        grid,
+        &jacobi_cpu(&start(), SIDE, STEP_COUNT),
+        TOLERANCE,
+    );
 }
 
 pub static CARD: HostExercise = HostExercise {
@@ -138,7 +157,7 @@ pub static CARD: HostExercise = HostExercise {
     faults: &[
         Fault {
             number: 1,
-            symptom: "the time printed is far shorter than the steps take",
+            symptom: "the time printed for one step is far shorter than a step takes",
             hints: [
                 "A GL call returns when its work is queued, not when it is done; the GPU (here \
                  the CPU threads of llvmpipe) works after. A wall clock read right after the \
@@ -328,6 +347,7 @@ mod tests {
             calls,
             draws: Vec::new(),
             readings,
+            checks: Vec::new(),
             reached: 0,
             errors_left: Vec::new(),
         }

@@ -40,6 +40,7 @@ use crate::gl::Context;
 use serde::Serialize;
 use std::cell::{Cell, RefCell};
 use std::fmt;
+use std::io::Write;
 use std::process::ExitCode;
 
 /// One gap of a template: the GL step it stands for, and two hints (the third is the
@@ -197,6 +198,8 @@ pub struct Exercise {
     /// Every draw inspected so far, in order.
     draws: RefCell<Vec<DrawFacts>>,
     readings: RefCell<Vec<Reading>>,
+    /// Each check made, in order: its gap and the calls recorded by then.
+    checks: RefCell<Vec<(u32, usize)>>,
     /// The lesson's checks made during the run (a first level texel by texel, ...).
     run: RefCell<LessonRun>,
 }
@@ -211,6 +214,7 @@ impl Exercise {
             reached: Cell::new(0),
             draws: RefCell::new(Vec::new()),
             readings: RefCell::new(Vec::new()),
+            checks: RefCell::new(Vec::new()),
             run: RefCell::new(run),
         })
     }
@@ -231,8 +235,10 @@ impl Exercise {
         Err(Stop::Gap(n).into())
     }
 
-    /// Start the stopwatch (wall clock); its start is marked in the trace.
+    /// Start the stopwatch (wall clock); its start is marked in the trace. While it runs the
+    /// draws are not inspected, so that it times your calls alone.
     pub fn start_clock(&self) -> Stopwatch {
+        self.door.inspect_draws(false);
         Stopwatch {
             started: std::time::Instant::now(),
             mark: self.door.calls_so_far(),
@@ -242,6 +248,7 @@ impl Exercise {
     /// Read the stopwatch: the milliseconds since it started, the reading marked in the trace.
     pub fn read_clock(&self, clock: &Stopwatch) -> f64 {
         let ms = clock.started.elapsed().as_secs_f64() * 1e3;
+        self.door.inspect_draws(true);
         self.readings.borrow_mut().push(Reading {
             from: clock.mark,
             to: self.door.calls_so_far(),
@@ -564,6 +571,8 @@ impl Exercise {
     /// Run the check of gap `gap`: GL errors raised since the last check, and the draws made
     /// since then, first; then `check`. A failure stops the run.
     fn step(&self, gap: u32, check: impl FnOnce() -> Result<(), String>) -> anyhow::Result<()> {
+        let calls = self.door.calls_so_far();
+        self.checks.borrow_mut().push((gap, calls));
         let problem = self.errors().or_else(|| self.draw_problem());
         match problem.map_or_else(check, Err) {
             Ok(()) => {
@@ -644,16 +653,17 @@ impl Exercise {
         Ok(f)
     }
 
-    /// What the run recorded besides the steps: draws, stopwatch readings.
-    fn into_parts(self) -> (LessonRun, Vec<DrawFacts>, Vec<Reading>, u32) {
+    /// What the run recorded besides the calls.
+    fn into_parts(self) -> Parts {
         let mut draws = self.draws.into_inner();
         draws.extend(self.door.take_draws());
-        (
-            self.run.into_inner(),
+        Parts {
+            run: self.run.into_inner(),
             draws,
-            self.readings.into_inner(),
-            self.reached.get(),
-        )
+            readings: self.readings.into_inner(),
+            checks: self.checks.into_inner(),
+            reached: self.reached.get(),
+        }
     }
 
     /// The lesson's run the checks of this exercise go into.
@@ -674,6 +684,15 @@ impl Exercise {
     ) -> anyhow::Result<()> {
         self.step(gap, check)
     }
+}
+
+/// What a run recorded besides its calls.
+struct Parts {
+    run: LessonRun,
+    draws: Vec<DrawFacts>,
+    readings: Vec<Reading>,
+    checks: Vec<(u32, usize)>,
+    reached: u32,
 }
 
 /// A uniform's value as the messages show it.
@@ -733,6 +752,8 @@ pub struct Attempt {
     pub calls: Vec<TracedCall>,
     pub draws: Vec<DrawFacts>,
     pub readings: Vec<Reading>,
+    /// Each check made, in order: its gap and how many calls had been recorded by then.
+    pub checks: Vec<(u32, usize)>,
     /// The highest gap whose checks passed.
     pub reached: u32,
     /// The GL errors still pending when the program ended (nobody asked glGetError).
@@ -758,7 +779,13 @@ pub fn attempt(card: &'static HostExercise, body: Body) -> anyhow::Result<Attemp
     let result = body(&ex);
     let calls = ctx.trace_stop();
     let errors_left = ex.door.take_errors();
-    let (mut run, draws, readings, reached) = ex.into_parts();
+    let Parts {
+        mut run,
+        draws,
+        readings,
+        checks,
+        reached,
+    } = ex.into_parts();
     let outcome = match result {
         Ok(values) => {
             (card.check)(&mut run, &values);
@@ -781,9 +808,31 @@ pub fn attempt(card: &'static HostExercise, body: Body) -> anyhow::Result<Attemp
         calls,
         draws,
         readings,
+        checks,
         reached,
         errors_left,
     })
+}
+
+impl Attempt {
+    /// How many of the solution's calls (`reference`) stand beside this run's: all of them
+    /// when the run reached its end; else those the solution had made by the same check as the
+    /// one this run stopped at (or by the check of the gap it was making).
+    pub fn calls_to_compare(&self, reference: &Attempt) -> usize {
+        let gap = match &self.outcome {
+            Outcome::Ran => return reference.calls.len(),
+            Outcome::Stopped(Stop::Step { gap, .. }) => *gap,
+            Outcome::Stopped(Stop::Gap(gap)) => *gap,
+            Outcome::Failed(_) => self.reached + 1,
+        };
+        let made = self.checks.iter().filter(|(g, _)| *g == gap).count().max(1);
+        reference
+            .checks
+            .iter()
+            .filter(|(g, _)| *g == gap)
+            .nth(made - 1)
+            .map_or(reference.calls.len(), |&(_, calls)| calls)
+    }
 }
 
 /// The example's command line.
@@ -828,8 +877,12 @@ fn report(card: &'static HostExercise, yours: Body, solution: Option<Body>) -> E
     };
     match lines {
         Ok((lines, passed)) => {
+            // A reader that stops early (`| head`) ends the listing, not the program.
+            let mut out = std::io::stdout().lock();
             for line in lines {
-                println!("{line}");
+                if writeln!(out, "{line}").is_err() {
+                    break;
+                }
             }
             if passed {
                 ExitCode::SUCCESS
@@ -946,10 +999,16 @@ fn run_lines(
             ));
         }
         (Some(reference), _) => {
+            let compared = yours.calls_to_compare(reference);
             lines.push(String::new());
+            if compared < reference.calls.len() {
+                lines.push(format!(
+                    "(the solution's first {compared} calls: those it makes up to the same check)"
+                ));
+            }
             lines.extend(beside::lines(
                 &yours.calls,
-                &reference.calls,
+                &reference.calls[..compared],
                 &card.solution(),
                 full,
             ));

@@ -23,7 +23,7 @@ pub fn start() -> Vec<f32> {
 }
 
 /// The lesson's check of the grid read back after the steps, texel by texel.
-pub(super) fn check_grid(run: &mut LessonRun, grid: &[f32]) {
+fn check_grid(run: &mut LessonRun, grid: &[f32]) {
     run.check_texels(
         &format!("after {STEP_COUNT} steps the grid = the CPU's Jacobi iterate"),
         Grid::new(SIDE, SIDE, 1),
