@@ -37,8 +37,9 @@ pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
         // region: gap-1
         while size.0 > 1 || size.1 > 1 {
             // endregion
-            // Gap 2. The next level: `next_size`, each side of the level below halved and
-            // rounded up; `next`, an RGBA float texture of that size; `fb` drawing into it.
+            // Gap 2. The next level: `next_size`, its size (each of its texels takes a 2x2
+            // block of the level below); `next`, an RGBA float texture of that size; `fb`
+            // drawing into it.
             // region: gap-2
             let next_size = (size.0.div_ceil(2), size.1.div_ceil(2));
             let next = given::float_texture(gl, next_size.0, next_size.1, 4, None)?;

@@ -47,8 +47,9 @@ pub fn exercise(ex: &Exercise) -> anyhow::Result<Vec<f32>> {
 
         // Gap 1. The ladder goes on while the level below is more than one texel.
         while ex.gap_value(1)? {
-            // Gap 2. The next level: `next_size`, each side of the level below halved and
-            // rounded up; `next`, an RGBA float texture of that size; `fb` drawing into it.
+            // Gap 2. The next level: `next_size`, its size (each of its texels takes a 2x2
+            // block of the level below); `next`, an RGBA float texture of that size; `fb`
+            // drawing into it.
             let (next_size, next, fb): ((u32, u32), glow::Texture, glow::Framebuffer) =
                 ex.gap_value(2)?;
             ex.next_level(2, size, next_size, next, fb)?;

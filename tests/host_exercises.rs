@@ -2,8 +2,8 @@
 //! the lesson's texel-by-texel check; every template, unfilled, stops at its first gap naming
 //! the GL step; a template is its solution with each gap left open; a wrong call stops the
 //! run at its step naming what is wrong (a clamping format, an incomplete texture, a feedback
-//! loop, a uniform set with no program in use, a viewport left at 0 x 0); the trace beside the
-//! solution's marks the first difference; the debug hunt finds its four planted faults and
+//! loop, a uniform set with no program in use, a viewport left at 0 x 0); a result that is not
+//! the CPU's fails naming its texels; the trace beside the solution's marks the first difference; the debug hunt finds its four planted faults and
 //! none in its solution; `learn --list --json` gives each such lesson its host exercise.
 //!
 //! The examples are compiled into this test as modules (`#[path]`), so the test runs the code
@@ -343,6 +343,34 @@ fn a_wrong_call_stops_at_its_step_naming_what_is_wrong() {
         assert!(said.contains(&format!("gap {gap} of 7")), "{said}");
         assert!(said.contains(&format!("--hint {gap}.2")), "{said}");
     }
+}
+
+/// A program that runs to its end with a y one texel off: x's ramp read at the next texel.
+fn one_texel_off(_: &Exercise) -> anyhow::Result<Vec<f32>> {
+    let (x, y) = host::saxpy::inputs();
+    let shifted = (0..x.len()).map(|k| x[(k + 1) % x.len()]);
+    Ok(shifted
+        .zip(&y)
+        .map(|(x, y)| host::saxpy::A * x + y)
+        .collect())
+}
+
+#[test]
+fn a_result_that_is_not_the_cpus_fails_naming_its_texels() {
+    let card = &host::saxpy::CARD;
+    let run = attempt(card, one_texel_off).unwrap();
+    assert!(matches!(run.outcome, Outcome::Ran));
+    assert!(!run.passed());
+    let said = text(card, &run);
+    // Every texel is off by a x's step (2.5 / 8), so the first ones are named, with both values.
+    assert!(said.contains("FAIL saxpy = the CPU loop"), "{said}");
+    assert!(said.contains("192 of 192 values are off"), "{said}");
+    assert!(
+        said.contains("texel (0, 0) channel 0: the GPU wrote -0.6875, the CPU expects -1"),
+        "{said}"
+    );
+    let short = attempt(card, |_| Ok(vec![0.0; 3])).unwrap();
+    assert!(text(card, &short).contains("another count of values"));
 }
 
 #[test]

@@ -1107,12 +1107,15 @@ pub(crate) fn check_lines(run: &LessonRun) -> Vec<String> {
             check.tolerance
         ));
         if !check.passed {
-            lines.extend(
-                check
-                    .where_wrong()
-                    .into_iter()
-                    .map(|l| format!("       {l}")),
-            );
+            let wrong = check.where_wrong();
+            if wrong.is_empty() && check.max_error.is_infinite() {
+                lines.push(
+                    "       the values returned are not the array's: another count of values \
+                     (a format with more channels than the array's?), or one that is not finite"
+                        .into(),
+                );
+            }
+            lines.extend(wrong.into_iter().map(|l| format!("       {l}")));
         }
     }
     lines

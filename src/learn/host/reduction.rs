@@ -138,9 +138,9 @@ pub static CARD: HostExercise = HostExercise {
         },
         Gap {
             number: 2,
-            step: "make the next level: its size, half the level below's each way rounded up, \
-                   an RGBA float texture of that size and a framebuffer that draws into it \
-                   (glTexImage2D, glFramebufferTexture2D: given::float_texture, \
+            step: "make the next level: its size (each of its texels takes a 2x2 block of the \
+                   level below), an RGBA float texture of that size and a framebuffer that \
+                   draws into it (glTexImage2D, glFramebufferTexture2D: given::float_texture, \
                    given::framebuffer_on)",
             hints: [
                 "Each texel of the next level combines a 2x2 block of the level below, so the \
