@@ -263,11 +263,26 @@ fn feedback(run: &LessonRun, glsl_dir: bool, png: Option<&PathBuf>) -> Vec<Strin
     lines
 }
 
+/// A lesson as `learn --list --json` gives it: its card, and its host exercise (null for none).
+#[derive(serde::Serialize)]
+struct Listed {
+    #[serde(flatten)]
+    info: &'static learn::LessonInfo,
+    host_exercise: Option<learn::host::HostCard>,
+}
+
 /// `learn --list`.
 fn list(json: bool) -> anyhow::Result<()> {
     let infos: Vec<_> = learn::all().iter().map(|l| l.info()).collect();
     if json {
-        println!("{}", serde_json::to_string_pretty(&infos)?);
+        let listed: Vec<Listed> = infos
+            .into_iter()
+            .map(|info| Listed {
+                info,
+                host_exercise: learn::host::for_lesson(info.id).map(|h| h.card()),
+            })
+            .collect();
+        println!("{}", serde_json::to_string_pretty(&listed)?);
         return Ok(());
     }
     for info in infos {
@@ -281,6 +296,15 @@ fn list(json: bool) -> anyhow::Result<()> {
         println!("      shaders     {}", info.shaders.join(", "));
         for e in info.exercises {
             println!("      exercise {}  {} [{}]", e.number, e.task, e.shader);
+        }
+        if let Some(host) = learn::host::for_lesson(info.id) {
+            println!(
+                "      host exercise  {}: {} (edit {}; the solution: {})",
+                host.title,
+                host.run_command(),
+                host.template(),
+                host.solution()
+            );
         }
     }
     Ok(())
@@ -340,6 +364,14 @@ fn print_run(run: &LessonRun, info: &learn::LessonInfo, png: Option<&PathBuf>) {
         if run.passed { "passed" } else { "FAILED" },
         run.max_error
     );
+    if let Some(host) = learn::host::for_lesson(info.id) {
+        println!(
+            "your turn, on the host side ({}): {}, after editing {}",
+            host.title,
+            host.run_command(),
+            host.template()
+        );
+    }
     for line in next_step(info) {
         println!("{line}");
     }

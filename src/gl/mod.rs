@@ -12,6 +12,9 @@
 //! ([`reduce_shared`]). [`dump`] writes any texture to PNG, the tutorial's
 //! first debugging tip; [`profile`] shows where the time of a run goes, pass by pass.
 //!
+//! One door opens onto raw GL: [`learner`], for the host exercises (`examples/`), where a
+//! learner writes the GL calls with glow on the recorder of [`trace`].
+//!
 //! GL errors and framebuffer completeness are checked after every pass when
 //! [`Context::checks`] is on: always in debug builds, and in tests (which call
 //! [`Context::set_checks`]) or with `CLASSIC_GPGPU_GL_CHECKS=1`.
@@ -30,6 +33,7 @@ mod facing;
 pub mod feedback;
 mod finite;
 mod framebuffer;
+pub mod learner;
 mod mesh_buffers;
 pub mod npy;
 mod pass;

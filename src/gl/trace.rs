@@ -23,9 +23,14 @@
 //! and recorded with what it gave back, as that expression shows it (a new object's id, a
 //! status). The list begins with `(gl)`, the name its entries give the recorder, so that an
 //! argument can be shown by one of [`Gl`]'s methods: `gl.location(location)`, a uniform by name.
+//!
+//! The wrappers are public for one reader: a host exercise (`examples/`), which gets this
+//! recorder through the learner's door ([`super::learner`]) and writes its GL calls itself.
+//! There each draw is also inspected ([`super::learner::DrawFacts`]) before it is made.
 
 use glow::HasContext;
 use std::cell::{Cell, RefCell};
+use std::collections::VecDeque;
 use std::rc::Rc;
 
 /// One recorded call: `glBindFramebuffer(GL_FRAMEBUFFER, 3)`, and the pass that made it.
@@ -105,6 +110,13 @@ pub struct Gl {
     pass: RefCell<Option<Rc<str>>>,
     /// The name of the uniform the next glUniform call sets (set by `Program`).
     uniform: RefCell<Option<String>>,
+    /// The learner's door: inspect the state of every draw before it is made.
+    inspecting: Cell<bool>,
+    /// What the inspections saw, draw by draw, since they were last taken.
+    draws: RefCell<Vec<super::learner::DrawFacts>>,
+    /// GL errors that were pending when an inspection began: the next glGetError answers
+    /// them first, so that an inspection neither hides nor invents one.
+    held_errors: RefCell<VecDeque<u32>>,
 }
 
 impl Gl {
@@ -115,7 +127,63 @@ impl Gl {
             calls: RefCell::new(Vec::new()),
             pass: RefCell::new(None),
             uniform: RefCell::new(None),
+            inspecting: Cell::new(false),
+            draws: RefCell::new(Vec::new()),
+            held_errors: RefCell::new(VecDeque::new()),
         }
+    }
+
+    /// The calls recorded so far in this recording.
+    pub(super) fn recorded(&self) -> usize {
+        self.calls.borrow().len()
+    }
+
+    /// glow's context itself, whose calls are not recorded: for the learner's door, whose
+    /// checks of a learner's step must not show in the learner's trace, and nothing else.
+    pub(super) fn untraced(&self) -> &glow::Context {
+        &self.raw
+    }
+
+    /// Inspect every draw from now on (`true`), or no more.
+    pub(super) fn set_inspecting(&self, on: bool) {
+        self.inspecting.set(on);
+    }
+
+    /// The inspections of the draws made since the last call.
+    pub(super) fn take_draws(&self) -> Vec<super::learner::DrawFacts> {
+        std::mem::take(&mut *self.draws.borrow_mut())
+    }
+
+    /// Keep the GL errors pending now (an inspection is about to query the state).
+    pub(super) fn hold_errors(&self) {
+        let mut held = self.held_errors.borrow_mut();
+        loop {
+            // SAFETY: glGetError has no preconditions.
+            let code = unsafe { self.raw.get_error() };
+            if code == glow::NO_ERROR {
+                break;
+            }
+            held.push_back(code);
+        }
+    }
+
+    /// `glGetError`, not recorded: an error held by an inspection first, then GL's own.
+    pub(super) unsafe fn get_error_untraced(&self) -> u32 {
+        let held = self.held_errors.borrow_mut().pop_front();
+        held.unwrap_or_else(|| self.raw.get_error())
+    }
+
+    /// `glGetError`, recorded: an error held by an inspection first, then GL's own.
+    ///
+    /// # Safety
+    ///
+    /// As glow's `get_error`: the context is current on this thread.
+    pub unsafe fn get_error(&self) -> u32 {
+        let code = self.get_error_untraced();
+        if self.on.get() {
+            self.push("glGetError", String::new(), Some(error_name(code)));
+        }
+        code
     }
 
     /// Start recording (an earlier recording is dropped).
@@ -163,6 +231,12 @@ impl Gl {
     /// arguments are never formatted.
     fn record(&self, function: &'static str, args: impl FnOnce() -> String) {
         if self.on.get() {
+            if self.inspecting.get() && DRAWS.contains(&function) {
+                let call = self.recorded() + 1;
+                self.hold_errors();
+                let facts = super::learner::inspect_draw(&self.raw, function, call);
+                self.draws.borrow_mut().push(facts);
+            }
             self.push(function, args(), None);
         }
     }
@@ -197,6 +271,14 @@ impl Gl {
     }
 }
 
+/// The calls that draw: each is inspected first when the learner's door asks.
+const DRAWS: [&str; 4] = [
+    "glDrawArrays",
+    "glDrawArraysInstanced",
+    "glDrawElements",
+    "glDrawElementsInstanced",
+];
+
 /// The wrappers, from the list below: see the module's doc for an entry's form. An entry cannot
 /// name `self` (macro hygiene), hence the recorder's name the list begins with.
 macro_rules! traced {
@@ -206,7 +288,14 @@ macro_rules! traced {
         // The wrappers keep glow's signatures, however many arguments GL takes.
         #[allow(clippy::too_many_arguments)]
         impl Gl {
-            $(pub(super) unsafe fn $name(&self, $($arg: $ty),*) $(-> $ret)? {
+            $(#[doc = concat!("`", stringify!($function), "`, recorded while a trace is on: \
+                glow's `", stringify!($name), "`.")]
+            #[doc = ""]
+            #[doc = "# Safety"]
+            #[doc = ""]
+            #[doc = "As glow's: the context is current on this thread, and every object \
+                passed was made by it and is alive."]
+            pub unsafe fn $name(&self, $($arg: $ty),*) $(-> $ret)? {
                 let $gl = self;
                 traced!(@call $gl, $name($($arg),*), $function($($shown),*)
                     $(-> |$made| $result)?)
@@ -321,6 +410,10 @@ traced! { (gl)
     fn flush() = glFlush();
     fn framebuffer_texture(target: u32, attachment: u32, texture: Option<glow::Texture>, level: i32)
         = glFramebufferTexture(name_of(target), name_of(attachment), id_of(texture), level);
+    fn framebuffer_texture_2d(target: u32, attachment: u32, texture_target: u32,
+                              texture: Option<glow::Texture>, level: i32)
+        = glFramebufferTexture2D(name_of(target), name_of(attachment), name_of(texture_target),
+                                 id_of(texture), level);
     fn get_active_uniform(program: glow::Program, index: u32) -> Option<glow::ActiveUniform>
         = glGetActiveUniform(program.id(), index);
     fn get_active_uniforms(program: glow::Program) -> u32 = glGetProgramiv(program.id());
@@ -329,7 +422,6 @@ traced! { (gl)
         = glGetActiveUniformsiv(program.id(), list(uniforms), name_of(pname));
     fn get_buffer_sub_data(target: u32, offset: i32, dst_data: &mut [u8])
         = glGetBufferSubData(name_of(target), offset, byte_count(dst_data.len()));
-    fn get_error() -> u32 = glGetError() -> |status| error_name(status);
     fn get_parameter_i32(parameter: u32) -> i32 = glGetIntegerv(name_of(parameter));
     fn get_parameter_i64(parameter: u32) -> i64 = glGetInteger64v(name_of(parameter));
     fn get_parameter_indexed_i32(parameter: u32, index: u32) -> i32
@@ -419,8 +511,9 @@ traced! { (gl)
     fn viewport(x: i32, y: i32, width: i32, height: i32) = glViewport(x, y, width, height);
 }
 
-/// A GL object's id, as the trace shows it.
-trait Id {
+/// A GL object's id (its name, as GL numbers it): what the trace shows, and what the
+/// learner's door compares a learner's object with.
+pub trait Id {
     fn id(&self) -> u32;
 }
 
@@ -654,6 +747,7 @@ const NAMES: &[(u32, &str)] = &[
     name!(MINOR_VERSION),
     name!(NEAREST),
     name!(NEAREST_MIPMAP_NEAREST),
+    name!(NEAREST_MIPMAP_LINEAR),
     name!(NEVER),
     name!(NOTEQUAL),
     name!(ONE_MINUS_SRC_ALPHA),
@@ -678,6 +772,17 @@ const NAMES: &[(u32, &str)] = &[
     name!(REPLACE),
     name!(RG),
     name!(RG32F),
+    name!(RG16F),
+    name!(RG8),
+    name!(RGB),
+    name!(RGB8),
+    name!(RGB16F),
+    name!(RGB32F),
+    name!(R16),
+    name!(RGBA16),
+    name!(R32I),
+    name!(R32UI),
+    name!(RGBA32I),
     name!(RGBA),
     name!(RGBA16F),
     name!(RGBA32F),

@@ -13,6 +13,10 @@
 //! 5. an incomplete framebuffer: the GL layer refuses it, naming it and the attachment;
 //! 6. a shader that does not compile: the error names the file and the line;
 //! 7. a varying whose name does not match: the link error names the varying.
+//!
+//! The lesson's exercise is a hunt ([`super::host::hunt`]): `examples/debug-hunt.rs` plants
+//! four faults in host code (two of the above among them, with a time taken before the GPU
+//! finished and a uniform set with no program in use) for the learner to find and fix.
 
 use super::feedback::wrong_texels;
 use super::ping_pong::{initial_grid, jacobi_cpu};

@@ -18,6 +18,10 @@
 //! ([`guide`]: a page per lesson, made by running it, with the reduction ladder's section),
 //! the papers walked pass by pass ([`walks`]), and the named regions of the files that both
 //! cut their code from ([`regions`]). They are written with the page layer ([`crate::page`]).
+//!
+//! Host exercises ([`host`]): for lessons 1, 2, 3 and 8, an example of the crate in which the
+//! learner writes the host side's GL calls with glow (textures, framebuffer, program, viewport,
+//! draw, swap, readback), and for lesson 11 a program with faults planted to hunt down.
 
 // One file per lesson ([`all`] lists them in teaching order), and `kit`: what several share.
 pub mod bench;
@@ -43,6 +47,10 @@ mod texture_is_array;
 pub mod guide;
 pub mod regions;
 pub mod walks;
+
+// The host exercises: programs in `examples/` whose GL calls the learner writes, checked step
+// by step, their calls beside the solution's; and the debugging lesson's hunt.
+pub mod host;
 
 use crate::gl::picture::{self, Panel, Scale};
 use crate::gl::Context;

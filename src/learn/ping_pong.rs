@@ -22,7 +22,7 @@ const JACOBI: &str = "glsl/learn/jacobi.frag";
 const JACOBI_COMPUTE: &str = "glsl/learn/compute/jacobi.comp";
 
 /// The grid is `N x N`, its top row held at 1 and the other edges at 0.
-const N: u32 = 16;
+pub(crate) const N: u32 = 16;
 /// Steps of the lesson's own run.
 pub const STEPS: u32 = 24;
 
@@ -93,7 +93,7 @@ impl Lesson for PingPong {
 /// below 2^-23 (1.2e-7), and a mean does not grow earlier differences, so after k steps the
 /// GPU and CPU differ by at most k * 1.2e-7 even if the GPU adds in another order: 1e-5 up
 /// to 80 steps (the lesson's run), k * 2^-23 beyond (the viewer's, up to the fixed point).
-fn tolerance(steps: u32) -> f64 {
+pub(crate) fn tolerance(steps: u32) -> f64 {
     (steps as f64 * f64::from(f32::EPSILON)).max(1e-5)
 }
 

@@ -113,7 +113,7 @@ pub fn saxpy_cpu(a: f32, x: &[f32], y: &[f32]) -> Vec<f32> {
 /// The bench's random values in [-1, 1) give |a x + y| < 3.5, where an fp32 step is 2.4e-7; a
 /// fused multiply-add rounds once instead of twice, so the GPU may differ from the CPU by about
 /// one step there. 1e-6 allows four.
-const SAXPY_TOLERANCE: f64 = 1e-6;
+pub(crate) const SAXPY_TOLERANCE: f64 = 1e-6;
 
 fn saxpy(
     ctx: &Context,

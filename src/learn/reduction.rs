@@ -16,13 +16,13 @@ const REDUCE_WIDE: &str = "glsl/learn/reduce_wide.frag";
 const REDUCE_COMPUTE: &str = "glsl/gl/compute/reduce.comp";
 
 /// The array is `W x H` (not powers of two: the edges take the identities).
-const W: u32 = 48;
-const H: u32 = 40;
+pub(crate) const W: u32 = 48;
+pub(crate) const H: u32 = 40;
 /// The wider fan-in.
 const WIDE: u32 = 4;
 
 /// fp32's unit roundoff, 2^-24.
-const UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+pub(crate) const UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
 
 pub struct Reduction;
 
@@ -182,7 +182,7 @@ fn ladder(
 
 /// The first level on the CPU: for each `fan x fan` block of the `W x H` values (those past
 /// the edge left out), its sum and its maximum.
-fn blocks_cpu(values: &[f32], fan: u32) -> Vec<f32> {
+pub(crate) fn blocks_cpu(values: &[f32], fan: u32) -> Vec<f32> {
     let (w, h) = (W.div_ceil(fan), H.div_ceil(fan));
     let mut out = Vec::with_capacity((w * h * 2) as usize);
     for by in 0..h {

@@ -59,6 +59,26 @@ pub fn cut(file: &str, name: &str) -> Result<Region, String> {
     }
 }
 
+/// The region `name` of `text`, the text of `file`: a file that is not compiled in with the
+/// others (an example's solution, which the library includes itself).
+pub fn cut_text(file: &'static str, text: &str, name: &str) -> Result<Region, String> {
+    let matches: Vec<Region> = all_in(file, text)?
+        .into_iter()
+        .filter(|r| r.name == name)
+        .collect();
+    match matches.as_slice() {
+        [region] if !region.text.trim().is_empty() => Ok(region.clone()),
+        [_] => Err(format!("{file}: region `{name}` is empty")),
+        [] => Err(format!(
+            "{file}: no region `{name}` (a line `{START} {name}` ... `{END}`)"
+        )),
+        _ => Err(format!(
+            "{file}: region `{name}` is named {} times",
+            matches.len()
+        )),
+    }
+}
+
 /// The names of the regions of `file`, in the order they open.
 pub fn names(file: &str) -> Result<Vec<String>, String> {
     let (file, text) =
