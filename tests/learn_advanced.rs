@@ -189,6 +189,24 @@ fn the_guide_builds_and_every_link_and_picture_resolves() {
     // The glossary is linked from the lesson pages that use its terms.
     let peeling = std::fs::read_to_string(dir.join("lesson-depth-peeling.html")).unwrap();
     assert!(peeling.contains("glossary.html#peel"));
+    // Each host exercise is on its lesson's page: the file to edit, which exists, and the
+    // commands that run it and its solution; a lesson without one has no such section.
+    for card in classic_gpgpu::learn::host::all() {
+        let page =
+            std::fs::read_to_string(dir.join(format!("lesson-{}.html", card.lesson))).unwrap();
+        for text in [
+            card.template(),
+            card.run_command(),
+            card.run_solution_command(),
+        ] {
+            assert!(page.contains(&text), "lesson-{}: no {text}", card.lesson);
+        }
+        let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        assert!(repo.join(card.template()).is_file(), "{}", card.template());
+        assert!(repo.join(card.solution()).is_file(), "{}", card.solution());
+    }
+    let blending = std::fs::read_to_string(dir.join("lesson-scatter-and-blend.html")).unwrap();
+    assert!(!blending.contains("Host exercise"));
 
     // Written again into its own folder: fine. A folder of someone else's: refused, unless
     // forced, and nothing in it lost.

@@ -212,6 +212,7 @@ fn lesson_page(
     }
     body.push_str("</ul>\n");
     body.push_str(&exercises(info));
+    body.push_str(&host_exercise(info));
     body.push_str(&terms_used(&format!("{} {}", info.idea, info.title)));
     body.push_str("<p>");
     if let Some(p) = previous {
@@ -405,6 +406,55 @@ fn exercises(info: &crate::learn::LessonInfo) -> String {
             )),
         }
     }
+    out
+}
+
+/// The lesson's host exercise, where it has one: the example the learner edits (every GL call
+/// theirs), its gaps or planted faults, and the commands, run from the repository.
+fn host_exercise(info: &crate::learn::LessonInfo) -> String {
+    let Some(card) = crate::learn::host::for_lesson(info.id) else {
+        return String::new();
+    };
+    let card = card.card();
+    let hunt = !card.faults.is_empty();
+    let (intro, unit, items, listed) = if hunt {
+        (
+            "Here you hunt faults in a program that makes its GL calls with glow: find each, \
+             fix it, run again; the run says which faults are still there by what they do, \
+             and <code>-- --trace</code> and <code>-- --inspect</code> show the calls and the \
+             draws.",
+            "fault",
+            &card.faults,
+            "The faults, by their symptoms",
+        )
+    } else {
+        (
+            "Here you write the GL calls yourself, with glow: textures, framebuffer, viewport, \
+             program and uniforms, the draw and the readback. A gap left unfilled stops the run \
+             naming its GL step; the lines after each gap check your step against GL's state; \
+             the result is checked against the CPU texel by texel, and your calls are set \
+             beside the solution's with the first difference marked.",
+            "gap",
+            &card.gaps,
+            "The gaps, each one GL step",
+        )
+    };
+    let mut out = format!(
+        "<h2>Host exercise: {}</h2>\n<p>{intro} The file to edit: <code>{}</code>. Run from \
+         the repository (the crate's build is reused: seconds):</p>\n<pre>{}\n{} -- --hint \
+         1.1   # {unit} 1: the idea; 1.2 the call; 1.3 the solution's lines\n{}   # the \
+         shipped solution, {}</pre>\n<p>{listed}:</p>\n<ol>\n",
+        escape(card.title),
+        escape(&card.template),
+        escape(&card.run),
+        escape(&card.run),
+        escape(&card.run_solution),
+        escape(&card.solution),
+    );
+    for item in items {
+        out.push_str(&format!("<li>{}</li>\n", escape(item)));
+    }
+    out.push_str("</ol>\n");
     out
 }
 
