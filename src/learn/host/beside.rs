@@ -119,11 +119,14 @@ pub fn lines(
             yours.len()
         )];
     };
-    let differing = rows.iter().filter(|r| !r.same()).count();
+    let differing = match rows.iter().filter(|r| !r.same()).count() {
+        1 => "1 row differs".to_string(),
+        n => format!("{n} rows differ"),
+    };
     let mut out = vec![
         format!(
-            "your GL calls ({}) beside the solution's ({}, {solution}): {differing} rows differ, \
-             the first is row {}, marked >>",
+            "your GL calls ({}) beside the solution's ({}, {solution}): {differing}, the first \
+             is row {}, marked >>",
             yours.len(),
             theirs.len(),
             first + 1
