@@ -104,6 +104,8 @@ pub struct Plot {
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 /// The size of the axes' part of the image; the legend adds rows below it.
 const SIZE: (u32, u32) = (900, 560);
+/// The size of tick labels and legend text, the plot's smallest, px.
+const LABEL_PX: u32 = 14;
 /// Height of one legend row, px.
 const LEGEND_ROW: u32 = 22;
 /// Legend entries per row.
@@ -433,6 +435,7 @@ impl Plot {
                 legend: layout.curves.iter().map(|c| c.name.clone()).collect(),
                 curves: layout.curves.iter().filter(|c| c.is_data()).count(),
                 notes: layout.notes.clone(),
+                text_px: LABEL_PX,
             }),
         );
         Ok(())
@@ -537,7 +540,7 @@ impl Plot {
             .configure_mesh()
             .x_desc(self.x_label.as_str())
             .y_desc(self.y_label.as_str())
-            .label_style(("sans-serif", 14))
+            .label_style(("sans-serif", LABEL_PX))
             .x_labels(layout.x.ticks.len().clamp(2, 10))
             .y_labels(layout.y.ticks.len().clamp(2, 10))
             .x_label_formatter(&x_label)
@@ -654,7 +657,7 @@ fn draw_marker(
 /// [`LEGEND_COLUMNS`] columns, then the notes one per row.
 fn draw_legend(area: &Area, layout: &Layout) -> anyhow::Result<()> {
     let column_width = (SIZE.0 as i32 - 100) / LEGEND_COLUMNS as i32;
-    let font = ("sans-serif", 14).into_font().color(&BLACK);
+    let font = ("sans-serif", LABEL_PX).into_font().color(&BLACK);
     let row = LEGEND_ROW as i32;
     for (i, curve) in layout.curves.iter().enumerate() {
         let x = 80 + (i % LEGEND_COLUMNS) as i32 * column_width;
