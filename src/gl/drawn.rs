@@ -66,9 +66,9 @@ fn all_filled() -> f32 {
     1.0
 }
 
-/// A panel with less than this share of its texels not zero shows almost nothing: such data
+/// A panel with fewer than one texel in a thousand not zero shows almost nothing: such data
 /// is better said in numbers or drawn with the others (the figure test refuses it).
-pub const MOSTLY_EMPTY: f32 = 0.002;
+pub const MOSTLY_EMPTY: f32 = 0.001;
 
 impl PanelDrawn {
     /// Every texel a whole block of pixels (integer magnification, none dropped).

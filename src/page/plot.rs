@@ -227,6 +227,40 @@ fn curves(series: &[Series], log_x: bool, log_y: bool) -> Vec<Curve> {
     out.into_iter().map(|(c, _)| c).collect()
 }
 
+/// Two data curves closer than this (relative to the larger value) at every x are said to lie
+/// on one another: one hides the other where they are drawn.
+const COINCIDENT: f64 = 0.05;
+
+/// A note for each pair of data curves with the same x values that lie within [`COINCIDENT`]
+/// of each other at every point (identical ones are already one curve), so that a reader
+/// knows the curve they see is two.
+fn coincident_notes(curves: &[Curve]) -> Vec<String> {
+    let data: Vec<&Curve> = curves.iter().filter(|c| c.is_data()).collect();
+    let mut notes = Vec::new();
+    for (i, a) in data.iter().enumerate() {
+        for b in &data[i + 1..] {
+            let same_x = a.points.len() >= 2
+                && a.points.len() == b.points.len()
+                && a.points.iter().zip(&b.points).all(|(p, q)| p.0 == q.0);
+            let close = a
+                .points
+                .iter()
+                .zip(&b.points)
+                .all(|(p, q)| (p.1 - q.1).abs() <= COINCIDENT * p.1.abs().max(q.1.abs()));
+            if same_x && close {
+                notes.push(format!(
+                    "'{}' and '{}' lie within {:.0}% of each other at every point: one hides \
+                     the other.",
+                    a.name,
+                    b.name,
+                    100.0 * COINCIDENT
+                ));
+            }
+        }
+    }
+    notes
+}
+
 /// One axis: its range and the values it labels.
 #[derive(Clone, Debug, PartialEq)]
 struct Axis {
@@ -467,11 +501,10 @@ impl Plot {
         } else {
             linear_axis(&ys, false)
         };
-        let mut notes = Vec::new();
+        let mut notes = coincident_notes(&curves);
         if has_zeros {
             notes.push(
-                "Hollow marks on the bottom axis: a value of exactly 0 (a log axis has no 0)."
-                    .to_string(),
+                "Hollow marks on the bottom axis: a value of 0 (a log axis has no 0).".to_string(),
             );
         }
         let dropped: usize = self
@@ -757,6 +790,22 @@ mod tests {
             let light = 0.2126 * c.0 as f64 + 0.7152 * c.1 as f64 + 0.0722 * c.2 as f64;
             assert!(light < 200.0, "{c:?}");
         }
+    }
+
+    #[test]
+    fn curves_that_lie_on_one_another_are_said_once() {
+        let curves = curves(
+            &[
+                Series::new("VS, here", vec![(1.0, 100.0), (16.0, 50.0)]),
+                Series::new("VS 1/draw, here", vec![(1.0, 103.0), (16.0, 49.0)]),
+                Series::new("2-pass, here", vec![(1.0, 60.0), (16.0, 49.5)]),
+            ],
+            true,
+            true,
+        );
+        let notes = coincident_notes(&curves);
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(notes[0].starts_with("'VS, here' and 'VS 1/draw, here' lie within 5%"));
     }
 
     #[test]

@@ -122,13 +122,14 @@ fn one_table(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
         }
     };
     let mut out = format!(
-        "<div class=\"table\"><p class=\"caption\">{}</p><div class=\"scroll\"><table>\n<tr>",
+        "<div class=\"table\"><p class=\"caption\">{}</p><div class=\"scroll\"><table>\n<thead><tr>",
         escape(&t.caption)
     );
     for (c, h) in t.header.iter().enumerate() {
         out.push_str(&format!("<th{}>{}</th>", class(c), escape_cell(h)));
     }
-    out.push_str("</tr>\n");
+    // The header row repeats on every printed page the table runs over.
+    out.push_str("</tr></thead>\n<tbody>");
     for (r, row) in t.rows.iter().enumerate() {
         match row_ids.get(r) {
             Some(id) => out.push_str(&format!("<tr id=\"{}\">", escape(id))),
@@ -139,7 +140,7 @@ fn one_table(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
         }
         out.push_str("</tr>\n");
     }
-    out.push_str("</table></div></div>\n");
+    out.push_str("</tbody></table></div></div>\n");
     out
 }
 

@@ -336,7 +336,14 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         let path = opts.out_dir.join(&file);
         if texture.format().is_float() {
             let channels = ["pass 1 x", "pass 1 y", "pass 1 z"];
-            dump::texture_picture_png(texture, &channels, DumpRange::Auto, (960, 480), &path)?;
+            // As wide as the page and tall enough for the panels one above the other, so a
+            // render target of 1024 characters is shown texel for pixel (a narrow one takes
+            // the panels side by side, enlarged).
+            let size = (
+                crate::page::html::CONTENT_WIDTH,
+                channels.len() as u32 * (texture.height() + 100),
+            );
+            dump::texture_picture_png(texture, &channels, DumpRange::Auto, size, &path)?;
         } else {
             dump::texture_png(texture, &path, DumpRange::Auto)?;
         }

@@ -48,7 +48,7 @@ impl Paper for Paper4 {
         let paper = &Published::get()?.paper4;
         let mut figures = fig4::figures(opts, results)?;
         figures.push(fig5::figure(opts, results)?);
-        figures.extend(fig10::figures(results));
+        figures.extend(fig10::figures(opts, results));
         Ok(Section {
             summary: summary(opts, results),
             tables: vec![
