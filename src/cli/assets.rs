@@ -156,7 +156,8 @@ mod tests {
         for word in readme.split(|c: char| c.is_whitespace() || c == '`') {
             let word = word.trim_end_matches(['.', ',', ';', ':', ')']);
             if let Some(path) = word.strip_prefix("assets/") {
-                let known = path.starts_with("results/")
+                let known = path.is_empty()
+                    || path.starts_with("results/")
                     || path.starts_with("readme/")
                     || path.ends_with('/')
                     || ["paper_tables.toml", "period_gpus.toml"].contains(&path)
