@@ -343,7 +343,9 @@ mod tests {
         let problems = bad.problems();
         assert_eq!(problems.len(), 4, "{problems:?}");
         assert!(
-            problems.iter().any(|p| p.contains("'peel 5': mostly empty")),
+            problems
+                .iter()
+                .any(|p| p.contains("'peel 5': mostly empty")),
             "{problems:?}"
         );
         // 16-pixel text reads at full size and at 75%, not at half.
