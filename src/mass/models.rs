@@ -2,7 +2,7 @@
 //!
 //! Five of the seven have Table 1's vertex and face counts: the cube, sphere, torus and knot
 //! as generated, and the bunny and the pipe refined to the paper's counts by longest-edge
-//! splits ([`mesh::retessellate`]), which leave the surface where it was and keep it closed.
+//! splits ([`mesh::retessellate()`]), which leave the surface where it was and keep it closed.
 //! The teapot has the paper's 821 vertices but 1560 faces against 1628 (the paper 4 section's
 //! fidelity table says why); the exact meshes of the paper are not published.
 
