@@ -113,7 +113,7 @@ td.unjudged{color:#666}img{max-width:100%;height:auto;border:1px solid #ddd}\
 figure{margin:1em 0}.note{background:#ffd;padding:.5em 1em;border:1px solid #dd8}\
 .print{display:none}@media print{body{max-width:none;margin:0;padding:0}\
 div.scroll{overflow:visible}table{font-size:75%}tr,img,figure{break-inside:avoid}\
-p.caption{break-after:avoid}\
+p.caption{break-after:avoid}div.table{break-inside:avoid-page}\
 .print{display:block}.screen{display:none}}";
 
 #[cfg(test)]

@@ -227,30 +227,38 @@ fn curves(series: &[Series], log_x: bool, log_y: bool) -> Vec<Curve> {
     out.into_iter().map(|(c, _)| c).collect()
 }
 
-/// Two data curves closer than this (relative to the larger value) at every x are said to lie
-/// on one another: one hides the other where they are drawn.
+/// Two data curves closer than this (relative to the larger value) at a point are said to lie
+/// on one another there: one hides the other where they are drawn.
 const COINCIDENT: f64 = 0.05;
 
 /// A note for each pair of data curves with the same x values that lie within [`COINCIDENT`]
-/// of each other at every point (identical ones are already one curve), so that a reader
-/// knows the curve they see is two.
+/// of each other at two points or more (identical ones are already one curve), naming those
+/// points, so that a reader knows the curve they see there is two.
 fn coincident_notes(curves: &[Curve]) -> Vec<String> {
     let data: Vec<&Curve> = curves.iter().filter(|c| c.is_data()).collect();
     let mut notes = Vec::new();
     for (i, a) in data.iter().enumerate() {
         for b in &data[i + 1..] {
-            let same_x = a.points.len() >= 2
-                && a.points.len() == b.points.len()
+            let same_x = a.points.len() == b.points.len()
                 && a.points.iter().zip(&b.points).all(|(p, q)| p.0 == q.0);
-            let close = a
+            if !same_x {
+                continue;
+            }
+            let close: Vec<String> = a
                 .points
                 .iter()
                 .zip(&b.points)
-                .all(|(p, q)| (p.1 - q.1).abs() <= COINCIDENT * p.1.abs().max(q.1.abs()));
-            if same_x && close {
+                .filter(|(p, q)| (p.1 - q.1).abs() <= COINCIDENT * p.1.abs().max(q.1.abs()))
+                .map(|(p, _)| tick_label(p.0))
+                .collect();
+            if close.len() >= 2 {
+                let at = if close.len() == a.points.len() {
+                    "at every point".to_string()
+                } else {
+                    format!("at x = {}", close.join(", "))
+                };
                 notes.push(format!(
-                    "'{}' and '{}' lie within {:.0}% of each other at every point: one hides \
-                     the other.",
+                    "'{}' and '{}' lie within {:.0}% of each other {at}: one hides the other.",
                     a.name,
                     b.name,
                     100.0 * COINCIDENT
@@ -806,6 +814,20 @@ mod tests {
         let notes = coincident_notes(&curves);
         assert_eq!(notes.len(), 1, "{notes:?}");
         assert!(notes[0].starts_with("'VS, here' and 'VS 1/draw, here' lie within 5%"));
+        assert!(notes[0].contains("at every point"), "{notes:?}");
+        // Close at two of three points: those are named.
+        let partly = super::curves(
+            &[
+                Series::new("a", vec![(1.0, 100.0), (16.0, 50.0), (64.0, 10.0)]),
+                Series::new("b", vec![(1.0, 200.0), (16.0, 51.0), (64.0, 10.2)]),
+            ],
+            true,
+            true,
+        );
+        assert_eq!(
+            coincident_notes(&partly),
+            ["'a' and 'b' lie within 5% of each other at x = 16, 64: one hides the other."]
+        );
     }
 
     #[test]
