@@ -84,6 +84,10 @@ enum Command {
     /// The shader files: list them, or export them to edit and run with --glsl-dir.
     #[command(subcommand)]
     Glsl(cli::glsl::GlslCommand),
+    /// The inputs the project ships (the bunny, text.png, the XOR network, example files):
+    /// list them, or export them to use from any folder.
+    #[command(subcommand)]
+    Assets(cli::assets::AssetsCommand),
     /// The lessons of the basic GPGPU approach, in order, each checked against the CPU.
     Learn(cli::learn::LearnArgs),
     /// Several machines' results.json side by side: every claim a row, each machine a column
@@ -180,6 +184,8 @@ fn quiet_on_broken_pipe() {
 }
 
 fn main() -> ExitCode {
+    // Before any thread: it may set a variable of the environment.
+    gl::quiet_display_probes();
     quiet_on_broken_pipe();
     let cli = Cli::parse();
     if let Err(e) = check_glsl_dir(cli.glsl_dir.as_deref()) {
@@ -234,6 +240,7 @@ fn main() -> ExitCode {
             .and_then(|ctx| cli::selftest::run(&a, &ctx, json)),
         Command::View(a) => cli::view::run(&a, global.glsl_dir.clone(), || global.context()),
         Command::Glsl(c) => cli::glsl::run(&c, json),
+        Command::Assets(c) => cli::assets::run(&c, json),
         Command::Learn(a) => cli::learn::run(&a, json, || global.context()),
         Command::Compare(a) => cli::compare::run(&a, json),
     };

@@ -200,6 +200,8 @@ fn dump_writes_the_integrands_of_each_peel() {
             );
         }
     }
+    // Where each peel reaches, in one picture: the deep peels of a few texels show there.
+    assert!(dir.join("layers.png").is_file());
 }
 
 #[test]

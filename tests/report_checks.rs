@@ -249,3 +249,90 @@ fn a_check_the_context_cannot_make_is_left_out_of_the_list_and_the_summary() {
         assert!(e.to_string().contains(compute_check), "{e}");
     }
 }
+
+/// Each departure from the papers a referee read found undeclared has its row, and each thing
+/// the sources name that is not built has its "not built" row (issue 53).
+#[test]
+fn every_departure_found_by_a_referee_is_declared() {
+    let says = |rows: &[Fidelity], words: &[&str]| {
+        rows.iter().any(|r| {
+            let text = format!("{} {} {} {}", r.feature, r.paper, r.code, r.deviation);
+            words.iter().all(|w| text.contains(w))
+        })
+    };
+    let p4 = paper4::fidelity_rows();
+    assert!(says(
+        &p4,
+        &["eq. 2", "eq. 5", "centre of mass", "assemble.rs"]
+    ));
+    assert!(says(&p4, &["sgn(n_z)", "gl_FrontFacing", "peel_main.frag"]));
+    let p3 = classic_gpgpu::report::paper3::fidelity_rows();
+    assert!(says(&p3, &["one hidden layer", "30", "not given"]));
+    let p1 = classic_gpgpu::report::paper1::fidelity_rows();
+    assert!(says(&p1, &["main()", "(float3)", "global"]));
+    let l3 = lecture3::fidelity_rows();
+    assert!(says(
+        &l3,
+        &["atomic counter", "preferred", "pipeline statistics"]
+    ));
+    let named = |rows: &[not_built::NotBuilt], words: &[&str]| {
+        rows.iter().any(|r| {
+            let text = format!("{} {} {}", r.what, r.source, r.instead);
+            words.iter().all(|w| text.contains(w))
+        })
+    };
+    assert!(named(
+        not_built::LECTURE3,
+        &["adaptive screen interpolation", "Ki & Oh"]
+    ));
+    assert!(named(not_built::PAPER3, &["learning on the GPU", "CPU"]));
+    assert!(named(not_built::PAPER4, &["not a plane", "section 5.2"]));
+    assert!(named(
+        not_built::LECTURE5,
+        &["CUDA", "G80", "compute shaders"]
+    ));
+}
+
+/// Table 1's objects at the paper's vertex and face counts, or a fidelity row naming the
+/// object with both its counts and the paper's; the bunny and the pipe are refined to the
+/// paper's counts and stay closed.
+#[test]
+fn table1_objects_have_the_papers_counts_or_a_row_says_how_far() {
+    use classic_gpgpu::mass::models;
+    use classic_gpgpu::report::published::Published;
+    let paper = &Published::get().unwrap().paper4;
+    let rows = paper4::fidelity_rows();
+    for name in models::PAPER_OBJECTS {
+        let mesh = models::paper_object(name).unwrap();
+        let published = paper
+            .object(name)
+            .unwrap_or_else(|| panic!("{name} in Table 1"));
+        let (v, f) = (mesh.vertex_count(), mesh.triangle_count());
+        if (v as u32, f as u32) == (published.vertices, published.faces) {
+            continue;
+        }
+        let ours = format!("{v} vertices");
+        let declared = rows.iter().any(|r| {
+            r.deviation.contains(name)
+                && r.deviation.contains(&ours)
+                && r.deviation.contains(&f.to_string())
+                && r.paper
+                    .contains(&format!("{}/{}", published.vertices, published.faces))
+        });
+        assert!(
+            declared,
+            "{name}: {v}/{f} against Table 1's {}/{}, and no fidelity row says so",
+            published.vertices, published.faces
+        );
+    }
+    for name in ["bunny", "pipe"] {
+        let mesh = models::paper_object(name).unwrap();
+        assert!(mesh.closedness().is_closed(), "{name} is not closed");
+        let p = paper.object(name).unwrap();
+        assert_eq!(
+            (mesh.vertex_count() as u32, mesh.triangle_count() as u32),
+            (p.vertices, p.faces),
+            "{name}"
+        );
+    }
+}

@@ -1,6 +1,7 @@
 //! A picture of a frame, as in the paper's Fig. 1 and Fig. 6(a): the two models (blue and
-//! cyan), their colliding triangles (red), and the boxes of the colliding AABB pairs
-//! (orange for X, yellow for Y), from an oblique orthographic view. For `collide --dump`.
+//! cyan), their colliding triangles (red, drawn over the surfaces that would hide them), and
+//! the boxes of the colliding AABB pairs (orange for X, yellow for Y), from an oblique
+//! orthographic view. For `collide --dump`.
 
 use super::aabb::Aabb;
 use super::pipeline::{FrameResult, StreamingCollider};
@@ -73,6 +74,9 @@ pub fn draw(
 ) -> Result<(), GlError> {
     let ctx = target.context();
     let mut tri_vertices: Vec<[f32; 6]> = Vec::new();
+    // The colliding triangles lie where the models pass through each other, mostly hidden by
+    // the surfaces in front: drawn a second time over everything, so that every one shows.
+    let mut hit_vertices: Vec<[f32; 6]> = Vec::new();
     for (model, base) in [(x, BLUE), (y, CYAN)] {
         let mut colliding = vec![false; model.triangles.len()];
         for &t in model.colliding {
@@ -81,6 +85,9 @@ pub fn draw(
         for (t, corners) in model.triangles.iter().enumerate() {
             let c = if colliding[t] { RED } else { base };
             tri_vertices.extend(corners.iter().map(|p| vertex(*p, c)));
+            if colliding[t] {
+                hit_vertices.extend(corners.iter().map(|p| vertex(*p, RED)));
+            }
         }
     }
     let mut line_vertices: Vec<[f32; 6]> = Vec::new();
@@ -109,9 +116,11 @@ pub fn draw(
         }),
         ..DrawState::default()
     };
-    for (vertices, primitive, lit) in [
-        (&tri_vertices, Primitive::Triangles, true),
-        (&line_vertices, Primitive::Lines, false),
+    let on_top = DrawState::default();
+    for (vertices, primitive, lit, state) in [
+        (&tri_vertices, Primitive::Triangles, true, state),
+        (&hit_vertices, Primitive::Triangles, false, on_top),
+        (&line_vertices, Primitive::Lines, false, state),
     ] {
         if vertices.is_empty() {
             continue;

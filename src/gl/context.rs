@@ -23,6 +23,25 @@ const MESA_PACKAGES: &str = "libegl1 libegl-mesa0 libgl1-mesa-dri";
 /// OpenGL versions asked for, newest first; 3.3 core is the floor of the faithful paths.
 const GL_VERSIONS: [(i32, i32); 4] = [(4, 5), (4, 3), (4, 1), (3, 3)];
 
+/// Mesa's Vulkan layer that picks a device (`VK_LAYER_MESA_device_select`, loaded implicitly
+/// with `mesa-vulkan-drivers`) looks for a Wayland and an X display when zink enumerates the
+/// Vulkan devices; with `XDG_RUNTIME_DIR` unset, libwayland-client prints "error:
+/// XDG_RUNTIME_DIR is invalid or not set in the environment." to stderr on each probe, although
+/// nothing failed. A headless context has no display to choose a device by, so the layer is
+/// switched off with its own switch (`NODEVICE_SELECT=1`) in exactly that case: no
+/// `XDG_RUNTIME_DIR`, and no device chosen by the user (`MESA_VK_DEVICE_SELECT`, `DRI_PRIME`,
+/// `NODEVICE_SELECT` already set). Call it first thing in `main`, before any thread starts
+/// (it sets a variable of the process's environment).
+pub fn quiet_display_probes() {
+    let unset = |name: &str| std::env::var_os(name).is_none_or(|v| v.is_empty());
+    let user_chose = ["MESA_VK_DEVICE_SELECT", "DRI_PRIME", "NODEVICE_SELECT"]
+        .iter()
+        .any(|name| !unset(name));
+    if unset("XDG_RUNTIME_DIR") && !user_chose {
+        std::env::set_var("NODEVICE_SELECT", "1");
+    }
+}
+
 /// Which platform provides the context.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]

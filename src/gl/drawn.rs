@@ -41,6 +41,9 @@ pub struct PlotDrawn {
     pub curves: usize,
     /// Lines under the legend: off-scale and zero marks, reference lines.
     pub notes: Vec<String>,
+    /// The height of its smallest text (tick labels, legend), pixels (0: not recorded).
+    #[serde(default)]
+    pub text_px: u32,
 }
 
 /// One panel of a picture.
@@ -54,7 +57,18 @@ pub struct PanelDrawn {
     /// The buffer's size in texels and the image's size in pixels.
     pub texels: (u32, u32),
     pub pixels: (u32, u32),
+    /// The share of its texels that are not zero (drawn in a colour other than zero's grey).
+    #[serde(default = "all_filled")]
+    pub filled: f32,
 }
+
+fn all_filled() -> f32 {
+    1.0
+}
+
+/// A panel with fewer than one texel in a thousand not zero shows almost nothing: such data
+/// is better said in numbers or drawn with the others (the figure test refuses it).
+pub const MOSTLY_EMPTY: f32 = 0.001;
 
 impl PanelDrawn {
     /// Every texel a whole block of pixels (integer magnification, none dropped).
@@ -68,6 +82,9 @@ impl PanelDrawn {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PictureDrawn {
     pub panels: Vec<PanelDrawn>,
+    /// The height of its smallest text (titles, key numbers), pixels (0: not recorded).
+    #[serde(default)]
+    pub text_px: u32,
 }
 
 /// One rendered frame of a [`FramesDrawn`].
@@ -85,12 +102,46 @@ pub struct FrameDrawn {
 pub struct FramesDrawn {
     pub frames: Vec<FrameDrawn>,
     pub legend: Vec<String>,
+    /// The height of its smallest text (titles, legend), pixels (0: not recorded).
+    #[serde(default)]
+    pub text_px: u32,
 }
 
 /// The most lines a panel title may wrap to.
 pub const MAX_TITLE_LINES: usize = 3;
 
+/// The least height, pixels, of any text as a reader sees it on the page.
+pub const MIN_TEXT_SHOWN_PX: f64 = 12.0;
+
 impl Drawn {
+    /// The height of the figure's smallest text in its own pixels, where it has text (`None`
+    /// for a rendered frame or bare data, which carry none).
+    pub fn text_px(&self) -> Option<u32> {
+        match self {
+            Drawn::Plot(p) => Some(p.text_px),
+            Drawn::Picture(p) => Some(p.text_px),
+            Drawn::Frames(f) => Some(f.text_px),
+            Drawn::BareFloats { .. } | Drawn::Image { .. } => None,
+        }
+    }
+
+    /// What keeps the figure from being read where it is shown at `scale` of its size (1 at
+    /// full size): its [`Drawn::problems`], and text smaller than [`MIN_TEXT_SHOWN_PX`] there.
+    pub fn problems_shown_at(&self, scale: f64) -> Vec<String> {
+        let mut out = self.problems();
+        if let Some(px) = self.text_px() {
+            let shown = px as f64 * scale;
+            if shown < MIN_TEXT_SHOWN_PX {
+                out.push(format!(
+                    "its smallest text is {px} px, {shown:.1} px as shown at {:.0}% (at least \
+                     {MIN_TEXT_SHOWN_PX} px)",
+                    100.0 * scale
+                ));
+            }
+        }
+        out
+    }
+
     /// What keeps the figure from being read without the code; empty when nothing does.
     pub fn problems(&self) -> Vec<String> {
         let mut out = Vec::new();
@@ -142,6 +193,12 @@ impl Drawn {
                     }
                     if panel.key.0.is_empty() || panel.key.1.is_empty() {
                         out.push(format!("{name}: no colour key"));
+                    }
+                    if panel.filled < MOSTLY_EMPTY {
+                        out.push(format!(
+                            "{name}: mostly empty ({:.2}% of its texels not zero)",
+                            100.0 * panel.filled
+                        ));
                     }
                     if !panel.whole_texels() {
                         out.push(format!(
@@ -227,6 +284,7 @@ mod tests {
             legend: vec!["a".into(), "b".into()],
             curves: 2,
             notes: vec![],
+            text_px: 14,
         }
     }
 
@@ -257,9 +315,11 @@ mod tests {
             key: ("0".into(), "1".into()),
             texels: (64, 8),
             pixels: (256, 32),
+            filled: 0.5,
         };
         let good = Drawn::Picture(PictureDrawn {
             panels: vec![panel.clone()],
+            text_px: 16,
         });
         assert!(good.problems().is_empty());
         let shrunk = PanelDrawn {
@@ -271,11 +331,34 @@ mod tests {
             title_lines: 6,
             ..panel.clone()
         };
+        let empty = PanelDrawn {
+            title: "peel 5".into(),
+            filled: 0.0003,
+            ..panel.clone()
+        };
         let bad = Drawn::Picture(PictureDrawn {
-            panels: vec![panel, shrunk, wrapped],
+            panels: vec![panel, shrunk, wrapped, empty],
+            text_px: 16,
         });
         let problems = bad.problems();
-        assert_eq!(problems.len(), 3, "{problems:?}");
+        assert_eq!(problems.len(), 4, "{problems:?}");
+        assert!(
+            problems
+                .iter()
+                .any(|p| p.contains("'peel 5': mostly empty")),
+            "{problems:?}"
+        );
+        // 16-pixel text reads at full size and at 75%, not at half.
+        assert!(good.problems_shown_at(1.0).is_empty());
+        assert!(good.problems_shown_at(0.75).is_empty());
+        assert_eq!(good.problems_shown_at(0.5).len(), 1);
+        assert_eq!(
+            Drawn::Image {
+                what: "a frame".into()
+            }
+            .text_px(),
+            None
+        );
         assert!(!Drawn::BareFloats { what: "x".into() }.problems().is_empty());
     }
 

@@ -56,7 +56,9 @@ pub use buffer::{AttribType, Buffer, BufferUsage, VertexArray};
 pub use compute::{
     memory_barrier, time_finished, Barrier, ComputeProgram, Dispatch, COMPUTE_VERSION,
 };
-pub use context::{Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV};
+pub use context::{
+    quiet_display_probes, Context, ContextInfo, Limits, Renderer, CHECKS_ENV, RENDERER_ENV,
+};
 pub use facing::FragmentFacing;
 pub use finite::ensure_finite;
 pub use framebuffer::{Framebuffer, Rect};

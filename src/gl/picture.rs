@@ -264,16 +264,23 @@ pub fn picture_drawn(
     let columns = layout(panels, (width, height), glyph).1;
     let rows = (panels.len() as u32).div_ceil(columns);
     let (cw, ch) = (width / columns, height / rows);
-    let mut drawn = PictureDrawn::default();
+    let mut drawn = PictureDrawn {
+        text_px: glyph,
+        ..PictureDrawn::default()
+    };
     for (k, panel) in panels.iter().enumerate() {
         let (col, row) = (k as u32 % columns, k as u32 / columns);
-        let placement = draw_panel(&mut image, panels, k, (col * cw, row * ch), (cw, ch), glyph);
+        let (placement, key_glyph) =
+            draw_panel(&mut image, panels, k, (col * cw, row * ch), (cw, ch), glyph);
+        drawn.text_px = drawn.text_px.min(key_glyph);
+        let filled = panel.values.iter().filter(|v| **v != 0.0).count();
         drawn.panels.push(PanelDrawn {
             title: panel.title.clone(),
             title_lines: title_lines(panel, cw, glyph).len(),
             key: key_ends(panel.scale),
             texels: placement.texels,
             pixels: (placement.w, placement.h),
+            filled: filled as f32 / panel.values.len().max(1) as f32,
         });
         placements.push(placement);
     }
@@ -340,8 +347,8 @@ pub fn frames_picture(
     let scale = scale.max(1);
     let cell_w = frames.iter().map(|f| f.1.width()).max().unwrap_or(1) * scale + 2 * MARGIN + 2;
     let width = (columns * cell_w).max(480);
-    // Titles in the large font only where a frame is wide enough for a few words a line.
-    let glyph = if cell_w >= 400 { 16 } else { 8 };
+    // Titles and legend in the large font: read on a page, 8-pixel text is too small.
+    let glyph = 16;
     let line = |text: &str| wrap(text, ((cell_w - 2 * MARGIN) / glyph).max(1) as usize);
     let title_rows = frames
         .iter()
@@ -359,7 +366,10 @@ pub fn frames_picture(
     let legend_h = legend_lines.iter().map(|l| l.len() as u32).sum::<u32>() * (glyph + 2);
     let height = rows * cell_h + legend_h + MARGIN * 2;
     let mut image = RgbaImage::from_pixel(width, height, Rgba(BACKGROUND));
-    let mut drawn = FramesDrawn::default();
+    let mut drawn = FramesDrawn {
+        text_px: glyph,
+        ..FramesDrawn::default()
+    };
     for (k, (title, frame)) in frames.iter().enumerate() {
         let (x0, y0) = ((k as u32 % columns) * cell_w, (k as u32 / columns) * cell_h);
         let lines = line(title);
@@ -426,7 +436,8 @@ fn image_area(panels: &[Panel], cw: u32, ch: u32, glyph: u32) -> (u32, u32) {
 }
 
 /// Draw panel `k` of `panels` in its cell; the titles of all panels take the same rows, so
-/// that the images of a row of panels line up.
+/// that the images of a row of panels line up. Where its texels landed, and the glyph size of
+/// its key's numbers.
 fn draw_panel(
     image: &mut RgbaImage,
     panels: &[Panel],
@@ -434,7 +445,7 @@ fn draw_panel(
     (x0, y0): (u32, u32),
     (cw, ch): (u32, u32),
     glyph: u32,
-) -> Placement {
+) -> (Placement, u32) {
     let panel = &panels[k];
     let rows = panels
         .iter()
@@ -483,8 +494,8 @@ fn draw_panel(
     }
     let key_y = iy + h + 1 + MARGIN;
     let key_w = cw.saturating_sub(2 * MARGIN).max(1);
-    draw_key(image, panel.scale, (x0 + MARGIN, key_y), key_w, glyph);
-    placement
+    let key_glyph = draw_key(image, panel.scale, (x0 + MARGIN, key_y), key_w, glyph);
+    (placement, key_glyph)
 }
 
 /// The enlargement of each axis from the room's (`sx`, `sy`): one factor for both (square
@@ -504,7 +515,14 @@ fn stretch(sx: f64, sy: f64, (width, height): (u32, u32)) -> (f64, f64) {
 
 /// The colour key: a bar from the scale's low to high end, the two numbers under its ends and
 /// zero under its place when the map is diverging (left out where it would touch the others).
-fn draw_key(image: &mut RgbaImage, scale: Scale, (x, y): (u32, u32), width: u32, glyph: u32) {
+/// The glyph size its numbers took.
+fn draw_key(
+    image: &mut RgbaImage,
+    scale: Scale,
+    (x, y): (u32, u32),
+    width: u32,
+    glyph: u32,
+) -> u32 {
     let span = scale.hi - scale.lo;
     for px in 0..width {
         let v = if span > 0.0 {
@@ -518,16 +536,15 @@ fn draw_key(image: &mut RgbaImage, scale: Scale, (x, y): (u32, u32), width: u32,
     }
     let label_y = y + BAR + 2;
     if span <= 0.0 {
-        draw_fitted(image, x, label_y, width, "all 0", glyph);
-        return;
+        return draw_fitted(image, x, label_y, width, "all 0", glyph);
     }
     let lo = number(scale.lo as f64);
     let hi = number(scale.hi as f64);
     let len = |s: &str| s.chars().count() as u32 * glyph;
     if len(&lo) + len(&hi) + glyph > width {
         // Too narrow for both ends on one line: the range on two lines.
-        draw_fitted(image, x, label_y, width, &lo, glyph);
-        draw_fitted(
+        let first = draw_fitted(image, x, label_y, width, &lo, glyph);
+        let second = draw_fitted(
             image,
             x,
             label_y + glyph + 2,
@@ -535,7 +552,7 @@ fn draw_key(image: &mut RgbaImage, scale: Scale, (x, y): (u32, u32), width: u32,
             &format!("to {hi}"),
             glyph,
         );
-        return;
+        return first.min(second);
     }
     draw_text(image, x, label_y, &lo, glyph);
     draw_text(image, x + width - len(&hi), label_y, &hi, glyph);
@@ -546,11 +563,12 @@ fn draw_key(image: &mut RgbaImage, scale: Scale, (x, y): (u32, u32), width: u32,
             draw_text(image, left, label_y, "0", glyph);
         }
     }
+    glyph
 }
 
 /// Text that must fit `width`: in smaller glyphs, then cut to the characters that fit (the
-/// last resort of a key narrower than its numbers).
-fn draw_fitted(image: &mut RgbaImage, x: u32, y: u32, width: u32, text: &str, glyph: u32) {
+/// last resort of a key narrower than its numbers). The glyph size it took.
+fn draw_fitted(image: &mut RgbaImage, x: u32, y: u32, width: u32, text: &str, glyph: u32) -> u32 {
     let n = text.chars().count() as u32;
     let glyph = if n * glyph > width { 8 } else { glyph };
     let fit = (width / glyph) as usize;
@@ -561,6 +579,7 @@ fn draw_fitted(image: &mut RgbaImage, x: u32, y: u32, width: u32, text: &str, gl
         &text.chars().take(fit).collect::<String>(),
         glyph,
     );
+    glyph
 }
 
 /// Split `text` into lines of at most `columns` characters, at spaces where it can.

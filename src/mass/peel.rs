@@ -205,10 +205,38 @@ impl CapturedPeel {
     }
 }
 
+/// The file of [`write_peel_pictures`]'s picture of how many peels reach each texel.
+pub const LAYERS_PNG: &str = "layers.png";
+
 /// Fig. 10: each target of each peel as a picture, `peel<k>_target<i>.png` in `dir`, one panel
 /// per channel, each channel on one scale for all the peels, and its exact values beside it as
-/// `peel<k>_target<i>.npy`.
+/// `peel<k>_target<i>.npy`; and [`LAYERS_PNG`], one panel of how many peels reach each texel
+/// (a fragment with a non-zero integrand), which shows where the deep peels are, however few
+/// their texels.
 pub fn write_peel_pictures(dir: &Path, peels: &[CapturedPeel]) -> Result<(), GlError> {
+    if let Some(first) = peels.first() {
+        let layers: Vec<f32> = (0..(first.width * first.height) as usize)
+            .map(|texel| {
+                peels
+                    .iter()
+                    .filter(|p| {
+                        p.targets[0][4 * texel..4 * texel + 4]
+                            .iter()
+                            .any(|v| *v != 0.0)
+                    })
+                    .count() as f32
+            })
+            .collect();
+        let panel = Panel {
+            title: format!("peels reaching each texel (of {})", peels.len()),
+            values: layers,
+            width: first.width,
+            height: first.height,
+            scale: Scale::fixed(0.0, peels.len() as f32),
+        };
+        // At least 640 wide, so its title and key are in the large font.
+        dump::picture_png(&[panel], (640, 700), &dir.join(LAYERS_PNG))?;
+    }
     let targets = peels.first().map_or(0, |p| p.targets.len());
     for target in 0..targets {
         let names = integrands::CHANNELS[target];

@@ -1,7 +1,8 @@
 //! Refinement to a requested triangle count. Paper 1 (section 7.2, Table III) runs its
 //! collision benchmarks on models of 15K, 20K and 50K triangles; paper 4 (Table 1) uses a
 //! bunny of 2557 vertices and 5110 triangles, which is exactly
-//! `retessellate(&load_bunny(), 5110)` (a closed genus-0 mesh has `F / 2 + 2` vertices).
+//! `retessellate(&load_bunny(), 5110)` (a closed genus-0 mesh has `F / 2 + 2` vertices), the
+//! bunny paper 4 runs (`mass::models::table1_bunny`).
 //!
 //! [`retessellate`] splits the longest edge of the mesh at its midpoint, again and again,
 //! until the count is reached. Each split cuts the two triangles on that edge in two

@@ -104,6 +104,8 @@ pub struct Plot {
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 /// The size of the axes' part of the image; the legend adds rows below it.
 const SIZE: (u32, u32) = (900, 560);
+/// The size of tick labels and legend text, the plot's smallest, px.
+const LABEL_PX: u32 = 14;
 /// Height of one legend row, px.
 const LEGEND_ROW: u32 = 22;
 /// Legend entries per row.
@@ -223,6 +225,48 @@ fn curves(series: &[Series], log_x: bool, log_y: bool) -> Vec<Curve> {
         out.push((curve, key));
     }
     out.into_iter().map(|(c, _)| c).collect()
+}
+
+/// Two data curves closer than this (relative to the larger value) at a point are said to lie
+/// on one another there: one hides the other where they are drawn.
+const COINCIDENT: f64 = 0.05;
+
+/// A note for each pair of data curves with the same x values that lie within [`COINCIDENT`]
+/// of each other at two points or more (identical ones are already one curve), naming those
+/// points, so that a reader knows the curve they see there is two.
+fn coincident_notes(curves: &[Curve]) -> Vec<String> {
+    let data: Vec<&Curve> = curves.iter().filter(|c| c.is_data()).collect();
+    let mut notes = Vec::new();
+    for (i, a) in data.iter().enumerate() {
+        for b in &data[i + 1..] {
+            let same_x = a.points.len() == b.points.len()
+                && a.points.iter().zip(&b.points).all(|(p, q)| p.0 == q.0);
+            if !same_x {
+                continue;
+            }
+            let close: Vec<String> = a
+                .points
+                .iter()
+                .zip(&b.points)
+                .filter(|(p, q)| (p.1 - q.1).abs() <= COINCIDENT * p.1.abs().max(q.1.abs()))
+                .map(|(p, _)| tick_label(p.0))
+                .collect();
+            if close.len() >= 2 {
+                let at = if close.len() == a.points.len() {
+                    "at every point".to_string()
+                } else {
+                    format!("at x = {}", close.join(", "))
+                };
+                notes.push(format!(
+                    "'{}' and '{}' lie within {:.0}% of each other {at}: one hides the other.",
+                    a.name,
+                    b.name,
+                    100.0 * COINCIDENT
+                ));
+            }
+        }
+    }
+    notes
 }
 
 /// One axis: its range and the values it labels.
@@ -433,6 +477,7 @@ impl Plot {
                 legend: layout.curves.iter().map(|c| c.name.clone()).collect(),
                 curves: layout.curves.iter().filter(|c| c.is_data()).count(),
                 notes: layout.notes.clone(),
+                text_px: LABEL_PX,
             }),
         );
         Ok(())
@@ -464,11 +509,10 @@ impl Plot {
         } else {
             linear_axis(&ys, false)
         };
-        let mut notes = Vec::new();
+        let mut notes = coincident_notes(&curves);
         if has_zeros {
             notes.push(
-                "Hollow marks on the bottom axis: a value of exactly 0 (a log axis has no 0)."
-                    .to_string(),
+                "Hollow marks on the bottom axis: a value of 0 (a log axis has no 0).".to_string(),
             );
         }
         let dropped: usize = self
@@ -537,7 +581,7 @@ impl Plot {
             .configure_mesh()
             .x_desc(self.x_label.as_str())
             .y_desc(self.y_label.as_str())
-            .label_style(("sans-serif", 14))
+            .label_style(("sans-serif", LABEL_PX))
             .x_labels(layout.x.ticks.len().clamp(2, 10))
             .y_labels(layout.y.ticks.len().clamp(2, 10))
             .x_label_formatter(&x_label)
@@ -654,7 +698,7 @@ fn draw_marker(
 /// [`LEGEND_COLUMNS`] columns, then the notes one per row.
 fn draw_legend(area: &Area, layout: &Layout) -> anyhow::Result<()> {
     let column_width = (SIZE.0 as i32 - 100) / LEGEND_COLUMNS as i32;
-    let font = ("sans-serif", 14).into_font().color(&BLACK);
+    let font = ("sans-serif", LABEL_PX).into_font().color(&BLACK);
     let row = LEGEND_ROW as i32;
     for (i, curve) in layout.curves.iter().enumerate() {
         let x = 80 + (i % LEGEND_COLUMNS) as i32 * column_width;
@@ -754,6 +798,36 @@ mod tests {
             let light = 0.2126 * c.0 as f64 + 0.7152 * c.1 as f64 + 0.0722 * c.2 as f64;
             assert!(light < 200.0, "{c:?}");
         }
+    }
+
+    #[test]
+    fn curves_that_lie_on_one_another_are_said_once() {
+        let curves = curves(
+            &[
+                Series::new("VS, here", vec![(1.0, 100.0), (16.0, 50.0)]),
+                Series::new("VS 1/draw, here", vec![(1.0, 103.0), (16.0, 49.0)]),
+                Series::new("2-pass, here", vec![(1.0, 60.0), (16.0, 49.5)]),
+            ],
+            true,
+            true,
+        );
+        let notes = coincident_notes(&curves);
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(notes[0].starts_with("'VS, here' and 'VS 1/draw, here' lie within 5%"));
+        assert!(notes[0].contains("at every point"), "{notes:?}");
+        // Close at two of three points: those are named.
+        let partly = super::curves(
+            &[
+                Series::new("a", vec![(1.0, 100.0), (16.0, 50.0), (64.0, 10.0)]),
+                Series::new("b", vec![(1.0, 200.0), (16.0, 51.0), (64.0, 10.2)]),
+            ],
+            true,
+            true,
+        );
+        assert_eq!(
+            coincident_notes(&partly),
+            ["'a' and 'b' lie within 5% of each other at x = 16, 64: one hides the other."]
+        );
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! numbers, the figures and the fidelity table. Self-contained: no scripts, no external CSS.
 
 use super::{Claim, Report, Section, Table};
-use crate::page::html::{escape, escape_cell, STYLE};
+use crate::page::html::{escape, escape_cell, print_min_width, print_parts, CONTENT_WIDTH, STYLE};
 
 /// Whether a cell reads as a number (possibly with a unit or a range: "7.86", "-0.5%",
 /// "12.8 steps/s", "1.4-2x", "2048 x 2048"): such columns are right-aligned, text left.
@@ -45,11 +45,75 @@ fn numeric_columns(t: &Table) -> Vec<bool> {
         .collect()
 }
 
+/// A table, and where it is wider than a printed page, the same rows again as column groups
+/// for print (each group repeating the first column; the style shows the one or the other).
+fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
+    let columns = t
+        .rows
+        .iter()
+        .map(Vec::len)
+        .chain([t.header.len()])
+        .max()
+        .unwrap_or(0);
+    let widths: Vec<u32> = (0..columns)
+        .map(|c| {
+            let number = numeric.get(c).copied().unwrap_or(false);
+            let cells: Vec<(&str, bool)> = t
+                .header
+                .get(c)
+                .map(|h| (h.as_str(), false))
+                .into_iter()
+                .chain(
+                    t.rows
+                        .iter()
+                        .filter_map(|r| r.get(c))
+                        .map(|v| (v.as_str(), number)),
+                )
+                .collect();
+            print_min_width(&cells)
+        })
+        .collect();
+    let parts = print_parts(&widths);
+    let screen = one_table(t, row_ids, numeric);
+    if parts.len() <= 1 {
+        return screen;
+    }
+    let mut out = format!("<div class=\"screen\">{screen}</div><div class=\"print\">");
+    for (k, part) in parts.iter().enumerate() {
+        let pick = |cells: &[String]| -> Vec<String> {
+            part.iter()
+                .map(|&c| cells.get(c).cloned().unwrap_or_default())
+                .collect()
+        };
+        let piece = Table {
+            caption: format!(
+                "{} (printed in {} parts: part {}, columns {})",
+                t.caption,
+                parts.len(),
+                k + 1,
+                part.iter()
+                    .map(|&c| t.header.get(c).map_or(String::new(), |h| h.clone()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            header: pick(&t.header),
+            rows: t.rows.iter().map(|r| pick(r)).collect(),
+        };
+        let numeric: Vec<bool> = part
+            .iter()
+            .map(|&c| numeric.get(c).copied().unwrap_or(false))
+            .collect();
+        out.push_str(&one_table(&piece, &[], &numeric));
+    }
+    out.push_str("</div>\n");
+    out
+}
+
 /// A table in its own scrolling box (a table still wider than the page after its text has
 /// wrapped scrolls there, not the page), its caption above the box so that it wraps at the
 /// page's width and is never cut at the box's edge; the columns marked in `numeric`
 /// right-aligned, the others (text) left. `row_ids` gives rows an anchor.
-fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
+fn one_table(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
     let class = |c: usize| {
         if numeric.get(c).copied().unwrap_or(false) {
             " class=\"num\""
@@ -58,13 +122,14 @@ fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
         }
     };
     let mut out = format!(
-        "<div class=\"table\"><p class=\"caption\">{}</p><div class=\"scroll\"><table>\n<tr>",
+        "<div class=\"table\"><p class=\"caption\">{}</p><div class=\"scroll\"><table>\n<thead><tr>",
         escape(&t.caption)
     );
     for (c, h) in t.header.iter().enumerate() {
         out.push_str(&format!("<th{}>{}</th>", class(c), escape_cell(h)));
     }
-    out.push_str("</tr>\n");
+    // The header row repeats on every printed page the table runs over.
+    out.push_str("</tr></thead>\n<tbody>");
     for (r, row) in t.rows.iter().enumerate() {
         match row_ids.get(r) {
             Some(id) => out.push_str(&format!("<tr id=\"{}\">", escape(id))),
@@ -75,7 +140,7 @@ fn table_with_ids(t: &Table, row_ids: &[String], numeric: &[bool]) -> String {
         }
         out.push_str("</tr>\n");
     }
-    out.push_str("</table></div></div>\n");
+    out.push_str("</tbody></table></div></div>\n");
     out
 }
 
@@ -172,12 +237,7 @@ fn section(s: &Section) -> String {
         out.push_str(&table(t));
     }
     for f in &s.figures {
-        out.push_str(&format!(
-            "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-            escape(&f.file),
-            escape(&f.caption),
-            escape(&f.caption)
-        ));
+        out.push_str(&figure(f, s.figure_sizes.get(&f.file).copied()));
     }
     if !s.fidelity.is_empty() {
         let fidelity = Table {
@@ -204,6 +264,30 @@ fn section(s: &Section) -> String {
     }
     out.push_str("</section>\n");
     out
+}
+
+/// A figure at the width it is shown (its own, or the page's where it is wider: then it links
+/// to itself at full size and its caption says how much it was shrunk). `size` is the PNG's,
+/// in pixels, where known.
+fn figure(f: &super::Figure, size: Option<(u32, u32)>) -> String {
+    let (src, alt) = (escape(&f.file), escape(&f.caption));
+    let Some((width, height)) = size.filter(|s| s.0 > 0) else {
+        return format!(
+            "<figure><img src=\"{src}\" alt=\"{alt}\"><figcaption>{alt}</figcaption></figure>\n"
+        );
+    };
+    let shown = width.min(CONTENT_WIDTH);
+    let shown_height = (height as u64 * shown as u64 / width as u64) as u32;
+    let img =
+        format!("<img src=\"{src}\" alt=\"{alt}\" width=\"{shown}\" height=\"{shown_height}\">");
+    if shown == width {
+        return format!("<figure>{img}<figcaption>{alt}</figcaption></figure>\n");
+    }
+    format!(
+        "<figure><a href=\"{src}\">{img}</a><figcaption>{alt} (shown at {}% of its {width} x \
+         {height} pixels: the picture links to it at full size)</figcaption></figure>\n",
+        100 * shown / width
+    )
 }
 
 /// The whole page.
@@ -260,6 +344,10 @@ fn contents(sections: &[Section]) -> String {
         ));
     }
     out.push_str("</ul>\n");
+    out.push_str(&format!(
+        "<p id=\"timing-policy\">{}</p>\n",
+        escape(super::timing_policy::IN_WORDS)
+    ));
     out.push_str(&format!(
         "<p>A claim judged on a timing is not judged (\"not judged: machine loaded\") when the \
          1-minute load average was above {:.1} per core while it was measured, or when its runs \

@@ -1,5 +1,6 @@
-//! The reproduction report: each paper's benchmark at the paper's sizes, beside the
-//! published numbers (`assets/paper_tables.toml`), written as HTML, JSON and PNG.
+//! The reproduction report: each paper's benchmark at the paper's sizes (where a model or a
+//! size differs, the section's fidelity table says by how much and why), beside the published
+//! numbers (`assets/paper_tables.toml`), written as HTML, JSON and PNG.
 //!
 //! Every section has one shape, the [`Paper`] trait: `measure` runs the paper module at the
 //! paper's sizes and fills a typed, serialisable results struct; `section` turns those results
@@ -27,6 +28,7 @@ pub mod provenance;
 pub mod published;
 pub mod reproduce;
 pub mod then_and_now;
+pub mod timing_policy;
 
 use crate::timing;
 use anyhow::Context as _;
@@ -108,10 +110,22 @@ pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyho
     section.elapsed_s = start.elapsed().as_secs_f64();
     section.cpu_s = process_cpu_s() - cpu_start;
     for figure in &section.figures {
-        if let Some(drawn) = crate::gl::drawn::recorded(&opts.out_dir.join(&figure.file)) {
+        let path = opts.out_dir.join(&figure.file);
+        if let Some(drawn) = crate::gl::drawn::recorded(&path) {
             section.drawn.insert(figure.file.clone(), drawn);
         }
+        if let Ok(size) = image::image_dimensions(&path) {
+            section.figure_sizes.insert(figure.file.clone(), size);
+        }
     }
+    timing_policy::apply(&mut section, opts.gl.info().is_software());
+    let escaped = timing_policy::problems(&section);
+    anyhow::ensure!(
+        escaped.is_empty(),
+        "section {}: timing claims outside the report's policy: {}",
+        P::ID,
+        escaped.join("; ")
+    );
     section.commit = provenance::COMMIT.into();
     section.load_start = load_start;
     section.load_end = timing::Load::now();
@@ -219,6 +233,10 @@ pub struct Section {
     /// that drew it recorded ([`crate::gl::drawn`]); filled by [`run_section`].
     #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub drawn: std::collections::BTreeMap<String, crate::gl::drawn::Drawn>,
+    /// Each figure's size in pixels (width, height), by file, read from the PNG by
+    /// [`run_section`]: the page shows a figure wider than itself shrunk, with a link.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub figure_sizes: std::collections::BTreeMap<String, (u32, u32)>,
     /// The commit of the binary that ran the section ([`provenance::COMMIT`]; empty in a
     /// report from before it was recorded).
     #[serde(default)]

@@ -1,5 +1,6 @@
-//! What the lectures' sources name and this project does not build: one table per lecture
-//! section, each row with what would be needed to build it.
+//! What the papers and the lectures' sources name and this project does not build: one table
+//! per section that has such things (papers 3 and 4, lectures 1 and 3, and the tutorial's
+//! lecture 5 under the building blocks), each row with what would be needed to build it.
 
 use super::Table;
 
@@ -8,7 +9,7 @@ use super::Table;
 pub struct NotBuilt {
     /// What is not built.
     pub what: &'static str,
-    /// The source that names it (`lecture1-sources.md`, `lecture3-sources.md`).
+    /// The paper or source that names it.
     pub source: &'static str,
     /// What the project does instead, if anything.
     pub instead: &'static str,
@@ -16,12 +17,13 @@ pub struct NotBuilt {
     pub needed: &'static str,
 }
 
-/// The section's "not built" table.
-pub fn table(lecture: &str, rows: &[NotBuilt]) -> Table {
+/// The section's "not built" table; `named_by` is who names the rows, with its verb ("the
+/// sources of lecture 3 name", "paper 4 names").
+pub fn table(named_by: &str, rows: &[NotBuilt]) -> Table {
     Table {
         caption: format!(
-            "Not built: what the sources of {lecture} name that this project does not do, what \
-             it does instead, and what building it would need"
+            "Not built: what {named_by} that this project does not do, what it does instead, \
+             and what building it would need"
         ),
         header: ["not built", "named by", "instead", "what it would need"]
             .map(String::from)
@@ -124,8 +126,18 @@ pub const LECTURE1: &[NotBuilt] = &[
     },
 ];
 
-/// Lecture 3 (`lecture3-sources.md`).
+/// Lecture 3 (`lecture3-sources.md`, and the programme's three references).
 pub const LECTURE3: &[NotBuilt] = &[
+    NotBuilt {
+        what: "adaptive screen interpolation for translucent objects",
+        source: "Ki & Oh, Korea Game Society summer conference 2006, pp. 217-224 (the \
+                 lecture's third reference; its title only, the text is not public)",
+        instead: "the subsurface term is gathered over the light hierarchy for every receiver \
+                  texel (`lecture3 light --mode sss`); nothing is interpolated on the screen",
+        needed: "the paper's rule, or a stated one: shade a coarse grid of pixels, interpolate \
+                 between neighbours whose results differ by less than a threshold and shade \
+                 the rest, with the error against shading every pixel measured",
+    },
     NotBuilt {
         what: "pyramidal displacement mapping on a general mesh",
         source: "Oh, Ki & Lee, VRST 2006 (abstract: per-pixel ray tracing of a displacement map)",
@@ -155,3 +167,40 @@ pub const LECTURE3: &[NotBuilt] = &[
                  remove nodes",
     },
 ];
+
+/// Paper 3 (Oh & Jung 2004).
+pub const PAPER3: &[NotBuilt] = &[NotBuilt {
+    what: "learning on the GPU",
+    source: "paper 3, abstract ('GPU-aware learning algorithms' named as further research)",
+    instead: "the detector is trained on the CPU by online backpropagation (`mlp train`, \
+              src/mlp/train.rs); only the forward pass, the paper's subject, runs on the GPU",
+    needed: "backpropagation as render passes: the output error and each layer's deltas as \
+             textures (the transposed weights times the deltas by the same rectangle product), \
+             and a pass adding the outer product of deltas and inputs to the weights, over a \
+             batch of accumulated input vectors",
+}];
+
+/// Paper 4 (Kim, Kim, Ko & Terzopoulos 2006).
+pub const PAPER4: &[NotBuilt] = &[NotBuilt {
+    what: "a fluid surface that is not a plane (waves, a height field)",
+    source: "paper 4, section 5.2: pass 0 draws 'the surface of the fluid' into T_dw, assumed \
+             only to keep the sign of its normals' z",
+    instead: "the water is the plane z = h in pass 0 and in the fluid patch of pass n + 1 \
+              (the fidelity table's n + 2 passes row)",
+    needed: "a height field drawn in pass 0 and as the patch of pass n + 1, a fluid simulation \
+             or a prescribed wave to move it (the paper leaves fluid motion out), and a CPU \
+             reference that clips each body against that surface",
+}];
+
+/// The tutorial's lecture 5, NVIDIA's G80 and CUDA (the programme, item 4).
+pub const LECTURE5: &[NotBuilt] = &[NotBuilt {
+    what: "CUDA on NVIDIA's G80: the architecture and its programming model",
+    source: "the tutorial programme, item 4 (G80 architecture, CUDA technology)",
+    instead: "OpenGL 4.3 compute shaders stand in: each paper's kernels as compute dispatches \
+              (threads in groups, shared memory, storage buffers, atomics: CUDA's model), on \
+              any GL 4.3 renderer, beside the classic passes in each section's 'then and now' \
+              table, and the course's compute reduction (`learn compute-reduction`)",
+    needed: "an NVIDIA GPU and the CUDA toolkit (a G80 for the period's numbers), the kernels \
+             written in CUDA C, and CUDA-OpenGL interop to share buffers with the classic \
+             passes",
+}];

@@ -55,7 +55,7 @@ pub fn paper_shapes() -> Result<Vec<Shape>, String> {
         Shape::new("box", &mesh::cuboid(Vec3::new(0.6, 0.4, 0.25)))?,
         Shape::new("torus", &mesh::torus(0.4, 0.15, 31, 31))?,
         Shape::new("teapot", &fit(closed_teapot(32, 4), 1.0))?,
-        Shape::new("bunny", &fit(mesh::load_bunny(), 1.0))?,
+        Shape::new("bunny", &fit(crate::mass::models::table1_bunny(), 1.0))?,
     ])
 }
 

@@ -34,7 +34,13 @@ impl Paper for Blocks {
                  crosses a bus; on a software renderer it is a memory copy, so the time ratio \
                  says which side of that trade-off this machine is on. Renderer: {renderer}."
             ),
-            tables: vec![reduction_table::table(opts, results)],
+            tables: vec![
+                reduction_table::table(opts, results),
+                super::not_built::table(
+                    "the tutorial's lecture 5 (NVIDIA's G80 and CUDA) names",
+                    super::not_built::LECTURE5,
+                ),
+            ],
             claims: claims::claims(results),
             figures: vec![reduction_plot::figure(opts, results)?],
             fidelity: fidelity::rows(),

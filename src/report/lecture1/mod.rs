@@ -276,7 +276,7 @@ impl Paper for Lecture1 {
                 .extend(block.paths.iter().map(|p| p.to_string()));
         }
         section.tables.push(super::not_built::table(
-            "lecture 1",
+            "the sources of lecture 1 name",
             super::not_built::LECTURE1,
         ));
         Ok(section)

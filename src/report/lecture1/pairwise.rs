@@ -111,15 +111,16 @@ pub fn block(setting: &Setting) -> anyhow::Result<Block> {
         let panels: Vec<_> = pair_buffers(
             &tile.target.p0,
             &tile.reduction,
-            "(triangle i of the knot, row; triangle j, column)",
+            "(knot triangle i, row; j, column)",
             false,
         )?
         .into_iter()
         .map(|b| b.panel)
         .collect();
+        // Two by two, as wide as the page: shown at full size, texel for pixel.
         picture_png(
             &panels,
-            (1200, 420),
+            (crate::page::html::CONTENT_WIDTH, 960),
             &setting.opts.out_dir.join(BUFFERS_PNG),
         )?;
     }

@@ -134,14 +134,10 @@ fn frame_rate(r: &Lecture3Results) -> Claim {
             d.image,
             best.map_or(0, |s| s.map_size),
             r.renderer,
-            if r.software {
-                format!("{runs}; not judged: a software renderer is not the GPU of the claim")
-            } else {
-                verdict.note
-            }
+            verdict.note
         ),
         decided_by: Basis::Timing,
-        holds: if r.software { None } else { verdict.holds },
+        holds: verdict.holds,
     }
 }
 

@@ -138,9 +138,14 @@ pub fn rows() -> Vec<Fidelity> {
             "lecture 3, debugging tips",
             "src/lecture3/depth_mask.rs, glsl/lecture3/depth_mask_*.frag",
             "the expensive function and masks are ours; the early depth test is left to the \
-             driver (the counting variant for contexts without pipeline statistics asks for it \
-             with GL 4.2 early_fragment_tests, as a shader with a side effect must); the \
-             shader's runs are counted by pipeline statistics at 2x2-quad granularity",
+             driver for the timed shaders; the shader's runs are counted by an atomic counter \
+             the shader increments (GL 4.2 atomic counters in 4.3 buffers; that variant asks \
+             for the early test with early_fragment_tests, as a shader with a side effect \
+             must), preferred wherever the context has one, since llvmpipe's pipeline \
+             statistics count the fragments its early test then drops; else by a pipeline \
+             statistics query (GL 4.6 or the ARB extension), judged at 2x2-quad granularity; \
+             on a context with neither (softpipe) the runs are not counted; the table's \
+             caption names the counter the run used",
         )
         .covers(&[paths::DEPTH_MASK]),
         Fidelity::new(

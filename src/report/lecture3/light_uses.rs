@@ -226,8 +226,8 @@ pub fn measure(opts: &BenchOptions, ctx: &Context) -> anyhow::Result<LightUsesRu
     let subsurface = run(LightUse::subsurface())?;
     let environment = run(LightUse::environment())?;
     let titles = [
-        "subsurface scattering, brute force",
-        "subsurface scattering, coarsest criterion",
+        "subsurface, brute force",
+        "subsurface, coarsest criterion",
         "environment light, brute force",
         "environment light, coarsest criterion",
     ];

@@ -102,7 +102,7 @@ impl Paper for Lecture3 {
         })
         .map(|mut s| {
             s.tables.push(super::not_built::table(
-                "lecture 3",
+                "the sources of lecture 3 name",
                 super::not_built::LECTURE3,
             ));
             s

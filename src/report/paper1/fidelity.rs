@@ -38,6 +38,16 @@ pub fn rows() -> Vec<Fidelity> {
              typeset '\\parallel') read as '||'; P0 is R32F, so only the red 1.0 is kept",
         ),
         Fidelity::new(
+            "Table I's function, its parameters and its casts",
+            "Table I: void streamingAABBTest(...) taking the texture coordinates, the output \
+             and the four samplers as parameters; (float3) casts on each tex1D(...).xyz",
+            "cg_ports/collide_table1_streaming_aabb_test.frag",
+            "GLSL has no parameters on a shader's entry point: the function becomes main(), \
+             its uniform samplers become global uniforms, its inputs global in-varyings and \
+             its out parameter a global output; the (float3) casts are dropped, since .xyz \
+             already gives a vec3 (the casts change nothing in Cg either)",
+        ),
+        Fidelity::new(
             "vertex texture 2^d_max x n_max, alpha = empty",
             "Sec. 4.2.2",
             "src/collide/vertex_textures.rs",

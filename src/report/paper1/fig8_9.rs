@@ -8,8 +8,9 @@ pub fn figure(run: &SceneRun) -> Option<Figure> {
     run.snapshot.as_ref().map(|file| Figure {
         file: file.clone(),
         caption: format!(
-            "Fig. 8-9: {} at the last frame; colliding triangles red, CAP boxes orange (X) and \
-             yellow (Y)",
+            "Fig. 8-9: {} at the last frame; colliding triangles red, drawn over the surfaces \
+             in front of them (they lie where the models pass through each other), CAP boxes \
+             orange (X) and yellow (Y)",
             run.label
         ),
     })

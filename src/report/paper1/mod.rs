@@ -218,3 +218,8 @@ fn f2(v: f64) -> String {
 fn header(names: &[&str]) -> Vec<String> {
     names.iter().map(|s| s.to_string()).collect()
 }
+
+/// Every fidelity row of the section.
+pub fn fidelity_rows() -> Vec<super::Fidelity> {
+    fidelity::rows()
+}

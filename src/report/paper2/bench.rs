@@ -336,7 +336,18 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
         let path = opts.out_dir.join(&file);
         if texture.format().is_float() {
             let channels = ["pass 1 x", "pass 1 y", "pass 1 z"];
-            dump::texture_picture_png(texture, &channels, DumpRange::Auto, (960, 480), &path)?;
+            // As wide as the page: panels side by side where they fit (a narrow target, its
+            // columns enlarged), else one above the other, so a render target of 1024
+            // characters is shown texel for pixel.
+            let page = crate::page::html::CONTENT_WIDTH;
+            let panels = channels.len() as u32;
+            let rows = if panels * (texture.width() + 12) <= page {
+                1
+            } else {
+                panels
+            };
+            let size = (page, rows * (texture.height() + 100));
+            dump::texture_picture_png(texture, &channels, DumpRange::Auto, size, &path)?;
         } else {
             dump::texture_png(texture, &path, DumpRange::Auto)?;
         }

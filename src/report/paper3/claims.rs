@@ -11,8 +11,8 @@ pub fn claims(results: &Paper3Results, paper: &Paper3Table1) -> Vec<Claim> {
     vec![twenty_fold(results, paper), same_classification(results)]
 }
 
-/// A software renderer runs the "GPU" passes on the CPU: a GPU-versus-CPU ratio says nothing
-/// about the paper's claim there.
+/// A software renderer runs the "GPU" passes on the CPU (the report's timing policy,
+/// [`crate::report::timing_policy`], says what a verdict means there).
 pub fn software(results: &Paper3Results) -> bool {
     results.renderer.contains("llvmpipe") || results.renderer.contains("softpipe")
 }
@@ -53,19 +53,10 @@ fn twenty_fold(results: &Paper3Results, paper: &Paper3Table1) -> Claim {
         ),
         measured: format!(
             "CPU plain loop / GPU faithful (all steps) = {speedup:.2}x on {} ({})",
-            results.renderer,
-            if software(results) {
-                format!("{runs}; not judged: a software renderer is not the GPU the claim is about")
-            } else {
-                verdict.note
-            }
+            results.renderer, verdict.note
         ),
         decided_by: Basis::Timing,
-        holds: if software(results) {
-            None
-        } else {
-            verdict.holds
-        },
+        holds: verdict.holds,
     }
 }
 

@@ -59,6 +59,16 @@ pub fn rows() -> Vec<Fidelity> {
              threshold (0.5) is not stated in the paper",
         ),
         Fidelity::new(
+            "The network's layers: one hidden layer of 30 sigmoid nodes between the 121 inputs \
+             and one output",
+            "Section 4: 'the number of nodes in each hidden layer set at 30'; the number of \
+             hidden layers is not given",
+            "src/mlp/train.rs, src/mlp/detect.rs, assets/mlp/text_detector.json",
+            "one hidden layer is our choice (the paper's words allow more); the GPU chain runs \
+             any number of layers (section 3's layer after layer), so a network file with more \
+             runs the same way",
+        ),
+        Fidelity::new(
             "The paper's board, an ATI RADEON 9700 PRO: 24-bit floats in the fragment pipeline, \
              textures up to 2048, no float blending",
             "Section 4, Table 1, footnote 1",

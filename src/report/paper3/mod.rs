@@ -56,6 +56,10 @@ impl Paper for Paper3 {
             .into_iter()
             .chain(results.period.iter().flat_map(period::tables))
             .chain(profile::table(results))
+            .chain([super::not_built::table(
+                "paper 3 names",
+                super::not_built::PAPER3,
+            )])
             .collect(),
             claims: claims::claims(results, paper),
             figures,
@@ -126,4 +130,9 @@ fn runs_range(results: &Paper3Results) -> String {
         (Some(a), _) => a.to_string(),
         _ => "no".into(),
     }
+}
+
+/// Every fidelity row of the section.
+pub fn fidelity_rows() -> Vec<super::Fidelity> {
+    fidelity::rows()
 }
