@@ -2,6 +2,7 @@
 //! and writing the user's files, printing. The algorithms they call live in the library; the
 //! `*-bench` commands all go through [`classic_gpgpu::report::bench_command`].
 
+pub mod claims;
 pub mod collide;
 pub mod compare;
 pub mod crowd;
