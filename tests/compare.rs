@@ -218,7 +218,7 @@ fn a_claim_whose_version_differs_is_shown_per_version_never_mixed() {
         assert!(row.cells.iter().all(|c| c.ran), "{}", row.id);
     }
     // The README's table takes the claim from the run of this build's version only.
-    let text = markdown::grouped(&[before.clone()]).unwrap();
+    let text = markdown::grouped(std::slice::from_ref(&before)).unwrap();
     let line = text.lines().find(|l| l.contains("error at 32x32")).unwrap();
     assert!(
         line.contains("re-run needed: the claim changed since 1111111"),
@@ -247,7 +247,7 @@ fn a_run_from_before_per_claim_versions_is_a_version_of_its_own() {
     let page = dir.join("page");
     let run = compare_cli(&[&old, &now], &["--out", page.to_str().unwrap()]);
     assert!(run.status.success(), "{}", stderr(&run));
-    let comparison = compare::compare(compare::read(&[old.clone(), now]).unwrap()).unwrap();
+    let comparison = compare::compare(compare::read(&[old.clone(), now.clone()]).unwrap()).unwrap();
     let group = &comparison.groups[0];
     // The old run's claims join the rows of the same claims by their words, a version apart.
     let rows: Vec<_> = group
@@ -261,11 +261,17 @@ fn a_run_from_before_per_claim_versions_is_a_version_of_its_own() {
         .contains("version not recorded: run before per-claim versions"));
     assert!(rows[1].cells[0].ran && !rows[1].cells[1].ran);
     // In the README's table: re-run needed, never its old figure as current.
-    let text = markdown::grouped(&[old]).unwrap();
+    let text = markdown::grouped(std::slice::from_ref(&old)).unwrap();
     assert!(
         text.contains("is a run before per-claim versions"),
         "{text}"
     );
+    // The gate against it: every claim compared (matched by its words), none judged.
+    let gate = compare_cli(&[&now], &["--baseline", old.to_str().unwrap()]);
+    assert!(gate.status.success(), "{}", stdout(&gate));
+    let n = claims_in(&old);
+    assert_eq!(summary(&gate), (n, 0, n, 0), "{}", stdout(&gate));
+    assert!(stdout(&gate).contains("run before per-claim versions"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -727,6 +733,96 @@ fn timings_are_judged_only_between_quiet_runs_and_definitions_that_changed_are_n
     );
     assert!(!out.status.success());
     assert!(stderr(&out).contains("--baseline"), "{}", stderr(&out));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_run_from_before_per_claim_versions_is_stamped_with_this_builds_where_asked() {
+    let dir = scratch("stamp");
+    let mut old = read_json(&full_kept());
+    for claim in old["sections"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .flat_map(|s| s["claims"].as_array_mut().unwrap().iter_mut())
+    {
+        let claim = claim.as_object_mut().unwrap();
+        claim.remove("id");
+        claim.remove("version");
+    }
+    let old = write_json(&dir, "old.json", &old);
+    // A run of this build: only claims it has (the kept run's may have made-up ids here).
+    let like = this_build_copy(&dir, "like.json", |v| {
+        for section in v["sections"].as_array_mut().unwrap() {
+            section["claims"]
+                .as_array_mut()
+                .unwrap()
+                .retain(|c| compare::current_version(c["id"].as_str().unwrap(), false).is_some());
+        }
+    });
+    let out = dir.join("stamped.json");
+    let stamp = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
+            .args(["claims", "--stamp", old.to_str().unwrap()])
+            .args([
+                "--like",
+                like.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let run = stamp(&["--except", "paper4.interactive-buoyancy"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let stamped = read_json(&out);
+    assert!(stamped["stamped"]
+        .as_str()
+        .unwrap()
+        .contains("paper4.interactive-buoyancy"));
+    let claim = |id: &str| {
+        stamped["sections"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|s| s["claims"].as_array().unwrap())
+            .find(|c| c["id"] == id)
+            .cloned()
+    };
+    // A claim of this build: its id and this build's version at the run's sizes.
+    let cullide = claim("paper1.beats-cullide").expect("stamped");
+    assert_eq!(
+        cullide["version"],
+        compare::current_version("paper1.beats-cullide", false).unwrap()
+    );
+    // A claim left out keeps no version: "re-run needed".
+    assert!(claim("paper4.interactive-buoyancy").is_none());
+    let text = markdown::grouped(std::slice::from_ref(&out)).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.contains("floating bodies"))
+        .unwrap();
+    assert!(line.contains("re-run needed"), "{line}");
+    let line = text
+        .lines()
+        .find(|l| l.contains("faster than CULLIDE"))
+        .unwrap();
+    assert!(!line.contains("re-run needed"), "{line}");
+    // The file is not replaced without --force, and a run with versions is not stamped.
+    assert!(!stamp(&[]).status.success());
+    let again = Command::new(env!("CARGO_BIN_EXE_classic-gpgpu"))
+        .args(["claims", "--stamp", like.to_str().unwrap()])
+        .args(["--like", like.to_str().unwrap()])
+        .args(["--out", dir.join("again.json").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!again.status.success());
+    assert!(
+        stderr(&again).contains("already carry versions"),
+        "{}",
+        stderr(&again)
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -173,7 +173,9 @@ pub fn gate(baseline: &Run, new: &Run) -> Gate {
     let new_claims = claims(new);
     let mut rows = Vec::new();
     for (key, section, old) in &old_claims {
-        let found = new_claims.iter().find(|(k, _, _)| k == key);
+        let found = new_claims
+            .iter()
+            .find(|(k, s, c)| same_claim((key, *section, *old), (k, *s, *c)));
         let row = |outcome, changes| Row {
             id: key.clone(),
             section: section.id.clone(),
@@ -181,7 +183,8 @@ pub fn gate(baseline: &Run, new: &Run) -> Gate {
             changes,
         };
         rows.push(match found {
-            Some((_, _, claim)) => judge(key, section, old, claim, baseline, new),
+            // Named by the new run's id where the baseline's claim has none.
+            Some((new_key, _, claim)) => judge(new_key, section, old, claim, baseline, new),
             None if new.section(&section.id).is_some() => row(
                 Outcome::Regressed,
                 vec![format!(
@@ -195,8 +198,11 @@ pub fn gate(baseline: &Run, new: &Run) -> Gate {
             ),
         });
     }
-    for (key, section, _) in &new_claims {
-        if !old_claims.iter().any(|(k, _, _)| k == key) {
+    for (key, section, claim) in &new_claims {
+        let known = old_claims
+            .iter()
+            .any(|(k, s, c)| same_claim((k, *s, *c), (key, *section, *claim)));
+        if !known {
             rows.push(Row {
                 id: key.clone(),
                 section: section.id.clone(),
@@ -210,6 +216,13 @@ pub fn gate(baseline: &Run, new: &Run) -> Gate {
         new: describe(new),
         rows,
     }
+}
+
+/// Whether two runs' claims are the same claim: the same id, or where one run is from before
+/// claims had ids, the same section and words.
+fn same_claim(a: (&String, &Section, &Claim), b: (&String, &Section, &Claim)) -> bool {
+    a.0 == b.0
+        || ((a.2.id.is_empty() || b.2.id.is_empty()) && a.1.id == b.1.id && a.2.claim == b.2.claim)
 }
 
 /// A run in a line: file, renderer, commit, date, sizes.

@@ -7,6 +7,11 @@
 //! `report/<id>/`, with one file per table or figure. The `*-bench` commands
 //! ([`bench_command`]) and `reproduce` both go through [`run_section`].
 //!
+//! Each claim has a stable id and a version of its own ([`versions`]): a hash of the code that
+//! judges it, the published values and the sizes that measure it, so that results of other
+//! builds compare claim by claim for as long as what decides a claim stays the same. A claim
+//! also keeps the numbers its verdict rests on ([`evidence`]), for `compare --baseline`.
+//!
 //! This room holds the papers' reproduction and nothing else: the course's pages are in
 //! [`crate::learn`], `compare` and `selftest` are rooms of their own, and the HTML, plots and
 //! folder writer they all use are the page layer's ([`crate::page`]).
