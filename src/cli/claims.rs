@@ -47,11 +47,9 @@ pub fn run(args: &ClaimsArgs, json: bool) -> anyhow::Result<()> {
         Run::read(old)?;
         let text =
             std::fs::read_to_string(old).with_context(|| format!("reading {}", old.display()))?;
-        let value: serde_json::Value =
-            serde_json::from_str(&text).with_context(|| format!("{}: not JSON", old.display()))?;
         let like = Run::read(like)?;
-        let (stamped, ids) = stamp::stamp(&value, &old.display().to_string(), &like, &args.except)?;
-        classic_gpgpu::files::write_bytes(out, serde_json::to_string_pretty(&stamped)?.as_bytes())?;
+        let (stamped, ids) = stamp::stamp(&text, &old.display().to_string(), &like, &args.except)?;
+        classic_gpgpu::files::write_bytes(out, stamped.as_bytes())?;
         println!(
             "{}: {} claims stamped ({}), written to {}",
             old.display(),

@@ -104,11 +104,31 @@ impl Gate {
     /// the summary as the last line.
     pub fn to_text(&self) -> String {
         let mut out = format!("baseline {}\nnew      {}\n", self.baseline, self.new);
-        for row in self.rows.iter().filter(|r| r.outcome != Outcome::Same) {
+        let listed = |r: &&Row| !matches!(r.outcome, Outcome::Same | Outcome::NotCompared);
+        for row in self.rows.iter().filter(listed) {
             out.push_str(&format!("{}: {}\n", row.outcome.word(), row.id));
             for change in &row.changes {
                 out.push_str(&format!("    {change}\n"));
             }
+        }
+        // The claims not compared, a line per reason (a section one run did not run).
+        let mut reasons: Vec<(&str, usize)> = Vec::new();
+        for row in self
+            .rows
+            .iter()
+            .filter(|r| r.outcome == Outcome::NotCompared)
+        {
+            let why = row.changes.first().map_or("", String::as_str);
+            match reasons.iter_mut().find(|(w, _)| *w == why) {
+                Some((_, n)) => *n += 1,
+                None => reasons.push((why, 1)),
+            }
+        }
+        for (why, n) in reasons {
+            out.push_str(&format!(
+                "not compared: {n} claim{}: {why}\n",
+                if n == 1 { "" } else { "s" }
+            ));
         }
         out.push_str(&self.summary());
         out.push('\n');

@@ -13,20 +13,25 @@ use crate::report::provenance;
 use anyhow::{bail, Context as _};
 use serde_json::{json, Value};
 
-/// The stamped copy of `old` (the results.json's text as read) and the ids stamped.
+/// The stamped copy of `old` (the results.json's text as read), and the ids stamped. The text is
+/// patched, not written again: each stamped claim gains an `id` and a `version` before its
+/// `"claim"`, the run a `stamped` field, and every other byte (every number) stays as it was; the
+/// patched text must parse to the old document plus those fields.
 pub fn stamp(
-    old: &Value,
+    old: &str,
     old_file: &str,
     like: &Run,
     except: &[String],
-) -> anyhow::Result<(Value, Vec<String>)> {
+) -> anyhow::Result<(String, Vec<String>)> {
     for id in except {
         if crate::report::versions::find(id).is_none() {
             bail!("--except {id}: not a claim of this build (`classic-gpgpu claims` lists them)");
         }
     }
+    let value: Value =
+        serde_json::from_str(old).with_context(|| format!("{old_file}: not JSON"))?;
     let recorded_version = |c: &Value| c["version"].as_str().is_some_and(|v| !v.is_empty());
-    let sections = old["sections"]
+    let sections = value["sections"]
         .as_array()
         .with_context(|| format!("{old_file}: no sections"))?;
     if sections
@@ -35,7 +40,8 @@ pub fn stamp(
         .any(recorded_version)
     {
         bail!(
-            "{old_file}: its claims already carry versions; only a run from before them is stamped"
+            "{old_file}: its claims already carry versions; only a run from before them is \
+             stamped"
         );
     }
     for section in &like.sections {
@@ -50,16 +56,17 @@ pub fn stamp(
             }
         }
     }
-    let quick = old["quick"] == true;
-    let mut stamped = old.clone();
+    let quick = value["quick"] == true;
+    let mut expected = value.clone();
+    let mut text = old.to_string();
     let mut ids = Vec::new();
-    for section in stamped["sections"].as_array_mut().into_iter().flatten() {
+    for section in expected["sections"].as_array_mut().into_iter().flatten() {
         let section_id = section["id"].as_str().unwrap_or_default().to_string();
         let Some(new) = like.section(&section_id) else {
             continue;
         };
         for claim in section["claims"].as_array_mut().into_iter().flatten() {
-            let words = claim["claim"].as_str().unwrap_or_default();
+            let words = claim["claim"].as_str().unwrap_or_default().to_string();
             let Some(same) = new.claims.iter().find(|c| c.claim == words) else {
                 continue;
             };
@@ -69,6 +76,8 @@ pub fn stamp(
             let Some(version) = super::current_version(&same.id, quick) else {
                 continue;
             };
+            text = add_before_claim(&text, &words, &same.id, &version)
+                .with_context(|| format!("{old_file}: claim '{words}'"))?;
             claim["id"] = json!(same.id);
             claim["version"] = json!(version);
             ids.push(same.id.clone());
@@ -80,20 +89,69 @@ pub fn stamp(
             like.file
         );
     }
-    stamped["stamped"] =
-        json!(format!(
-        "ids and versions given afterwards, at commit {}, to {} of its claims (matched by their \
-         words to {} of commit {}{}): asserted unchanged in rule, published value and sizes \
-         since the run's commit",
+    let note = format!(
+        "ids and versions given afterwards, at commit {}, to {} of its claims, matched by their \
+         words to those of a run of the same versions ({}, commit {}{}){}; whoever stamped \
+         asserts that how each is judged, its published values and its sizes did not change \
+         between the run's commit and {0}",
         provenance::short_commit(provenance::COMMIT),
         ids.len(),
-        like.file,
+        like.label,
         like.short_commit(),
+        if like.quick { ", --quick" } else { "" },
         if except.is_empty() {
             String::new()
         } else {
-            format!("; left without a version, changed since: {}", except.join(", "))
+            format!(
+                "; left without a version, changed since the run: {}",
+                except.join(", ")
+            )
         }
-    ));
-    Ok((stamped, ids))
+    );
+    let open = text
+        .find('{')
+        .with_context(|| format!("{old_file}: not a JSON object"))?;
+    text.insert_str(open + 1, &format!("\n  \"stamped\": {},", json!(note)));
+    expected["stamped"] = json!(note);
+    let patched: Value = serde_json::from_str(&text)
+        .with_context(|| format!("{old_file}: the stamped text does not parse"))?;
+    if patched != expected {
+        bail!("{old_file}: the stamped text is not the run plus its stamps; nothing written");
+    }
+    Ok((text, ids))
+}
+
+/// `text` with the fields `"id"` and `"version"` put before the claim's `"claim": <words>`
+/// (which must be there once), on lines of their own where the text has lines.
+fn add_before_claim(text: &str, words: &str, id: &str, version: &str) -> anyhow::Result<String> {
+    let value = json!(words).to_string();
+    // Each place the words are the value of a "claim" key: where that key starts.
+    let keys: Vec<usize> = text
+        .match_indices(&value)
+        .filter_map(|(at, _)| text[..at].trim_end().strip_suffix("\"claim\":"))
+        .map(|before| before.trim_end().len())
+        .filter(|&after| text[..after].ends_with(['{', ',']))
+        .map(|after| after + text[after..].find('"').unwrap_or(0))
+        .collect();
+    let [key] = keys.as_slice() else {
+        bail!(
+            "its \"claim\" is there {} times, not once; the claims are stamped only where each \
+             is there once",
+            keys.len()
+        );
+    };
+    let line_start = text[..*key].rfind('\n').map_or(0, |i| i + 1);
+    let indent = &text[line_start..*key];
+    let gap = if indent.trim().is_empty() && line_start > 0 {
+        format!("\n{indent}")
+    } else {
+        String::new()
+    };
+    Ok(format!(
+        "{}\"id\": {},{gap}\"version\": {},{gap}{}",
+        &text[..*key],
+        json!(id),
+        json!(version),
+        &text[*key..]
+    ))
 }
