@@ -710,6 +710,19 @@ fn timings_are_judged_only_between_quiet_runs_and_definitions_that_changed_are_n
     let out = compare_cli(&[&quiet], &["--baseline", baseline.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1), "{}", stdout(&out));
     assert_eq!(summary(&out).1, 1);
+    // Another machine's run, quiet and as slow: its timings are not judged against these.
+    let other = this_build_copy(&dir, "other.json", |v| {
+        v["renderer"]["renderer"] = json!("softpipe");
+        claim_mut(v, id)["evidence"] = timing(10.0, 0.5);
+    });
+    let out = compare_cli(&[&other], &["--baseline", baseline.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stdout(&out));
+    assert!(
+        stdout(&out).contains("timings of two machines"),
+        "{}",
+        stdout(&out)
+    );
+    assert_eq!(summary(&out).3, 1);
     // Within the band: no regression.
     let close = this_build_copy(&dir, "close.json", |v| {
         claim_mut(v, id)["evidence"] = timing(18.0, 0.5);

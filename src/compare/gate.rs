@@ -6,8 +6,8 @@
 //!   passed its bound and a verdict decided by counts (or errors, or the run's size) that
 //!   flipped, and a claim the new run lost from a section it ran;
 //! - a timing is judged only when both runs were quiet (load at most
-//!   [`crate::timing::LOADED_PER_CORE`] per core), against the band its claim states, and is
-//!   otherwise "not judged", never a failure;
+//!   [`crate::timing::LOADED_PER_CORE`] per core) on one machine (renderer and CPU), against the
+//!   band its claim states, and is otherwise "not judged", never a failure;
 //! - a claim whose version differs "changed definition": it is listed, not judged.
 //!
 //! Anchors: Mesa's deqp-runner (a baseline of expected results, each failure listed) and asv's
@@ -311,7 +311,19 @@ fn judge(key: &str, section: &Section, old: &Claim, new: &Claim, a: &Run, b: &Ru
                 .push(format!("{}: not in the new run's figures", e.name));
             continue;
         };
-        let (change, verdict) = compare_evidence(e, n);
+        let (change, verdict) = if same_machine(a, b) || !is_timing(e) || e == n {
+            compare_evidence(e, n)
+        } else {
+            (
+                format!(
+                    "{}: {} -> {} (not judged: timings of two machines)",
+                    e.name,
+                    e.value_in_words(),
+                    n.value_in_words()
+                ),
+                Verdict::NotJudged,
+            )
+        };
         match verdict {
             Verdict::Regressed => regressed = true,
             Verdict::NotJudged => not_judged = true,
@@ -355,6 +367,16 @@ pub enum Verdict {
     Within,
     Regressed,
     NotJudged,
+}
+
+/// Whether two runs are of one machine (the same renderer and CPU): only then are their timings
+/// judged against each other.
+fn same_machine(a: &Run, b: &Run) -> bool {
+    a.renderer == b.renderer && a.cpu == b.cpu
+}
+
+fn is_timing(e: &Evidence) -> bool {
+    matches!(e.measure, Measure::Timing { .. })
 }
 
 /// Whether a load counts as quiet for judging a timing (a load not recorded does not).

@@ -108,6 +108,16 @@ impl Evidence {
         }
     }
 
+    /// Whether its numbers are finite (a ratio of a zero time is not, and JSON cannot hold
+    /// it): only those are kept in a run's results.
+    pub fn is_finite(&self) -> bool {
+        match &self.measure {
+            Measure::Count { value } | Measure::Timing { value, .. } => value.is_finite(),
+            Measure::Error { value, bound } => value.is_finite() && bound.is_finite(),
+            Measure::Exact { .. } | Measure::PairSet(_) => true,
+        }
+    }
+
     /// The number in words: "12", "0.0310 (bound 0.05)", "21.4 ms", "yes".
     pub fn value_in_words(&self) -> String {
         match &self.measure {
@@ -151,5 +161,31 @@ impl ClaimDef {
                 load,
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_evidence_json_can_hold_is_finite() {
+        assert!(Evidence::count("pairs", 12.0).is_finite());
+        assert!(!Evidence::count("speed-up", f64::INFINITY).is_finite());
+        assert!(!Evidence::error("error", f64::NAN, 0.05).is_finite());
+        assert!(!Evidence::error("error", 0.01, f64::INFINITY).is_finite());
+        assert!(Evidence::exact("equal", false).is_finite());
+        let ratio = |value| Evidence {
+            name: "ratio".into(),
+            measure: Measure::Timing {
+                value,
+                unit: "x".into(),
+                higher_is_better: true,
+                band: 0.2,
+                load: None,
+            },
+        };
+        assert!(ratio(2.5).is_finite());
+        assert!(!ratio(f64::NAN).is_finite());
     }
 }

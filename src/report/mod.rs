@@ -145,8 +145,9 @@ pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyho
     Ok(section)
 }
 
-/// Gives each claim of section `id` its version; an error for a claim without an id, with an
-/// id the section does not list in `defs`, or made twice.
+/// Gives each claim of section `id` its version, and keeps only its evidence that JSON can hold
+/// (finite numbers); an error for a claim without an id, with an id the section does not list in
+/// `defs`, or made twice.
 fn stamp_claims(
     id: &str,
     defs: &[ClaimDef],
@@ -169,6 +170,7 @@ fn stamp_claims(
             )
         })?;
         claim.version = versions::current(def, quick).map_err(anyhow::Error::msg)?;
+        claim.evidence.retain(Evidence::is_finite);
     }
     Ok(())
 }
