@@ -723,6 +723,19 @@ fn timings_are_judged_only_between_quiet_runs_and_definitions_that_changed_are_n
         stdout(&out)
     );
     assert_eq!(summary(&out).3, 1);
+    // A baseline that kept no figures of the claim (a run from before claims kept them): its
+    // timing is not judged, however it moved.
+    let bare = this_build_copy(&dir, "bare.json", |v| {
+        claim_mut(v, id)["evidence"] = json!([]);
+    });
+    let out = compare_cli(&[&quiet], &["--baseline", bare.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stdout(&out));
+    assert!(
+        stdout(&out).contains("kept no figures of this claim: its timings are not judged"),
+        "{}",
+        stdout(&out)
+    );
+    assert_eq!(summary(&out).3, 1);
     // Within the band: no regression.
     let close = this_build_copy(&dir, "close.json", |v| {
         claim_mut(v, id)["evidence"] = timing(18.0, 0.5);

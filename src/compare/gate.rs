@@ -7,7 +7,8 @@
 //!   flipped, and a claim the new run lost from a section it ran;
 //! - a timing is judged only when both runs were quiet (load at most
 //!   [`crate::timing::LOADED_PER_CORE`] per core) on one machine (renderer and CPU), against the
-//!   band its claim states, and is otherwise "not judged", never a failure;
+//!   band its claim states, and is otherwise "not judged", never a failure (so is a timed
+//!   claim whose baseline kept no figures, as runs from before claims kept them);
 //! - a claim whose version differs "changed definition": it is listed, not judged.
 //!
 //! Anchors: Mesa's deqp-runner (a baseline of expected results, each failure listed) and asv's
@@ -338,6 +339,23 @@ fn judge(key: &str, section: &Section, old: &Claim, new: &Claim, a: &Run, b: &Ru
             row.changes
                 .push(format!("{}: new figure {}", n.name, n.value_in_words()));
         }
+    }
+    // A baseline that kept no figures (a run from before claims kept them): only a verdict
+    // decided by counts can be judged; a timing's has nothing to be judged against.
+    if old.evidence.is_empty() && !new.evidence.is_empty() {
+        let timed = old.decided_by == Basis::Timing || new.decided_by == Basis::Timing;
+        not_judged |= timed;
+        row.changes.insert(
+            0,
+            format!(
+                "the baseline kept no figures of this claim: {}",
+                if timed {
+                    "its timings are not judged"
+                } else {
+                    "only its verdict is compared"
+                }
+            ),
+        );
     }
     row.outcome = if regressed {
         Outcome::Regressed
