@@ -723,6 +723,25 @@ fn timings_are_judged_only_between_quiet_runs_and_definitions_that_changed_are_n
         stdout(&out)
     );
     assert_eq!(summary(&out).3, 1);
+    // Two quiet --quick runs: their timings are too short to judge.
+    let quick = |name, fps| {
+        this_build_copy(&dir, name, |v| {
+            v["quick"] = json!(true);
+            claim_mut(v, id)["evidence"] = timing(fps, 0.5);
+        })
+    };
+    let (quick_baseline, quick_slow) = (quick("qb.json", 20.0), quick("qs.json", 10.0));
+    let out = compare_cli(
+        &[&quick_slow],
+        &["--baseline", quick_baseline.to_str().unwrap()],
+    );
+    assert!(out.status.success(), "{}", stdout(&out));
+    assert!(
+        stdout(&out).contains("timings at --quick sizes are too short to judge"),
+        "{}",
+        stdout(&out)
+    );
+    assert_eq!(summary(&out).3, 1);
     // A baseline that kept no figures of the claim (a run from before claims kept them): its
     // timing is not judged, however it moved.
     let bare = this_build_copy(&dir, "bare.json", |v| {

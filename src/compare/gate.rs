@@ -7,8 +7,9 @@
 //!   flipped, and a claim the new run lost from a section it ran;
 //! - a timing is judged only when both runs were quiet (load at most
 //!   [`crate::timing::LOADED_PER_CORE`] per core) on one machine (renderer and CPU), against the
-//!   band its claim states, and is otherwise "not judged", never a failure (so is a timed
-//!   claim whose baseline kept no figures, as runs from before claims kept them);
+//!   band its claim states, at the papers' sizes, and is otherwise "not judged", never a
+//!   failure (so is a timed claim whose baseline kept no figures, as runs from before claims
+//!   kept them): a `--quick` run's timings, as CI's, are too short to hold still;
 //! - a claim whose version differs "changed definition": it is listed, not judged.
 //!
 //! Anchors: Mesa's deqp-runner (a baseline of expected results, each failure listed) and asv's
@@ -312,18 +313,17 @@ fn judge(key: &str, section: &Section, old: &Claim, new: &Claim, a: &Run, b: &Ru
                 .push(format!("{}: not in the new run's figures", e.name));
             continue;
         };
-        let (change, verdict) = if same_machine(a, b) || !is_timing(e) || e == n {
-            compare_evidence(e, n)
-        } else {
-            (
+        let (change, verdict) = match timing_not_judged(e, n, a, b) {
+            None => compare_evidence(e, n),
+            Some(why) => (
                 format!(
-                    "{}: {} -> {} (not judged: timings of two machines)",
+                    "{}: {} -> {} (not judged: {why})",
                     e.name,
                     e.value_in_words(),
                     n.value_in_words()
                 ),
                 Verdict::NotJudged,
-            )
+            ),
         };
         match verdict {
             Verdict::Regressed => regressed = true,
@@ -385,6 +385,21 @@ pub enum Verdict {
     Within,
     Regressed,
     NotJudged,
+}
+
+/// Why a timing that moved between two runs cannot be judged, if it cannot: the runs are of
+/// two machines, or of `--quick` sizes, whose passes are too short for their medians to hold
+/// still between two runs of one machine (two quiet quick runs differ by more than a band).
+fn timing_not_judged(e: &Evidence, n: &Evidence, a: &Run, b: &Run) -> Option<&'static str> {
+    if !is_timing(e) || e == n {
+        None
+    } else if !same_machine(a, b) {
+        Some("timings of two machines")
+    } else if a.quick || b.quick {
+        Some("timings at --quick sizes are too short to judge")
+    } else {
+        None
+    }
 }
 
 /// Whether two runs are of one machine (the same renderer and CPU): only then are their timings
