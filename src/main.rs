@@ -90,9 +90,13 @@ enum Command {
     Assets(cli::assets::AssetsCommand),
     /// The lessons of the basic GPGPU approach, in order, each checked against the CPU.
     Learn(cli::learn::LearnArgs),
-    /// Several machines' results.json side by side: every claim a row, each machine a column
-    /// (a page in --out), or the README's table (--markdown).
+    /// Several runs' results.json side by side: every claim a row (a row per version of it),
+    /// each run a column (a page in --out), the README's table (--markdown), or one run
+    /// against a baseline: the regression gate (--baseline, exit 1 on a regression).
     Compare(classic_gpgpu::compare::CompareArgs),
+    /// Every claim this build can make: its id, its versions (at the papers' sizes and at
+    /// --quick sizes) and what each is a hash of; or --stamp a run from before them.
+    Claims(cli::claims::ClaimsArgs),
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -243,6 +247,7 @@ fn main() -> ExitCode {
         Command::Assets(c) => cli::assets::run(&c, json),
         Command::Learn(a) => cli::learn::run(&a, json, || global.context()),
         Command::Compare(a) => cli::compare::run(&a, json),
+        Command::Claims(a) => cli::claims::run(&a, json),
     };
     // The trace is written whether the command succeeded or not: a failure is when it helps.
     let result = match (result, global.write_trace()) {

@@ -160,6 +160,8 @@ pub fn median(mut values: Vec<f64>) -> f64 {
     }
 }
 
+// region: rule timing-verdicts
+// (What every claim judged on a timing rests on: a part of its version, report::versions.)
 /// The load average above which a machine counts as loaded, per core: more runnable tasks
 /// than cores means the timed work waited for a core part of the time, so a timing says as
 /// much about the other work as about the paper's method.
@@ -375,6 +377,7 @@ pub fn judge_under_load(holds: bool, load: Option<Load>) -> TimedVerdict {
         },
     }
 }
+// endregion
 
 /// The environment variable that turns on [`mark`]: `CLASSIC_GPGPU_MARKS=1`.
 pub const MARKS_ENV: &str = "CLASSIC_GPGPU_MARKS";

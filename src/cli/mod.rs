@@ -3,6 +3,7 @@
 //! `*-bench` commands all go through [`classic_gpgpu::report::bench_command`].
 
 pub mod assets;
+pub mod claims;
 pub mod collide;
 pub mod compare;
 pub mod crowd;

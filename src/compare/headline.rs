@@ -23,7 +23,9 @@ pub struct Headline {
     /// The paper's number ("1" .. "4").
     pub paper: &'static str,
     pub section: &'static str,
-    /// Words of the claim's text that find it (the claim's text names sizes the paper sets).
+    /// The claim's id ([`crate::report::ClaimDef::id`]).
+    pub id: &'static str,
+    /// Words of the claim's text that find it in a run from before claims had ids.
     pub claim: &'static str,
     /// The claim in a few words.
     pub label: &'static str,
@@ -41,6 +43,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "1",
             section: "paper1",
+            id: "paper1.tori-frame-interactive",
             claim: "A whole frame of the 15K-triangle tori scenes is interactive",
             label: "15K-triangle tori, whole frame",
             ratio: "paper 1: the paper's slowest tori frame / the slowest here",
@@ -50,6 +53,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "1",
             section: "paper1",
+            id: "paper1.beats-cullide",
             claim: "About 3x faster than CULLIDE, and nothing missed",
             label: "faster than CULLIDE, no pair missed",
             ratio: "paper 1: CULLIDE / streaming frame time (mean over the scenes)",
@@ -59,6 +63,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "1",
             section: "paper1",
+            id: "paper1.beats-solid",
             claim: "Streaming culling + update beats SOLID's refit + traversal",
             label: "faster than SOLID's CPU refit",
             ratio: "paper 1: SOLID / streaming culling with download (lowest over the scenes)",
@@ -68,6 +73,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "1",
             section: "paper1",
+            id: "paper1.any-p0-read-back-quickly",
             claim: "With the scheme chosen per eta, any P0 is read back quickly",
             label: "any P0 read back quickly",
             ratio: "",
@@ -77,6 +83,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "2",
             section: "paper2",
+            id: "paper2.overtakes-vs-one-per-draw",
             claim: "Two-pass (pixel-shader) skinning overtakes vertex-shader skinning (VS 1/draw)",
             label: "two-pass skinning overtakes vertex-shader skinning (one character per draw)",
             ratio: "",
@@ -86,6 +93,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "3",
             section: "paper3",
+            id: "paper3.twenty-fold",
             claim: "The GPU is about 20 times faster than CPU-only processing",
             label: "GPU vs CPU-only MLP",
             ratio: "paper 3: CPU-only / GPU time of the MLP",
@@ -95,6 +103,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "3",
             section: "paper3",
+            id: "paper3.same-classification",
             claim: "Classification on the GPU gives almost the same result as without it",
             label: "GPU mask equals the CPU mask (text.png)",
             ratio: "",
@@ -104,6 +113,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "4",
             section: "paper4",
+            id: "paper4.error-bound",
             claim: "is enough for 5% error in mass and the moments of inertia",
             label: "error at 32x32 (mass and I_xx, I_yy, I_zz, as Fig. 4)",
             ratio: "",
@@ -113,6 +123,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "4",
             section: "paper4",
+            id: "paper4.outperforms-analytic-bunny",
             claim: "at 64x64 the GPU method outperforms the analytic one for the bunny",
             label: "at 64x64 the GPU outperforms the analytic method (bunny)",
             ratio: "paper 4: analytic / GPU time, bunny at 64x64",
@@ -122,6 +133,7 @@ pub fn headlines() -> Vec<Headline> {
         Headline {
             paper: "4",
             section: "paper4",
+            id: "paper4.interactive-buoyancy",
             claim: "interactive buoyancy of",
             label: "floating bodies, frames per second",
             ratio: "paper 4: buoyancy frames/s / the paper's",
@@ -134,6 +146,8 @@ pub fn headlines() -> Vec<Headline> {
 /// One headline across the machines.
 #[derive(Clone, Debug, Serialize)]
 pub struct Row {
+    /// The claim's id.
+    pub id: String,
     pub paper: String,
     pub section: String,
     pub label: String,
@@ -153,6 +167,8 @@ pub struct Cell {
     /// `None` where the claim was not run, or its figure could not be read (a bug the
     /// tests catch: the claim's words changed).
     pub figure: Option<Figure>,
+    /// The version of the claim the run judged ("" where it did not record one).
+    pub version: String,
 }
 
 impl Cell {
@@ -178,34 +194,45 @@ pub fn rows(runs: &[Run]) -> Vec<Row> {
             continue;
         };
         rows.push(Row {
+            id: h.id.into(),
             paper: h.paper.into(),
             section: h.section.into(),
             label: h.label.into(),
             published: first.paper.clone(),
             ratio: h.ratio.into(),
             paper_ratio: (h.paper_ratio)(published),
-            cells: found
-                .iter()
-                .map(|f| match f {
-                    Some((claim, section)) => Cell {
-                        verdict: verdict(claim.holds).into(),
-                        figure: (h.figure)(claim, section, published),
-                    },
-                    None => Cell {
-                        verdict: "not run".into(),
-                        figure: None,
-                    },
-                })
-                .collect(),
+            cells: found.iter().map(|f| cell(&h, *f, published)).collect(),
         });
     }
     rows
 }
 
-/// The claim of headline `h` on `run`, and its section.
+/// Headline `h` on a run that made its claim (`found`), or did not.
+pub fn cell(h: &Headline, found: Option<(&Claim, &Section)>, published: &Published) -> Cell {
+    match found {
+        Some((claim, section)) => Cell {
+            verdict: verdict(claim.holds).into(),
+            figure: (h.figure)(claim, section, published),
+            version: claim.version.clone(),
+        },
+        None => Cell {
+            verdict: "not run".into(),
+            figure: None,
+            version: String::new(),
+        },
+    }
+}
+
+/// The claim of headline `h` on `run`, and its section: by its id, or in a run from before
+/// ids, by its words.
 pub fn find<'a>(run: &'a Run, h: &Headline) -> Option<(&'a Claim, &'a Section)> {
     let section = run.section(h.section)?;
-    let claim = section.claims.iter().find(|c| c.claim.contains(h.claim))?;
+    let claim = section.claims.iter().find(|c| c.id == h.id).or_else(|| {
+        section
+            .claims
+            .iter()
+            .find(|c| c.id.is_empty() && c.claim.contains(h.claim))
+    })?;
     Some((claim, section))
 }
 

@@ -1,10 +1,12 @@
-//! The compare page (`index.html`): the machines, the headline figures and their plots, the
-//! then-and-now ratios, and every claim with each machine's verdict, measured figure and load.
+//! The compare page (`index.html`): for each group of runs of the same sizes, the machines, the
+//! headline figures and their plots, the then-and-now ratios, the claims whose definition
+//! changed between the runs, and every claim (a row per version of it) with each run's
+//! verdict, measured figure, commit, date and load. Every text of a results.json is escaped.
 //! The style every page shares ([`crate::page::html::STYLE`]), self-contained.
 
 use super::headline::{then_and_now_text, THEN_AND_NOW};
 use super::plot::Figure;
-use super::Comparison;
+use super::{Comparison, Group};
 use crate::page::html::{escape, escape_cell, STYLE};
 
 /// The verdict's class in the report's style (green, red, grey).
@@ -45,7 +47,7 @@ fn text(t: &str) -> (String, String) {
     (String::new(), escape_cell(t))
 }
 
-fn machines(c: &Comparison) -> String {
+fn machines_table(c: &Group) -> String {
     let header: Vec<String> = [
         "machine", "renderer", "OpenGL", "CPU", "date", "commit", "load", "command", "results",
     ]
@@ -69,7 +71,15 @@ fn machines(c: &Comparison) -> String {
                 ),
                 (
                     String::new(),
-                    format!("<code>{}</code>", escape_cell(&m.file)),
+                    format!(
+                        "<code>{}</code>{}",
+                        escape_cell(&m.file),
+                        if m.stamped.is_empty() {
+                            String::new()
+                        } else {
+                            format!("<br><small>{}</small>", escape_cell(&m.stamped))
+                        }
+                    ),
                 ),
             ]
         })
@@ -81,7 +91,7 @@ fn machines(c: &Comparison) -> String {
     )
 }
 
-fn headlines(c: &Comparison) -> String {
+fn headlines(c: &Group) -> String {
     let mut header: Vec<String> = ["paper", "claim", "paper (its hardware)"]
         .map(String::from)
         .to_vec();
@@ -91,13 +101,29 @@ fn headlines(c: &Comparison) -> String {
         .iter()
         .map(|r| {
             let mut row = vec![text(&r.paper), text(&r.label), text(&r.published)];
+            let current = super::current_version(&r.id, c.quick);
             row.extend(r.cells.iter().map(|cell| {
                 let class = match cell.verdict.as_str() {
                     "yes" => "yes",
                     "no" => "no",
                     _ => "unjudged",
                 };
-                (class.to_string(), escape_cell(&cell.text()))
+                let stale = cell.verdict != "not run" && current.as_ref() != Some(&cell.version);
+                let note = if stale {
+                    format!(
+                        "<br><small><i>{}</i></small>",
+                        escape(&format!(
+                            "not this build's definition ({})",
+                            super::version_words(&cell.version)
+                        ))
+                    )
+                } else {
+                    String::new()
+                };
+                (
+                    class.to_string(),
+                    format!("{}{note}", escape_cell(&cell.text())),
+                )
             }));
             row
         })
@@ -109,7 +135,7 @@ fn headlines(c: &Comparison) -> String {
     )
 }
 
-fn then_and_now(c: &Comparison) -> String {
+fn then_and_now(c: &Group) -> String {
     let mut header = vec!["section".to_string()];
     header.extend(c.machines.iter().map(|m| m.label.clone()));
     let rows: Vec<Vec<(String, String)>> = THEN_AND_NOW
@@ -132,7 +158,7 @@ fn then_and_now(c: &Comparison) -> String {
     )
 }
 
-fn claims(c: &Comparison) -> String {
+fn claims(c: &Group) -> String {
     let mut header: Vec<String> = ["section", "claim", "the paper (its hardware)"]
         .map(String::from)
         .to_vec();
@@ -143,7 +169,19 @@ fn claims(c: &Comparison) -> String {
         .map(|r| {
             let mut row = vec![
                 text(&r.section),
-                text(&r.claim),
+                (
+                    String::new(),
+                    format!(
+                        "{}<br><small><code>{}</code>: {}</small>",
+                        escape_cell(&r.claim),
+                        escape(&r.id),
+                        escape(&format!(
+                            "{}; {}",
+                            super::version_words(&r.version),
+                            r.status
+                        ))
+                    ),
+                ),
                 text(&format!("{} ({})", r.paper, r.hardware)),
             ];
             row.extend(r.cells.iter().map(|cell| {
@@ -153,10 +191,13 @@ fn claims(c: &Comparison) -> String {
                         "<b>{}</b><br><small>{}</small>{}",
                         escape(cell.verdict()),
                         escape_cell(&cell.measured),
-                        if cell.load.is_empty() {
-                            String::new()
+                        if cell.ran {
+                            format!(
+                                "<br><small><i>{}</i></small>",
+                                escape(&format!("{}, {}, {}", cell.commit, cell.date, cell.load))
+                            )
                         } else {
-                            format!("<br><small><i>{}</i></small>", escape(&cell.load))
+                            String::new()
                         }
                     ),
                 )
@@ -165,51 +206,81 @@ fn claims(c: &Comparison) -> String {
         })
         .collect();
     table(
-        "Every claim: on each machine the verdict, what was measured, and the section's load \
-         (1-minute load average at its start and end)",
+        "Every claim, a row per version of it: on each machine the verdict, what was measured, \
+         and the commit, date and load (1-minute load average at the section's start and end) \
+         of the run",
         &header,
         &rows,
     )
 }
 
+/// The claims whose definition differs between the runs, as a list.
+fn changed(c: &Group) -> String {
+    if c.changed.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from(
+        "<p>Claims whose definition differs between these runs (each version has a row of its \
+         own below; no cell mixes two):</p>\n<ul>\n",
+    );
+    for changed in &c.changed {
+        out.push_str(&format!(
+            "<li><code>{}</code>: {}; {}</li>\n",
+            escape(&changed.id),
+            escape(&changed.since),
+            escape(&changed.versions.join("; "))
+        ));
+    }
+    out.push_str("</ul>\n");
+    out
+}
+
 /// The whole page.
 pub fn page(c: &Comparison, figures: &[Figure]) -> String {
+    let machines: usize = c.groups.iter().map(|g| g.machines.len()).sum();
     let mut out = format!(
         "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>classic-gpgpu: the \
          papers' claims across machines</title><style>{STYLE}</style></head><body>\n\
          <h1>classic-gpgpu: the papers' claims across machines</h1>\n"
     );
     out.push_str(&format!(
-        "<p>{} machine{}, every one at {} and judging claims version <code>{}</code> (a \
-         hash of the report's code and the published tables: results of other versions or \
-         sizes are refused, never mixed).</p>\n",
-        c.machines.len(),
-        if c.machines.len() == 1 { "" } else { "s" },
-        if c.quick {
-            "--quick sizes"
-        } else {
-            "the papers' sizes"
-        },
-        escape(&c.claims_version)
+        "<p>{machines} run{}. Each claim has an id and a version (a hash of what decides it: \
+         its rule, the published values and the workload); runs compare side by side on every \
+         claim whose version they share, and runs at other sizes form a group of their \
+         own.</p>\n",
+        if machines == 1 { "" } else { "s" },
     ));
-    if c.quick {
-        out.push_str(
-            "<p class=\"note\">Quick runs: small sizes for CI and smoke tests, not comparable \
-             with the papers' tables.</p>\n",
-        );
+    for (i, group) in c.groups.iter().enumerate() {
+        if !group.reason.is_empty() {
+            out.push_str(&format!(
+                "<h2>{}</h2>\n<p class=\"note\">{}</p>\n",
+                if group.quick {
+                    "--quick runs"
+                } else {
+                    "Runs at the papers' sizes"
+                },
+                escape(&group.reason)
+            ));
+        } else if group.quick {
+            out.push_str(
+                "<p class=\"note\">Quick runs: small sizes for CI and smoke tests, not \
+                 comparable with the papers' tables.</p>\n",
+            );
+        }
+        out.push_str(&machines_table(group));
+        out.push_str(&headlines(group));
+        for f in figures.iter().filter(|f| f.group == i) {
+            out.push_str(&format!(
+                "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
+                escape(&f.file),
+                escape(&f.caption),
+                escape(&f.caption)
+            ));
+        }
+        out.push_str(&then_and_now(group));
+        out.push_str(&changed(group));
+        out.push_str(&claims(group));
     }
-    out.push_str(&machines(c));
-    out.push_str(&headlines(c));
-    for f in figures {
-        out.push_str(&format!(
-            "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-            escape(&f.file),
-            escape(&f.caption),
-            escape(&f.caption)
-        ));
-    }
-    out.push_str(&then_and_now(c));
-    out.push_str(&claims(c));
     out.push_str("</body></html>\n");
     out
 }

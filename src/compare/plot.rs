@@ -4,19 +4,38 @@
 //! Okabe-Ito palette, told apart with any common colour-vision deficiency.
 
 use super::headline::{then_and_now_text, THEN_AND_NOW};
-use super::Comparison;
+use super::{Comparison, Group};
 use anyhow::Context as _;
 use plotters::prelude::*;
 
-/// A figure of the page: file name, caption, PNG bytes.
+/// A figure of the page: its group, file name, caption, PNG bytes.
 pub struct Figure {
+    /// The index of the group of runs it plots ([`Comparison::groups`]).
+    pub group: usize,
     pub file: String,
     pub caption: String,
     pub png: Vec<u8>,
 }
 
-/// The files the figures are written to.
-pub const FILES: [&str; 2] = ["headline_ratios.png", "then_and_now.png"];
+/// The files the figures of a group are written to (those of `--quick` runs end in `-quick`).
+pub const FILES: [&str; 2] = ["headline_ratios", "then_and_now"];
+
+/// The file of figure `name` ([`FILES`]) of a group.
+fn file(name: &str, group: &Group) -> String {
+    if group.quick {
+        format!("{name}-quick.png")
+    } else {
+        format!("{name}.png")
+    }
+}
+
+/// Every file the figures of `c` may be written to.
+pub fn files(c: &Comparison) -> Vec<String> {
+    c.groups
+        .iter()
+        .flat_map(|g| FILES.iter().map(move |name| file(name, g)))
+        .collect()
+}
 
 /// Okabe & Ito's colour-blind-safe palette (black last).
 const PALETTE: [RGBColor; 8] = [
@@ -48,8 +67,16 @@ pub struct Chart {
     pub lines: Vec<Line>,
 }
 
-/// The figures of a comparison; a figure with no point to draw is left out.
+/// The figures of a comparison, group by group; a figure with no point to draw is left out.
 pub fn figures(c: &Comparison) -> anyhow::Result<Vec<Figure>> {
+    let mut figures = Vec::new();
+    for (i, group) in c.groups.iter().enumerate() {
+        figures.extend(group_figures(i, group)?);
+    }
+    Ok(figures)
+}
+
+fn group_figures(index: usize, c: &Group) -> anyhow::Result<Vec<Figure>> {
     let mut figures = Vec::new();
     let mut x_names = vec!["the paper's hardware".to_string()];
     x_names.extend(c.machines.iter().map(|m| m.label.clone()));
@@ -77,7 +104,8 @@ pub fn figures(c: &Comparison) -> anyhow::Result<Vec<Figure>> {
     };
     if let Some(png) = headline.png()? {
         figures.push(Figure {
-            file: FILES[0].into(),
+            group: index,
+            file: file(FILES[0], c),
             caption: "Each headline ratio on the paper's hardware (where the paper states it) \
                       and on each machine. The tori frame and the buoyancy frame rate are \
                       taken relative to the paper's own figure, so the paper's hardware sits \
@@ -125,7 +153,8 @@ pub fn figures(c: &Comparison) -> anyhow::Result<Vec<Figure>> {
             caption += &format!(" No point: {}.", missing.join("; "));
         }
         figures.push(Figure {
-            file: FILES[1].into(),
+            group: index,
+            file: file(FILES[1], c),
             caption,
             png,
         });

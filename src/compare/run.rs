@@ -1,8 +1,11 @@
-//! One machine's run, read back from the `results.json` that `reproduce` wrote.
+//! One machine's run, read back from the `results.json` that `reproduce` wrote. A results.json
+//! may come from anyone (a study collects them from many machines), so what one may hold is
+//! bounded ([`MAX_BYTES`], [`MAX_DEPTH`], [`MAX_STRING`]) and a file past a bound is refused,
+//! named, before it is parsed.
 
 use crate::report::{provenance, Section};
 use crate::timing::Load;
-use anyhow::Context as _;
+use anyhow::{bail, Context as _};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -17,6 +20,14 @@ struct RecordedRenderer {
     glsl_version: String,
 }
 
+/// The largest results.json read: a full run at the papers' sizes is under 1 MiB.
+pub const MAX_BYTES: u64 = 32 << 20;
+/// The deepest nesting of arrays and objects: a run's is under 12.
+pub const MAX_DEPTH: usize = 64;
+/// The longest text (a JSON string, in bytes as written): a claim's measured text is a few
+/// hundred.
+pub const MAX_STRING: usize = 64 << 10;
+
 /// `results.json`, as far as `compare` reads it. Fields a report from an older version lacks
 /// are empty (and said to be missing where they matter).
 #[derive(Deserialize)]
@@ -28,6 +39,7 @@ struct Recorded {
     date: String,
     #[serde(default)]
     commit: String,
+    /// The run-wide claims version of a run from before per-claim versions.
     #[serde(default)]
     claims_version: String,
     #[serde(default)]
@@ -38,6 +50,9 @@ struct Recorded {
     #[serde(default)]
     elapsed_s: f64,
     sections: Vec<Section>,
+    /// How a run from before per-claim versions had them given afterwards (`claims --stamp`).
+    #[serde(default)]
+    stamped: String,
 }
 
 /// One machine: where its results came from, and its sections.
@@ -56,6 +71,8 @@ pub struct Run {
     pub cpu: String,
     pub date: String,
     pub commit: String,
+    /// The version of the whole set of claims a run from before per-claim versions recorded
+    /// (empty for a later run, whose claims carry their own).
     pub claims_version: String,
     pub command_line: Vec<String>,
     pub quick: bool,
@@ -65,15 +82,29 @@ pub struct Run {
     pub load: Option<(f64, f64)>,
     /// The cores the run could use.
     pub cores: usize,
+    /// How the claims of a run from before per-claim versions had them given afterwards
+    /// ([`super::stamp`]); empty for a run that recorded them itself.
+    pub stamped: String,
     #[serde(skip)]
     pub sections: Vec<Section>,
 }
 
 impl Run {
-    /// Reads `path`; the error names the file and what is wrong with it.
+    /// Reads `path`; the error names the file and what is wrong with it (a bound it passes
+    /// included).
     pub fn read(path: &Path) -> anyhow::Result<Run> {
+        let size = std::fs::metadata(path)
+            .with_context(|| format!("reading {}", path.display()))?
+            .len();
+        if size > MAX_BYTES {
+            bail!(
+                "{}: refused: {size} bytes, more than the {MAX_BYTES} a results.json may hold",
+                path.display()
+            );
+        }
         let text =
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+        check_bounds(&text).map_err(|e| anyhow::anyhow!("{}: refused: {e}", path.display()))?;
         let recorded: Recorded = serde_json::from_str(&text).map_err(|e| {
             anyhow::anyhow!(
                 "{}: not a results.json of `classic-gpgpu reproduce` ({e}); give the \
@@ -112,8 +143,17 @@ impl Run {
             elapsed_s: r.elapsed_s,
             load,
             cores: loads.first().map_or(0, |l| l.cores),
+            stamped: r.stamped,
             sections: r.sections,
         }
+    }
+
+    /// Whether the run's claims carry their own ids and versions (a run made since they do).
+    pub fn has_claim_versions(&self) -> bool {
+        self.sections
+            .iter()
+            .flat_map(|s| &s.claims)
+            .any(|c| !c.version.is_empty())
     }
 
     /// The section `id`, if the run has it.
@@ -158,10 +198,57 @@ impl Run {
         }
     }
 
-    /// The file name the run is kept under in `assets/results/`: `<machine>-<commit>.json`.
+    /// The file name the run is kept under in `assets/results/`: `<machine>-<commit>.json`,
+    /// the machine's name ending in `-quick` for a `--quick` run.
     pub fn kept_name(&self) -> String {
-        format!("{}-{}.json", slug(&self.label), self.short_commit())
+        format!(
+            "{}{}-{}.json",
+            slug(&short_name(&self.renderer)),
+            if self.quick { "-quick" } else { "" },
+            self.short_commit()
+        )
     }
+}
+
+/// Refuses a text nested deeper than [`MAX_DEPTH`] or with a string longer than
+/// [`MAX_STRING`], in one pass over the bytes before any parsing (a parser's own limits would
+/// otherwise answer with a stack depth, or not at all).
+pub fn check_bounds(text: &str) -> Result<(), String> {
+    let (mut depth, mut in_string, mut escaped, mut string_len) = (0usize, false, false, 0usize);
+    for (at, byte) in text.bytes().enumerate() {
+        if in_string {
+            string_len += 1;
+            if string_len > MAX_STRING {
+                return Err(format!(
+                    "a text at byte {} is longer than the {MAX_STRING} bytes a results.json text \
+                     may hold",
+                    at + 1 - string_len
+                ));
+            }
+            match (escaped, byte) {
+                (true, _) => escaped = false,
+                (false, b'\\') => escaped = true,
+                (false, b'"') => in_string = false,
+                _ => {}
+            }
+            continue;
+        }
+        match byte {
+            b'"' => (in_string, string_len) = (true, 0),
+            b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_DEPTH {
+                    return Err(format!(
+                        "nested more than {MAX_DEPTH} deep (at byte {at}); a results.json is \
+                         not"
+                    ));
+                }
+            }
+            b']' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// "1.20" or "1.20-1.85".

@@ -1,6 +1,7 @@
-//! The HTML every page shares: escaping a text for a page or a table cell, and the style
-//! sheet. The report, the course's guide and the `compare` page are all written with it, so
-//! they read alike and a text from a `results.json` is escaped the same way everywhere.
+//! The HTML every page shares: escaping a text for a page or a table cell (and for the XML of
+//! a JUnit report), and the style sheet. The report, the course's guide and the `compare` page
+//! are all written with it, so they read alike and a text from a `results.json` is escaped the
+//! same way everywhere.
 
 /// `text` with the characters HTML gives a meaning (`&`, `<`, `>`, `"`) escaped.
 pub fn escape(text: &str) -> String {
@@ -8,6 +9,26 @@ pub fn escape(text: &str) -> String {
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
+}
+
+/// Escapes text for an XML attribute or element; drops the control characters XML 1.0 does
+/// not allow.
+pub fn xml_escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            '\n' => out.push_str("&#10;"),
+            '\t' | '\r' => out.push(' '),
+            c if (c as u32) < 0x20 => {}
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// A word longer than this may break after a separator (a path, a list without spaces).

@@ -383,6 +383,7 @@ mod tests {
                     measured: "12.5 ms on llvmpipe".into(),
                     holds,
                     decided_by: crate::report::Basis::Timing,
+                    ..Claim::default()
                 })
                 .collect(),
             tables: vec![Table {

@@ -8,12 +8,18 @@
 //! `report/<id>/`, with one file per table or figure. The `*-bench` commands
 //! ([`bench_command`]) and `reproduce` both go through [`run_section`].
 //!
+//! Each claim has a stable id and a version of its own ([`versions`]): a hash of the code that
+//! judges it, the published values and the sizes that measure it, so that results of other
+//! builds compare claim by claim for as long as what decides a claim stays the same. A claim
+//! also keeps the numbers its verdict rests on ([`evidence`]), for `compare --baseline`.
+//!
 //! This room holds the papers' reproduction and nothing else: the course's pages are in
 //! [`crate::learn`], `compare` and `selftest` are rooms of their own, and the HTML, plots and
 //! folder writer they all use are the page layer's ([`crate::page`]).
 
 pub mod blocks;
 pub mod checks;
+pub mod evidence;
 mod html;
 pub mod lecture1;
 pub mod lecture3;
@@ -29,11 +35,14 @@ pub mod published;
 pub mod reproduce;
 pub mod then_and_now;
 pub mod timing_policy;
+pub mod versions;
 
 use crate::timing;
 use anyhow::Context as _;
+pub use evidence::Evidence;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+pub use versions::ClaimDef;
 
 /// One section of the report: a paper (or a lecture, or the shared building blocks).
 ///
@@ -47,6 +56,8 @@ pub trait Paper {
     /// The paper whose GPU the section's period block runs under, if it has one
     /// (`gl::period::for_paper`).
     const PERIOD_PAPER: Option<u8> = None;
+    /// Every claim the section can make, each with what decides it ([`versions`]).
+    const CLAIMS: &'static [ClaimDef];
     /// What the section's `*-bench` command can change beyond [`BenchArgs`]; `reproduce` runs
     /// with the defaults.
     type Options: clap::Args + Default;
@@ -126,6 +137,7 @@ pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyho
         P::ID,
         escaped.join("; ")
     );
+    stamp_claims(P::ID, P::CLAIMS, opts.quick, &mut section.claims)?;
     section.commit = provenance::COMMIT.into();
     section.load_start = load_start;
     section.load_end = timing::Load::now();
@@ -145,6 +157,36 @@ pub fn run_section<P: Paper>(opts: &BenchOptions, options: &P::Options) -> anyho
         &section.fidelity,
     )?;
     Ok(section)
+}
+
+/// Gives each claim of section `id` its version, and keeps only its evidence that JSON can hold
+/// (finite numbers); an error for a claim without an id, with an id the section does not list in
+/// `defs`, or made twice.
+fn stamp_claims(
+    id: &str,
+    defs: &[ClaimDef],
+    quick: bool,
+    claims: &mut [Claim],
+) -> anyhow::Result<()> {
+    for (i, claim) in claims.iter().enumerate() {
+        anyhow::ensure!(
+            claims[..i].iter().all(|c| c.id != claim.id),
+            "section {id}: claim {} is made twice",
+            claim.id
+        );
+    }
+    for claim in claims {
+        let def = defs.iter().find(|d| d.id == claim.id).ok_or_else(|| {
+            anyhow::anyhow!(
+                "section {id}: claim '{}' has id '{}', which is not among the section's CLAIMS",
+                claim.claim,
+                claim.id
+            )
+        })?;
+        claim.version = versions::current(def, quick).map_err(anyhow::Error::msg)?;
+        claim.evidence.retain(Evidence::is_finite);
+    }
+    Ok(())
 }
 
 /// What every paper's benchmark gets: the GL context, the size, where figures go.
@@ -181,9 +223,6 @@ pub struct Report {
     /// The commit the binary was built from ([`provenance::COMMIT`]; sections kept from an
     /// earlier run with `--only` name their own).
     pub commit: String,
-    /// [`provenance::CLAIMS_VERSION`]: `compare` puts side by side only results that judged
-    /// the same claims.
-    pub claims_version: String,
     /// The command that made the report, program name first.
     pub command_line: Vec<String>,
     pub quick: bool,
@@ -260,6 +299,14 @@ pub struct Table {
 /// A qualitative or quantitative claim of the paper, and whether it holds here.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Claim {
+    /// `<section>.<name>`, stable across builds ([`ClaimDef::id`]; empty in a run from before
+    /// claims had ids).
+    #[serde(default)]
+    pub id: String,
+    /// A hash of what decides the claim ([`versions`]): two runs judged it the same way when
+    /// the versions are equal. Empty in a run from before claims had versions.
+    #[serde(default)]
+    pub version: String,
     pub claim: String,
     pub paper: String,
     pub measured: String,
@@ -268,6 +315,9 @@ pub struct Claim {
     /// What decided the verdict (or, for "not judged", what would have).
     #[serde(default)]
     pub decided_by: Basis,
+    /// The numbers the verdict rests on, for `compare --baseline`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub evidence: Vec<Evidence>,
 }
 
 /// What a verdict rests on, so that a reader knows whether the load of the machine, the

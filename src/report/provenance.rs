@@ -1,15 +1,10 @@
 //! Where a result comes from, so that a number in `results.json` can be traced back to the
-//! run that made it: the commit the binary was built from, the version of the claims it
-//! judges, the command line, and how busy the machine was.
+//! run that made it: the commit the binary was built from, the command line, and how busy the
+//! machine was. Each claim carries its own version ([`super::versions`]).
 
 /// The commit this binary was built from (`git rev-parse HEAD` at build time), ending in
 /// `-dirty` when the tree held changes not committed; "unknown" when built without git.
 pub const COMMIT: &str = env!("CLASSIC_GPGPU_COMMIT");
-
-/// The version of the claims: a hash of the report's code and the published tables
-/// (`src/report/` but `compare/`, `assets/paper_tables.toml`), which decide what each claim says and how it
-/// is judged. Two results with the same version judged the same claims the same way.
-pub const CLAIMS_VERSION: &str = env!("CLASSIC_GPGPU_CLAIMS_VERSION");
 
 /// The command line of this process, program name first (arguments that are not UTF-8 are
 /// written with replacement characters).

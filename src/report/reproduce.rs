@@ -18,6 +18,8 @@ pub const FAIL_SECTION_ENV: &str = "CLASSIC_GPGPU_FAIL_SECTION";
 pub struct Stage {
     pub id: &'static str,
     pub title: &'static str,
+    /// The claims the section can make ([`Paper::CLAIMS`]).
+    pub claims: &'static [super::ClaimDef],
     pub run: fn(&BenchOptions) -> anyhow::Result<Section>,
 }
 
@@ -27,6 +29,7 @@ impl Stage {
         Stage {
             id: P::ID,
             title: P::TITLE,
+            claims: P::CLAIMS,
             run: |opts| run_section::<P>(opts, &P::Options::default()),
         }
     }
@@ -322,7 +325,6 @@ fn run_stages(
         cpu: cpu_name(),
         date: utc_now(),
         commit: super::provenance::COMMIT.into(),
-        claims_version: super::provenance::CLAIMS_VERSION.into(),
         command_line: super::provenance::command_line(),
         quick: args.quick,
         runs: crate::timing::runs_policy(args.runs, args.quick),

@@ -79,6 +79,7 @@ mod tests {
             measured: measured.into(),
             holds,
             decided_by: Basis::Timing,
+            ..Claim::default()
         }
     }
 

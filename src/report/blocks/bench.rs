@@ -40,11 +40,13 @@ pub fn repeats(quick: bool) -> usize {
 }
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<BlocksResults> {
+    // region: workload sizes
     let sizes: &[u32] = if opts.quick {
         &[32, 128, 256]
     } else {
         &[32, 128, 512, 1024, 2048]
     };
+    // endregion
     let bar = opts
         .progress
         .add(indicatif::ProgressBar::new(sizes.len() as u64));

@@ -17,6 +17,7 @@ pub struct Blocks;
 
 impl Paper for Blocks {
     const ID: &'static str = "blocks";
+    const CLAIMS: &'static [super::ClaimDef] = claims::CLAIMS;
     const TITLE: &'static str = "Shared building blocks: ping-pong reduction";
     type Options = NoOptions;
     type Results = BlocksResults;

@@ -217,6 +217,7 @@ pub struct Lecture1;
 
 impl Paper for Lecture1 {
     const ID: &'static str = "lecture1";
+    const CLAIMS: &'static [super::ClaimDef] = &[pairwise::PAIRWISE];
     const TITLE: &'static str = "Lecture 1 (Kim): self-collision, pairwise triangle tests, \
                                  distance fields and Voronoi diagrams, swept volumes, \
                                  penetration depth and avatar CCD on the GPU, beyond paper 1's \

@@ -20,7 +20,8 @@ use crate::lecture1::reference::{pairs_between, self_pairs};
 use crate::lecture1::self_collision::{Options, SelfCollider};
 use crate::mesh::Mesh;
 use crate::page::plot::{Plot, Series};
-use crate::report::{Basis, Claim, Figure, Table};
+use crate::report::versions::TIMING_POLICY;
+use crate::report::{Basis, Claim, ClaimDef, Figure, Table};
 use crate::timing::{faster, judge_ends, Ends, Load, Spread};
 use serde::Serialize;
 
@@ -86,11 +87,13 @@ pub struct PairwiseRun {
 pub fn block(setting: &Setting) -> anyhow::Result<Block> {
     let ctx = setting.opts.gl;
     let bar = setting.stage("pairwise tests in textures");
+    // region: workload pairwise-counts
     let counts: &[usize] = if setting.opts.quick {
         &[300, 600, 1200]
     } else {
         &[250, 500, 1000, 2000, 4000]
     };
+    // endregion
     let tester = PairwiseTester::new(ctx, DEFAULT_TILE)?;
     let (mut compute, compute_unavailable) = match ComputePairwiseTester::new(ctx) {
         Ok(c) => (Some(c), None),
@@ -371,6 +374,19 @@ fn agreement_table(run: &PairwiseRun) -> Table {
     }
 }
 
+// region: rule pairwise-limit
+/// Paper 1 on its reference 38: pairwise GPU tests serve below about 1K triangles.
+pub const PAIRWISE: ClaimDef = ClaimDef {
+    id: "lecture1.pairwise-limit",
+    rule: &[
+        "src/report/lecture1/pairwise.rs#rule pairwise-limit",
+        TIMING_POLICY,
+    ],
+    published: &[],
+    workload: &["src/report/lecture1/pairwise.rs#workload pairwise-counts"],
+    band: Some(0.25),
+};
+
 /// Paper 1 on its reference 38: pairwise GPU tests are limited to about 1K triangles, so
 /// below that they serve and past it they do not. Judged so that it can fail either way: the
 /// pair quad is faster than streaming AABBs at the smallest count run (below 1K), and
@@ -406,6 +422,7 @@ fn claim(run: &PairwiseRun, load: Option<Load>) -> Claim {
     let paper = "paper 1, Sec. 2.2.2, on its reference 38 (inferred to be Choi, Kim & Kim 2006)";
     let Some(small) = small.filter(|_| !large.is_empty()) else {
         return Claim {
+            id: PAIRWISE.id.into(),
             claim,
             paper: paper.into(),
             measured: format!(
@@ -414,6 +431,7 @@ fn claim(run: &PairwiseRun, load: Option<Load>) -> Claim {
             ),
             decided_by: Basis::RunSize,
             holds: None,
+            ..Claim::default()
         };
     };
     // The pair quad faster at the smallest count, streaming at every large one, each pair of
@@ -451,14 +469,44 @@ fn claim(run: &PairwiseRun, load: Option<Load>) -> Claim {
     } else {
         String::new()
     };
+    let largest = large
+        .iter()
+        .max_by_key(|r| r.triangles)
+        .copied()
+        .unwrap_or(small);
     Claim {
+        id: PAIRWISE.id.into(),
         claim,
         paper: paper.into(),
         measured: format!("{measured}{crossover}; {}", verdict.note),
         decided_by: Basis::Timing,
         holds: verdict.holds,
+        evidence: vec![
+            PAIRWISE.timing(
+                &format!(
+                    "pair quad / streaming time at {} triangles",
+                    small.triangles
+                ),
+                small.pairwise_ms.median / small.streaming_aabb_ms.median,
+                "x",
+                false,
+                load,
+            ),
+            PAIRWISE.timing(
+                &format!(
+                    "streaming / pair quad time at {} triangles",
+                    largest.triangles
+                ),
+                largest.streaming_aabb_ms.median / largest.pairwise_ms.median,
+                "x",
+                false,
+                load,
+            ),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
 
 fn plot(setting: &Setting, rows: &[CountRow]) -> anyhow::Result<()> {
     let series = |name: &str, f: &dyn Fn(&CountRow) -> Option<f64>| {

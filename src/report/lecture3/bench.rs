@@ -49,11 +49,13 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     };
     let mut load = Load::now();
     let bar = stage("image pyramid");
+    // region: workload pyramid
     let sizes: &[u32] = if quick {
         &[64, 256]
     } else {
         &[64, 256, 1024, 2048]
     };
+    // endregion
     let pyramid = sizes
         .iter()
         .map(|&s| pyramid_row(ctx, &HeightMap::generated(s), runs))
@@ -81,7 +83,9 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     load = Load::worst(load, Load::now());
     bar.finish_and_clear();
     let bar = stage("random numbers in a texture");
+    // region: workload random
     let random = random(opts, if quick { 64 } else { 256 }, 16, 2007, runs)?;
+    // endregion
     bar.finish_and_clear();
     let bar = stage("if removed with the depth buffer");
     let depth_mask = depth_mask(opts, quick, runs)?;
@@ -91,11 +95,13 @@ pub fn measure(opts: &BenchOptions, height: Option<&Path>) -> anyhow::Result<Lec
     let octree = super::octree::measure(opts, runs)?;
     bar.finish_and_clear();
     let bar = stage("histogram by blending");
+    // region: workload histogram
     let counts: &[usize] = if quick {
         &[1 << 14, 65_535]
     } else {
         &[65_535, 1 << 20]
     };
+    // endregion
     let histogram = counts
         .iter()
         .map(|&n| {
@@ -176,6 +182,7 @@ fn displacement(
     runs: Runs,
 ) -> anyhow::Result<DisplacementRun> {
     let ctx = opts.gl;
+    // region: workload displacement-views
     let image = if opts.quick { 96 } else { 256 };
     let map_size = (map.width(), map.height());
     let renderer = DisplacementRenderer::new(ctx, Surface::new(map, DEPTH)?)?;
@@ -188,6 +195,7 @@ fn displacement(
         },
         Method::RELIEF,
     ];
+    // endregion
     let mut artifacts = Vec::new();
     for elevation in elevations {
         let row = artifact_row(&renderer, 225.0, elevation, image, &methods)?;
@@ -197,11 +205,13 @@ fn displacement(
         }
     }
     images::orbit_png(opts, &renderer, image)?;
+    // region: workload displacement-maps
     let map_sizes: &[u32] = if opts.quick {
         &[64, 256]
     } else {
         &[64, 256, 1024]
     };
+    // endregion
     let speed = map_sizes
         .iter()
         .map(|&s| speed_row(ctx, s, image, runs))
@@ -317,7 +327,9 @@ pub fn speed_row(ctx: &Context, size: u32, image: u32, runs: Runs) -> anyhow::Re
 const WARM_UP_SIDE: u32 = 16;
 
 fn light(opts: &BenchOptions, runs: Runs) -> anyhow::Result<LightRun> {
+    // region: workload light
     let (vpl_side, side) = if opts.quick { (32, 128) } else { (64, 256) };
+    // endregion
     let (run, lighting, brute_pictures) = light_run(
         opts.gl,
         vpl_side,
@@ -463,8 +475,10 @@ pub const TEXELS: [u32; 5] = [16, 64, 256, 1024, 4096];
 
 /// Technique 4: errors per table size, and the speed of computing against looking up.
 pub fn function(ctx: &Context, quick: bool, runs: Runs) -> anyhow::Result<FunctionRun> {
+    // region: workload function
     let side = if quick { 128 } else { 256 };
     let per_pixel = if quick { 16 } else { 64 };
+    // endregion
     let passes = FunctionPasses::new(ctx, side, side)?;
     let mut errors = Vec::new();
     let mut speed = Vec::new();
@@ -624,7 +638,9 @@ pub fn random(
 pub const FRACTIONS: [f32; 5] = [0.05, 0.25, 0.5, 0.75, 1.0];
 
 fn depth_mask(opts: &BenchOptions, quick: bool, runs: Runs) -> anyhow::Result<DepthMaskRun> {
+    // region: workload depth-mask
     let (side, iterations) = if quick { (128, 64) } else { (256, 256) };
+    // endregion
     let mut rows = Vec::new();
     let expensive = depth_mask::cpu_expensive(side, side, iterations);
     for shape in [MaskShape::Blobs, MaskShape::Scattered] {

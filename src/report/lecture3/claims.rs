@@ -5,8 +5,27 @@
 use super::prefilter::PrefilterRow;
 use super::results::{DepthMaskRow, Lecture3Results, LightRun};
 use crate::lecture3::depth_mask::{runs_fit_mask, RunCounter};
-use crate::report::{Basis, Claim};
+use crate::report::versions::TIMING_POLICY;
+use crate::report::{Basis, Claim, ClaimDef, Evidence};
 use crate::timing::{end, faster, judge_ends, Ends, Load};
+
+/// Every claim of the section, with what decides it.
+pub const CLAIMS: &[ClaimDef] = &[
+    PYRAMID_EXACT,
+    ARTIFACT_FREE,
+    FRAME_RATE,
+    RESOLUTION,
+    PREFILTER_QUALITY,
+    PREFILTER_QUALITY_GRAZING,
+    PREFILTER_SPEED,
+    LIGHT_GROUPS,
+    LIGHT_USES,
+    LOOKUP_CHEAPER,
+    RANDOM_NUMBERS,
+    DEPTH_MASK,
+    DEPTH_MASK_TIME,
+    BLENDING_HISTOGRAM,
+];
 
 pub fn claims(r: &Lecture3Results) -> Vec<Claim> {
     vec![
@@ -27,6 +46,16 @@ pub fn claims(r: &Lecture3Results) -> Vec<Claim> {
     ]
 }
 
+// region: rule pyramid-exact
+/// Technique 1: image pyramids built on the GPU as the CPU builds them.
+const PYRAMID_EXACT: ClaimDef = ClaimDef {
+    id: "lecture3.pyramid-exact",
+    rule: &["src/report/lecture3/claims.rs#rule pyramid-exact"],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload pyramid"],
+    band: None,
+};
+
 /// The largest |GPU - CPU| a mean pyramid of a 0..1 map may show: fp32 rounding of one
 /// weighted mean per level (a few units of 6e-8), over up to 12 levels, with margin.
 const MEAN_PYRAMID_TOL: f64 = 1e-5;
@@ -37,7 +66,13 @@ fn pyramids_are_exact(r: &Lecture3Results) -> Claim {
         .pyramid
         .iter()
         .all(|p| p.mean_max_error <= MEAN_PYRAMID_TOL);
+    let worst_mean = r
+        .pyramid
+        .iter()
+        .map(|p| p.mean_max_error)
+        .fold(0.0, f64::max);
     Claim {
+        id: PYRAMID_EXACT.id.into(),
         claim: "1. An image pyramid is built on the GPU, each level from the one below".into(),
         paper: "lecture 3: image pyramids (no numbers)".into(),
         measured: format!(
@@ -47,16 +82,33 @@ fn pyramids_are_exact(r: &Lecture3Results) -> Claim {
             r.pyramid.last().map_or(0, |p| p.size),
             r.pyramid.last().map_or(0, |p| p.size),
             if all { "all" } else { "NOT all" },
-            r.pyramid
-                .iter()
-                .map(|p| p.mean_max_error)
-                .fold(0.0, f64::max),
+            worst_mean,
             MEAN_PYRAMID_TOL
         ),
         decided_by: Basis::Error,
         holds: Some(all && means),
+        evidence: vec![
+            Evidence::exact("max and min pyramids equal to the CPU's bit for bit", all),
+            Evidence::error(
+                "mean pyramids, largest difference from the CPU's",
+                worst_mean,
+                MEAN_PYRAMID_TOL,
+            ),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule artifact-free
+/// VRST 2006: pyramidal displacement mapping free of artifacts at grazing angles.
+const ARTIFACT_FREE: ClaimDef = ClaimDef {
+    id: "lecture3.displacement-artifact-free",
+    rule: &["src/report/lecture3/claims.rs#rule artifact-free"],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload displacement-views"],
+    band: None,
+};
 
 fn artifact_free(r: &Lecture3Results) -> Claim {
     let d = &r.displacement;
@@ -90,6 +142,7 @@ fn artifact_free(r: &Lecture3Results) -> Claim {
         .collect::<Vec<_>>()
         .join(", ");
     Claim {
+        id: ARTIFACT_FREE.id.into(),
         claim: "2. Pyramidal displacement mapping is free of artifacts, even at grazing angles"
             .into(),
         paper: "VRST 2006 abstract: correct images at steep grazing angles, unlike linear \
@@ -112,8 +165,33 @@ fn artifact_free(r: &Lecture3Results) -> Claim {
         ),
         decided_by: Basis::Count,
         holds: Some(pyramid_wrong == 0),
+        evidence: vec![
+            Evidence::count(
+                "pyramid traversal: pixels off the exact hit or drawn otherwise",
+                pyramid_wrong as f64,
+            ),
+            Evidence::count("pixels compared", compared as f64),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule frame-rate
+/// VRST 2006: pyramidal displacement mapping at hundreds of frames per second.
+const FRAME_RATE: ClaimDef = ClaimDef {
+    id: "lecture3.displacement-frame-rate",
+    rule: &[
+        "src/report/lecture3/claims.rs#rule frame-rate",
+        TIMING_POLICY,
+    ],
+    published: &[],
+    workload: &[
+        "src/report/lecture3/bench.rs#workload displacement-views",
+        "src/report/lecture3/bench.rs#workload displacement-maps",
+    ],
+    band: Some(0.25),
+};
 
 fn frame_rate(r: &Lecture3Results) -> Claim {
     let d = &r.displacement;
@@ -127,6 +205,7 @@ fn frame_rate(r: &Lecture3Results) -> Claim {
         r.load,
     );
     Claim {
+        id: FRAME_RATE.id.into(),
         claim: "2. Pyramidal displacement mapping runs at hundreds of frames per second".into(),
         paper: "VRST 2006 abstract (GPUs of 2006, their screen sizes)".into(),
         measured: format!(
@@ -138,8 +217,33 @@ fn frame_rate(r: &Lecture3Results) -> Claim {
         ),
         decided_by: Basis::Timing,
         holds: verdict.holds,
+        evidence: vec![FRAME_RATE.timing(
+            "frames per second of GPU time, the smallest map",
+            fps,
+            " frames/s",
+            true,
+            r.load,
+        )],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule resolution
+/// VRST 2006: speed nearly independent of the map's resolution.
+const RESOLUTION: ClaimDef = ClaimDef {
+    id: "lecture3.displacement-resolution-independent",
+    rule: &[
+        "src/report/lecture3/claims.rs#rule resolution",
+        TIMING_POLICY,
+    ],
+    published: &[],
+    workload: &[
+        "src/report/lecture3/bench.rs#workload displacement-views",
+        "src/report/lecture3/bench.rs#workload displacement-maps",
+    ],
+    band: Some(0.25),
+};
 
 fn resolution_independence(r: &Lecture3Results) -> Claim {
     let s = &r.displacement.speed;
@@ -178,6 +282,7 @@ fn resolution_independence(r: &Lecture3Results) -> Claim {
         r.load,
     );
     Claim {
+        id: RESOLUTION.id.into(),
         claim: "2. Its speed depends little on the map's resolution".into(),
         paper: "VRST 2006 abstract".into(),
         measured: format!(
@@ -195,8 +300,46 @@ fn resolution_independence(r: &Lecture3Results) -> Claim {
         ),
         decided_by: Basis::Timing,
         holds: verdict.holds,
+        evidence: if time_ratio.is_finite() {
+            vec![RESOLUTION.timing(
+                "GPU frame time, the largest map / the smallest",
+                time_ratio,
+                "x",
+                false,
+                r.load,
+            )]
+        } else {
+            Vec::new()
+        },
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule prefilter-quality
+/// VRST 2006: the minification prefilter improves quality.
+const PREFILTER_QUALITY: ClaimDef = ClaimDef {
+    id: "lecture3.prefilter-quality",
+    rule: &["src/report/lecture3/claims.rs#rule prefilter-quality"],
+    published: &[],
+    workload: &[
+        "src/report/lecture3/prefilter.rs#workload prefilter-distances",
+        "src/report/lecture3/prefilter.rs#workload prefilter-image",
+    ],
+    band: None,
+};
+
+/// VRST 2006: the minification prefilter improves quality, at grazing views.
+const PREFILTER_QUALITY_GRAZING: ClaimDef = ClaimDef {
+    id: "lecture3.prefilter-quality-grazing",
+    rule: &["src/report/lecture3/claims.rs#rule prefilter-quality"],
+    published: &[],
+    workload: &[
+        "src/report/lecture3/prefilter.rs#workload prefilter-distances",
+        "src/report/lecture3/prefilter.rs#workload prefilter-image",
+    ],
+    band: None,
+};
 
 /// The minification prefilter's quality, judged where it acts (some pixel stops above level
 /// 0), at the views that are not grazing or (`grazing`) at those that are: its frame is closer
@@ -231,7 +374,19 @@ fn prefilter_quality(rows: &[PrefilterRow], grazing: bool) -> Claim {
             "the views",
         )
     };
+    // The prefiltered error over the unfiltered, at the view where it helps least: under 1
+    // everywhere for the claim.
+    let worst = acting
+        .iter()
+        .map(|r| r.quality.prefiltered_error / r.quality.unfiltered_error)
+        .fold(0.0, f64::max);
+    let def = if grazing {
+        PREFILTER_QUALITY_GRAZING
+    } else {
+        PREFILTER_QUALITY
+    };
     Claim {
+        id: def.id.into(),
         claim: claim.into(),
         paper: "VRST 2006 abstract".into(),
         measured: if acting.is_empty() {
@@ -254,8 +409,34 @@ fn prefilter_quality(rows: &[PrefilterRow], grazing: bool) -> Claim {
                 .iter()
                 .all(|r| r.quality.prefiltered_error < r.quality.unfiltered_error)
         }),
+        evidence: vec![
+            Evidence::count("views where the prefilter acts", acting.len() as f64),
+            Evidence::error(
+                "prefiltered / unfiltered RMS error, the view where it helps least",
+                worst,
+                1.0,
+            ),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule prefilter-speed
+/// VRST 2006: the prefilter speeds the traversal up.
+const PREFILTER_SPEED: ClaimDef = ClaimDef {
+    id: "lecture3.prefilter-speed",
+    rule: &[
+        "src/report/lecture3/claims.rs#rule prefilter-speed",
+        TIMING_POLICY,
+    ],
+    published: &[],
+    workload: &[
+        "src/report/lecture3/prefilter.rs#workload prefilter-distances",
+        "src/report/lecture3/prefilter.rs#workload prefilter-image",
+    ],
+    band: Some(0.25),
+};
 
 /// The minification prefilter's speed, judged where it acts: its hit pixels take fewer
 /// traversal steps, and its frames (drawing the shading pyramid included) are faster by the
@@ -298,7 +479,25 @@ fn prefilter_speed(rows: &[PrefilterRow], load: Option<Load>) -> Claim {
         .iter()
         .filter(|r| r.quality.prefiltered_steps >= r.quality.unfiltered_steps)
         .count();
+    let slowest = acting
+        .iter()
+        .map(|r| r.prefiltered_ms / r.unfiltered_ms)
+        .fold(0.0, f64::max);
+    let mut evidence = vec![Evidence::count(
+        "views where prefiltered hit pixels take as many steps or more",
+        more_steps as f64,
+    )];
+    if !acting.is_empty() {
+        evidence.push(PREFILTER_SPEED.timing(
+            "prefiltered / unfiltered frame time, the slowest view",
+            slowest,
+            "x",
+            false,
+            load,
+        ));
+    }
     Claim {
+        id: PREFILTER_SPEED.id.into(),
         claim: "2. ... and speed: fewer traversal steps per hit pixel (counted), and frames \
                 faster by the GL timer"
             .into(),
@@ -334,6 +533,8 @@ fn prefilter_speed(rows: &[PrefilterRow], load: Option<Load>) -> Claim {
         } else {
             verdict.holds
         },
+        evidence,
+        ..Claim::default()
     }
 }
 
@@ -368,9 +569,25 @@ fn why_slower(acting: &[&PrefilterRow]) -> String {
         )
     }
 }
+// endregion
 
+// region: rule light-error
 /// The error the light-group claim allows (relative RMS, against every VPL).
 const LIGHT_ERROR: f64 = 0.05;
+// endregion
+
+// region: rule light-groups
+/// Ki & Oh 2008: a few light groups stand in for every light.
+const LIGHT_GROUPS: ClaimDef = ClaimDef {
+    id: "lecture3.few-light-groups",
+    rule: &[
+        "src/report/lecture3/claims.rs#rule light-groups",
+        "src/report/lecture3/claims.rs#rule light-error",
+    ],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload light"],
+    band: None,
+};
 
 fn few_light_groups(l: &LightRun) -> Claim {
     // The cheapest criterion within the error allowed.
@@ -379,7 +596,26 @@ fn few_light_groups(l: &LightRun) -> Claim {
         .iter()
         .filter(|row| row.theta > 0.0 && row.relative_rms_error <= LIGHT_ERROR)
         .min_by(|a, b| a.mean_nodes.total_cmp(&b.mean_nodes));
+    let mut evidence = vec![Evidence::count(
+        "criteria within the error allowed",
+        l.rows
+            .iter()
+            .filter(|row| row.theta > 0.0 && row.relative_rms_error <= LIGHT_ERROR)
+            .count() as f64,
+    )];
+    if let Some(row) = row {
+        evidence.push(Evidence::count(
+            "nodes visited per receiver, the cheapest criterion",
+            row.mean_nodes,
+        ));
+        evidence.push(Evidence::error(
+            "relative RMS error, the cheapest criterion",
+            row.relative_rms_error,
+            LIGHT_ERROR,
+        ));
+    }
     Claim {
+        id: LIGHT_GROUPS.id.into(),
         claim: "3. A few light groups found by a tree traversal stand in for every light".into(),
         paper: "Ki & Oh 2008 abstract: approximate illumination from a small number of light \
                 groups"
@@ -410,8 +646,24 @@ fn few_light_groups(l: &LightRun) -> Claim {
                 && row.relative_rms_error < LIGHT_ERROR
                 && row.gpu_ms < l.brute_gpu_ms
         })),
+        evidence,
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule light-uses
+/// Ki & Oh 2008: subsurface scattering and environment light from a few light groups.
+const LIGHT_USES: ClaimDef = ClaimDef {
+    id: "lecture3.light-other-uses",
+    rule: &[
+        "src/report/lecture3/claims.rs#rule light-uses",
+        "src/report/lecture3/claims.rs#rule light-error",
+    ],
+    published: &[],
+    workload: &["src/report/lecture3/light_uses.rs#workload light-uses"],
+    band: None,
+};
 
 /// Subsurface scattering and environment light: for each, the criterion that sums the fewest
 /// lights within the error allowed; the claim holds when both sum under a quarter of their
@@ -445,7 +697,21 @@ fn other_uses(u: &super::light_uses::LightUsesRun) -> Claim {
         })
         .collect::<Vec<_>>()
         .join("; ");
+    let evidence = [&u.subsurface, &u.environment]
+        .iter()
+        .zip(&found)
+        .map(|(run, found)| {
+            Evidence::count(
+                &format!(
+                    "{}: lights summed per receiver, the cheapest criterion",
+                    run.mode
+                ),
+                found.as_ref().map_or(0.0, |(row, _)| row.mean_gathered),
+            )
+        })
+        .collect();
     Claim {
+        id: LIGHT_USES.id.into(),
         claim: "3. The same hierarchy gathers subsurface scattering and environment light from \
                 a few light groups"
             .into(),
@@ -458,8 +724,24 @@ fn other_uses(u: &super::light_uses::LightUsesRun) -> Claim {
             f.as_ref()
                 .is_some_and(|(row, lights)| row.mean_gathered < *lights as f64 / 4.0)
         })),
+        evidence,
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule lookup-cheaper
+/// Technique 4: a function in a texture, cheaper to look up than to compute.
+const LOOKUP_CHEAPER: ClaimDef = ClaimDef {
+    id: "lecture3.function-lookup-cheaper",
+    rule: &[
+        "src/report/lecture3/claims.rs#rule lookup-cheaper",
+        TIMING_POLICY,
+    ],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload function"],
+    band: Some(0.25),
+};
 
 fn lookup_cheaper(r: &Lecture3Results) -> Claim {
     let rows = &r.function.speed;
@@ -478,6 +760,7 @@ fn lookup_cheaper(r: &Lecture3Results) -> Claim {
         r.load,
     );
     Claim {
+        id: LOOKUP_CHEAPER.id.into(),
         claim: "4. A function stored in a texture is cheaper to look up than to compute".into(),
         paper: "lecture 3: storing a function in a texture (no numbers)".into(),
         measured: format!(
@@ -495,8 +778,32 @@ fn lookup_cheaper(r: &Lecture3Results) -> Claim {
         ),
         decided_by: Basis::Timing,
         holds: if last.is_some() { verdict.holds } else { None },
+        evidence: last
+            .map(|s| {
+                LOOKUP_CHEAPER.timing(
+                    &format!("{}: looked up / computed time", s.function),
+                    s.lookup_ms / s.exact_ms,
+                    "x",
+                    false,
+                    r.load,
+                )
+            })
+            .into_iter()
+            .collect(),
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule random-numbers
+/// Technique 5: random numbers generated into a texture.
+const RANDOM_NUMBERS: ClaimDef = ClaimDef {
+    id: "lecture3.random-numbers",
+    rule: &["src/report/lecture3/claims.rs#rule random-numbers"],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload random"],
+    band: None,
+};
 
 fn random_numbers(r: &Lecture3Results) -> Claim {
     let x = &r.random;
@@ -505,6 +812,7 @@ fn random_numbers(r: &Lecture3Results) -> Claim {
         && x.serial_correlation.abs() < x.correlation_bound
         && x.neighbour_correlation.abs() < x.correlation_bound;
     Claim {
+        id: RANDOM_NUMBERS.id.into(),
         claim: "5. Random numbers can be generated into a texture by render passes".into(),
         paper: "lecture 3: generating random numbers into a texture (no numbers)".into(),
         measured: format!(
@@ -519,8 +827,24 @@ fn random_numbers(r: &Lecture3Results) -> Claim {
         ),
         decided_by: Basis::Count,
         holds: Some(pass),
+        evidence: vec![
+            Evidence::exact("bit-exact with the CPU generator", x.bit_exact),
+            Evidence::count("chi-square", x.chi_square),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule depth-mask
+/// Debugging tips: the depth buffer removes an if.
+const DEPTH_MASK: ClaimDef = ClaimDef {
+    id: "lecture3.depth-mask-removes-if",
+    rule: &["src/report/lecture3/claims.rs#rule depth-mask"],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload depth-mask"],
+    band: None,
+};
 
 fn depth_test_masks(r: &Lecture3Results) -> Claim {
     let rows = &r.depth_mask.rows;
@@ -531,6 +855,7 @@ fn depth_test_masks(r: &Lecture3Results) -> Claim {
     let paper = "lecture 3, debugging tips: removing if with the depth buffer".into();
     if let Some(RunCounter::Unavailable(why)) = &counter {
         return Claim {
+            id: DEPTH_MASK.id.into(),
             claim,
             paper,
             measured: format!(
@@ -539,6 +864,7 @@ fn depth_test_masks(r: &Lecture3Results) -> Claim {
             ),
             decided_by: Basis::Count,
             holds: None,
+            ..Claim::default()
         };
     }
     let fits = |x: &DepthMaskRow| {
@@ -579,6 +905,7 @@ fn depth_test_masks(r: &Lecture3Results) -> Claim {
             String::new()
         };
     Claim {
+        id: DEPTH_MASK.id.into(),
         claim,
         paper,
         measured: format!(
@@ -597,8 +924,30 @@ fn depth_test_masks(r: &Lecture3Results) -> Claim {
         ),
         decided_by: Basis::Count,
         holds: Some(exact),
+        evidence: vec![
+            Evidence::exact("shader runs fit the mask in every case", exact),
+            Evidence::count(
+                "runs beyond the active pixels (helper invocations)",
+                helpers as f64,
+            ),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule depth-mask-time
+/// Debugging tips: the depth mask saves time where few pixels take the branch.
+const DEPTH_MASK_TIME: ClaimDef = ClaimDef {
+    id: "lecture3.depth-mask-saves-time",
+    rule: &[
+        "src/report/lecture3/claims.rs#rule depth-mask-time",
+        TIMING_POLICY,
+    ],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload depth-mask"],
+    band: Some(0.25),
+};
 
 fn depth_test_saves_time(r: &Lecture3Results) -> Claim {
     let sparse: Vec<&DepthMaskRow> = r
@@ -635,7 +984,12 @@ fn depth_test_saves_time(r: &Lecture3Results) -> Claim {
         "the runs of the masked and the branching versions overlap",
         r.load,
     );
+    let slowest = sparse
+        .iter()
+        .map(|x| x.masked_ms / x.branching_ms)
+        .fold(0.0, f64::max);
     Claim {
+        id: DEPTH_MASK_TIME.id.into(),
         claim: "6. ... and so saves time where few pixels take the branch".into(),
         paper: "lecture 3, debugging tips (implied; GPUs of 2007 paid for both sides of a \
                 divergent branch)"
@@ -651,8 +1005,31 @@ fn depth_test_saves_time(r: &Lecture3Results) -> Claim {
         } else {
             verdict.holds
         },
+        evidence: if sparse.is_empty() {
+            Vec::new()
+        } else {
+            vec![DEPTH_MASK_TIME.timing(
+                "depth-masked / branching time at 5% active, the slowest mask",
+                slowest,
+                "x",
+                false,
+                r.load,
+            )]
+        },
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule blending-histogram
+/// Debugging tips: alpha blending turns a scatter into one draw call.
+const BLENDING_HISTOGRAM: ClaimDef = ClaimDef {
+    id: "lecture3.blending-histogram",
+    rule: &["src/report/lecture3/claims.rs#rule blending-histogram"],
+    published: &[],
+    workload: &["src/report/lecture3/bench.rs#workload histogram"],
+    band: None,
+};
 
 fn blending_histogram(r: &Lecture3Results) -> Claim {
     let equal = r
@@ -672,6 +1049,7 @@ fn blending_histogram(r: &Lecture3Results) -> Claim {
     let draws: Vec<Option<u64>> = r.histogram.iter().map(|h| h.blend_draws).collect();
     let one_draw = !draws.is_empty() && draws.iter().all(|&d| d == Some(1));
     Claim {
+        id: BLENDING_HISTOGRAM.id.into(),
         claim: "7. Alpha blending simplifies code: a scatter becomes points added by the \
                 blender, in one draw call"
             .into(),
@@ -688,8 +1066,14 @@ fn blending_histogram(r: &Lecture3Results) -> Claim {
         ),
         decided_by: Basis::Count,
         holds: Some(equal && one_draw),
+        evidence: vec![
+            Evidence::exact("counts equal to the CPU's", equal),
+            Evidence::exact("one draw call per histogram", one_draw),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
 
 #[cfg(test)]
 mod tests {

@@ -196,11 +196,13 @@ pub fn measure(opts: &BenchOptions, ctx: &Context) -> anyhow::Result<LightUsesRu
     // enough lights to group: subsurface scattering's samples are the light's image of the
     // model (the bunny fills about 30% of the fitted light's image: some 300 samples of
     // 32x32), environment light's the sky's lat-long grid.
+    // region: workload light-uses
     let (vpls, size, lights_side) = if opts.quick {
         (16, 64, 32)
     } else {
         (32, 128, 64)
     };
+    // endregion
     let room = IndirectLighting::new(ctx, Scene::room(), vpls, size, size)?;
     room.build_lights()?;
     room.draw_receivers()?;

@@ -57,6 +57,7 @@ pub struct Lecture3Options {
 
 impl Paper for Lecture3 {
     const ID: &'static str = "lecture3";
+    const CLAIMS: &'static [super::ClaimDef] = claims::CLAIMS;
     const TITLE: &'static str = "Lecture 3 (Oh): image pyramids, pyramidal displacement mapping, \
                                  octrees, quadtree search of a light hierarchy, and texture \
                                  tricks";

@@ -93,6 +93,7 @@ pub struct PrefilterRow {
     pub comparison: Comparison,
 }
 
+// region: workload prefilter-distances
 /// The camera distances of the sweep.
 pub fn distances(quick: bool) -> &'static [f32] {
     if quick {
@@ -101,6 +102,7 @@ pub fn distances(quick: bool) -> &'static [f32] {
         &[3.2, 6.4, 12.8, 25.6]
     }
 }
+// endregion
 
 /// The elevations of the sweep (degrees): the report's view, seen steeply, and grazing.
 pub const ELEVATIONS: [f32; 3] = [35.0, 70.0, 15.0];
@@ -116,7 +118,9 @@ pub fn measure(
     runs: Runs,
 ) -> anyhow::Result<Vec<PrefilterRow>> {
     let ctx = opts.gl;
+    // region: workload prefilter-image
     let image = if opts.quick { 64 } else { 128 };
+    // endregion
     let renderer = DisplacementRenderer::new(ctx, Surface::new(map.clone(), DEPTH)?)?;
     let target = renderer.target(image, image)?;
     ELEVATIONS

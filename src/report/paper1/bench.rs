@@ -16,6 +16,7 @@ use crate::collide::tri_test::{test_caps, ModelView, Predicate, PrimitiveResult}
 use crate::collide::{solid, AabbStream};
 use crate::gl::profile::{self, ProfileTable};
 use crate::mesh::Mesh;
+use crate::report::evidence::{PairDigest, PairSet};
 use crate::report::BenchOptions;
 use crate::timing::Load;
 use glam::Vec3;
@@ -111,6 +112,9 @@ pub struct SceneRun {
     pub solid_tri: f64,
     /// Frames in which SOLID's pairs equal the streaming pairs.
     pub solid_agrees: usize,
+    /// The streaming pairs of every counted frame, as a set (`compare --baseline` checks that
+    /// it does not change).
+    pub pair_set: PairSet,
     pub cullide: CullideResult,
     pub cullide_missing_percent: f64,
     /// Mean CAPs per set `P1` texel (4x4 block of the slot pairs): how clustered this
@@ -246,6 +250,7 @@ pub struct SweepPoint {
     pub pctps: u64,
 }
 
+// region: workload tori-size
 /// Triangles per model for the fixed studies (tori): the paper's 15K, or 2000 in quick mode.
 fn study_triangles(quick: bool) -> Option<usize> {
     if quick {
@@ -254,6 +259,7 @@ fn study_triangles(quick: bool) -> Option<usize> {
         None
     }
 }
+// endregion
 
 pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1Results> {
     let (mut results, table) =
@@ -264,6 +270,7 @@ pub fn measure(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
 
 fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1Results> {
     let quick = opts.quick;
+    // region: workload scenes
     let frames = args.frames.unwrap_or(if quick { 3 } else { 20 });
     let triangles = args.triangles.or(study_triangles(quick));
     let scenes: Vec<String> = if args.scenes.is_empty() {
@@ -271,6 +278,7 @@ fn measure_all(opts: &BenchOptions, args: &Paper1Args) -> anyhow::Result<Paper1R
     } else {
         args.scenes.clone()
     };
+    // endregion
     let bar = opts.progress.add(indicatif::ProgressBar::new(
         (scenes.len() * (frames + 1)) as u64,
     ));
@@ -537,6 +545,7 @@ fn run_scene(
     let mut missed = 0usize;
     let mut exact_total = 0usize;
     let mut clustering = 0.0;
+    let mut pair_digest = PairDigest::default();
     // Frame 0 warms up shader compilation and is not counted: a whole streaming frame (it
     // also measures the calibration point `auto` needs first), CULLIDE's object level only
     // (the same shader variants as every level; [`Cullide::warm_up`]); SOLID is CPU code.
@@ -570,6 +579,7 @@ fn run_scene(
         })?;
         bar.inc(1);
         out.solid_agrees += usize::from(sp.pairs == s.pairs);
+        pair_digest.frame(&s.pairs);
         let found = c
             .pairs
             .iter()
@@ -607,6 +617,7 @@ fn run_scene(
     average(&mut out, frames.max(1) as f64);
     out.caps_per_set_p1_texel = clustering / frames.max(1) as f64;
     out.frames = frames;
+    out.pair_set = pair_digest.finish();
     out.cullide_missing_percent = if exact_total == 0 {
         0.0
     } else {
@@ -714,10 +725,12 @@ fn caps_per_set_p1_texel(c: &StreamingCollider, cap_leaves: &[(u32, u32)]) -> f6
 /// Fig. 7: encode and read+decode time of each scheme against eta, on a P0 of the paper's
 /// 2048 x 2048 (512 x 512 in quick mode), filled with clustered and with uniform CAPs.
 fn fig7(opts: &BenchOptions) -> anyhow::Result<Fig7> {
+    // region: workload fig7
     let p0 = if opts.quick { 512 } else { 2048 };
     // Each point is one timed measurement: every scheme is run as often as the report's
     // policy says (5 runs exactly under --quick), the best run is kept.
     let runs = opts.runs(5);
+    // endregion
     let another = |done, spent| runs.another(done, spent);
     let target = PairTarget::new(opts.gl, p0, p0)?;
     let reduction = Reduction::new(opts.gl, p0, p0)?;

@@ -81,6 +81,7 @@ pub struct Paper1;
 impl Paper for Paper1 {
     const PERIOD_PAPER: Option<u8> = Some(1);
     const ID: &'static str = "paper1";
+    const CLAIMS: &'static [super::ClaimDef] = claims::CLAIMS;
     const TITLE: &'static str =
         "Paper 1: collision detection with streaming AABBs (Zhang & Kim 2007)";
     type Options = Paper1Args;

@@ -15,8 +15,10 @@ use crate::gl::dump::{self, DumpRange};
 use crate::gl::Texture;
 use crate::report::{published, BenchOptions};
 
+// region: workload quick-counts
 /// Character counts measured in quick mode (the paper's first three rows).
 const QUICK_COUNTS: [usize; 3] = [1, 16, 64];
+// endregion
 
 /// The LOD runs use the paper's crowd divided by this in quick mode.
 const QUICK_LOD_DIVISOR: usize = 10;
@@ -226,6 +228,7 @@ impl Paper2Results {
     }
 }
 
+// region: workload frames
 /// The target size of the measured frames.
 pub fn size(quick: bool) -> (u32, u32) {
     if quick {
@@ -259,6 +262,7 @@ fn frames_for(n: usize, quick: bool) -> usize {
         _ => 3,
     }
 }
+// endregion
 
 /// One of the paper's LOD runs (Fig. 4-5), as measured here.
 struct LodRun {
@@ -289,12 +293,14 @@ fn lod_runs(paper: &published::Paper2, divisor: usize) -> anyhow::Result<Vec<Lod
 /// Runs every measurement and writes the snapshots.
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper2Results> {
     let paper = &published::Published::get()?.paper2;
+    // region: workload counts
     let counts: Vec<usize> = if opts.quick {
         QUICK_COUNTS.to_vec()
     } else {
         paper.table1.characters.clone()
     };
     let (w, h) = size(opts.quick);
+    // endregion
     let lod = lod_runs(paper, lod_divisor(opts.quick))?;
     std::fs::create_dir_all(&opts.out_dir)
         .with_context(|| format!("creating {}", opts.out_dir.display()))?;

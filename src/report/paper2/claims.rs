@@ -3,8 +3,12 @@
 use super::bench::{Paper2Results, Variant};
 use crate::crowd::scene::RunStats;
 use crate::crowd::ModelKind;
-use crate::report::{Basis, Claim};
+use crate::report::versions::TIMING_POLICY;
+use crate::report::{Basis, Claim, ClaimDef, Evidence};
 use crate::timing::{faster, judge_ends, judge_under_load, Ends, Spread};
+
+/// Every claim of the section, with what decides it.
+pub const CLAIMS: &[ClaimDef] = &[OVERTAKES_VS, OVERTAKES_VS_SINGLE, STAGE_COSTS, SINGLE_DRAW];
 
 pub fn claims(results: &Paper2Results) -> Vec<Claim> {
     let mut claims = vec![
@@ -15,6 +19,20 @@ pub fn claims(results: &Paper2Results) -> Vec<Claim> {
     claims.push(single_draw(results));
     claims
 }
+
+// region: rule single-draw
+/// Section 2: every character skinned in one draw call where the crowd fits a target.
+const SINGLE_DRAW: ClaimDef = ClaimDef {
+    id: "paper2.single-draw",
+    rule: &["src/report/paper2/claims.rs#rule single-draw"],
+    published: &[],
+    workload: &[
+        "src/report/paper2/bench.rs#workload quick-counts",
+        "src/report/paper2/bench.rs#workload counts",
+        "src/report/paper2/bench.rs#workload frames",
+    ],
+    band: None,
+};
 
 /// Section 2: "through a single drawcall, all vertices of all characters are transformed".
 /// Judged on the method, not on the run's sizes: every two-pass run of Table 1 skinned its
@@ -66,6 +84,7 @@ pub fn single_draw(results: &Paper2Results) -> Claim {
         })
         .collect();
     Claim {
+        id: SINGLE_DRAW.id.into(),
         claim: "All vertices of all characters are skinned in a single draw call (pass 1), \
                 where the crowd fits one render target"
             .into(),
@@ -89,8 +108,44 @@ pub fn single_draw(results: &Paper2Results) -> Claim {
         ),
         decided_by: Basis::Count,
         holds: Some(fitted > 0 && off.is_empty()),
+        evidence: vec![
+            Evidence::count("two-pass runs whose crowd fits one target", fitted as f64),
+            Evidence::count(
+                "two-pass runs not in the draws the target's limit requires",
+                off.len() as f64,
+            ),
+        ],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule overtakes
+/// Table 1: two-pass overtakes vertex-shader skinning (instanced).
+const OVERTAKES_VS: ClaimDef = ClaimDef {
+    id: "paper2.overtakes-vs",
+    rule: &["src/report/paper2/claims.rs#rule overtakes", TIMING_POLICY],
+    published: &["paper2.table1"],
+    workload: &[
+        "src/report/paper2/bench.rs#workload quick-counts",
+        "src/report/paper2/bench.rs#workload counts",
+        "src/report/paper2/bench.rs#workload frames",
+    ],
+    band: Some(0.25),
+};
+
+/// Table 1: two-pass overtakes vertex-shader skinning, one character per draw.
+const OVERTAKES_VS_SINGLE: ClaimDef = ClaimDef {
+    id: "paper2.overtakes-vs-one-per-draw",
+    rule: &["src/report/paper2/claims.rs#rule overtakes", TIMING_POLICY],
+    published: &["paper2.table1"],
+    workload: &[
+        "src/report/paper2/bench.rs#workload quick-counts",
+        "src/report/paper2/bench.rs#workload counts",
+        "src/report/paper2/bench.rs#workload frames",
+    ],
+    band: Some(0.25),
+};
 
 /// Table 1: the vertex shader wins at one character, two-pass from 16 on. Holds when, for
 /// both models, two-pass is faster than `baseline` from some measured n > 1, n <= 16, at
@@ -156,7 +211,32 @@ pub fn crossover(results: &Paper2Results, baseline: Variant) -> Claim {
         "the frames of two-pass and of the baseline overlap where it would cross",
         results.table1_load,
     );
+    let def = if baseline == Variant::VertexShader {
+        OVERTAKES_VS
+    } else {
+        OVERTAKES_VS_SINGLE
+    };
+    // Two-pass frame time over the baseline's at the largest crowd, per model (medians).
+    let largest = counts.last().copied().unwrap_or(0);
+    let evidence = ModelKind::ALL
+        .iter()
+        .filter_map(|&kind| {
+            let fps = |v| results.fps(kind, largest, v);
+            let (two_pass, other) = (fps(Variant::TwoPass)?, fps(baseline)?);
+            Some(def.timing(
+                &format!(
+                    "{}: two-pass / baseline frame time at n = {largest}",
+                    kind.name()
+                ),
+                other / two_pass,
+                "x",
+                false,
+                results.table1_load,
+            ))
+        })
+        .collect();
     Claim {
+        id: def.id.into(),
         claim: format!(
             "Two-pass (pixel-shader) skinning overtakes vertex-shader skinning ({}) once there \
              are enough characters",
@@ -173,6 +253,8 @@ pub fn crossover(results: &Paper2Results, baseline: Variant) -> Claim {
         ),
         decided_by: Basis::Timing,
         holds: verdict.holds,
+        evidence,
+        ..Claim::default()
     }
 }
 
@@ -185,12 +267,31 @@ fn frames(run: &RunStats) -> Spread {
         max: run.frame_ms_range[1],
     }
 }
+// endregion
+
+// region: rule stage-costs
+/// Implied by Table 1: two-pass GPU work costs less than vertex-shader skinning.
+const STAGE_COSTS: ClaimDef = ClaimDef {
+    id: "paper2.two-pass-costs-less",
+    rule: &[
+        "src/report/paper2/claims.rs#rule stage-costs",
+        TIMING_POLICY,
+    ],
+    published: &["paper2.table1"],
+    workload: &[
+        "src/report/paper2/bench.rs#workload quick-counts",
+        "src/report/paper2/bench.rs#workload counts",
+        "src/report/paper2/bench.rs#workload frames",
+    ],
+    band: Some(0.25),
+};
 
 /// Why the crossover does or does not happen: at the largest crowd, the two-pass GPU work
 /// (pass 1 + copy + pass 2) against the vertex-shader stage (skinning and drawing).
 pub fn stage_costs(results: &Paper2Results) -> Option<Claim> {
     let n = *results.counts().last()?;
     let mut parts = Vec::new();
+    let mut evidence = Vec::new();
     let mut holds = true;
     for kind in ModelKind::ALL {
         let tp = Paper2Results::find(&results.table1, kind, n, Variant::TwoPass)?;
@@ -199,6 +300,16 @@ pub fn stage_costs(results: &Paper2Results) -> Option<Claim> {
         let two_pass = w.pass1 + w.copy + w.pass2;
         let baseline = vs.passes.wall.vertex_shader;
         holds &= two_pass < baseline;
+        evidence.push(STAGE_COSTS.timing(
+            &format!(
+                "{}: two-pass GPU work / VS skinning and drawing at n = {n}",
+                kind.name()
+            ),
+            two_pass / baseline,
+            "x",
+            false,
+            results.table1_load,
+        ));
         parts.push(format!(
             "{} x {n}: pass 1 {:.1} + copy {:.1} + pass 2 {:.1} = {two_pass:.1} ms against \
              {baseline:.1} ms for VS skinning and drawing (pass 2 alone is {:.0}% of it)",
@@ -216,6 +327,7 @@ pub fn stage_costs(results: &Paper2Results) -> Option<Claim> {
         verdict.note
     );
     Some(Claim {
+        id: STAGE_COSTS.id.into(),
         claim: "Skinning once in a pixel shader and drawing pre-skinned vertices costs the GPU \
                 less than skinning in the vertex shader while drawing"
             .into(),
@@ -228,8 +340,11 @@ pub fn stage_costs(results: &Paper2Results) -> Option<Claim> {
         ),
         decided_by: Basis::Timing,
         holds: verdict.holds,
+        evidence,
+        ..Claim::default()
     })
 }
+// endregion
 
 #[cfg(test)]
 mod tests {

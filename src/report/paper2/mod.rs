@@ -35,6 +35,7 @@ pub struct Paper2;
 impl Paper for Paper2 {
     const PERIOD_PAPER: Option<u8> = Some(2);
     const ID: &'static str = "paper2";
+    const CLAIMS: &'static [super::ClaimDef] = claims::CLAIMS;
     const TITLE: &'static str = "Paper 2: Kang & Han 2006, real-time animation of large crowds";
     type Options = NoOptions;
     type Results = WithPeriod<Paper2Results>;

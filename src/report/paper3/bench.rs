@@ -174,8 +174,10 @@ struct Case {
     whole_photo: bool,
 }
 
+// region: workload runs
 /// Timed runs per measurement under `--quick` (see [`BenchOptions::runs`]).
 const QUICK_RUNS: usize = 1;
+// endregion
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
     crate::timing::mark("paper3: start");
@@ -256,6 +258,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper3Results> {
     })
 }
 
+// region: workload cases
 /// The cases: the paper's shape (one 2048-vector texture), one texture at this renderer's
 /// maximum, the whole photograph (tiled), and a wide synthetic network.
 fn cases(ctx: &Context, photo: &GrayImage, quick: bool) -> anyhow::Result<Vec<Case>> {
@@ -296,6 +299,7 @@ fn cases(ctx: &Context, photo: &GrayImage, quick: bool) -> anyhow::Result<Vec<Ca
     cases.push(wide_case(512, 2048));
     Ok(cases)
 }
+// endregion
 
 /// A `width`-`width` sigmoid layer on `l` random vectors (seeded).
 fn wide_case(width: usize, l: usize) -> Case {

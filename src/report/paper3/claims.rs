@@ -4,12 +4,32 @@
 
 use super::bench::{Method, Paper3Results};
 use crate::report::published::Paper3Table1;
-use crate::report::{Basis, Claim};
+use crate::report::versions::TIMING_POLICY;
+use crate::report::{Basis, Claim, ClaimDef, Evidence};
 use crate::timing;
+
+/// Every claim of the section, with what decides it.
+pub const CLAIMS: &[ClaimDef] = &[TWENTY_FOLD, SAME_CLASSIFICATION];
 
 pub fn claims(results: &Paper3Results, paper: &Paper3Table1) -> Vec<Claim> {
     vec![twenty_fold(results, paper), same_classification(results)]
 }
+
+// region: rule twenty-fold
+/// Table 1: the GPU about 20 times faster than CPU-only processing.
+const TWENTY_FOLD: ClaimDef = ClaimDef {
+    id: "paper3.twenty-fold",
+    rule: &[
+        "src/report/paper3/claims.rs#rule twenty-fold",
+        TIMING_POLICY,
+    ],
+    published: &["paper3.table1"],
+    workload: &[
+        "src/report/paper3/bench.rs#workload runs",
+        "src/report/paper3/bench.rs#workload cases",
+    ],
+    band: Some(0.25),
+};
 
 /// A software renderer runs the "GPU" passes on the CPU (the report's timing policy,
 /// [`crate::report::timing_policy`], says what a verdict means there).
@@ -43,6 +63,7 @@ fn twenty_fold(results: &Paper3Results, paper: &Paper3Table1) -> Claim {
         results.load,
     );
     Claim {
+        id: TWENTY_FOLD.id.into(),
         claim: "The GPU is about 20 times faster than CPU-only processing".into(),
         paper: format!(
             "CPU {} vs GPU {} + {} + {} (ATI RADEON 9700 PRO)",
@@ -57,12 +78,32 @@ fn twenty_fold(results: &Paper3Results, paper: &Paper3Table1) -> Claim {
         ),
         decided_by: Basis::Timing,
         holds: verdict.holds,
+        evidence: vec![TWENTY_FOLD.timing(
+            "CPU-only / GPU time, all steps",
+            speedup,
+            "x",
+            true,
+            results.load,
+        )],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule same-classification
+/// Fig. 2(b): the GPU classifies text.png as the CPU does.
+const SAME_CLASSIFICATION: ClaimDef = ClaimDef {
+    id: "paper3.same-classification",
+    rule: &["src/report/paper3/claims.rs#rule same-classification"],
+    published: &[],
+    workload: &["src/report/paper3/bench.rs#workload cases"],
+    band: None,
+};
 
 fn same_classification(results: &Paper3Results) -> Claim {
     let agreement = results.detection.faithful.agreement_with_cpu;
     Claim {
+        id: SAME_CLASSIFICATION.id.into(),
         claim: "Classification on the GPU gives almost the same result as without it".into(),
         paper: "Fig. 2(b), qualitative".into(),
         measured: format!(
@@ -71,5 +112,11 @@ fn same_classification(results: &Paper3Results) -> Claim {
         ),
         decided_by: Basis::Count,
         holds: Some(agreement >= 0.999),
+        evidence: vec![Evidence::count(
+            "share of text.png's pixels classified as the CPU does",
+            agreement,
+        )],
+        ..Claim::default()
     }
 }
+// endregion

@@ -29,6 +29,7 @@ pub struct Paper3;
 impl Paper for Paper3 {
     const PERIOD_PAPER: Option<u8> = Some(3);
     const ID: &'static str = "paper3";
+    const CLAIMS: &'static [super::ClaimDef] = claims::CLAIMS;
     const TITLE: &'static str = "Paper 3: Oh & Jung 2004, GPU implementation of neural networks";
     type Options = NoOptions;
     type Results = Paper3Results;

@@ -182,6 +182,7 @@ pub struct BuoyancyRun {
     pub frame: String,
 }
 
+// region: workload resolutions
 /// The resolutions of Fig. 4-5.
 pub fn resolutions(quick: bool) -> Vec<u32> {
     if quick {
@@ -190,6 +191,7 @@ pub fn resolutions(quick: bool) -> Vec<u32> {
         vec![8, 16, 32, 64, 128, 256, 512]
     }
 }
+// endregion
 
 pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     let bar = opts.progress.add(indicatif::ProgressBar::new(
@@ -210,9 +212,11 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<Paper4Results> {
     }
     bar.finish_and_clear();
     let objects_load = Load::now();
+    // region: workload buoyancy
     // Timed steps of the buoyancy scene after it settles: 2 s of the scene at 60 steps/s,
     // three parts of 40 steps for the rate's runs.
     let steps = if opts.quick { 20 } else { 120 };
+    // endregion
     let bunny = models::paper_object("bunny").expect("bunny");
     let peel_orders = peel_orders(opts.gl, &bunny, opts.runs(QUICK_RUNS))?;
     let profile_bunny_64 = profile_bunny(opts.gl, &bunny)?;

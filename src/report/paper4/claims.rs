@@ -2,8 +2,12 @@
 //! judged on this run.
 
 use super::bench::Paper4Results;
-use crate::report::{published, Basis, Claim};
+use crate::report::versions::TIMING_POLICY;
+use crate::report::{published, Basis, Claim, ClaimDef, Evidence};
 use crate::timing::{self, Load, Spread, Target};
+
+/// Every claim of the section, with what decides it.
+pub const CLAIMS: &[ClaimDef] = &[ERROR_BOUND, OUTPERFORMS_BUNNY, OUTPERFORMS_PIPE, BUOYANCY];
 
 pub fn claims(results: &Paper4Results, paper: &published::Paper4) -> Vec<Claim> {
     let mut claims = vec![error_bound(results, paper)];
@@ -11,6 +15,16 @@ pub fn claims(results: &Paper4Results, paper: &published::Paper4) -> Vec<Claim> 
     claims.push(interactive_buoyancy(results, paper));
     claims
 }
+
+// region: rule error-bound
+/// Fig. 4: 32x32 enough for 5% error in mass and the moments of inertia.
+const ERROR_BOUND: ClaimDef = ClaimDef {
+    id: "paper4.error-bound",
+    rule: &["src/report/paper4/claims.rs#rule error-bound"],
+    published: &["paper4.fig4"],
+    workload: &["src/report/paper4/bench.rs#workload resolutions"],
+    band: None,
+};
 
 /// The worst relative error of any quantity at resolution `n`.
 fn worst_at(results: &Paper4Results, n: u32, closed_only: bool) -> f64 {
@@ -34,6 +48,7 @@ fn error_bound(results: &Paper4Results, paper: &published::Paper4) -> Claim {
         .map(|o| o.object.as_str())
         .collect();
     Claim {
+        id: ERROR_BOUND.id.into(),
         claim: format!(
             "{n}x{n} is enough for {:.0}% error in mass and the moments of inertia I_xx, I_yy, \
              I_zz (the tensor's diagonal, as Fig. 4 measures), for every closed object{}",
@@ -60,8 +75,40 @@ fn error_bound(results: &Paper4Results, paper: &published::Paper4) -> Claim {
         ),
         decided_by: Basis::Error,
         holds: Some(worst_closed < bound),
+        evidence: vec![Evidence::error(
+            &format!("worst relative error at {n}x{n}, closed objects"),
+            worst_closed,
+            bound,
+        )],
+        ..Claim::default()
     }
 }
+// endregion
+
+// region: rule outperforms
+/// Fig. 5: at 64x64 the GPU outperforms the analytic method, bunny.
+const OUTPERFORMS_BUNNY: ClaimDef = ClaimDef {
+    id: "paper4.outperforms-analytic-bunny",
+    rule: &[
+        "src/report/paper4/claims.rs#rule outperforms",
+        TIMING_POLICY,
+    ],
+    published: &["paper4.fig5"],
+    workload: &["src/report/paper4/bench.rs#workload resolutions"],
+    band: Some(0.25),
+};
+
+/// Fig. 5: at 64x64 the GPU outperforms the analytic method, pipe.
+const OUTPERFORMS_PIPE: ClaimDef = ClaimDef {
+    id: "paper4.outperforms-analytic-pipe",
+    rule: &[
+        "src/report/paper4/claims.rs#rule outperforms",
+        TIMING_POLICY,
+    ],
+    published: &["paper4.fig5"],
+    workload: &["src/report/paper4/bench.rs#workload resolutions"],
+    band: Some(0.25),
+};
 
 fn outperforms_at_64(results: &Paper4Results) -> Vec<Claim> {
     let mut claims = Vec::new();
@@ -89,7 +136,13 @@ fn outperforms_at_64(results: &Paper4Results) -> Vec<Claim> {
                 "the runs of the two methods overlap",
                 results.objects_load,
             );
+            let def = if name == "bunny" {
+                OUTPERFORMS_BUNNY
+            } else {
+                OUTPERFORMS_PIPE
+            };
             claims.push(Claim {
+                id: def.id.into(),
                 claim: format!(
                     "at 64x64 the GPU method outperforms the analytic one for the {name}"
                 ),
@@ -100,11 +153,30 @@ fn outperforms_at_64(results: &Paper4Results) -> Vec<Claim> {
                 ),
                 decided_by: Basis::Timing,
                 holds: verdict.holds,
+                evidence: vec![def.timing(
+                    "analytic / GPU time at 64x64",
+                    analytic / gpu,
+                    "x",
+                    true,
+                    results.objects_load,
+                )],
+                ..Claim::default()
             });
         }
     }
     claims
 }
+// endregion
+
+// region: rule buoyancy
+/// Section 5.3: interactive buoyancy of 50 bodies at the paper's frames per second.
+const BUOYANCY: ClaimDef = ClaimDef {
+    id: "paper4.interactive-buoyancy",
+    rule: &["src/report/paper4/claims.rs#rule buoyancy", TIMING_POLICY],
+    published: &["paper4.buoyancy"],
+    workload: &["src/report/paper4/bench.rs#workload buoyancy"],
+    band: Some(0.25),
+};
 
 fn interactive_buoyancy(results: &Paper4Results, paper: &published::Paper4) -> Claim {
     let b = &results.buoyancy;
@@ -131,6 +203,7 @@ fn judge_interactive(
 ) -> Claim {
     let verdict = timing::judge(runs, Target::AtLeast(fps), load, " frames/s");
     Claim {
+        id: BUOYANCY.id.into(),
         claim: format!("interactive buoyancy of {bodies} bodies"),
         paper: format!("{fps} frames/s on a GeForce 7800 GTX"),
         measured: format!(
@@ -140,8 +213,11 @@ fn judge_interactive(
         ),
         decided_by: Basis::Timing,
         holds: verdict.holds,
+        evidence: vec![BUOYANCY.timing("frames per second", sps, " frames/s", true, load)],
+        ..Claim::default()
     }
 }
+// endregion
 
 #[cfg(test)]
 mod tests {

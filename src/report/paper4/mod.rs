@@ -30,6 +30,7 @@ pub struct Paper4;
 impl Paper for Paper4 {
     const PERIOD_PAPER: Option<u8> = Some(4);
     const ID: &'static str = "paper4";
+    const CLAIMS: &'static [super::ClaimDef] = claims::CLAIMS;
     const TITLE: &'static str =
         "Paper 4: Kim, Kim, Ko & Terzopoulos 2006, mass properties by depth peeling, and buoyancy";
     type Options = NoOptions;
