@@ -7,7 +7,7 @@
 # First the option classes, over every command, walked from the binary's own list of options
 # (`classic-gpgpu options`), so that a new option is covered without an edit here:
 #   bounds    every number far above its range: refused at once, naming the option and value;
-#   negative  every number negative (and every real number -1e308): the same;
+#   negative  every number negative (and every real number -1e309): the same;
 #   ignored   options a run would ignore or that change nothing: refused with the reason, or
 #             honoured (--json parses);
 #   shared    two outputs of one run on one path, an output on an input: refused;
@@ -656,8 +656,8 @@ class_issue() {
 
 run_classes() {
     echo "== option classes (every command, from 'classic-gpgpu options') =="
-    class_bounds bounds 1e30 1e308 99999999999x99999999999,1
-    class_bounds negative -5 -1e308 -5x-5,-5
+    class_bounds bounds 1e30 1e309 99999999999x99999999999,1
+    class_bounds negative -5 -1e309 -5x-5,-5
     class_ignored
     class_shared
     class_links

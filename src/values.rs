@@ -3,7 +3,7 @@
 //! of its own, and both are checked by the option's value parser, before any work. A refusal
 //! names the option, the value as typed and the range, with why the range is what it is:
 //!
-//! `--size: -5 is not a size: it is negative; give a whole number from 1 to 4096 (...)`
+//! `--size -5: not a size in pixels: it is negative; give a whole number from 8 to 4096 (...)`
 //!
 //! [`prepare`] lets every numeric option take a value that starts with `-` (clap would
 //! otherwise read `-5` as an unknown flag and suggest `-- -5`, which turns it into a positional
@@ -154,18 +154,24 @@ impl Count {
 
     /// The value of `text` for `option`, or a message naming both and the range.
     pub fn parse(&self, option: &str, text: &str) -> Result<u64, String> {
-        let problem = match whole_number(text) {
-            Ok(n) if n < self.least as f64 => format!("it is below {}", self.least),
-            Ok(n) if n > self.most() as f64 => format!("it is above {}", self.most()),
-            Ok(n) => return Ok(n as u64),
-            Err(problem) => problem,
-        };
-        Err(format!(
-            "{option}: {} is not {}: {problem}; give a whole number {}",
-            shown(text),
-            self.noun,
-            self.range()
-        ))
+        self.check(text).map_err(|problem| {
+            format!(
+                "{option} {}: not {}: {problem}; give a whole number {}",
+                shown(text),
+                self.noun,
+                self.range()
+            )
+        })
+    }
+
+    /// The value of `text`, or what is wrong with it ("it is negative").
+    fn check(&self, text: &str) -> Result<u64, String> {
+        match whole_number(text) {
+            Ok(n) if n < self.least as f64 => Err(format!("it is below {}", self.least)),
+            Ok(n) if n > self.most() as f64 => Err(format!("it is above {}", self.most())),
+            Ok(n) => Ok(n as u64),
+            Err(problem) => Err(problem),
+        }
     }
 
     /// The value parser of an option of type `T` (usize, u32, u64).
@@ -254,7 +260,7 @@ impl Real {
             Err(_) => "it is not a number".to_string(),
         };
         Err(format!(
-            "{option}: {} is not {}: {problem}; give a number {}",
+            "{option} {}: not {}: {problem}; give a number {}",
             shown(text),
             self.noun,
             self.range()
@@ -270,8 +276,20 @@ impl Real {
     }
 }
 
-/// A bound for messages: 0.25, 100, 1e-9, 1e6.
+/// The smallest number above 0 (a subnormal): the least of a range that is "positive".
+pub const SMALLEST: f64 = 5e-324;
+
+/// A bound for messages: 0.25, 100, 1e-9, 1e6, and the ends of fp64 in words.
 fn number(v: f64) -> String {
+    if v == f64::MAX {
+        return "the largest finite number".into();
+    }
+    if v == -f64::MAX {
+        return "minus the largest finite number".into();
+    }
+    if v == SMALLEST {
+        return "the smallest number above 0".into();
+    }
     if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e6) {
         format!("{v:e}")
     } else {
@@ -305,7 +323,7 @@ fn text_of<'a>(
         refusal(
             cmd,
             format!(
-                "{}: {} is not text (not UTF-8)",
+                "{} {}: not text (not UTF-8)",
                 option_name(arg),
                 value.to_string_lossy()
             ),
@@ -341,7 +359,7 @@ where
         T::try_from(n).map_err(|_| {
             refusal(
                 cmd,
-                format!("{option}: {text} does not fit this option's type; give a smaller number"),
+                format!("{option} {text}: does not fit this option's type; give a smaller number"),
             )
         })
     }
@@ -438,22 +456,30 @@ impl Pair {
         };
         let Some((a, b)) = split else {
             return Err(format!(
-                "{option}: {} is not {}; each number is a whole number {}",
+                "{option} {}: not {}; each number is a whole number {}",
                 shown(text),
                 self.form,
                 self.each.range()
             ));
         };
-        let a = self
-            .each
-            .parse(&format!("{option} ({})", self.names.0), a)?;
-        let b = self
-            .each
-            .parse(&format!("{option} ({})", self.names.1), b)?;
+        let number = |name: &str, part: &str| {
+            self.each.check(part).map_err(|problem| {
+                format!(
+                    "{option} {}: the {name} {} is not {}: {problem}; give {} with each number \
+                     {}",
+                    shown(text),
+                    shown(part),
+                    self.each.noun,
+                    self.form,
+                    self.each.range()
+                )
+            })
+        };
+        let (a, b) = (number(self.names.0, a)?, number(self.names.1, b)?);
         match (u32::try_from(a), u32::try_from(b)) {
             (Ok(a), Ok(b)) => Ok((a, b)),
             _ => Err(format!(
-                "{option}: {text} does not fit; give smaller numbers"
+                "{option} {text}: does not fit; give smaller numbers"
             )),
         }
     }
@@ -684,7 +710,7 @@ mod tests {
             let err = FRAMES.parse("--frames", text).unwrap_err();
             assert!(
                 err.starts_with(&format!(
-                    "--frames: {} is not a number of frames: ",
+                    "--frames {}: not a number of frames: ",
                     shown(text)
                 )) && err.contains(problem)
                     && err.ends_with("give a whole number from 1 to 10 (why)"),
@@ -706,7 +732,7 @@ mod tests {
         ] {
             let err = r.parse("--tolerance", text).unwrap_err();
             assert!(
-                err.starts_with(&format!("--tolerance: {text} is not a tolerance"))
+                err.starts_with(&format!("--tolerance {text}: not a tolerance"))
                     && err.contains(problem)
                     && err.ends_with("from 1e-9 to 100 (the scene)"),
                 "{text}: {err}"
@@ -739,11 +765,11 @@ mod tests {
         assert_eq!(size.parse("--size", "20X30"), Ok((20, 30)));
         let err = size.parse("--size", "-5x30").unwrap_err();
         assert!(
-            err.starts_with("--size (width): -5 is not a side in pixels: it is negative"),
+            err.starts_with("--size -5x30: the width -5 is not a side in pixels: it is negative"),
             "{err}"
         );
         let err = size.parse("--size", "20").unwrap_err();
-        assert!(err.contains("is not WIDTHxHEIGHT"), "{err}");
+        assert!(err.contains(": not WIDTHxHEIGHT"), "{err}");
     }
 
     #[test]
@@ -764,7 +790,7 @@ mod tests {
         };
         let err = parse(&["x", "--frames", "-1"]).unwrap_err().to_string();
         assert!(
-            err.contains("--frames: -1 is not a number of frames: it is negative"),
+            err.contains("--frames -1: not a number of frames: it is negative"),
             "{err}"
         );
         assert_eq!(parse(&["x", "--frames", "3", "--json"]).unwrap().frames, 3);

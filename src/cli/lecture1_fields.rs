@@ -17,7 +17,7 @@ use classic_gpgpu::lecture1::voronoi::mesh::DEFAULT_ERROR_PIXELS;
 use classic_gpgpu::lecture1::voronoi::raster::{Method, VoronoiRasterizer};
 use classic_gpgpu::lecture1::voronoi::{reference as voronoi_reference, Sites};
 use classic_gpgpu::mesh::{load_obj, write_obj, Mesh};
-use classic_gpgpu::values::{ranges, Count, Real};
+use classic_gpgpu::values::{ranges, Count, Real, SMALLEST};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -30,16 +30,18 @@ const FIELD_RESOLUTION: Count = Count::new(
     "the field holds N x N x N float32 voxels: 1024 is 4 GiB",
 );
 
-/// A distance in mesh units (`--clamp`, `--epsilon`): positive and finite.
+/// A distance in mesh units (`--clamp`, `--epsilon`): positive and finite (the model's own
+/// scale is checked when it is loaded).
 const DISTANCE: Real = Real::new(
     "a distance",
-    1e-9,
-    1e30,
-    "a positive, finite distance in mesh units",
+    SMALLEST,
+    f64::MAX,
+    "positive and finite, in mesh units",
 );
 
-/// `--margin`: room around the model, none or more.
-const MARGIN: Real = Real::new("a margin", 0.0, 1e30, "a finite distance in mesh units");
+/// `--margin`: room around the model, none or more (checked against the model's scale when it
+/// is loaded).
+const MARGIN: Real = Real::new("a margin", 0.0, f64::MAX, "finite, in mesh units");
 
 /// `--mesh-error`: the distance meshes' error bound, pixels or voxels.
 const MESH_ERROR: Real = Real::new(

@@ -14,7 +14,7 @@ use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings, DEFAULT_MAX_PEELS};
 use classic_gpgpu::mass::{analytic, clip, models, surface};
 use classic_gpgpu::page::folder::Staged;
 use classic_gpgpu::timing::{Load, Runs, Spread};
-use classic_gpgpu::values::{Count, Real};
+use classic_gpgpu::values::{Count, Real, SMALLEST};
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -121,16 +121,17 @@ pub const RESOLUTION: Count = Count::new(
     "ten RGBA32F targets of 2048 x 2048 are 640 MiB, and the paper stops at 512",
 );
 
-/// `--density`: any positive density whose mass and inertia stay far inside fp64's range.
+/// `--density`: any positive, finite density (the mass and inertia it gives are checked
+/// against fp64's range when computed, with the model's volume).
 const DENSITY: Real = Real::new(
     "a density",
-    1e-30,
-    1e30,
-    "mass and inertia scale with it; beyond these they near fp64's range",
+    SMALLEST,
+    f64::MAX,
+    "positive and finite; the mass it gives is checked when computed",
 );
 
 /// `--below Z`: a height of the plane, finite.
-const HEIGHT: Real = Real::new("a height", -1e30, 1e30, "any finite height of the plane");
+const HEIGHT: Real = Real::new("a height", -f64::MAX, f64::MAX, "any finite height");
 
 /// `--max-peels`: the depth complexity the peeling follows at most.
 const MAX_PEELS: Count = Count::new(
@@ -172,7 +173,7 @@ const DT: Real = Real::new(
 
 /// K of `--png-every K DIR`: a frame every K steps.
 const PNG_EVERY: Count = Count::new(
-    "a step interval",
+    "a step interval K",
     1,
     10_000_000,
     "at most the most steps, ten million",
@@ -1000,7 +1001,7 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
         None => None,
         Some(v) => {
             let k = PNG_EVERY
-                .parse("--png-every (K)", &v[0])
+                .parse("--png-every", &v[0])
                 .map_err(anyhow::Error::msg)? as usize;
             let dir = PathBuf::from(&v[1]);
             let folder = Staged::begin("--png-every", "buoyancy --png-every", &dir, args.force)?;

@@ -188,7 +188,8 @@ impl Engine {
 /// A finite number (`--threshold nan` would mark nothing as text without a word).
 /// `--threshold`: any finite output level (a network of `mlp train` ends in a sigmoid, 0 to
 /// 1; one of the user's may end in an identity layer).
-const THRESHOLD_RANGE: Real = Real::new("a threshold", -1e30, 1e30, "a finite output level");
+const THRESHOLD_RANGE: Real =
+    Real::new("a threshold", -f64::MAX, f64::MAX, "a finite output level");
 
 /// `--inputs-per-pass`: a layer's inputs summed in one pass.
 const INPUTS_PER_PASS: Count = Count::new(

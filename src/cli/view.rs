@@ -34,6 +34,12 @@ const PROBE: Pair = Pair {
     names: ("x", "y"),
 };
 
+/// `--frames`: 0 draws the first frame only.
+const VIEW_FRAMES: Count = Count {
+    least: 0,
+    ..ranges::FRAMES
+};
+
 /// `--buffer`: the buffer's number among the demo's (0 the scene).
 const BUFFER: Count = Count::new(
     "a buffer number",
@@ -50,7 +56,7 @@ pub struct ViewArgs {
     #[arg(long, global = true, default_value = "960x600", value_parser = WINDOW)]
     pub size: (u32, u32),
     /// Run this many frames, then quit (with --screenshot: save the last one first).
-    #[arg(long, global = true, value_parser = ranges::FRAMES.of::<usize>())]
+    #[arg(long, global = true, value_parser = VIEW_FRAMES.of::<usize>())]
     pub frames: Option<usize>,
     /// Write the window's contents after --frames frames to this PNG.
     #[arg(long, global = true, requires = "frames")]

@@ -10,7 +10,7 @@ use classic_gpgpu::lecture1::avatar_ccd::{
     advance, visibility, AvatarCcd, Options, DEFAULT_STEPS, DEFAULT_TOLERANCE,
 };
 use classic_gpgpu::mesh::load_obj;
-use classic_gpgpu::values::{ranges, Count, Real};
+use classic_gpgpu::values::{ranges, Count, Real, SMALLEST};
 use glam::DVec3;
 use serde_json::json;
 use std::path::PathBuf;
@@ -53,9 +53,9 @@ pub struct AvatarCcdArgs {
 /// `--tolerance`: a positive distance; the environment's size bounds it too ([`within_scene`]).
 const TOLERANCE: Real = Real::new(
     "a tolerance",
-    1e-9,
-    1e6,
-    "a distance in model units; above the environment's size it is refused when loaded",
+    SMALLEST,
+    f64::MAX,
+    "a distance in model units, at most the environment's size (checked when it is loaded)",
 );
 
 /// `--steps`: the method's own range ([`AvatarCcd::run`] checks it too).
@@ -90,7 +90,7 @@ fn within_scene(env: &Environment, tolerance: f64) -> anyhow::Result<()> {
         anyhow::bail!(
             "--tolerance {tolerance}: more than the environment's size ({size:.3} units \
              corner to corner), so every gap would be within it and the contact would be at \
-             time 0 whatever the motion; give a tolerance from 1e-9 to {size:.3}"
+             time 0 whatever the motion; give a tolerance above 0 and at most {size:.3}"
         );
     }
     Ok(())
