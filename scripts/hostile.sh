@@ -623,7 +623,7 @@ class_issue() {
     ln -s "$d/nowhere.txt" "$d/L"
     issue_case "--trace L (dangling)" refused --trace="$d/L" info
     mkdir -p "$d/glsl/glsl/learn"
-    ln -s "$d/nowhere.frag" "$d/glsl/glsl/learn/saxpy.frag"
+    ln -s "$d/nowhere.frag" "$d/glsl/glsl/learn/jacobi.frag"
     issue_case "glsl export DIR (a shader path dangling)" refused glsl export "$d/glsl" --force
     mkdir -p "$d/D" && echo mine >"$d/D/.dump.lock"
     issue_case "mass cube --dump D/dump (user's D/.dump.lock)" ok mass cube --resolution 8 --dump "$d/D/dump"

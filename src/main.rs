@@ -279,15 +279,29 @@ fn check_options(cli: &Cli, matches: &clap::ArgMatches) -> anyhow::Result<()> {
     if let (true, Some(why)) = (cli.json, cli.command.prints_no_json()) {
         anyhow::bail!("--json: {why}, so there is nothing to print as JSON; leave out --json");
     }
-    if let (Some(file), Some(why)) = (&cli.trace, cli.command.makes_no_gl_call()) {
-        anyhow::bail!(
-            "--trace{}: {why}, so there would be no GL call to record; leave out --trace",
-            if file.as_os_str() == "-" {
-                String::new()
-            } else {
-                format!("={}", file.display())
-            }
-        );
+    if let Some(why) = cli.command.makes_no_gl_call() {
+        if let Some(file) = &cli.trace {
+            anyhow::bail!(
+                "--trace{}: {why}, so there would be no GL call to record; leave out --trace",
+                if file.as_os_str() == "-" {
+                    String::new()
+                } else {
+                    format!("={}", file.display())
+                }
+            );
+        }
+        if let Some(dir) = &cli.glsl_dir {
+            anyhow::bail!(
+                "--glsl-dir {}: {why}, so no shader would be read from it; leave out --glsl-dir",
+                dir.display()
+            );
+        }
+        if let Some(renderer) = cli.renderer {
+            anyhow::bail!(
+                "--renderer {}: {why}, so no renderer would be used; leave out --renderer",
+                renderer.name()
+            );
+        }
     }
     check_glsl_dir(cli.glsl_dir.as_deref())?;
     check_trace_file(cli.trace.as_deref())?;

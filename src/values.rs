@@ -426,7 +426,8 @@ fn carry_range(range: String) -> Option<Box<dyn Iterator<Item = PossibleValue>>>
     Some(Box::new(std::iter::once(carrier)))
 }
 
-/// The range an option's parser carries ([`carry_range`]), if it is one of this module's.
+/// The range an option's parser carries (as its one hidden possible value), if it is one of
+/// this module's.
 pub fn range_of(arg: &clap::Arg) -> Option<String> {
     let values = arg.get_value_parser().possible_values()?;
     let mut values = values.filter_map(|v| v.get_name().strip_prefix(RANGE_TAG).map(String::from));
@@ -656,7 +657,7 @@ pub mod ranges {
                 ..TEXTURE_SIDE
             },
             separator: 'x',
-            form: "WIDTHxHEIGHT (e.g. 800x600)",
+            form: "WxH (e.g. 800x600)",
             names: ("width", "height"),
         }
     }

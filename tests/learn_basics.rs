@@ -296,13 +296,7 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
         "{stderr}"
     );
     assert!(pictures.join(picture).is_file());
-    let forced = classic_gpgpu(&[
-        "learn",
-        "1",
-        "--png",
-        pictures.to_str().unwrap(),
-        "--force",
-    ]);
+    let forced = classic_gpgpu(&["learn", "1", "--png", pictures.to_str().unwrap(), "--force"]);
     let stderr = String::from_utf8_lossy(&forced.stderr);
     assert!(
         !forced.status.success()

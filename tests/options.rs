@@ -388,6 +388,21 @@ fn trace_and_json_are_refused_where_they_would_do_nothing() {
         );
     }
     assert!(!file.exists());
+    let folder = dir.to_str().unwrap();
+    for (args, needle) in [
+        (
+            vec!["--glsl-dir", folder, "glsl", "list"],
+            "no shader would be read",
+        ),
+        (
+            vec!["--renderer", "osmesa", "compare", "r.json"],
+            "no renderer",
+        ),
+    ] {
+        let args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+        let err = refused_at_once(&args);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
     for args in [
         vec![
             "--json",

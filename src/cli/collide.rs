@@ -331,6 +331,17 @@ pub fn run_scene(args: &SceneArgs, ctx: &Context, json: bool) -> anyhow::Result<
     ));
     // The error names the scene and lists the scenes.
     let scene = Scene::build(&args.scene, args.triangles)?;
+    if let Some(asked) = args.triangles.filter(|&n| n != scene.triangles) {
+        // The generators make whole rings (tori, knots), and the bunny is never coarser
+        // than the shipped one: the count made is said.
+        bar.suspend(|| {
+            eprintln!(
+                "note: --triangles {asked}: the scene's generator makes {} triangles a model, \
+                 the nearest it can",
+                scene.triangles
+            )
+        });
+    }
     bar.set_message("building the streams and uploading them to the GPU");
     let options = args.pipeline.options(ctx, &scene.x.rest, &scene.y.rest)?;
     let (rest_x, rest_y) = (&scene.x.rest, &scene.y.rest);
