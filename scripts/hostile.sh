@@ -573,8 +573,9 @@ issue_case() { # name expect(refused|ok) args...
     local start=$SECONDS
     timeout 300 "$BIN" "$@" >"$LOG.out" 2>"$LOG.err"
     local rc=$? took=$((SECONDS - start))
+    # The refusal's line (and the note on a bare --trace), else the run's first words.
     local text
-    text=$(grep -m1 -E "^(error|note)" "$LOG.err" | head -c 200)
+    text=$(grep -E "^error|^note: a bare --trace" "$LOG.err" | head -c 400 | tr '\n' ' ')
     [[ -n $text ]] || text=$(head -c 200 "$LOG.out" | tr '\n' ' ')
     local ok=0
     if [[ $expect == refused ]]; then

@@ -85,7 +85,9 @@ pub fn check_destination(what: &str, path: &Path) -> anyhow::Result<()> {
     let real = follow(what, path)?;
     if is_mount_point(&real) {
         bail!(
-            "{what} {}: a mount point (another file system is mounted there); an output is put              in place by renaming a finished copy over it, which cannot replace a mount point,              so give a path inside it (e.g. {})",
+            "{what} {}: a mount point (another file system is mounted there); an output is put \
+             in place by renaming a finished copy over it, which cannot replace a mount point, \
+             so give a path inside it (e.g. {})",
             path.display(),
             path.join("out").display()
         );

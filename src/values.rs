@@ -279,8 +279,9 @@ impl Real {
 /// The smallest number above 0 (a subnormal): the least of a range that is "positive".
 pub const SMALLEST: f64 = 5e-324;
 
-/// A bound for messages: 0.25, 100, 1e-9, 1e6, and the ends of fp64 in words.
-fn number(v: f64) -> String {
+/// A number for messages: 0.25, 100, 1e-9, 1e6 (never 300 digits), and the ends of fp64 in
+/// words.
+pub fn number(v: f64) -> String {
     if v == f64::MAX {
         return "the largest finite number".into();
     }

@@ -88,9 +88,10 @@ fn within_scene(env: &Environment, tolerance: f64) -> anyhow::Result<()> {
     let size = (high - low).length();
     if tolerance > size {
         anyhow::bail!(
-            "--tolerance {tolerance}: more than the environment's size ({size:.3} units \
-             corner to corner), so every gap would be within it and the contact would be at \
-             time 0 whatever the motion; give a tolerance above 0 and at most {size:.3}"
+            "--tolerance {}: more than the environment's size ({size:.3} units corner to \
+             corner), so every gap would be within it and the contact would be at time 0 \
+             whatever the motion; give a tolerance above 0 and at most {size:.3}",
+            classic_gpgpu::values::number(tolerance)
         );
     }
     Ok(())
