@@ -92,7 +92,7 @@ WRITERS=(
     "mlp-bench|dir|bench|mlp-bench --quick --runs 1 --out OUT --force"
     "distance-field|file|d.npy|lecture1 distance-field $INPUTS/cube.obj --resolution 8 --npy OUT --force"
     "swept-volume|file|s.obj|lecture1 swept-volume $INPUTS/cube.obj --path $INPUTS/path.json --resolution 16 --poses 3 --out OUT --force"
-    "view-screenshot|file|v.png|view --headless --frames 1 --size 64x48 --screenshot OUT --force mass cube"
+    "view-screenshot|file|v.png|view --headless --frames 1 --size 256x192 --screenshot OUT --force mass cube"
     "learn-png|dir|lesson|learn texture-is-array --png OUT --force"
     "mesh-generate|file|t.obj|mesh generate torus --out OUT --force"
     "reproduce|dir|report|reproduce --quick --only blocks --out OUT --force"
@@ -241,6 +241,18 @@ case_readonly() { # name kind outname template
 
 # A run stopped by SIGNAL after a random delay (up to the clean run's time); then a clean
 # run into the same folder, which must complete and leave no temporaries.
+# The temporaries left in DIR after a killed run and the next one, less a finished output a
+# run killed just before its swap left in its staging folder: kept on purpose, and named by
+# the next run (page::folder::recover).
+left_over() { # dir next-run-stderr
+    local t
+    while IFS= read -r t; do
+        [[ -n $t ]] || continue
+        [[ -f $t/.classic-gpgpu-report ]] && grep -qF "note: $t holds the finished" "$2" && continue
+        echo "$t"
+    done < <(temporaries "$1")
+}
+
 case_signal() { # name kind outname template signal seconds
     local d=$WORK/sig_$1_$5_$RANDOM log=$WORK/log_sig_$1
     mkdir -p "$d" && plant_old "$d" "$2" "$3"
@@ -261,7 +273,7 @@ case_signal() { # name kind outname template signal seconds
     nothing_lost "$d" "$2" "$3" || why+="output lost or partial "
     run_writer "$4" "$d/$3" "$log.again" || why+="the next run failed: $(head -c 200 "$log.again.err") "
     nothing_lost "$d" "$2" "$3" || why+="the next run's output is not whole "
-    [[ -z "$(temporaries "$d")" ]] || why+="temporary left after the next run "
+    [[ -z "$(left_over "$d" "$log.again.err")" ]] || why+="temporary left after the next run "
     record "$1" "$(tr A-Z a-z <<<"$5")" "$([[ -z $why ]] && echo 1 || echo 0)" "$why" "($how)"
 }
 

@@ -425,10 +425,19 @@ impl Lock {
             match rustix::fs::flock(&file, rustix::fs::FlockOperation::NonBlockingLockExclusive) {
                 Ok(()) if still_at(&file, &path) => {
                     use std::io::Write as _;
-                    (&file)
+                    // Held from here: a failed write (a full disk) drops it, removing the file.
+                    let lock = Lock { file, path };
+                    (&lock.file)
                         .write_all(LOCK_TEXT.as_bytes())
-                        .with_context(|| format!("writing the lock {}", path.display()))?;
-                    return Ok(Lock { file, path });
+                        .with_context(|| {
+                            format!(
+                                "{what} {}: writing the lock {} (is its file system full?); \
+                                 nothing was written",
+                                out.display(),
+                                lock.path.display()
+                            )
+                        })?;
+                    return Ok(lock);
                 }
                 Ok(()) => continue,
                 Err(rustix::io::Errno::WOULDBLOCK) => bail!(
