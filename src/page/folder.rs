@@ -616,9 +616,15 @@ pub fn install_of(staging: &Path, out: &Path, owned: &Owned, command: &str) -> a
     };
     let present = list_files(out)?;
     let foreign: Vec<&String> = present.iter().filter(|f| !old.contains(f)).collect();
+    // What the messages call the finished files: reproduce's are a report.
+    let finished = if command == REPRODUCE {
+        "report"
+    } else {
+        "output"
+    };
     let kept = |e: anyhow::Error| {
         e.context(format!(
-            "the finished report is in {}; {} is as it was",
+            "the finished {finished} is in {}; {} is as it was",
             staging.display(),
             out.display()
         ))
@@ -652,7 +658,7 @@ pub fn install_of(staging: &Path, out: &Path, owned: &Owned, command: &str) -> a
             .with_context(|| format!("moving {} into place", to.display()))
             .map_err(|e| {
                 e.context(format!(
-                    "the rest of the finished report is in {}",
+                    "the rest of the finished {finished} is in {}",
                     staging.display()
                 ))
             })?;
