@@ -150,7 +150,7 @@ pub struct Global {
     pub json: bool,
     /// `--glsl-dir`: set on every context made for a command.
     pub glsl_dir: Option<std::path::PathBuf>,
-    /// `--trace [FILE]`: "-" prints the trace.
+    /// `--trace` or `--trace=FILE`: "-" (a bare `--trace`) prints the trace.
     pub trace: Option<std::path::PathBuf>,
     /// The contexts made while tracing, whose calls are written when the command ends.
     traced: std::cell::RefCell<Vec<gl::Context>>,
