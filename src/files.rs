@@ -1,6 +1,10 @@
 //! Every file the project writes goes through here, so that nothing of the user's is lost and
 //! no file is ever left half-written:
-//! - [`check_output`] runs before any work: an input is never overwritten (not even with
+//! - [`check_destination`] is the rule of every path written, file or folder: a link is
+//!   followed to what it names, a link to nothing or a loop of links is refused (writing
+//!   would replace the link), and so is a mount point (a finished output is put in place by a
+//!   rename, which cannot replace one);
+//! - [`check_output`] runs before any work: the rule above, and an input is never overwritten (not even with
 //!   `--force`), an existing file only with `--force`, a folder is not a file, and the name's
 //!   extension must be the format that will be written;
 //! - [`write()`] writes to a temporary file in the same folder, flushes and syncs it, checks every
@@ -38,6 +42,7 @@ pub fn check_output(
     force: bool,
     extensions: &[&str],
 ) -> anyhow::Result<()> {
+    check_destination(what, out)?;
     if let Some(input) = inputs.iter().find(|input| same_file(out, input)) {
         bail!(
             "{what} {} is the input {}; an input is never overwritten (not even with --force), \
@@ -72,9 +77,108 @@ pub fn check_output(
     Ok(())
 }
 
+/// The rule of every path the program writes (a file or a folder), before any work: a link to
+/// nothing and a loop of links are refused, naming the link and where it leads; a mount point
+/// is refused (outputs are put in place by a rename, which cannot replace a mount point, so the
+/// run would fail after all its work). `what` names the option in the message.
+pub fn check_destination(what: &str, path: &Path) -> anyhow::Result<()> {
+    let real = follow(what, path)?;
+    if is_mount_point(&real) {
+        bail!(
+            "{what} {}: a mount point (another file system is mounted there); an output is put \
+             in place by renaming a finished copy over it, which cannot replace a mount point, \
+             so give a path inside it (e.g. {})",
+            path.display(),
+            path.join("out").display()
+        );
+    }
+    Ok(())
+}
+
+/// Where writing `path` writes: `path` itself, or what a link there names. A link to nothing
+/// and a loop of links are refused: writing would replace the link with a file.
+pub fn follow(what: &str, path: &Path) -> anyhow::Result<PathBuf> {
+    let is_link = std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink());
+    if !is_link {
+        return Ok(path.to_path_buf());
+    }
+    let target = std::fs::read_link(path)
+        .map(|t| t.display().to_string())
+        .unwrap_or_else(|_| "?".into());
+    let named = if what.is_empty() {
+        path.display().to_string()
+    } else {
+        format!("{what} {}", path.display())
+    };
+    match std::fs::canonicalize(path) {
+        Ok(real) => Ok(real),
+        Err(e) if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) => bail!(
+            "{named}: a link to {target}, which leads back to itself (a loop of links); nothing \
+             is written through it: remove the loop, or give another path"
+        ),
+        Err(_) => bail!(
+            "{named}: a link to {target}, which does not exist; nothing is written through a \
+             link to nothing (the link would be replaced): create {target} first, or give \
+             another path"
+        ),
+    }
+}
+
+/// Whether `path` (existing, links followed) is where a file system is mounted: its device
+/// differs from its parent's, or /proc/self/mountinfo lists it (a bind mount of a folder of the
+/// same file system). The root is one.
+pub fn is_mount_point(path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    let Ok(real) = std::fs::canonicalize(path) else {
+        return false;
+    };
+    let Some(parent) = real.parent() else {
+        return true;
+    };
+    if let (Ok(a), Ok(b)) = (std::fs::metadata(&real), std::fs::metadata(parent)) {
+        if a.dev() != b.dev() {
+            return true;
+        }
+    }
+    let Ok(mounts) = std::fs::read_to_string("/proc/self/mountinfo") else {
+        return false;
+    };
+    // The fifth field is the mount point, with spaces and the like written as \040 etc.
+    mounts
+        .lines()
+        .filter_map(|l| l.split(' ').nth(4))
+        .any(|m| Path::new(&unescape_mount(m)) == real)
+}
+
+/// A mount point as mountinfo writes it (`\040` for a space) back as the path.
+fn unescape_mount(text: &str) -> String {
+    let mut out = Vec::new();
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        let octal = bytes.get(i + 1..i + 4).and_then(|d| {
+            std::str::from_utf8(d)
+                .ok()
+                .and_then(|d| u8::from_str_radix(d, 8).ok())
+        });
+        match (bytes[i], octal) {
+            (b'\\', Some(byte)) => {
+                out.push(byte);
+                i += 4;
+            }
+            (b, _) => {
+                out.push(b);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
 /// Refuses `dir` as a folder to write files into when it exists and is not a folder (checked
 /// before any work, like [`check_output`]); the files in it are written through [`write()`].
 pub fn check_folder(what: &str, dir: &Path) -> anyhow::Result<()> {
+    check_destination(what, dir)?;
     if dir.exists() && !dir.is_dir() {
         bail!(
             "{what} {} is a file; give a folder to write the files into",
@@ -108,11 +212,13 @@ fn same_inode(_: &Path, _: &Path) -> bool {
 
 /// Writes `path` whole or not at all: `contents` writes into a temporary file beside it, which
 /// is flushed, synced and renamed over `path`. Missing parent folders are created. On any error
-/// the temporary file is removed and `path` is as it was.
+/// the temporary file is removed and `path` is as it was. A link is written through (the file
+/// it names is replaced, the link stays); a link to nothing is refused ([`follow`]).
 pub fn write(
     path: &Path,
     contents: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> anyhow::Result<()> {
+    let path = &follow("", path)?;
     let dir = match path.parent().filter(|d| !d.as_os_str().is_empty()) {
         Some(dir) => {
             create_folder(dir)?;
@@ -430,5 +536,52 @@ mod tests {
         let back = image::open(&path).unwrap().to_rgba8();
         assert_eq!(back.dimensions(), (2, 3));
         assert_eq!(back.into_raw(), rgba);
+    }
+
+    #[test]
+    fn a_link_is_written_through_and_a_link_to_nothing_or_a_loop_refused() {
+        let dir = scratch("links");
+        let target = dir.join("target.txt");
+        std::fs::write(&target, "old").unwrap();
+        let link = dir.join("link.txt");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_bytes(&link, b"new").unwrap();
+        assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "new");
+        let dangling = dir.join("dangling.txt");
+        std::os::unix::fs::symlink(dir.join("nowhere.txt"), &dangling).unwrap();
+        let err = check_output("--out", &dangling, &[], true, &["txt"])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with(&format!("--out {}: a link to", dangling.display()))
+                && err.contains("which does not exist"),
+            "{err}"
+        );
+        let err = format!("{:#}", write_bytes(&dangling, b"x").unwrap_err());
+        assert!(err.contains("does not exist"), "{err}");
+        assert!(std::fs::symlink_metadata(&dangling).unwrap().is_symlink());
+        assert!(!dir.join("nowhere.txt").exists());
+        let (a, b) = (dir.join("a"), dir.join("b"));
+        std::os::unix::fs::symlink(&b, &a).unwrap();
+        std::os::unix::fs::symlink(&a, &b).unwrap();
+        let err = check_destination("--png", &a).unwrap_err().to_string();
+        assert!(err.contains("a loop of links"), "{err}");
+    }
+
+    #[test]
+    fn mount_points_are_found() {
+        assert_eq!(unescape_mount("/mnt/my\\040disk"), "/mnt/my disk");
+        assert_eq!(unescape_mount("/plain"), "/plain");
+        assert!(is_mount_point(Path::new("/")));
+        let dir = scratch("mount");
+        assert!(!is_mount_point(&dir));
+        assert!(!is_mount_point(&dir.join("missing")));
+        if is_mount_point(Path::new("/proc")) {
+            let err = check_destination("--out", Path::new("/proc"))
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains("--out /proc: a mount point"), "{err}");
+        }
     }
 }

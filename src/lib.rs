@@ -10,7 +10,8 @@
 //! (the live viewer) -> the paper modules ([`collide`], [`crowd`], [`mlp`], [`mass`]) and the
 //! tutorial's lectures ([`lecture1`], [`lecture3`]) -> [`mesh`], [`gl`]. The page layer
 //! ([`page`]: HTML, plots, the folder writer) sits under report, course and `compare`;
-//! [`timing`] and [`files`] under everything. A paper module is the algorithm alone: no
+//! [`timing`], [`files`] and [`values`] (the ranges of the command line's numbers) under
+//! everything. A paper module is the algorithm alone: no
 //! command line, no report, no other paper. Only [`gl`] calls OpenGL or EGL, and it alone
 //! holds the code the compiler cannot check (raw GL calls): `unsafe` is denied everywhere else.
 
@@ -35,4 +36,6 @@ pub mod selftest;
 // How timings are repeated, summarised and judged: used by the papers' races, the report and
 // the course.
 pub mod timing;
+// The one typed layer for the numbers options take: ranges, checks, messages.
+pub mod values;
 pub mod view;

@@ -3,7 +3,7 @@
 #![deny(unsafe_code)]
 
 use anyhow::Context as _;
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory as _, FromArgMatches as _, Parser, Subcommand};
 use classic_gpgpu::gl::{self, Renderer};
 use classic_gpgpu::report::{self, BenchArgs, NoOptions};
 use std::process::ExitCode;
@@ -26,9 +26,18 @@ struct Cli {
     #[arg(long, global = true, value_name = "DIR")]
     glsl_dir: Option<std::path::PathBuf>,
     /// Record every GL call the command makes, in order with its arguments, grouped by pass,
-    /// and print the calls when it ends; `--trace FILE` writes them to FILE (a new file)
-    /// instead. A debugging aid: a long run makes a long trace.
-    #[arg(long, global = true, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
+    /// and print the calls when it ends; `--trace=FILE` writes them to FILE (a new file)
+    /// instead. The file is given after `=`, so that `--trace info` and `learn --trace 1` trace
+    /// `info` and lesson 1. A debugging aid: a long run makes a long trace. Refused by the
+    /// commands that make no GL call.
+    #[arg(
+        long,
+        global = true,
+        value_name = "FILE",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "-"
+    )]
     trace: Option<std::path::PathBuf>,
     #[command(subcommand)]
     command: Command,
@@ -97,6 +106,45 @@ enum Command {
     /// Every claim this build can make: its id, its versions (at the papers' sizes and at
     /// --quick sizes) and what each is a hash of; or --stamp a run from before them.
     Claims(cli::claims::ClaimsArgs),
+    /// Every command's options as JSON: name, kind of value, role of a path, help (for the
+    /// tests that hold every option to the rules of values and paths).
+    #[command(hide = true)]
+    Options,
+}
+
+impl Command {
+    /// Why `--json` does nothing for this command, when it does nothing.
+    fn prints_no_json(&self) -> Option<&'static str> {
+        match self {
+            Command::View(_) => {
+                Some("view draws frames (in a window, or into --screenshot) and prints no results")
+            }
+            Command::Compare(a) if a.markdown => Some(
+                "--markdown prints a Markdown table; the comparison as JSON is what compare \
+                 prints without --markdown (and writes as comparison.json)",
+            ),
+            _ => None,
+        }
+    }
+
+    /// Why this command makes no GL call (so `--trace` would record nothing), when it makes none.
+    fn makes_no_gl_call(&self) -> Option<&'static str> {
+        match self {
+            Command::Mesh(_) => Some("mesh reads and writes OBJ files on the CPU"),
+            Command::Glsl(_) => Some("glsl lists and writes the shader files"),
+            Command::Compare(_) => Some("compare reads results.json files"),
+            Command::Claims(_) => Some("claims lists the claims and stamps results.json files"),
+            Command::Assets(_) => Some("assets lists and writes the files the project ships"),
+            Command::Options => Some("options lists the command line's options"),
+            Command::Mlp(a) if !cli::mlp::uses_gl(a) => {
+                Some("this mlp command runs on the CPU (mlp train, or --cpu)")
+            }
+            Command::Learn(a) if a.list || a.hint.is_some() || a.solution => {
+                Some("learn --list, --hint and --solution print text")
+            }
+            _ => None,
+        }
+    }
 }
 
 /// `--renderer`: the names and help lines `gl::Renderer` gives, parsed by its `FromStr`.
@@ -112,7 +160,7 @@ pub struct Global {
     pub json: bool,
     /// `--glsl-dir`: set on every context made for a command.
     pub glsl_dir: Option<std::path::PathBuf>,
-    /// `--trace [FILE]`: "-" prints the trace.
+    /// `--trace` or `--trace=FILE`: "-" (a bare `--trace`) prints the trace.
     pub trace: Option<std::path::PathBuf>,
     /// The contexts made while tracing, whose calls are written when the command ends.
     traced: std::cell::RefCell<Vec<gl::Context>>,
@@ -139,6 +187,16 @@ impl Global {
         let Some(out) = &self.trace else {
             return Ok(());
         };
+        if self.traced.borrow().is_empty() {
+            anyhow::bail!(
+                "--trace: this run made no GL call, so there is no trace to {}",
+                if out.as_os_str() == "-" {
+                    "print".to_string()
+                } else {
+                    format!("write ({} was not written)", out.display())
+                }
+            );
+        }
         let mut lines = Vec::new();
         for ctx in self.traced.borrow().iter() {
             lines.extend(gl::trace::lines(&ctx.trace_stop()));
@@ -187,17 +245,86 @@ fn quiet_on_broken_pipe() {
     }));
 }
 
+/// The command line as clap knows it, every numeric option ready for a value that starts with
+/// `-` ([`classic_gpgpu::values::prepare`]).
+fn command_line() -> clap::Command {
+    classic_gpgpu::values::prepare(Cli::command())
+}
+
+/// Parses the command line; a refusal by clap is printed with a note when a bare `--trace`
+/// may have changed how the words after it were read.
+fn parse() -> (Cli, clap::ArgMatches) {
+    let matches = command_line().try_get_matches().unwrap_or_else(|e| {
+        if e.use_stderr() {
+            let _ = e.print();
+            if let Some(note) = trace_note(&e.to_string()) {
+                eprintln!("{note}");
+            }
+            std::process::exit(e.exit_code());
+        }
+        e.exit()
+    });
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    (cli, matches)
+}
+
+/// A note for an error that names the word after a bare `--trace` (`--trace out.txt info`):
+/// the trace's file is given as `--trace=FILE`, so that word was read as an argument.
+fn trace_note(error: &str) -> Option<String> {
+    let args: Vec<String> = std::env::args().collect();
+    let at = args.iter().position(|a| a == "--trace")?;
+    let word = args.get(at + 1).filter(|w| !w.starts_with('-'))?;
+    error.contains(word.as_str()).then(|| {
+        format!(
+            "note: a bare --trace prints the calls and takes no file, so '{word}' after it was \
+             read as an argument of the command; to write the trace to {word}, give \
+             --trace={word}"
+        )
+    })
+}
+
+/// The refusals that hold for any command, before any work: `--json` where the command prints
+/// no JSON, `--trace` where it makes no GL call, and the rule of every path written.
+fn check_options(cli: &Cli, matches: &clap::ArgMatches) -> anyhow::Result<()> {
+    if let (true, Some(why)) = (cli.json, cli.command.prints_no_json()) {
+        anyhow::bail!("--json: {why}, so there is nothing to print as JSON; leave out --json");
+    }
+    if let Some(why) = cli.command.makes_no_gl_call() {
+        if let Some(file) = &cli.trace {
+            anyhow::bail!(
+                "--trace{}: {why}, so there would be no GL call to record; leave out --trace",
+                if file.as_os_str() == "-" {
+                    String::new()
+                } else {
+                    format!("={}", file.display())
+                }
+            );
+        }
+        if let Some(dir) = &cli.glsl_dir {
+            anyhow::bail!(
+                "--glsl-dir {}: {why}, so no shader would be read from it; leave out --glsl-dir",
+                dir.display()
+            );
+        }
+        if let Some(renderer) = cli.renderer {
+            anyhow::bail!(
+                "--renderer {}: {why}, so no renderer would be used; leave out --renderer",
+                renderer.name()
+            );
+        }
+    }
+    check_glsl_dir(cli.glsl_dir.as_deref())?;
+    check_trace_file(cli.trace.as_deref())?;
+    cli::paths::check(&command_line(), matches)
+}
+
 fn main() -> ExitCode {
     // Before any thread: it may set a variable of the environment.
     gl::quiet_display_probes();
     quiet_on_broken_pipe();
-    let cli = Cli::parse();
-    if let Err(e) = check_glsl_dir(cli.glsl_dir.as_deref()) {
-        eprintln!("error: {e:#}");
-        return ExitCode::FAILURE;
-    }
-    if let Err(e) = check_trace_file(cli.trace.as_deref()) {
-        eprintln!("error: {e:#}");
+    let (cli, matches) = parse();
+    if let Err(e) = check_options(&cli, &matches) {
+        eprintln!("error: {}", classic_gpgpu::files::error_text(&e));
         return ExitCode::FAILURE;
     }
     let global = Global {
@@ -248,6 +375,7 @@ fn main() -> ExitCode {
         Command::Learn(a) => cli::learn::run(&a, json, || global.context()),
         Command::Compare(a) => cli::compare::run(&a, json),
         Command::Claims(a) => cli::claims::run(&a, json),
+        Command::Options => cli::options::run(&command_line()),
     };
     // The trace is written whether the command succeeded or not: a failure is when it helps.
     let result = match (result, global.write_trace()) {
@@ -257,17 +385,21 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", classic_gpgpu::files::error_text(&e));
+            let text = classic_gpgpu::files::error_text(&e);
+            eprintln!("error: {text}");
+            if let Some(note) = trace_note(&text) {
+                eprintln!("{note}");
+            }
             ExitCode::FAILURE
         }
     }
 }
 
-/// `--trace FILE` writes a new file: an existing file or a folder is refused before any work.
+/// `--trace=FILE` writes a new file: an existing file or a folder is refused before any work.
 fn check_trace_file(file: Option<&std::path::Path>) -> anyhow::Result<()> {
     match file {
         Some(f) if f.as_os_str() != "-" && f.exists() => anyhow::bail!(
-            "--trace {}: {}; a trace is written to a new file, so name one that does not exist",
+            "--trace={}: {}; a trace is written to a new file, so name one that does not exist",
             f.display(),
             if f.is_dir() { "is a folder" } else { "exists" }
         ),

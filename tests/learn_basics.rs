@@ -277,8 +277,9 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
     assert_eq!(shape, vec![20, 24, 2]);
     assert!(values.iter().all(|v| v.is_finite()));
     // The pictures exist now: a rerun of the same lesson replaces its own pictures (the
-    // folder's marker says they are its own); another lesson's run, and a folder with a
-    // file of the user's, are refused without --force, and the user's file is never touched.
+    // folder's marker says they are its own); another lesson's run is refused, even with
+    // --force (the folder is the other lesson's: its marker is never replaced), and the
+    // user's file in it is never touched.
     let out = classic_gpgpu(&["learn", "reduction", "--png", pictures.to_str().unwrap()]);
     assert!(
         out.status.success(),
@@ -295,11 +296,24 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
         "{stderr}"
     );
     assert!(pictures.join(picture).is_file());
+    let forced = classic_gpgpu(&["learn", "1", "--png", pictures.to_str().unwrap(), "--force"]);
+    let stderr = String::from_utf8_lossy(&forced.stderr);
+    assert!(
+        !forced.status.success()
+            && stderr.contains("`classic-gpgpu learn reduction --png`'s")
+            && stderr.contains("not even with --force"),
+        "{stderr}"
+    );
+    assert!(pictures.join(picture).is_file());
+    // A folder of the user's takes the pictures with --force, beside the user's file.
+    let mine = dir.join("mine");
+    std::fs::create_dir_all(&mine).unwrap();
+    std::fs::write(mine.join("notes.txt"), "the learner's notes").unwrap();
     let out = classic_gpgpu(&[
         "learn",
         "1",
         "--png",
-        pictures.to_str().unwrap(),
+        mine.to_str().unwrap(),
         "--force",
         "--exercise",
         "1",
@@ -314,10 +328,12 @@ fn learn_lists_runs_and_writes_pictures_through_the_binary() {
         stdout.contains("pass 1: saxpy") && stdout.contains("passed"),
         "{stdout}"
     );
-    assert_eq!(
-        std::fs::read_to_string(&notes).unwrap(),
-        "the learner's notes"
-    );
+    for notes in [notes, mine.join("notes.txt")] {
+        assert_eq!(
+            std::fs::read_to_string(&notes).unwrap(),
+            "the learner's notes"
+        );
+    }
     // Every lesson's passes get their pictures from the command line, the second half's too.
     for id in ["count-and-mask", "depth-peeling", "render-to-vertex-buffer"] {
         let folder = dir.join(id);

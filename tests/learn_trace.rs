@@ -218,12 +218,13 @@ fn learn_trace_prints_the_calls_by_pass_and_writes_a_new_file() {
     assert!(text.contains("glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, 1)"));
     let dir = common::temp_dir("learn_trace", "file");
     let file = dir.join("trace.txt");
-    let written = classic_gpgpu(&["learn", "quad-is-loop", "--trace", file.to_str().unwrap()]);
+    let trace = format!("--trace={}", file.display());
+    let written = classic_gpgpu(&["learn", "quad-is-loop", &trace]);
     assert_ok(&written);
     let saved = std::fs::read_to_string(&file).unwrap();
     assert!(saved.contains("pass 'gather':") && saved.contains("glViewport(0, 0, 16, 12)"));
     // A trace never replaces a file.
-    let again = classic_gpgpu(&["learn", "quad-is-loop", "--trace", file.to_str().unwrap()]);
+    let again = classic_gpgpu(&["learn", "quad-is-loop", &trace]);
     assert_refused(&again, &["--trace", "trace.txt", "exists"]);
     assert_eq!(std::fs::read_to_string(&file).unwrap(), saved);
 }

@@ -308,12 +308,25 @@ fn pyramid_npy_writes_every_level_equal_to_the_cpu_pyramid() {
             }
         }
     }
-    let err = fails(&["lecture3", "pyramid", "--npy", d]);
+    // The folder rule of every writer: a rerun replaces its own files; a file of the user's
+    // is refused without --force, kept with it, and never replaced even when it has the name
+    // of a level.
+    json_of(&["lecture3", "pyramid", "--npy", d, "--json"]);
+    let theirs = scratch("pyramid_npy").join("theirs");
+    std::fs::create_dir_all(&theirs).unwrap();
+    std::fs::write(theirs.join("max_0.npy"), "mine").unwrap();
+    let t = theirs.to_str().unwrap();
+    let err = fails(&["lecture3", "pyramid", "--npy", t]);
     assert!(
         err.contains("max_0.npy") && err.contains("--force"),
         "{err}"
     );
-    json_of(&["lecture3", "pyramid", "--npy", d, "--force", "--json"]);
+    let err = fails(&["lecture3", "pyramid", "--npy", t, "--force"]);
+    assert!(
+        err.contains("max_0.npy") && err.contains("move that file"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(theirs.join("max_0.npy")).unwrap(), b"mine");
 }
 
 /// The pyramid method agrees with its exact tracer down to the closest camera accepted (the

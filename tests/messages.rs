@@ -38,7 +38,7 @@ fn the_no_display_hint_runs_as_written() {
 
 #[test]
 fn compare_takes_the_triangle_counts_as_its_help_writes_them() {
-    let out = classic_gpgpu(&["lecture1", "compare", "--triangles", "250", "500", "--json"]);
+    let out = classic_gpgpu(&["lecture1", "compare", "--triangles", "300", "600", "--json"]);
     assert!(out.status.success(), "{}", stderr(&out));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(

@@ -241,7 +241,7 @@ fn detect_max_vectors_splits_the_batch_into_tiles() {
     assert_eq!(tiled["batches"], 7);
     assert_eq!(whole["text_pixels"], tiled["text_pixels"]);
     let out = classic_gpgpu(&["mlp", "detect", &input, "--max-vectors", "0"]);
-    assert_clear_failure(&out, &["--max-vectors", "at least 1"]);
+    assert_clear_failure(&out, &["--max-vectors", "below 1"]);
 }
 
 #[test]
@@ -377,7 +377,7 @@ fn train_replaces_an_existing_file_only_with_force_and_never_an_input() {
     assert_clear_failure(&out, &["is the input", "never overwritten"]);
     assert_eq!(std::fs::read(&mask).unwrap(), before);
     let out = classic_gpgpu(&["mlp", "train", "--images", "0", "--out", "n.json"]);
-    assert_clear_failure(&out, &["--images", "at least 1"]);
+    assert_clear_failure(&out, &["--images", "below 1"]);
 }
 
 /// A 64 x 32 image and its mask, labelled against the shipped detector's habits: the

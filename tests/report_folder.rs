@@ -132,7 +132,7 @@ fn a_second_run_into_the_same_report_is_refused_while_the_first_holds_it() {
         .create(true)
         .truncate(false)
         .write(true)
-        .open(dir.join(".report.lock"))
+        .open(dir.join(".report.classic-gpgpu-lock"))
         .unwrap();
     rustix::fs::flock(&lock, rustix::fs::FlockOperation::NonBlockingLockExclusive).unwrap();
     let second = blocks(&out, &[], &[]);

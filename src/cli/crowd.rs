@@ -15,6 +15,7 @@ use classic_gpgpu::crowd::compute::{self, ComputeCrowd};
 use classic_gpgpu::crowd::renderer::{CrowdRenderer, Method};
 use classic_gpgpu::crowd::scene::{self, RunStats};
 use classic_gpgpu::crowd::LodPolicy;
+use classic_gpgpu::values::{ranges, Count};
 
 /// Arguments of `crowd`.
 #[derive(clap::Args, Debug, Clone)]
@@ -23,7 +24,7 @@ pub struct CrowdArgs {
     #[arg(long, value_enum, default_value = "soldier")]
     pub model: ModelArg,
     /// How many characters (n).
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = CHARACTERS.of::<usize>())]
     pub characters: usize,
     /// Skinning in a pixel shader + render-to-VBO (the paper) or in the vertex shader
     /// [default: two-pass] (classic formulation only).
@@ -38,10 +39,10 @@ pub struct CrowdArgs {
     #[arg(long, requires = "lod")]
     pub sprites: bool,
     /// Timed frames (after a warm-up frame of a few characters per level).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = ranges::frames_kept(1 << 10).of::<usize>())]
     pub frames: usize,
     /// Image size, WxH.
-    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    #[arg(long, default_value = "800x600", value_parser = ranges::picture(1))]
     pub size: (u32, u32),
     /// Write the last frame here as PNG (an existing file only with --force).
     #[arg(long)]
@@ -51,15 +52,15 @@ pub struct CrowdArgs {
     pub force: bool,
     /// Characters per draw call of the vertex-shader method (default: as many as the
     /// uniforms hold; 1 is how the paper's hardware generation ran it).
-    #[arg(long)]
+    #[arg(long, value_parser = CHARACTERS.of::<u32>())]
     pub vs_batch: Option<u32>,
     /// Characters per pass-1 draw of the two-pass method (default: as many as one render
     /// target holds, 3,712 soldiers at LOD 0 on 16384-texel targets; the paper skins all
     /// characters in one draw). A smaller value runs the several-batch path.
-    #[arg(long)]
+    #[arg(long, value_parser = CHARACTERS.of::<usize>())]
     pub skin_batch: Option<usize>,
     /// Seed of the crowd's placement and wandering.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = ranges::SEED.of::<u64>())]
     pub seed: u64,
     /// The paper's passes (classic, with --method) or compute skinning into a storage buffer
     /// drawn directly (compute, OpenGL 4.3; no sprites, --method and the batch sizes do not
@@ -112,17 +113,13 @@ impl From<MethodArg> for Method {
 /// characters), rounded up.
 const CHARACTER_BYTES: u64 = 64 << 10;
 
-/// Parses `WxH`.
-pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("size '{text}' is not WxH with positive integers (e.g. 800x600)");
-    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
-    let w: u32 = w.trim().parse().map_err(|_| bad())?;
-    let h: u32 = h.trim().parse().map_err(|_| bad())?;
-    if w == 0 || h == 0 {
-        return Err(bad());
-    }
-    Ok((w, h))
-}
+/// `--characters` (and the batches, which never need more): what fits in memory.
+pub const CHARACTERS: Count = Count::in_memory(
+    "a number of characters",
+    1,
+    CHARACTER_BYTES,
+    "character's skinned vertices and instance data",
+);
 
 /// Refuses a batch size of the method that does not run: `--vs-batch` is the vertex-shader
 /// method's, `--skin-batch` the two-pass method's pass 1.
@@ -156,22 +153,6 @@ pub fn run(args: &CrowdArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if let Some(png) = &args.png {
         classic_gpgpu::files::check_output("--png", png, &[], args.force, &["png"])?;
     }
-    super::limits::check_count(
-        "--characters",
-        args.characters as u64,
-        super::limits::fit_in_memory(CHARACTER_BYTES),
-        &format!(
-            "each character needs about {} KiB of skinned vertices and instance data; {} may be used",
-            CHARACTER_BYTES >> 10,
-            super::limits::gib(super::limits::memory_budget())
-        ),
-    )?;
-    super::limits::check_count(
-        "--frames",
-        args.frames as u64,
-        super::limits::fit_in_memory(1 << 10),
-        "each frame's timings take up to 1 KiB",
-    )?;
     let (w, h) = args.size;
     let [max_w, max_h] = ctx.info().limits.max_viewport_dims;
     if w > max_w || h > max_h {

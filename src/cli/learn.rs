@@ -7,6 +7,7 @@ use anyhow::Context as _;
 use classic_gpgpu::gl::Context;
 use classic_gpgpu::learn::{self, LessonOptions, LessonRun};
 use classic_gpgpu::page::folder::Staged;
+use classic_gpgpu::values::Count;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -25,7 +26,7 @@ pub struct LearnArgs {
     pub png: Option<PathBuf>,
     /// Run with exercise N's shader: the learner's file where the shader folder has it, else
     /// the shipped solution.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = EXERCISE.of::<u32>())]
     pub exercise: Option<u32>,
     /// Write the offline HTML guide into this folder: every lesson run on this renderer, one
     /// page each with its passes, pictures and checks, the reading order into the papers, and
@@ -41,7 +42,7 @@ pub struct LearnArgs {
     #[arg(
         long,
         value_name = "N",
-        value_parser = clap::value_parser!(u32).range(1..=3),
+        value_parser = HINT.of::<u32>(),
         conflicts_with_all = ["list", "guide", "png", "solution"]
     )]
     pub hint: Option<u32>,
@@ -56,13 +57,38 @@ pub struct LearnArgs {
     pub bench: bool,
     /// With --bench: this one size instead of the lesson's sweep (elements or values; the
     /// array's side for readback-and-upload).
-    #[arg(long, value_name = "N", requires = "bench")]
+    #[arg(long, value_name = "N", requires = "bench", value_parser = BENCH_SIZE.of::<u32>())]
     pub size: Option<u32>,
     /// With --bench: also write the results as JSON into FILE.json (an existing file only
     /// with --force).
     #[arg(long, value_name = "FILE.json", requires = "bench")]
     pub out: Option<PathBuf>,
 }
+
+/// `--exercise N`: a lesson's exercises are few (the lesson refuses a number it lacks).
+const EXERCISE: Count = Count::new(
+    "an exercise number",
+    1,
+    99,
+    "a lesson has a few; `learn --list` names them",
+);
+
+/// `--hint N`: the idea, the formula, the line.
+const HINT: Count = Count::new(
+    "a hint number",
+    1,
+    3,
+    "1 the idea, 2 the formula, 3 the line",
+);
+
+/// `--size N` of a lesson's bench: elements, values, or an array's side, each lesson checking
+/// its own range; none times more than 2^24 values.
+const BENCH_SIZE: Count = Count::new(
+    "a size",
+    1,
+    1 << 24,
+    "the largest a lesson's bench times; each lesson checks its own",
+);
 
 pub fn run(
     args: &LearnArgs,
@@ -83,6 +109,19 @@ pub fn run(
     if let Some(n) = args.hint {
         let e = exercise_of(lesson.info(), args.exercise)?;
         let what = ["the idea", "the formula", "the line"][n as usize - 1];
+        if json {
+            let hint = serde_json::json!({
+                "lesson": lesson.info().id,
+                "exercise": e.number,
+                "shader": e.shader,
+                "hint": n,
+                "of": 3,
+                "kind": what,
+                "text": e.hints[n as usize - 1],
+            });
+            println!("{}", serde_json::to_string_pretty(&hint)?);
+            return Ok(());
+        }
         println!(
             "lesson {} exercise {} [{}], hint {n} of 3 ({what}):",
             lesson.info().id,
@@ -106,14 +145,22 @@ pub fn run(
         let e = exercise_of(lesson.info(), args.exercise)?;
         let shader = classic_gpgpu::gl::shaders::find(e.shader)
             .with_context(|| format!("the shipped shader {} is not compiled in", e.shader))?;
-        if !json {
-            eprintln!(
-                "the shipped solution of lesson {} exercise {}: {}",
-                lesson.info().id,
-                e.number,
-                e.shader
-            );
+        if json {
+            let solution = serde_json::json!({
+                "lesson": lesson.info().id,
+                "exercise": e.number,
+                "shader": e.shader,
+                "source": shader.source,
+            });
+            println!("{}", serde_json::to_string_pretty(&solution)?);
+            return Ok(());
         }
+        eprintln!(
+            "the shipped solution of lesson {} exercise {}: {}",
+            lesson.info().id,
+            e.number,
+            e.shader
+        );
         print!("{}", shader.source);
         return Ok(());
     }
@@ -160,6 +207,22 @@ pub fn run(
     anyhow::bail!(message)
 }
 
+/// `--size N` of a bench against memory before any work: N values, or for
+/// readback-and-upload an N x N array (its copies on both sides, about 64 bytes a texel).
+fn check_bench_memory(id: &str, n: u32) -> anyhow::Result<()> {
+    let (units, what) = match id {
+        "readback-and-upload" => (n as u64 * n as u64, "texels"),
+        _ => (n as u64, "values"),
+    };
+    super::limits::check_memory(
+        &format!("--size {n}"),
+        units,
+        64,
+        what,
+        "use a smaller --size",
+    )
+}
+
 /// `learn <id> --bench [--size N] [--out FILE.json]`: the lesson's bench, its tables on
 /// stdout (its JSON with --json), and the JSON into --out, refused before any work when the
 /// lesson has no bench or the file exists without --force.
@@ -170,6 +233,9 @@ fn bench(
     context: impl FnOnce() -> anyhow::Result<Context>,
 ) -> anyhow::Result<()> {
     learn::bench::has_bench(id)?;
+    if let Some(n) = args.size {
+        check_bench_memory(id, n)?;
+    }
     if let Some(out) = &args.out {
         classic_gpgpu::files::check_output("--out", out, &[], args.force, &["json"])?;
     }

@@ -17,6 +17,7 @@ use classic_gpgpu::lecture1::reference;
 use classic_gpgpu::lecture1::self_collision::{Options, SelfCollider};
 use classic_gpgpu::lecture1::weld::weld;
 use classic_gpgpu::mesh::{load_obj, Mesh};
+use classic_gpgpu::values::{ranges, Count, Real};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -97,20 +98,22 @@ pub struct SelfCollisionArgs {
     /// --deform does not apply).
     #[arg(long, value_enum)]
     pub scene: Option<SceneArg>,
-    /// Triangles of the generated scene.
-    #[arg(long, default_value_t = 2000)]
+    /// Triangles of the generated scene (the tube is made of whole rings, so the count made
+    /// is the nearest it can be, and is said).
+    #[arg(long, default_value_t = 2000, value_parser = TUBE_TRIANGLES.of::<usize>())]
     pub triangles: usize,
     /// Paper 1's deformation of the model (section 7.2).
     #[arg(long, value_enum, default_value_t = DeformArg::None)]
     pub deform: DeformArg,
-    #[arg(long, default_value_t = 1)]
+    /// Frames of the motion.
+    #[arg(long, default_value_t = 1, value_parser = ranges::frames_kept(1 << 10).of::<usize>())]
     pub frames: usize,
     /// Seconds of animation between frames.
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, value_parser = DT.of::<f32>())]
     pub dt: f32,
     /// Most triangles per leaf (default: 32, doubled until the stream has at most 512 slots
     /// on a software renderer, 4096 on a GPU).
-    #[arg(long)]
+    #[arg(long, value_parser = ranges::LEAF_SIZE.of::<usize>())]
     pub leaf_size: Option<usize>,
     /// Check every frame against brute force with the same exact predicate (quadratic).
     #[arg(long)]
@@ -123,9 +126,10 @@ pub struct PairwiseArgs {
     pub a: PathBuf,
     /// Model B (OBJ); without it, A against itself (neighbours excluded).
     pub b: Option<PathBuf>,
-    /// Largest tile side (triangle pairs per side of the pair texture).
-    #[arg(long, default_value_t = DEFAULT_TILE)]
-    pub tile: usize,
+    /// Largest tile side (triangle pairs per side of the pair texture) of the classic
+    /// formulation [default: 1024].
+    #[arg(long, value_parser = ranges::TEXTURE_SIDE.of::<usize>())]
+    pub tile: Option<usize>,
     /// Check the pairs against brute force with the same exact predicate (quadratic).
     #[arg(long)]
     pub check: bool,
@@ -147,7 +151,8 @@ pub use super::lecture1_fields::{DistanceFieldArgs, SweptVolumeArgs, VoronoiArgs
 #[derive(clap::Args, Debug)]
 pub struct CompareArgs {
     /// Triangle counts of the swelling knot (at its thickest).
-    #[arg(long, value_delimiter = ',', num_args = 1.., default_values_t = [250, 500, 1000, 2000])]
+    #[arg(long, value_delimiter = ',', num_args = 1.., default_values_t = [300, 500, 1000, 2000],
+          value_parser = TUBE_TRIANGLES.of::<usize>())]
     pub triangles: Vec<usize>,
 }
 
@@ -199,30 +204,36 @@ impl Motion {
 /// against 80,000 triangles), 0.9 KiB for `compare` (2,000 against 16,000); rounded up.
 const TUBE_TRIANGLE_BYTES: u64 = 1 << 10;
 
-/// Refuses a triangle count of the generated tube beyond this machine's memory (or beyond the
-/// 32-bit vertex indices).
-fn check_tube_triangles(n: usize) -> anyhow::Result<()> {
-    super::limits::check_count(
-        "--triangles",
-        n as u64,
-        super::limits::fit_in_memory(TUBE_TRIANGLE_BYTES).min(u32::MAX as u64 / 3),
-        &format!(
-            "the tube and its collision setup need about {} KiB a triangle, and vertex indices \
-             are 32-bit",
-            TUBE_TRIANGLE_BYTES >> 10
-        ),
-    )
+/// `--triangles` of the knotted tube: from its smallest (24 rings of 6 sides) to what fits.
+const TUBE_TRIANGLES: Count = Count {
+    least: 288,
+    ..ranges::triangles(TUBE_TRIANGLE_BYTES)
+};
+
+/// `--dt`: seconds of animation between frames, either way (the motion is a function of
+/// time), where fp32 time still has milliseconds.
+const DT: Real = Real::new(
+    "a time step in seconds",
+    -1e4,
+    1e4,
+    "the motion's time is fp32, which keeps milliseconds up to 1e4 s",
+);
+
+/// The tube of about `asked` triangles, and a note when it has another count (the tube is
+/// made of whole rings, so most counts are rounded).
+fn tube_of(asked: usize) -> (KnottedTube, Option<String>) {
+    let tube = KnottedTube::with_triangles(asked);
+    let made = tube.mesh.triangles.len();
+    let note = (made != asked).then(|| {
+        format!(
+            "--triangles {asked}: the knotted tube is made of whole rings, so it has {made} \
+             triangles, the nearest it makes"
+        )
+    });
+    (tube, note)
 }
 
 fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
-    anyhow::ensure!(args.frames >= 1, "--frames must be at least 1");
-    super::limits::check_count(
-        "--frames",
-        args.frames as u64,
-        super::limits::fit_in_memory(1 << 10),
-        "each frame's counts and timing are kept, about 1 KiB",
-    )?;
-    anyhow::ensure!(args.dt.is_finite(), "--dt must be finite");
     let motion = match (&args.model, args.scene) {
         (Some(_), Some(_)) => anyhow::bail!("give a model or a --scene, not both"),
         (None, None) => anyhow::bail!("give a model (OBJ) or a --scene"),
@@ -231,9 +242,11 @@ fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow
                 args.deform == DeformArg::None,
                 "the knotted tube moves by itself; --deform applies to a model"
             );
-            anyhow::ensure!(args.triangles >= 100, "--triangles must be at least 100");
-            check_tube_triangles(args.triangles)?;
-            Motion::Tube(KnottedTube::with_triangles(args.triangles))
+            let (tube, note) = tube_of(args.triangles);
+            if let Some(note) = note {
+                eprintln!("note: {note}");
+            }
+            Motion::Tube(tube)
         }
         (Some(path), None) => {
             // Welded before deforming, so that split copies of a vertex move as one.
@@ -282,6 +295,7 @@ fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow
     if json {
         let report = json!({
             "renderer": renderer,
+            "asked_triangles": args.scene.map(|_| args.triangles),
             "triangles": mesh.triangles.len(),
             "leaf_size": leaf_size,
             "leaves": collider.stream.leaves.len(),
@@ -321,12 +335,19 @@ fn self_collision(args: &SelfCollisionArgs, ctx: &Context, json: bool) -> anyhow
 }
 
 fn pairwise(args: &PairwiseArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    if let (Formulation::Compute, Some(tile)) = (args.formulation, args.tile) {
+        anyhow::bail!(
+            "--tile {tile} sets the tiles of the classic formulation's pair texture; \
+             --formulation compute tests every pair in one dispatch, without tiles: leave out \
+             --tile, or use --formulation classic"
+        );
+    }
     let a = load(&args.a)?;
     let b = args.b.as_deref().map(load).transpose()?;
     let start = Instant::now();
     let (result, tile) = match args.formulation {
         Formulation::Classic => {
-            let tester = PairwiseTester::new(ctx, args.tile)?;
+            let tester = PairwiseTester::new(ctx, args.tile.unwrap_or(DEFAULT_TILE))?;
             (tester.run(&a, b.as_ref())?, Some(tester.tile))
         }
         Formulation::Compute => {
@@ -407,14 +428,28 @@ fn timed<T>(f: impl FnOnce() -> anyhow::Result<T>) -> anyhow::Result<(T, f64)> {
 }
 
 fn compare(args: &CompareArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
+    // Each count's tube, said where it is not the count asked; two counts that make one tube
+    // would only repeat a row.
+    let mut tubes: Vec<(usize, KnottedTube)> = Vec::new();
     for &n in &args.triangles {
-        anyhow::ensure!(n >= 100, "--triangles: {n} is fewer than 100");
-        check_tube_triangles(n)?;
+        let (tube, note) = tube_of(n);
+        let made = tube.mesh.triangles.len();
+        if let Some((other, _)) = tubes.iter().find(|(_, t)| t.mesh.triangles.len() == made) {
+            anyhow::bail!(
+                "--triangles {other} and {n} both make the knotted tube of {made} triangles (it \
+                 is made of whole rings), so the second row would repeat the first: give counts \
+                 further apart"
+            );
+        }
+        if let Some(note) = note {
+            eprintln!("note: {note}");
+        }
+        tubes.push((n, tube));
     }
     let tester = PairwiseTester::new(ctx, DEFAULT_TILE)?;
     let mut rows = Vec::new();
-    for &n in &args.triangles {
-        let tube = KnottedTube::with_triangles(n);
+    for (n, tube) in &tubes {
+        let n = *n;
         let mut mesh = tube.mesh.clone();
         mesh.positions =
             tube.positions_at_radius(classic_gpgpu::lecture1::knotted_tube::RADIUS_RANGE.1);
@@ -445,6 +480,7 @@ fn compare(args: &CompareArgs, ctx: &Context, json: bool) -> anyhow::Result<()> 
             pairwise.pairs.len()
         );
         rows.push(json!({
+            "asked_triangles": n,
             "triangles": mesh.triangles.len(),
             "pairs": brute.len(),
             "brute_force_ms": brute_ms,

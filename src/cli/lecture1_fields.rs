@@ -17,16 +17,54 @@ use classic_gpgpu::lecture1::voronoi::mesh::DEFAULT_ERROR_PIXELS;
 use classic_gpgpu::lecture1::voronoi::raster::{Method, VoronoiRasterizer};
 use classic_gpgpu::lecture1::voronoi::{reference as voronoi_reference, Sites};
 use classic_gpgpu::mesh::{load_obj, write_obj, Mesh};
+use classic_gpgpu::values::{ranges, Count, Real, SMALLEST};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// A field's voxels per axis: N x N x N float32, so 1024 is 4 GiB.
+const FIELD_RESOLUTION: Count = Count::new(
+    "a resolution",
+    2,
+    1024,
+    "the field holds N x N x N float32 voxels: 1024 is 4 GiB",
+);
+
+/// A distance in mesh units (`--clamp`, `--epsilon`): positive and finite (the model's own
+/// scale is checked when it is loaded).
+const DISTANCE: Real = Real::new(
+    "a distance",
+    SMALLEST,
+    f64::MAX,
+    "positive and finite, in mesh units",
+);
+
+/// `--margin`: room around the model, none or more (checked against the model's scale when it
+/// is loaded).
+const MARGIN: Real = Real::new("a margin", 0.0, f64::MAX, "finite, in mesh units");
+
+/// `--mesh-error`: the distance meshes' error bound, pixels or voxels.
+const MESH_ERROR: Real = Real::new(
+    "an error bound",
+    1e-4,
+    1e4,
+    "a cone's sides grow as one over the square root of the error",
+);
+
+/// `--poses`: the poses sampled along the path, each a pass over the field.
+const POSES: Count = Count::new(
+    "a number of poses",
+    1,
+    10_000,
+    "each pose is drawn into every slice of the field",
+);
 
 #[derive(clap::Args, Debug)]
 pub struct VoronoiArgs {
     /// The sites (JSON; the format is in this command's description).
     pub sites: PathBuf,
     /// Pixels per side of the diagram.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = ranges::TEXTURE_SIDE.of::<usize>())]
     pub resolution: usize,
     /// The picture: nearest site and distance, each with its colour key.
     #[arg(long)]
@@ -42,7 +80,7 @@ pub struct VoronoiArgs {
     pub method: VoronoiMethod,
     /// The distance meshes' tessellation error, pixels: the cones get the fewest sides that
     /// keep every distance within it (only with --method mesh).
-    #[arg(long)]
+    #[arg(long, value_parser = MESH_ERROR.of::<f64>())]
     pub mesh_error: Option<f64>,
     /// Overwrite existing output files.
     #[arg(long)]
@@ -70,18 +108,18 @@ pub struct DistanceFieldArgs {
     /// The model (OBJ).
     pub model: PathBuf,
     /// N: voxels per axis.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = FIELD_RESOLUTION.of::<usize>())]
     pub resolution: usize,
     /// The field (float32 .npy, shape [N, N, N], indexed [z][y][x]).
     #[arg(long)]
     pub npy: PathBuf,
     /// Bound the work: voxels farther than D from the mesh hold D (mesh units). Without it
     /// every voxel holds its exact distance.
-    #[arg(long)]
+    #[arg(long, value_parser = DISTANCE.of::<f64>())]
     pub clamp: Option<f64>,
     /// Room around the model's box on every side, mesh units [default: a tenth of the box's
     /// longest side].
-    #[arg(long)]
+    #[arg(long, value_parser = MARGIN.of::<f64>())]
     pub margin: Option<f64>,
     #[arg(long, value_enum, default_value_t = Formulation::Classic)]
     pub formulation: Formulation,
@@ -93,7 +131,7 @@ pub struct DistanceFieldArgs {
     pub method: VoronoiMethod,
     /// The distance meshes' tessellation error, voxels [default: 0.5] (only with --method
     /// mesh).
-    #[arg(long)]
+    #[arg(long, value_parser = MESH_ERROR.of::<f64>())]
     pub mesh_error: Option<f64>,
     /// Also compute the field by brute force on the CPU and report the largest difference.
     #[arg(long)]
@@ -110,18 +148,19 @@ pub struct SweptVolumeArgs {
     /// The keyframes (JSON; the format is in this command's description).
     #[arg(long)]
     pub path: PathBuf,
-    /// N: voxels per axis of the distance field (at least 16).
-    #[arg(long, default_value_t = 64)]
+    /// N: voxels per axis of the distance field.
+    #[arg(long, default_value_t = 64,
+          value_parser = Count { least: 16, ..FIELD_RESOLUTION }.of::<usize>())]
     pub resolution: usize,
     /// The swept volume's boundary (OBJ).
     #[arg(long)]
     pub out: PathBuf,
     /// K: poses sampled along the path.
-    #[arg(long, default_value_t = DEFAULT_POSES)]
+    #[arg(long, default_value_t = DEFAULT_POSES, value_parser = POSES.of::<usize>())]
     pub poses: usize,
     /// ε: how far the ruled quads' triangles may be from the quads, mesh units [default: a
     /// quarter of a voxel].
-    #[arg(long)]
+    #[arg(long, value_parser = DISTANCE.of::<f64>())]
     pub epsilon: Option<f64>,
     /// Overwrite an existing output file.
     #[arg(long)]

@@ -26,6 +26,7 @@ use classic_gpgpu::report::lecture3::{
     images::{gpu_pyramids, pyramid_png, PYRAMID_KINDS},
 };
 use classic_gpgpu::timing::Runs;
+use classic_gpgpu::values::{ranges, Count, Real};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
@@ -63,22 +64,22 @@ pub struct OctreeArgs {
     /// shapes].
     model: Option<PathBuf>,
     /// Points (random on three shapes, or sampled on the model's triangles).
-    #[arg(long, default_value_t = 20_000)]
+    #[arg(long, default_value_t = 20_000, value_parser = POINTS.of::<usize>())]
     points: usize,
     /// Voxels per side of the leaf grid (a power of two, 2 to 128).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = OCTREE_RESOLUTION.of::<u32>())]
     resolution: u32,
     /// Image side, pixels.
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = 128, value_parser = IMAGE_SIDE.of::<u32>())]
     size: u32,
     /// The camera's distance from the cube's centre (the cube's side is 2).
-    #[arg(long, default_value_t = 3.5)]
+    #[arg(long, default_value_t = 3.5, value_parser = OCTREE_DISTANCE.of::<f32>())]
     distance: f32,
     /// Camera azimuth, degrees.
-    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true, value_parser = AZIMUTH.of::<f32>())]
     azimuth: f32,
     /// Camera elevation, degrees.
-    #[arg(long, default_value_t = 25.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 25.0, allow_negative_numbers = true, value_parser = OCTREE_ELEVATION.of::<f32>())]
     elevation: f32,
     /// Time the octree cast against the flat walk (GPU time, repeated; the median kept).
     #[arg(long)]
@@ -90,6 +91,135 @@ pub struct OctreeArgs {
     #[command(flatten)]
     output: Output,
 }
+
+const OCTREE_RESOLUTION: Count = Count::new(
+    "a resolution",
+    2,
+    128,
+    "a power of two: the leaf grid of an octree of at most 7 levels",
+);
+const OCTREE_DISTANCE: Real = Real::new("a distance", 0.1, 1000.0, "in front of the far plane");
+const OCTREE_ELEVATION: Real = Real::new(
+    "an elevation",
+    -89.5,
+    89.5,
+    "degrees; at the poles the camera's up is undefined",
+);
+const DEPTH: Real = Real::new(
+    "a depth",
+    1e-3,
+    2.0,
+    "in half the box's longer side: the box holds the surface",
+);
+const DISPLACE_ELEVATION: Real = Real::new(
+    "an elevation",
+    0.1,
+    89.5,
+    "degrees above the surface, which is seen from above",
+);
+const ORBIT_FRAMES: Count = Count::new(
+    "a number of frames",
+    1,
+    360,
+    "one orbit at a degree a frame at most",
+);
+const DISPLACE_DISTANCE: Real = Real::new(
+    "a distance",
+    0.5,
+    (FAR - 5.0) as f64,
+    "the box must lie in front of the far plane",
+);
+const LINEAR_STEPS: Count = Count::new(
+    "a number of steps",
+    1,
+    4096,
+    "relief mapping's linear search per pixel",
+);
+const BINARY_STEPS: Count = Count::new(
+    "a number of steps",
+    0,
+    64,
+    "each halves the interval: 64 pass fp32's precision",
+);
+const VPLS: Count = Count::new(
+    "a number of VPLs a side",
+    2,
+    128,
+    "a power of two; the VPL image's side",
+);
+const THETA: Real = Real::new(
+    "a criterion",
+    0.0,
+    4.0,
+    "a cluster's radius over its distance",
+);
+const EXPOSURE: Real = Real::new("an exposure", -20.0, 20.0, "stops: the picture times 2^E");
+const COHERENCE: Real = Real::new("a coherence", 0.0, 1.0, "the length of a mean unit normal");
+const TEXELS: Count = Count {
+    least: 2,
+    ..ranges::TEXTURE_SIDE
+};
+const PER_PIXEL: Count = Count::new(
+    "a number of values per pixel",
+    1,
+    4096,
+    "a power of two; the pass's loop",
+);
+const GENERATORS: Count = Count::new(
+    "a number of generators a side",
+    2,
+    4096,
+    "the neighbour correlation needs two in a row",
+);
+const RANDOM_STEPS: Count = Count::new(
+    "a number of steps",
+    2,
+    1024,
+    "the serial correlation compares a step with the next",
+);
+const FRACTION: Real = Real::new("a fraction", 0.0, 1.0, "a share of the pixels");
+const ITERATIONS: Count = Count::new(
+    "a number of iterations",
+    1,
+    16384,
+    "llvmpipe stops a shader's loop after 65535",
+);
+const VALUES: Count = Count::new(
+    "a number of values",
+    1,
+    1 << 24,
+    "fp32 blending counts exactly up to 2^24",
+);
+const SAMPLES: Count = Count::new(
+    "a number of samples a side",
+    2,
+    4096,
+    "a PNG height map of at most 4096 x 4096",
+);
+
+/// `--size` of a picture the command draws and checks pixel by pixel.
+const IMAGE_SIDE: Count = Count::new(
+    "a size in pixels",
+    8,
+    4096,
+    "each pixel is checked against the CPU",
+);
+
+/// A camera's azimuth, degrees, up to ten turns either way.
+const AZIMUTH: Real = Real::new(
+    "an azimuth",
+    -3600.0,
+    3600.0,
+    "degrees, ten turns either way",
+);
+
+/// `octree --points`.
+const POINTS: Count = Count::new(
+    "a number of points",
+    1,
+    10_000_000,
+    "each point is binned on the CPU and on the GPU",
+);
 
 /// Where a PNG goes: never over an input, over an existing file only with --force.
 #[derive(clap::Args, Debug)]
@@ -123,7 +253,8 @@ pub struct PyramidArgs {
     /// Write every level the GPU drew, as read back, into DIR (created) as float32 .npy, one
     /// file per kind and level: max_L.npy, min_L.npy and mean_L.npy (height x width of level
     /// L; level 0 is the input padded to a power of two a side, the padding max's -3.4e38,
-    /// min's 3.4e38 and mean's 0; rows from the bottom).
+    /// min's 3.4e38 and mean's 0; rows from the bottom). A folder holding files this command
+    /// did not write is refused without --force; a rerun replaces the earlier run's files.
     #[arg(long, value_name = "DIR")]
     npy: Option<PathBuf>,
     #[command(flatten)]
@@ -136,26 +267,26 @@ pub struct DisplaceArgs {
     #[arg(long)]
     height: Option<PathBuf>,
     /// Height of a white sample, in units of half the box's longer side.
-    #[arg(long, default_value_t = bench::DEPTH)]
+    #[arg(long, default_value_t = bench::DEPTH, value_parser = DEPTH.of::<f32>())]
     depth: f32,
     /// Image side, pixels.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = IMAGE_SIDE.of::<u32>())]
     size: u32,
     /// Camera azimuth about the vertical, degrees.
-    #[arg(long, default_value_t = 225.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 225.0, allow_negative_numbers = true, value_parser = AZIMUTH.of::<f32>())]
     azimuth: f32,
     /// Camera elevation above the surface, degrees (small: grazing).
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, value_parser = DISPLACE_ELEVATION.of::<f32>())]
     elevation: f32,
     /// Frames of a camera orbiting the box (the azimuth turns 360 / frames per frame).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = ORBIT_FRAMES.of::<u32>())]
     frames: u32,
     /// How each pixel finds its hit.
     #[arg(long, value_enum, default_value_t = MethodArg::Pyramid)]
     method: MethodArg,
     /// The camera's distance from the box centre (the box's longer side is 2); far away each
     /// pixel covers many patches.
-    #[arg(long, default_value_t = bench::DISTANCE)]
+    #[arg(long, default_value_t = bench::DISTANCE, value_parser = DISPLACE_DISTANCE.of::<f32>())]
     distance: f32,
     /// The minification prefilter (pyramid method): stop at the level of the pixel's footprint
     /// and meet the prefiltered surface there; the check then uses the CPU reference of the
@@ -164,10 +295,10 @@ pub struct DisplaceArgs {
     #[arg(long)]
     prefilter: bool,
     /// Relief mapping's linear steps (--method relief) [default: 32].
-    #[arg(long)]
+    #[arg(long, value_parser = LINEAR_STEPS.of::<u32>())]
     linear_steps: Option<u32>,
     /// Relief mapping's binary steps (--method relief) [default: 8].
-    #[arg(long)]
+    #[arg(long, value_parser = BINARY_STEPS.of::<u32>())]
     binary_steps: Option<u32>,
     /// Skip the exact CPU tracer (its check of the first frame and its time).
     #[arg(long)]
@@ -195,13 +326,13 @@ enum MethodArg {
 #[derive(clap::Args, Debug)]
 pub struct LightArgs {
     /// VPLs per side of the VPL image (a power of two).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = VPLS.of::<u32>())]
     vpls: u32,
     /// Image side, pixels.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = IMAGE_SIDE.of::<u32>())]
     size: u32,
     /// Criterion: a cluster is one light when its radius < theta x its distance (0: every VPL).
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = 0.5, value_parser = THETA.of::<f32>())]
     theta: f32,
     /// Show only the indirect light in --png (--mode indirect).
     #[arg(long)]
@@ -214,11 +345,11 @@ pub struct LightArgs {
     #[arg(long, value_name = "MODEL.obj")]
     scene: Option<PathBuf>,
     /// Exposure of --png in stops (the picture times 2^E); the numbers never change.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = EXPOSURE.of::<f32>())]
     exposure: f32,
     /// Normal-aware clustering (--mode indirect): a cluster is one light only when its mean
     /// unit normal is at least this long (0..1; 0: the fixed merge, 0.9: cones of ~26 degrees).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = COHERENCE.of::<f32>())]
     min_coherence: f32,
     /// Write the gathered irradiance (height x width x 3, RGB, rows from the bottom, as the
     /// GPU read it back; radiant exitance for sss) to DIR/irradiance.npy (DIR is created).
@@ -233,10 +364,10 @@ pub struct FunctionArgs {
     #[arg(long, value_enum, default_value_t = FunctionArg::Sigmoid)]
     function: FunctionArg,
     /// Texels of the lookup table.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = TEXELS.of::<u32>())]
     texels: u32,
     /// Values per pixel of the timed passes (a power of two).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = PER_PIXEL.of::<u32>())]
     per_pixel: u32,
 }
 
@@ -251,12 +382,12 @@ enum FunctionArg {
 #[derive(clap::Args, Debug)]
 pub struct RandomArgs {
     /// Generators per side of the texture.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = GENERATORS.of::<u32>())]
     size: u32,
     /// Steps (one pass each).
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = RANDOM_STEPS.of::<usize>())]
     steps: usize,
-    #[arg(long, default_value_t = 2007)]
+    #[arg(long, default_value_t = 2007, value_parser = ranges::SEED.of::<u64>())]
     seed: u64,
     /// Write the GPU's numbers, as read back, to this .npy file (steps x size x size, float32,
     /// rows from the bottom).
@@ -272,13 +403,13 @@ pub struct DepthMaskArgs {
     #[arg(long, value_enum, default_value_t = MaskArg::Scattered)]
     mask: MaskArg,
     /// Share of active pixels, 0 to 1.
-    #[arg(long, default_value_t = 0.25)]
+    #[arg(long, default_value_t = 0.25, value_parser = FRACTION.of::<f32>())]
     fraction: f32,
     /// Sines per active pixel (the expensive work).
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = ITERATIONS.of::<u32>())]
     iterations: u32,
     /// Image side, pixels (a power of two).
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = IMAGE_SIDE.of::<u32>())]
     size: u32,
     #[command(flatten)]
     output: Output,
@@ -296,16 +427,16 @@ pub struct HistogramArgs {
     #[arg(long)]
     image: Option<PathBuf>,
     /// How many random values without --image (with --image, its pixels are the values).
-    #[arg(long, default_value_t = 1 << 20, conflicts_with = "image")]
+    #[arg(long, default_value_t = 1 << 20, conflicts_with = "image", value_parser = VALUES.of::<usize>())]
     values: usize,
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = ranges::TEXTURE_SIDE.of::<u32>())]
     bins: u32,
 }
 
 #[derive(clap::Args, Debug)]
 pub struct HeightMapArgs {
     /// Samples per side.
-    #[arg(long, default_value_t = SHIPPED_SIZE)]
+    #[arg(long, default_value_t = SHIPPED_SIZE, value_parser = SAMPLES.of::<u32>())]
     size: u32,
     /// Where to write it.
     #[arg(long)]
@@ -399,17 +530,13 @@ fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     use classic_gpgpu::lecture3::pyramid::level_count;
     let inputs: Vec<&Path> = a.height.iter().map(|p| p.as_path()).collect();
     a.output.check(&inputs)?;
-    if let Some(dir) = &a.npy {
-        files::check_folder("--npy", dir)?;
-    }
+    // The folder rule of every writer: a folder of the user's refused without --force, and
+    // even with it no file of theirs replaced.
+    let npy_folder = folder("--npy", "lecture3 pyramid --npy", &a.npy, a.output.force)?;
     let (map, name) = load_map(a.height.as_deref(), ctx)?;
-    let npy_files = a
-        .npy
+    let npy_files = npy_folder
         .as_ref()
-        .map(|dir| pyramid_npy_files(dir, level_count(map.width(), map.height())));
-    for path in npy_files.iter().flatten() {
-        files::check_output("--npy", path, &inputs, a.output.force, &["npy"])?;
-    }
+        .map(|f| pyramid_npy_files(f.path(), level_count(map.width(), map.height())));
     let row = bench::pyramid_row(ctx, &map, RUNS)?;
     let mut written: Vec<PathBuf> = Vec::new();
     if a.output.png.is_some() || npy_files.is_some() {
@@ -429,6 +556,7 @@ fn pyramid(a: &PyramidArgs, ctx: &Context, json: bool) -> anyhow::Result<()> {
     if !row.equal_to_cpu {
         bail!("the GPU pyramid differs from the CPU pyramid (a bug: max and min are exact)");
     }
+    let written = finish_npy(npy_folder, written)?;
     let renderer = ctx.info().renderer_line();
     print(
         json,

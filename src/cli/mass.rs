@@ -14,6 +14,7 @@ use classic_gpgpu::mass::peel::{PeelOrder, PeelSettings, DEFAULT_MAX_PEELS};
 use classic_gpgpu::mass::{analytic, clip, models, surface};
 use classic_gpgpu::page::folder::Staged;
 use classic_gpgpu::timing::{Load, Runs, Spread};
+use classic_gpgpu::values::{Count, Real, SMALLEST};
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -25,13 +26,13 @@ pub struct MassArgs {
     /// An OBJ file, or one of the paper's objects: cube, sphere, teapot, torus, knot, bunny, pipe.
     pub model: String,
     /// Framebuffer resolution N (N x N); the paper found 32 enough for 5%.
-    #[arg(long, default_value_t = 32)]
+    #[arg(long, default_value_t = 32, value_parser = RESOLUTION.of::<u32>())]
     pub resolution: u32,
     /// Density ρ; mass and inertia scale with it.
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 1.0, value_parser = DENSITY.of::<f64>())]
     pub density: f64,
     /// Only the part below the horizontal plane z = Z (section 5.2, the submerged part).
-    #[arg(long, value_name = "Z", allow_hyphen_values = true)]
+    #[arg(long, value_name = "Z", value_parser = HEIGHT.of::<f64>())]
     pub below: Option<f64>,
     /// Write the colour-encoded integrand buffers of each peel here as PNG (Fig. 10), and
     /// each one's exact float values beside it as .npy (numpy, float32, shape [height, width,
@@ -62,7 +63,7 @@ pub struct MassArgs {
 #[derive(clap::Args, Debug)]
 pub struct PeelArgs {
     /// Stop peeling after this many layers; a warning says when fragments were left.
-    #[arg(long, default_value_t = DEFAULT_MAX_PEELS)]
+    #[arg(long, default_value_t = DEFAULT_MAX_PEELS, value_parser = MAX_PEELS.of::<usize>())]
     pub max_peels: usize,
     /// running-sums (default): add each peel into running sums as it is drawn, one
     /// reduction at the end (memory and passes do not grow with the peels). keep-layers:
@@ -110,6 +111,73 @@ fn truncation_warning(max_peels: usize) -> String {
 /// The largest framebuffer side the commands accept: ten RGBA32F targets of 2048² are
 /// 640 MiB, and the paper stops at 512.
 const MAX_RESOLUTION: u32 = 2048;
+
+/// `--resolution` of `mass`, `buoyancy` and their `view` demos (the renderer's texture size
+/// is checked too, when it runs).
+pub const RESOLUTION: Count = Count::new(
+    "a resolution",
+    4,
+    MAX_RESOLUTION as u64,
+    "ten RGBA32F targets of 2048 x 2048 are 640 MiB, and the paper stops at 512",
+);
+
+/// `--density`: any positive, finite density (the mass and inertia it gives are checked
+/// against fp64's range when computed, with the model's volume).
+const DENSITY: Real = Real::new(
+    "a density",
+    SMALLEST,
+    f64::MAX,
+    "positive and finite; the mass it gives is checked when computed",
+);
+
+/// `--below Z`: a height of the plane, finite.
+const HEIGHT: Real = Real::new("a height", -f64::MAX, f64::MAX, "any finite height");
+
+/// `--max-peels`: the depth complexity the peeling follows at most.
+const MAX_PEELS: Count = Count::new(
+    "a number of peels",
+    1,
+    4096,
+    "each peel is a pass over the model; 4096 layers is more than any model here has",
+);
+
+/// `--bodies` of `buoyancy` (and its `view` demo).
+pub const BODIES: Count = Count::new(
+    "a number of bodies",
+    1,
+    10_000,
+    "each body is a tile of the shared render target and a rigid body stepped each step",
+);
+
+/// `--steps` of `buoyancy`: 16 bytes are kept a step, and a step is at least a pass.
+const STEPS: Count = Count::in_memory("a number of steps", 1, 16, "step's record").at_most(
+    10_000_000,
+    "ten million steps take hours at a millisecond a step",
+);
+
+/// `--race R`: rounds of --steps steps, each solver in turn.
+const ROUNDS: Count = Count::new(
+    "a number of rounds",
+    1,
+    1000,
+    "each round runs --steps steps on both solvers",
+);
+
+/// `--dt`: the time step of the rigid-body solver.
+const DT: Real = Real::new(
+    "a time step in seconds",
+    1e-9,
+    0.1,
+    "the paper steps 1/60 s; beyond a tenth the explicit step is not trusted",
+);
+
+/// K of `--png-every K DIR`: a frame every K steps.
+const PNG_EVERY: Count = Count::new(
+    "a step interval K",
+    1,
+    10_000_000,
+    "at most the most steps, ten million",
+);
 
 fn check_resolution(ctx: &Context, resolution: u32) -> anyhow::Result<()> {
     let max = ctx.info().limits.max_texture_size.min(MAX_RESOLUTION);
@@ -857,21 +925,21 @@ impl MassOutput<'_> {
 #[derive(clap::Args, Debug)]
 pub struct BuoyancyArgs {
     /// Number of bodies (the paper's scene has 50: spheres, boxes, tori, teapots, bunnies).
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = BODIES.of::<usize>())]
     pub bodies: usize,
     /// Simulation steps.
-    #[arg(long, default_value_t = 300)]
+    #[arg(long, default_value_t = 300, value_parser = STEPS.of::<usize>())]
     pub steps: usize,
     /// Per-body framebuffer resolution (the paper's 32).
-    #[arg(long, default_value_t = 32)]
+    #[arg(long, default_value_t = 32, value_parser = RESOLUTION.of::<u32>())]
     pub resolution: u32,
     /// Time step (s).
-    #[arg(long, default_value_t = 1.0 / 60.0)]
+    #[arg(long, default_value_t = 1.0 / 60.0, value_parser = DT.of::<f64>())]
     pub dt: f64,
-    /// Write every K-th frame into DIR as PNG. A folder holding files `buoyancy
-    /// --png-every` did not write is refused without --force; a rerun replaces the frames
-    /// of the earlier one.
-    #[arg(long, num_args = 2, value_names = ["K", "DIR"])]
+    /// Write every K-th frame into DIR as PNG (K from 1 to 10000000). A folder holding files
+    /// `buoyancy --png-every` did not write is refused without --force; a rerun replaces the
+    /// frames of the earlier one.
+    #[arg(long, num_args = 2, value_names = ["K", "DIR"], allow_negative_numbers = true)]
     pub png_every: Option<Vec<String>>,
     /// Write the --png-every frames into a folder that holds other files (they are never
     /// removed or replaced).
@@ -892,7 +960,7 @@ pub struct BuoyancyArgs {
     /// Instead of one run: R rounds of --steps steps from the drop, the GPU solver and the
     /// CPU solver in interleaved pairs of steps; print GPU/CPU steps per second (median
     /// and spread over the rounds) and the load average.
-    #[arg(long, value_name = "R")]
+    #[arg(long, value_name = "R", value_parser = ROUNDS.of::<usize>())]
     pub race: Option<usize>,
     #[command(flatten)]
     pub peeling: PeelArgs,
@@ -905,8 +973,6 @@ pub struct BuoyancyArgs {
 /// `classic-gpgpu buoyancy`.
 pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyhow::Result<()> {
     args.peeling.period.apply(ctx, 4);
-    let most = super::limits::fit_in_memory(16);
-    super::limits::check_count("--steps", args.steps as u64, most, "16 bytes kept per step")?;
     check_resolution(ctx, args.resolution)?;
     if args.bodies == 0 || args.bodies > 10_000 {
         bail!("--bodies {}: must be between 1 and 10000", args.bodies);
@@ -934,9 +1000,9 @@ pub fn run_buoyancy(args: &BuoyancyArgs, ctx: &Context, json_out: bool) -> anyho
     let frames = match &args.png_every {
         None => None,
         Some(v) => {
-            let k: usize = v[0].parse().ok().filter(|&k| k > 0).with_context(|| {
-                format!("--png-every {}: K must be a positive whole number", v[0])
-            })?;
+            let k = PNG_EVERY
+                .parse("--png-every", &v[0])
+                .map_err(anyhow::Error::msg)? as usize;
             let dir = PathBuf::from(&v[1]);
             let folder = Staged::begin("--png-every", "buoyancy --png-every", &dir, args.force)?;
             Some((k, folder))

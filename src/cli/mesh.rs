@@ -7,6 +7,8 @@ use classic_gpgpu::mesh::{generate, load_obj, retessellate, write_obj, Mesh, Tor
 use serde_json::json;
 use std::path::PathBuf;
 
+/// `--triangles`: refining holds the mesh and its edge map, about 128 bytes a triangle.
+const TRIANGLES: classic_gpgpu::values::Count = classic_gpgpu::values::ranges::triangles(128);
 #[derive(Clone, Debug, clap::Subcommand)]
 pub enum MeshCommand {
     /// Load an OBJ and report its counts, degenerate triangles and closedness.
@@ -19,7 +21,7 @@ pub enum MeshCommand {
         #[arg(value_enum)]
         shape: Shape,
         /// Refine to this many triangles (longest-edge splits; the surface is unchanged).
-        #[arg(long)]
+        #[arg(long, value_parser = TRIANGLES.of::<usize>())]
         triangles: Option<usize>,
         /// Where to write it.
         #[arg(long)]
@@ -74,15 +76,6 @@ pub fn run(command: &MeshCommand, json: bool) -> anyhow::Result<()> {
             force,
         } => {
             classic_gpgpu::files::check_output("--out", out, &[], *force, &["obj"])?;
-            if let Some(n) = *triangles {
-                // Refining holds the mesh and its edge map: about 128 bytes a triangle.
-                super::limits::check_count(
-                    "--triangles",
-                    n as u64,
-                    super::limits::fit_in_memory(128).min(u32::MAX as u64 / 3),
-                    "refining needs about 128 bytes a triangle, and vertex indices are 32-bit",
-                )?;
-            }
             let mut mesh = shape.mesh();
             if let Some(n) = *triangles {
                 mesh = retessellate(&mesh, n)?;

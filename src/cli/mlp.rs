@@ -18,6 +18,7 @@ use classic_gpgpu::mlp::train::{
     evaluate, labelled_window_sets, train, window_set, TrainConfig, WindowSet, HELD_OUT_EVERY,
 };
 use classic_gpgpu::mlp::window::WINDOW_INPUTS;
+use classic_gpgpu::values::{ranges, Count, Real};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -55,13 +56,13 @@ struct Engine {
     /// At most this many input vectors per texture (default and upper limit: the renderer's
     /// maximum texture size; the paper's board allowed 2048). Larger batches are split into
     /// tiles.
-    #[arg(long, conflicts_with = "cpu", value_parser = at_least_one)]
+    #[arg(long, conflicts_with = "cpu", value_parser = ranges::TEXTURE_SIDE.of::<usize>())]
     max_vectors: Option<usize>,
     /// Sum at most this many of a layer's inputs per matrix-product pass, splitting each
     /// product into as many passes as that takes, as the paper's GPU required (15 is our
     /// estimate for its ATI RADEON 9700 PRO). Faithful formulation only [default: one pass per
     /// product].
-    #[arg(long, conflicts_with = "cpu", value_parser = at_least_one)]
+    #[arg(long, conflicts_with = "cpu", value_parser = INPUTS_PER_PASS.of::<usize>())]
     inputs_per_pass: Option<usize>,
     /// After the run, print a per-pass table to stderr: GPU time of each pass (timestamp
     /// queries, read after the run), its wall time, and the time spent waiting for the GPU.
@@ -185,22 +186,41 @@ impl Engine {
 }
 
 /// A finite number (`--threshold nan` would mark nothing as text without a word).
-fn finite(text: &str) -> Result<f32, String> {
-    match text.parse::<f32>() {
-        Ok(v) if v.is_finite() => Ok(v),
-        Ok(v) => Err(format!("{v} is not a finite number")),
-        Err(e) => Err(e.to_string()),
-    }
-}
+/// `--threshold`: any finite output level (a network of `mlp train` ends in a sigmoid, 0 to
+/// 1; one of the user's may end in an identity layer).
+const THRESHOLD_RANGE: Real =
+    Real::new("a threshold", -f64::MAX, f64::MAX, "a finite output level");
 
-/// A count that must be at least 1.
-fn at_least_one(text: &str) -> Result<usize, String> {
-    match text.parse::<usize>() {
-        Ok(0) => Err("must be at least 1".into()),
-        Ok(n) => Ok(n),
-        Err(e) => Err(e.to_string()),
-    }
-}
+/// `--inputs-per-pass`: a layer's inputs summed in one pass.
+const INPUTS_PER_PASS: Count = Count::new(
+    "a number of inputs",
+    1,
+    65536,
+    "more than any layer this program reads has",
+);
+
+/// One training window's memory: its inputs as f32 and its label.
+const WINDOW_BYTES: u64 = (WINDOW_INPUTS * 4 + 16) as u64;
+
+/// `--windows-per-class`: a text and a non-text window of each image are kept in memory.
+const WINDOWS: Count = Count::in_memory(
+    "a number of windows",
+    1,
+    2 * WINDOW_BYTES,
+    "pair of windows",
+);
+
+/// `--epochs`: a loss of 8 bytes is kept an epoch, and each is a pass over every window.
+const EPOCHS: Count = Count::in_memory("a number of epochs", 1, 8, "epoch's loss")
+    .at_most(1_000_000, "each epoch trains on every window once");
+
+/// `--images`: each synthetic image is drawn and sampled on the CPU.
+const IMAGES: Count = Count::new(
+    "a number of images",
+    1,
+    1_000_000,
+    "each image is drawn and sampled; its windows are checked against memory too",
+);
 
 #[derive(clap::Args, Debug)]
 struct RunArgs {
@@ -230,7 +250,7 @@ struct DetectArgs {
     #[arg(long)]
     network: Option<PathBuf>,
     /// Output above which a pixel is text.
-    #[arg(long, default_value_t = THRESHOLD, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = THRESHOLD, value_parser = THRESHOLD_RANGE.of::<f32>())]
     threshold: f32,
     #[command(flatten)]
     engine: Engine,
@@ -253,52 +273,49 @@ struct TrainArgs {
     pair: Vec<PathBuf>,
     /// At most this many text and this many non-text windows from each image [default: 30
     /// per synthetic image, 2000 per --pair image].
-    #[arg(long, value_parser = at_least_one)]
+    #[arg(long, value_parser = WINDOWS.of::<usize>())]
     windows_per_class: Option<usize>,
     /// Seed of the synthetic data or of the window sampling, the initial weights and the
     /// sample order.
-    #[arg(long, default_value_t = TrainConfig::default().seed)]
+    #[arg(long, default_value_t = TrainConfig::default().seed,
+          value_parser = ranges::SEED.of::<u64>())]
     seed: u64,
     /// Training epochs.
-    #[arg(long, default_value_t = TrainConfig::default().epochs, value_parser = at_least_one)]
+    #[arg(long, default_value_t = TrainConfig::default().epochs, value_parser = EPOCHS.of::<usize>())]
     epochs: usize,
-    /// Synthetic training images (without --pair).
-    #[arg(long, default_value_t = TrainConfig::default().images, value_parser = at_least_one,
+    /// Synthetic training images (without --pair; with --windows-per-class, what their
+    /// windows take is checked against memory too).
+    #[arg(long, default_value_t = TrainConfig::default().images, value_parser = IMAGES.of::<usize>(),
           conflicts_with = "pair")]
     images: usize,
 }
 
-/// `--epochs` (a loss is kept per epoch) and `--images` (the windows sampled from them are
-/// held in memory), checked against the memory budget before anything is made.
+/// `--images` with `--windows-per-class`: the windows of every image are held in memory
+/// together, checked before anything is made (each count alone is bounded by its parser).
 fn check_training_counts(config: &TrainConfig, own: bool) -> anyhow::Result<()> {
-    use super::limits::{check_count, fit_in_memory, gib, memory_budget};
-    let budget = gib(memory_budget());
-    check_count(
-        "--epochs",
-        config.epochs as u64,
-        fit_in_memory(8),
-        &format!("a loss of 8 bytes is kept per epoch; {budget} may be used"),
-    )?;
-    let window = (WINDOW_INPUTS * 4 + 16) as u64;
-    check_count(
-        "--windows-per-class",
-        config.windows_per_class as u64,
-        fit_in_memory(2 * window),
-        &format!("each window takes {window} bytes; {budget} may be used"),
-    )?;
-    if !own {
-        let per_image = 2 * config.windows_per_class as u64 * window;
-        check_count(
-            "--images",
-            config.images as u64,
-            fit_in_memory(per_image),
-            &format!(
-                "each image gives up to {} windows of {window} bytes; {budget} may be used",
-                2 * config.windows_per_class
-            ),
-        )?;
+    if own {
+        return Ok(());
     }
-    Ok(())
+    super::limits::check_memory(
+        &format!(
+            "--images {} --windows-per-class {}",
+            config.images, config.windows_per_class
+        ),
+        (config.images as u64).saturating_mul(2 * config.windows_per_class as u64),
+        WINDOW_BYTES,
+        "windows",
+        "use fewer --images or --windows-per-class",
+    )
+}
+
+/// Whether the command makes a GL context: `train` never does, `run` and `detect` unless
+/// `--cpu` (`--trace` is refused where there is no GL call to record).
+pub fn uses_gl(args: &MlpArgs) -> bool {
+    match &args.command {
+        MlpCommand::Run(a) => a.engine.cpu.is_none(),
+        MlpCommand::Detect(a) => a.engine.cpu.is_none(),
+        MlpCommand::Train(_) => false,
+    }
 }
 
 /// Windows sampled from each --pair image unless --windows-per-class says otherwise.

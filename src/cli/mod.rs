@@ -17,6 +17,8 @@ pub mod limits;
 pub mod mass;
 pub mod mesh;
 pub mod mlp;
+pub mod options;
+pub mod paths;
 pub mod period;
 pub mod selftest;
 

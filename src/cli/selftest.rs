@@ -28,6 +28,13 @@ pub fn run(args: &SelftestArgs, ctx: &Context, json: bool) -> anyhow::Result<()>
     if let Some(path) = &args.junit {
         classic_gpgpu::files::check_output("--junit", path, &[], args.force, &["xml"])?;
     }
+    if args.only.iter().any(|o| o.trim().is_empty()) {
+        bail!(
+            "--only {:?}: an empty name matches every check, so it would select nothing; name \
+             checks or groups (gl, paper1-4, lecture3), or leave out --only",
+            args.only.join(",")
+        );
+    }
     let known = |o: &str| {
         selftest::checks()
             .iter()

@@ -3,21 +3,60 @@
 
 use anyhow::Context as _;
 use classic_gpgpu::gl::Context;
+use classic_gpgpu::report::paper1::TRIANGLE_BYTES;
+use classic_gpgpu::values::{ranges, Count, Pair};
 use classic_gpgpu::view::demos::lecture1::Technique as Lecture1Technique;
 use classic_gpgpu::view::demos::lecture3::Technique as Lecture3Technique;
 use classic_gpgpu::view::window::{self, WindowOptions};
 use classic_gpgpu::view::{self as viewer, DemoSpec, ViewState};
 use std::path::PathBuf;
 
+use super::mass;
+
+/// `--size` of the window or canvas.
+const WINDOW: Pair = Pair {
+    each: Count::new(
+        "a side in pixels",
+        16,
+        8192,
+        "a window's side; the overlay's text needs 16",
+    ),
+    separator: 'x',
+    form: "WIDTHxHEIGHT (e.g. 960x600)",
+    names: ("width", "height"),
+};
+
+/// `--probe X,Y`: a pixel of the window, from its top-left corner.
+const PROBE: Pair = Pair {
+    each: Count::new("a pixel", 0, 8191, "inside the largest window"),
+    separator: ',',
+    form: "X,Y (e.g. 120,80)",
+    names: ("x", "y"),
+};
+
+/// `--frames`: 0 draws the first frame only.
+const VIEW_FRAMES: Count = Count {
+    least: 0,
+    ..ranges::FRAMES
+};
+
+/// `--buffer`: the buffer's number among the demo's (0 the scene).
+const BUFFER: Count = Count::new(
+    "a buffer number",
+    0,
+    1023,
+    "a demo shows tens of buffers; the demo says which it has",
+);
+
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
     #[command(subcommand)]
     pub demo: DemoCommand,
     /// Window (or headless canvas) size in pixels, WIDTHxHEIGHT.
-    #[arg(long, global = true, default_value = "960x600", value_parser = parse_size)]
+    #[arg(long, global = true, default_value = "960x600", value_parser = WINDOW)]
     pub size: (u32, u32),
     /// Run this many frames, then quit (with --screenshot: save the last one first).
-    #[arg(long, global = true)]
+    #[arg(long, global = true, value_parser = VIEW_FRAMES.of::<usize>())]
     pub frames: Option<usize>,
     /// Write the window's contents after --frames frames to this PNG.
     #[arg(long, global = true, requires = "frames")]
@@ -31,7 +70,7 @@ pub struct ViewArgs {
     /// The buffer shown first (Tab cycles in the window): any the demo makes, a later step's
     /// too. Without it, one that changes as the demo steps (the scene, a lesson's latest
     /// iterate).
-    #[arg(long, global = true)]
+    #[arg(long, global = true, value_parser = BUFFER.of::<usize>())]
     pub buffer: Option<usize>,
     /// Draw the help text over the frame.
     #[arg(long, global = true)]
@@ -46,20 +85,8 @@ pub struct ViewArgs {
     /// The texel probe at window pixel X,Y (from the top-left corner), as the mouse gives it:
     /// the buffer's texel there, its GPU value and its CPU reference's (printed too with
     /// --headless).
-    #[arg(long, global = true, value_parser = parse_point)]
+    #[arg(long, global = true, value_parser = PROBE)]
     pub probe: Option<(u32, u32)>,
-}
-
-fn parse_point(s: &str) -> Result<(u32, u32), String> {
-    let (x, y) = s
-        .split_once(',')
-        .ok_or_else(|| format!("'{s}' is not X,Y (e.g. 120,80)"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .map_err(|_| format!("'{s}': X and Y must be whole numbers of pixels"))
-    };
-    Ok((parse(x)?, parse(y)?))
 }
 
 #[derive(clap::Subcommand, Debug)]
@@ -71,7 +98,7 @@ pub enum DemoCommand {
         /// happy-buddhas, intimate-animals.
         scene: Option<String>,
         /// Triangles per model instead of the paper's count.
-        #[arg(long)]
+        #[arg(long, value_parser = ranges::triangles(TRIANGLE_BYTES).of::<usize>())]
         triangles: Option<usize>,
     },
     /// Paper 4: a model turning, its volume and centre of mass by depth peeling beside the
@@ -81,23 +108,23 @@ pub enum DemoCommand {
         /// OBJ file.
         model: String,
         /// Peel resolution N (N x N).
-        #[arg(long, default_value_t = 64)]
+        #[arg(long, default_value_t = 64, value_parser = mass::RESOLUTION.of::<u32>())]
         resolution: u32,
     },
     /// Paper 4, section 5: bodies floating on still water, the peel layers of the batch.
     Buoyancy {
         /// Number of bodies (the paper's scene has 50).
-        #[arg(long, default_value_t = 50)]
+        #[arg(long, default_value_t = 50, value_parser = mass::BODIES.of::<usize>())]
         bodies: usize,
         /// Per-body peel resolution (the paper's 32).
-        #[arg(long, default_value_t = 32)]
+        #[arg(long, default_value_t = 32, value_parser = mass::RESOLUTION.of::<u32>())]
         resolution: u32,
     },
     /// Paper 2: a crowd of soldiers walking, two-pass or vertex-shader skinning (key m), the
     /// pass-1 render target as an inset, LOD meshes coloured on demand (key c).
     Crowd {
         /// Number of characters.
-        #[arg(long, default_value_t = 256)]
+        #[arg(long, default_value_t = 256, value_parser = super::crowd::CHARACTERS.of::<usize>())]
         characters: usize,
     },
     /// Paper 3: `mlp detect IMAGE`, the detected text pixels over the image, the threshold
@@ -136,20 +163,6 @@ pub enum MlpDemo {
         /// The image.
         image: PathBuf,
     },
-}
-
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once('x')
-        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT (e.g. 960x600)"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|&n| (16..=8192).contains(&n))
-            .ok_or_else(|| format!("'{s}': each side must be a whole number from 16 to 8192"))
-    };
-    Ok((parse(w)?, parse(h)?))
 }
 
 /// The smallest canvas whose screenshot shows the demo: below it the overlay's text (8-pixel

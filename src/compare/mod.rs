@@ -433,12 +433,13 @@ pub struct CompareArgs {
     /// --baseline, the one new run.
     #[arg(required = true, value_name = "RESULTS_JSON")]
     pub results: Vec<PathBuf>,
-    /// Where the page goes (index.html, comparison.json, the figures).
-    #[arg(long, default_value = "compare")]
+    /// Where the page goes (index.html, comparison.json, the figures); not with --markdown,
+    /// which writes no page.
+    #[arg(long, default_value = "compare", conflicts_with = "markdown")]
     pub out: PathBuf,
     /// Write into a folder that holds other files (they are never replaced or removed), or
     /// replace an existing --junit file.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "markdown")]
     pub force: bool,
     /// Print the README's "What a run shows" table (and the then-and-now lines) instead of
     /// writing the page: a table per size, each claim from the newest run of each machine

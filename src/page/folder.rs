@@ -3,14 +3,18 @@
 //!
 //! A marker file in the folder lists every file the command wrote (and, for the report, the
 //! section it belongs to). Only those files are ever replaced or removed: a folder that holds
-//! anything the marker does not list (or another command's marker) is someone else's,
-//! refused without `--force`, and even with it nothing the marker does not list is deleted,
-//! nor replaced. A rerun removes the files of the earlier run that it did not write again. A
-//! destination that is a link to a folder is followed (the folder is written, the link
-//! stays); a link to nothing is refused. The files are written into a staging folder beside
-//! the destination; a lock beside it keeps two runs from writing one folder at once; the
-//! final swap moves the old folder aside first, so a run killed between the two renames
-//! leaves it where the next run finds and restores it.
+//! anything the marker does not list is someone else's, refused without `--force`, and even
+//! with it nothing the marker does not list is deleted, nor replaced. A folder with another
+//! command's marker (a report, a `compare` page, a guide, another lesson's pictures) is that
+//! command's, refused even with `--force`: its marker is never replaced. A rerun removes the
+//! files of the earlier run that it did not write again. A destination that is a link to a
+//! folder is followed (the folder is written, the link stays); a link to nothing or a loop of
+//! links is refused, and so is a mount point, which the swap cannot replace
+//! ([`crate::files::check_destination`]). The files are written into a staging folder beside
+//! the destination; a lock beside it (`.NAME.classic-gpgpu-lock`, a name no file of the user's
+//! has; a file of that name that is not a lock is never touched) keeps two runs from writing
+//! one folder at once; the final swap moves the old folder aside first, so a run killed
+//! between the two renames leaves it where the next run finds and restores it.
 //!
 //! The rule was first the report's, and its texts still say "report" for the folder being
 //! written; every command that writes a folder uses it (the guide, `compare`, `mass --dump`,
@@ -42,6 +46,45 @@ fn marker_header(command: &str) -> String {
 /// The command whose marker [`Owned::read`] and [`Owned::write`] read and write.
 const REPRODUCE: &str = "reproduce";
 
+/// The section name `compare` gave its files when it wrote the report's marker (before it had
+/// one of its own); a report marker listing only such files is a `compare` page's.
+const COMPARE: &str = "compare";
+
+/// The command whose marker `dir` holds (`reproduce`, `compare`, `mass --dump`, ...); `None`
+/// without a marker. A file of the marker's name that this program did not write is refused:
+/// it is never replaced.
+pub fn owner(dir: &Path) -> anyhow::Result<Option<String>> {
+    let path = dir.join(MARKER);
+    if std::fs::symlink_metadata(&path).is_err() {
+        return Ok(None);
+    }
+    let not_ours = || {
+        format!(
+            "{}: not a marker this program wrote; it is never replaced, so move it away or \
+             choose another folder",
+            path.display()
+        )
+    };
+    let text = std::fs::read_to_string(&path).with_context(not_ours)?;
+    let mut lines = text.lines();
+    let header = lines.next().unwrap_or_default();
+    if header == MARKER_HEADER {
+        let sections: Vec<&str> = lines
+            .filter_map(|l| l.split_once('\t').map(|(section, _)| section))
+            .collect();
+        let compare = !sections.is_empty() && sections.iter().all(|s| *s == COMPARE);
+        return Ok(Some(if compare { COMPARE } else { REPRODUCE }.to_string()));
+    }
+    let command = header
+        .strip_prefix("classic-gpgpu files: the files `classic-gpgpu ")
+        .and_then(|rest| rest.split_once("` wrote here"))
+        .map(|(command, _)| command.to_string());
+    match command {
+        Some(command) => Ok(Some(command)),
+        None => bail!(not_ours()),
+    }
+}
+
 /// What a report wrote: relative path (`/`-separated) to the section that wrote it (`-` for
 /// the page and the results).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -59,22 +102,14 @@ impl Owned {
     /// The marker `command` wrote in `dir`; `None` when there is none, or when it is another
     /// command's (whose files are not this command's to replace).
     pub fn read_of(dir: &Path, command: &str) -> anyhow::Result<Option<Owned>> {
-        let path = dir.join(MARKER);
-        if !path.exists() {
+        if owner(dir)?.as_deref() != Some(command) {
             return Ok(None);
         }
+        let path = dir.join(MARKER);
         let text = std::fs::read_to_string(&path)
             .with_context(|| format!("reading {}", path.display()))?;
-        let mut lines = text.lines();
-        let header = lines.next().unwrap_or_default();
-        if header != marker_header(command) {
-            if command == REPRODUCE && !header.starts_with("classic-gpgpu files: ") {
-                bail!("{} is not a classic-gpgpu report marker", path.display());
-            }
-            return Ok(None);
-        }
         let mut files = BTreeMap::new();
-        for line in lines.filter(|l| !l.is_empty()) {
+        for line in text.lines().skip(1).filter(|l| !l.is_empty()) {
             let (section, file) = line
                 .split_once('\t')
                 .with_context(|| format!("{}: malformed line '{line}'", path.display()))?;
@@ -181,12 +216,13 @@ pub fn check_out(out: &Path, force: bool) -> anyhow::Result<()> {
 }
 
 /// Refuses, before any work, a destination `out` (given as the option `what`) that is a
-/// file, or a folder holding anything without `command`'s marker, unless `force` says to
-/// write beside those files (a folder with the marker may hold files it does not list: they
-/// were there when `--force` was given, and stay).
+/// file, a mount point, another command's folder (even with `force`), or a folder holding
+/// anything without `command`'s marker, unless `force` says to write beside those files (a
+/// folder with the marker may hold files it does not list: they were there when `--force` was
+/// given, and stay).
 pub fn check_folder(what: &str, command: &str, out: &Path, force: bool) -> anyhow::Result<()> {
     if !out.exists() {
-        return Ok(());
+        return crate::files::check_destination(what, out);
     }
     if !out.is_dir() {
         bail!(
@@ -194,10 +230,20 @@ pub fn check_folder(what: &str, command: &str, out: &Path, force: bool) -> anyho
             out.display()
         );
     }
-    // A folder with the command's marker was given to it once (with --force if it held
-    // other files): those stay, and are never replaced.
-    if force || Owned::read_of(out, command)?.is_some() {
-        return Ok(());
+    crate::files::check_destination(what, out)?;
+    match owner(out)? {
+        // Given to the command once (with --force if it held other files): those stay, and
+        // are never replaced.
+        Some(owner) if owner == command => return Ok(()),
+        Some(owner) => bail!(
+            "{what} {}: the folder is `classic-gpgpu {owner}`'s (its {MARKER} marker lists \
+             the files it wrote); one command's folder is never written by another, not even \
+             with --force, since each replaces only the files its own marker lists: choose \
+             another {what}",
+            out.display()
+        ),
+        None if force => return Ok(()),
+        None => {}
     }
     let first = std::fs::read_dir(out)
         .with_context(|| format!("{what} {}: cannot read the folder", out.display()))?
@@ -207,25 +253,18 @@ pub fn check_folder(what: &str, command: &str, out: &Path, force: bool) -> anyho
     let Some(first) = first else {
         return Ok(());
     };
-    let whose = if command == REPRODUCE {
-        "so it is not a report of classic-gpgpu's".to_string()
+    let (whose, what_goes) = if command == REPRODUCE {
+        ("a report of classic-gpgpu's".to_string(), "the report")
     } else {
-        format!("so it is not a folder `classic-gpgpu {command}` wrote")
-    };
-    let marker = if command == REPRODUCE {
-        format!("it has no {MARKER} marker")
-    } else {
-        format!("it has no {MARKER} marker of this command's")
-    };
-    let what_goes = if command == REPRODUCE {
-        "the report"
-    } else {
-        "the files"
+        (
+            format!("a folder `classic-gpgpu {command}` wrote"),
+            "the files",
+        )
     };
     bail!(
-        "{what} {}: the folder holds files this program did not write (e.g. {first}; {marker}), \
-         {whose}. Choose another {what}, or pass --force to write {what_goes} into it (files \
-         that are not its own are never removed or replaced)",
+        "{what} {}: the folder holds files this program did not write (e.g. {first}) and no \
+         {MARKER} marker, so it is not {whose}. Choose another {what}, or pass --force to \
+         write {what_goes} into it (files that are not its own are never removed or replaced)",
         out.display()
     );
 }
@@ -243,20 +282,15 @@ pub fn resolve(what: &str, out: &Path) -> anyhow::Result<PathBuf> {
             .unwrap_or_else(|_| "?".into())
     };
     if meta.file_type().is_symlink() {
-        return match std::fs::canonicalize(out) {
-            Ok(real) if real.is_dir() => Ok(real),
-            Ok(_) => bail!(
+        let real = crate::files::follow(what, out)?;
+        if !real.is_dir() {
+            bail!(
                 "{what} {}: a link to {}, which is not a folder; give a folder",
                 out.display(),
                 target()
-            ),
-            Err(_) => bail!(
-                "{what} {}: a link to {}, which does not exist; create that folder first, or \
-                 give another {what}",
-                out.display(),
-                target()
-            ),
-        };
+            );
+        }
+        return Ok(real);
     }
     if meta.is_dir() && out.file_name().is_none() {
         return std::fs::canonicalize(out)
@@ -363,8 +397,8 @@ pub struct Lock {
 }
 
 impl Lock {
-    /// Takes the lock of the report `out`, a file `.NAME.lock` beside it; refuses clearly
-    /// when another run holds it.
+    /// Takes the lock of the report `out`, a file `.NAME.classic-gpgpu-lock` beside it;
+    /// refuses clearly when another run holds it.
     pub fn take(out: &Path) -> anyhow::Result<Lock> {
         Self::take_for("--out", REPRODUCE, out)
     }
@@ -374,13 +408,37 @@ impl Lock {
         let (parent, name) = parent_and_name(out)?;
         std::fs::create_dir_all(&parent)
             .with_context(|| format!("creating {}", parent.display()))?;
-        let path = parent.join(format!(".{name}.lock"));
+        let path = parent.join(format!(".{name}.{LOCK_SUFFIX}"));
         // A holder removes the file before it unlocks, so a lock taken on a file that is no
         // longer at `path` is stale: open the file at `path` again.
         for _ in 0..16 {
-            let file = open_lock_file(&path)?;
+            let (file, made) = open_lock_file(&path)?;
+            if !made && !is_a_lock(&path) {
+                bail!(
+                    "{what} {}: {} is in the way of this program's lock: a file of that name \
+                     that it did not write, which it never removes; move it away, or choose \
+                     another {what}",
+                    out.display(),
+                    path.display()
+                );
+            }
             match rustix::fs::flock(&file, rustix::fs::FlockOperation::NonBlockingLockExclusive) {
-                Ok(()) if still_at(&file, &path) => return Ok(Lock { file, path }),
+                Ok(()) if still_at(&file, &path) => {
+                    use std::io::Write as _;
+                    // Held from here: a failed write (a full disk) drops it, removing the file.
+                    let lock = Lock { file, path };
+                    (&lock.file)
+                        .write_all(LOCK_TEXT.as_bytes())
+                        .with_context(|| {
+                            format!(
+                                "{what} {}: writing the lock {} (is its file system full?); \
+                                 nothing was written",
+                                out.display(),
+                                lock.path.display()
+                            )
+                        })?;
+                    return Ok(lock);
+                }
                 Ok(()) => continue,
                 Err(rustix::io::Errno::WOULDBLOCK) => bail!(
                     "{what} {}: another `classic-gpgpu {command}` is writing this {} now (it \
@@ -412,14 +470,37 @@ impl Drop for Lock {
     }
 }
 
-/// The lock is a file's flock, not its contents: it is opened, never written.
-fn open_lock_file(path: &Path) -> anyhow::Result<std::fs::File> {
-    std::fs::OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(path)
-        .with_context(|| format!("opening the lock {}", path.display()))
+/// The end of a lock file's name: `.NAME.classic-gpgpu-lock` beside the folder NAME.
+pub const LOCK_SUFFIX: &str = "classic-gpgpu-lock";
+
+/// What a lock file says, for whoever finds one (the lock itself is the file's flock).
+const LOCK_TEXT: &str = "classic-gpgpu: the lock of a run writing the folder beside this \
+    file; the run removes it when it ends\n";
+
+/// Opens the lock file at `path`, made if missing; and whether this call made it.
+fn open_lock_file(path: &Path) -> anyhow::Result<(std::fs::File, bool)> {
+    let open = |new: bool| {
+        std::fs::OpenOptions::new()
+            .create_new(new)
+            .create(!new)
+            .truncate(false)
+            .write(true)
+            .open(path)
+    };
+    match open(true) {
+        Ok(file) => Ok((file, true)),
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => open(false)
+            .map(|file| (file, false))
+            .with_context(|| format!("opening the lock {}", path.display())),
+        Err(e) => Err(e).with_context(|| format!("opening the lock {}", path.display())),
+    }
+}
+
+/// Whether the file at `path` is a lock of this program's: its text, or empty (a run killed
+/// between making the file and writing it).
+fn is_a_lock(path: &Path) -> bool {
+    std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file())
+        && std::fs::read(path).is_ok_and(|b| b.is_empty() || b == LOCK_TEXT.as_bytes())
 }
 
 /// Whether `path` is still the file `file` has open.
@@ -535,9 +616,15 @@ pub fn install_of(staging: &Path, out: &Path, owned: &Owned, command: &str) -> a
     };
     let present = list_files(out)?;
     let foreign: Vec<&String> = present.iter().filter(|f| !old.contains(f)).collect();
+    // What the messages call the finished files: reproduce's are a report.
+    let finished = if command == REPRODUCE {
+        "report"
+    } else {
+        "output"
+    };
     let kept = |e: anyhow::Error| {
         e.context(format!(
-            "the finished report is in {}; {} is as it was",
+            "the finished {finished} is in {}; {} is as it was",
             staging.display(),
             out.display()
         ))
@@ -571,7 +658,7 @@ pub fn install_of(staging: &Path, out: &Path, owned: &Owned, command: &str) -> a
             .with_context(|| format!("moving {} into place", to.display()))
             .map_err(|e| {
                 e.context(format!(
-                    "the rest of the finished report is in {}",
+                    "the rest of the finished {finished} is in {}",
                     staging.display()
                 ))
             })?;
@@ -791,7 +878,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("cg-lock-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         let out = dir.join("report");
-        let lock_file = dir.join(".report.lock");
+        let lock_file = dir.join(".report.classic-gpgpu-lock");
         let held = Lock::take(&out).unwrap();
         assert!(lock_file.exists());
         let second = Lock::take(&out)
@@ -805,5 +892,98 @@ mod tests {
         drop(Lock::take(&out).unwrap());
         assert!(!lock_file.exists());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn another_commands_folder_is_refused_even_with_force_and_its_marker_kept() {
+        let dir = scratch("others");
+        let out = dir.join("dump");
+        write(&out, false, &["a.png"]).unwrap();
+        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+        let marker = std::fs::read(out.join(MARKER)).unwrap();
+        let err = format!(
+            "{:#}",
+            Staged::begin("--png", "other --png", &out, true)
+                .err()
+                .unwrap()
+        );
+        assert!(
+            err.contains("is `classic-gpgpu test --dump`'s")
+                && err.contains("not even with --force"),
+            "{err}"
+        );
+        // The refusal names whose folder it is, never the marker as a file of someone else's.
+        assert!(!err.contains("e.g."), "{err}");
+        assert_eq!(std::fs::read(out.join(MARKER)).unwrap(), marker);
+        // A report is `reproduce`'s; a page `compare` wrote with the report's marker (its
+        // files all of section "compare") is `compare`'s, refused to `reproduce`.
+        let report = dir.join("report");
+        std::fs::create_dir_all(&report).unwrap();
+        let mut owned = Owned::default();
+        owned.add("paper1", "fig.png");
+        owned.write(&report).unwrap();
+        assert_eq!(owner(&report).unwrap().as_deref(), Some(REPRODUCE));
+        let page = dir.join("page");
+        std::fs::create_dir_all(&page).unwrap();
+        let mut owned = Owned::default();
+        owned.add(COMPARE, "comparison.json");
+        owned.write(&page).unwrap();
+        assert_eq!(owner(&page).unwrap().as_deref(), Some(COMPARE));
+        let err = format!("{:#}", check_out(&page, true).unwrap_err());
+        assert!(err.contains("is `classic-gpgpu compare`'s"), "{err}");
+        assert!(Owned::read(&page).unwrap().is_none());
+        // A file at the marker's name that this program did not write is never replaced.
+        let theirs = dir.join("theirs");
+        std::fs::create_dir_all(&theirs).unwrap();
+        std::fs::write(theirs.join(MARKER), "my notes").unwrap();
+        let err = format!("{:#}", write(&theirs, true, &["a.png"]).unwrap_err());
+        assert!(err.contains("not a marker this program wrote"), "{err}");
+        assert_eq!(
+            std::fs::read_to_string(theirs.join(MARKER)).unwrap(),
+            "my notes"
+        );
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn the_lock_has_a_name_of_its_own_and_never_removes_a_users_file() {
+        let dir = scratch("lock-name");
+        let out = dir.join("dump");
+        // The name the lock had before: a user's file, untouched by a run.
+        std::fs::write(dir.join(".dump.lock"), "mine").unwrap();
+        write(&out, false, &["a.png"]).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(dir.join(".dump.lock")).unwrap(),
+            "mine"
+        );
+        assert!(!dir.join(".dump.classic-gpgpu-lock").exists());
+        // A file at the lock's own name that is not a lock: refused, kept.
+        let lock = dir.join(".other.classic-gpgpu-lock");
+        std::fs::write(&lock, "mine").unwrap();
+        let err = format!(
+            "{:#}",
+            write(&dir.join("other"), false, &["a.png"]).unwrap_err()
+        );
+        assert!(err.contains("in the way"), "{err}");
+        assert_eq!(std::fs::read_to_string(&lock).unwrap(), "mine");
+        assert!(!dir.join("other").exists());
+        // A lock a killed run left (its text, or empty) is taken over and removed.
+        std::fs::write(&lock, LOCK_TEXT).unwrap();
+        write(&dir.join("other"), false, &["a.png"]).unwrap();
+        assert!(!lock.exists());
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn a_mount_point_is_refused_before_any_work() {
+        // /proc is where the kernel's file system is mounted, on every Linux.
+        let proc = Path::new("/proc");
+        if crate::files::is_mount_point(proc) {
+            let err = format!(
+                "{:#}",
+                check_folder("--out", REPRODUCE, proc, true).unwrap_err()
+            );
+            assert!(err.contains("a mount point"), "{err}");
+        }
     }
 }

@@ -93,7 +93,7 @@ pub struct BenchArgs<O: clap::Args> {
     pub force: bool,
     /// Time every repeated measurement exactly this many times [default: 3, and up to 5
     /// while the runs take under a second in all].
-    #[arg(long, value_parser = timing::parse_runs)]
+    #[arg(long, value_parser = crate::values::ranges::RUNS.of::<usize>())]
     pub runs: Option<usize>,
     /// Leave out the section's period block (papers 1 to 4 carry one by default, as in
     /// `reproduce`): each step of the paper's path run under the limits of the paper's own

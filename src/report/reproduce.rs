@@ -73,7 +73,7 @@ pub struct ReproduceArgs {
     pub force: bool,
     /// Time every repeated measurement exactly this many times [default: 3, and up to 5
     /// while the runs take under a second in all].
-    #[arg(long, value_parser = crate::timing::parse_runs)]
+    #[arg(long, value_parser = crate::values::ranges::RUNS.of::<usize>())]
     pub runs: Option<usize>,
     /// Leave out the "period" block that papers 1 to 4 carry by default: each step of the
     /// paper's path run under the limits of the paper's own GPU (fits, the period's way, or

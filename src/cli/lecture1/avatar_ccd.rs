@@ -10,6 +10,7 @@ use classic_gpgpu::lecture1::avatar_ccd::{
     advance, visibility, AvatarCcd, Options, DEFAULT_STEPS, DEFAULT_TOLERANCE,
 };
 use classic_gpgpu::mesh::load_obj;
+use classic_gpgpu::values::{ranges, Count, Real, SMALLEST};
 use glam::DVec3;
 use serde_json::json;
 use std::path::PathBuf;
@@ -23,14 +24,16 @@ pub struct AvatarCcdArgs {
     /// along +z from the origin, the pelvis 1.06 above the floor].
     #[arg(long)]
     pub keyframes: Option<PathBuf>,
-    /// A gap (distance less the link's radius) at most this is a contact (model units).
-    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    /// A gap (distance less the link's radius) at most this is a contact (model units; at
+    /// most the environment's size, checked when it is loaded).
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_parser = TOLERANCE.of::<f64>())]
     pub tolerance: f64,
     /// Sub-intervals per keyframe interval (each with its own swept bounds).
-    #[arg(long, default_value_t = DEFAULT_STEPS)]
+    #[arg(long, default_value_t = DEFAULT_STEPS, value_parser = STEPS.of::<usize>())]
     pub steps: usize,
     /// Pixels per side of the visibility views.
-    #[arg(long, default_value_t = visibility::DEFAULT_RESOLUTION)]
+    #[arg(long, default_value_t = visibility::DEFAULT_RESOLUTION,
+          value_parser = RESOLUTION.of::<u32>())]
     pub resolution: u32,
     /// Skip the GPU visibility culling (the BVH's survivors go to the exact tests).
     #[arg(long)]
@@ -43,8 +46,55 @@ pub struct AvatarCcdArgs {
     pub scale: Scale,
     /// Also run the CPU reference (every link against every triangle at this many sampled
     /// times per keyframe interval, parry3d's distances) and compare.
-    #[arg(long)]
+    #[arg(long, value_parser = SAMPLES.of::<usize>())]
     pub check: Option<usize>,
+}
+
+/// `--tolerance`: a positive distance; the environment's size bounds it too ([`within_scene`]).
+const TOLERANCE: Real = Real::new(
+    "a tolerance",
+    SMALLEST,
+    f64::MAX,
+    "a distance in model units, at most the environment's size (checked when it is loaded)",
+);
+
+/// `--steps`: the method's own range ([`AvatarCcd::run`] checks it too).
+const STEPS: Count = Count::new(
+    "a number of sub-intervals",
+    1,
+    100_000,
+    "each sub-interval is a culling pass of every link",
+);
+
+/// `--resolution` of the visibility views (the renderer's texture size is checked when it runs).
+const RESOLUTION: Count = Count {
+    least: 8,
+    ..ranges::TEXTURE_SIDE
+};
+
+/// `--check N`: samples of the CPU reference per keyframe interval.
+const SAMPLES: Count = Count::new(
+    "a number of samples",
+    1,
+    1_000_000,
+    "each sample tests every link against every triangle on the CPU",
+);
+
+/// Refuses a tolerance beyond the environment's size: every gap would be within it, so the
+/// answer would be a contact at once whatever the motion; that is outside the method's use,
+/// and beyond fp32's range (1e100 and up) the GPU's bounds would not even hold it.
+fn within_scene(env: &Environment, tolerance: f64) -> anyhow::Result<()> {
+    let (low, high) = env.bounds();
+    let size = (high - low).length();
+    if tolerance > size {
+        anyhow::bail!(
+            "--tolerance {}: more than the environment's size ({size:.3} units corner to \
+             corner), so every gap would be within it and the contact would be at time 0 \
+             whatever the motion; give a tolerance above 0 and at most {size:.3}",
+            classic_gpgpu::values::number(tolerance)
+        );
+    }
+    Ok(())
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -75,6 +125,7 @@ pub fn run(args: &AvatarCcdArgs, ctx: &Context, json: bool) -> anyhow::Result<()
         Some(path) => Keyframes::load(&body, path)?,
         None => Keyframes::walk(&body, DVec3::new(0.0, 1.06, 0.0), 8, 0.35),
     };
+    within_scene(&env, args.tolerance)?;
     // The motion within the advancement's range (also checked by `run`), named by its file.
     if args.tolerance.is_finite() && args.tolerance > 0.0 {
         advance::check_range(&body, &keyframes, args.tolerance).with_context(|| {
@@ -94,10 +145,6 @@ pub fn run(args: &AvatarCcdArgs, ctx: &Context, json: bool) -> anyhow::Result<()
     let result = ccd.run(&body, &keyframes, &env, &options)?;
     let check = match args.check {
         Some(n) => {
-            anyhow::ensure!(
-                (1..=1_000_000).contains(&n),
-                "--check takes 1 to 1000000 samples per keyframe interval, not {n}"
-            );
             // At the published scale, brute force on the triangles near the motion (those
             // farther cannot come within the tolerance).
             let near = match args.scale {

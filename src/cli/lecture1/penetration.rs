@@ -8,6 +8,7 @@ use classic_gpgpu::lecture1::penetration::pieces::load_pieces;
 use classic_gpgpu::lecture1::penetration::{
     exit_panels, Formulation, Options, PenetrationQuery, DEFAULT_RESOLUTION,
 };
+use classic_gpgpu::values::{ranges, Count};
 use serde_json::json;
 use std::path::PathBuf;
 
@@ -28,7 +29,8 @@ pub struct PenetrationArgs {
     /// Model B (OBJ), pieces as for A.
     pub b: PathBuf,
     /// Texels per side of each of the six cube faces around the origin.
-    #[arg(long, default_value_t = DEFAULT_RESOLUTION)]
+    #[arg(long, default_value_t = DEFAULT_RESOLUTION,
+          value_parser = Count { least: 2, ..ranges::TEXTURE_SIDE }.of::<usize>())]
     pub resolution: usize,
     /// Closest-point query on the classic pipeline or as a compute pass.
     #[arg(long, value_enum, default_value_t = FormulationArg::Classic)]

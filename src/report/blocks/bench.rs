@@ -30,12 +30,12 @@ pub struct ReductionRun {
     pub relative_difference: f64,
 }
 
-/// Repeats per size; the best time is kept.
-pub fn repeats(quick: bool) -> usize {
-    if quick {
-        2
-    } else {
-        5
+/// Repeats per size, the best time kept: `--runs` when given, else 2 under `--quick` and 5.
+pub fn repeats(opts: &BenchOptions) -> usize {
+    match opts.runs {
+        Some(n) => n,
+        None if opts.quick => 2,
+        None => 5,
     }
 }
 
@@ -53,7 +53,7 @@ pub fn measure(opts: &BenchOptions) -> anyhow::Result<BlocksResults> {
     bar.set_message("building blocks: reduction vs readback");
     let mut reduction = Vec::new();
     for &size in sizes {
-        reduction.push(measure_size(opts, size, repeats(opts.quick))?);
+        reduction.push(measure_size(opts, size, repeats(opts))?);
         bar.inc(1);
     }
     bar.finish_and_clear();

@@ -8,7 +8,7 @@ pub fn table(opts: &BenchOptions, results: &BlocksResults) -> Table {
     Table {
         caption: format!(
             "Sum of an n x n RGBA32F buffer ({renderer}), best of {}",
-            repeats(opts.quick)
+            repeats(opts)
         ),
         header: [
             "n",
