@@ -452,6 +452,9 @@ OUTPUT_LINES=(
     "learn --guide|learn --guide OUT"
     "learn --out|learn reduction --bench --out OUT"
     "compare --out|compare r.json --out OUT"
+    "compare --junit|compare --baseline old.json new.json --junit OUT"
+    "assets export <DIR>|assets export OUT"
+    "claims --out|claims --stamp old.json --like new.json --out OUT"
 )
 
 class_links() {

@@ -32,12 +32,14 @@ pub const OUTPUTS: &[&str] = &[
 pub const INPUTS: &[&str] = &[
     "a",
     "b",
+    "baseline",
     "environment",
     "glsl_dir",
     "height",
     "image",
     "input",
     "keyframes",
+    "like",
     "model",
     "network",
     "pair",
@@ -45,6 +47,7 @@ pub const INPUTS: &[&str] = &[
     "results",
     "scene",
     "sites",
+    "stamp",
 ];
 
 /// What a path option names.
