@@ -930,3 +930,34 @@ fn renderers_get_short_names_and_commits_short_hashes() {
     assert_eq!(run::range(1.0, 1.001), "1.00");
     assert_eq!(run::range(0.5, 1.25), "0.50-1.25");
 }
+
+#[test]
+fn against_a_baseline_without_figures_a_count_claim_is_judged_by_its_verdict() {
+    let dir = scratch("gate-bare");
+    let id = "paper3.same-classification";
+    let run = this_build_copy(&dir, "run.json", |v| {
+        assert_eq!(claim_mut(v, id)["decided_by"], "count");
+        claim_mut(v, id)["evidence"] =
+            json!([{"name": "windows classified as the CPU does", "kind": "count", "value": 1.0}]);
+    });
+    // A run from before claims kept their figures: the same verdict, nothing else to compare.
+    let bare = this_build_copy(&dir, "bare.json", |v| {
+        claim_mut(v, id)["evidence"] = json!([]);
+    });
+    let out = compare_cli(&[&run], &["--baseline", bare.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stdout(&out));
+    let text = stdout(&out);
+    assert!(text.contains(&format!("same verdict: {id}")), "{text}");
+    assert!(text.contains("only its verdict is compared"), "{text}");
+    assert_eq!(summary(&out), (claims_in(&run), 0, 0, 0));
+    // Its verdict flipped: still a regression.
+    let flipped = this_build_copy(&dir, "flipped.json", |v| {
+        let claim = claim_mut(v, id);
+        let holds = claim["holds"].as_bool().unwrap();
+        claim["holds"] = json!(!holds);
+    });
+    let out = compare_cli(&[&flipped], &["--baseline", bare.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", stdout(&out));
+    assert!(stdout(&out).contains(&format!("REGRESSED: {id}")));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

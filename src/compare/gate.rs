@@ -31,6 +31,9 @@ pub enum Outcome {
     /// Something changed within what the claim allows (an error within its bound, a timing
     /// within its band, a verdict on timings): listed, not a regression.
     Changed,
+    /// The verdict, decided by counts or errors, is the same, and it is all that could be
+    /// compared (the baseline kept no figures): listed with the new figures.
+    SameVerdict,
     Regressed,
     /// The two runs judged different versions of the claim.
     ChangedDefinition,
@@ -47,6 +50,7 @@ impl Outcome {
         match self {
             Outcome::Same => "same",
             Outcome::Changed => "changed",
+            Outcome::SameVerdict => "same verdict",
             Outcome::Regressed => "REGRESSED",
             Outcome::ChangedDefinition => "changed definition",
             Outcome::NotJudged => "not judged",
@@ -342,9 +346,11 @@ fn judge(key: &str, section: &Section, old: &Claim, new: &Claim, a: &Run, b: &Ru
     }
     // A baseline that kept no figures (a run from before claims kept them): only a verdict
     // decided by counts can be judged; a timing's has nothing to be judged against.
+    let mut verdict_only = false;
     if old.evidence.is_empty() && !new.evidence.is_empty() {
         let timed = old.decided_by == Basis::Timing || new.decided_by == Basis::Timing;
         not_judged |= timed;
+        verdict_only = !timed && old.holds == new.holds;
         row.changes.insert(
             0,
             format!(
@@ -361,6 +367,8 @@ fn judge(key: &str, section: &Section, old: &Claim, new: &Claim, a: &Run, b: &Ru
         Outcome::Regressed
     } else if not_judged {
         Outcome::NotJudged
+    } else if verdict_only {
+        Outcome::SameVerdict
     } else if row.changes.is_empty() {
         Outcome::Same
     } else {
