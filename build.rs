@@ -6,8 +6,8 @@
 //! The same is done for the Rust files under `src/` (`$OUT_DIR/rust_sources.rs`), so the guide
 //! can show named regions of the code as it is.
 //!
-//! The Rust files a claim's rule or workload may be cut from (under `src/report/`, and
-//! `src/timing.rs`) are listed again in `$OUT_DIR/claim_sources.rs`, for
+//! The Rust files a claim's rule or workload may be cut from (under `src/report/`,
+//! `src/timing.rs` and `src/mass/models.rs`) are listed again in `$OUT_DIR/claim_sources.rs`, for
 //! `classic_gpgpu::report::versions`: each claim's version is a hash of regions of them.
 //!
 //! It also says where a build comes from, for `results.json`: the commit
@@ -101,8 +101,9 @@ const SOURCES: [&str; 4] = [
     "Cargo.lock",
 ];
 
-/// Where a claim's rule and workload regions may be: the report's code and the timing policy.
-const CLAIMS: [&str; 2] = ["src/report/", "src/timing.rs"];
+/// Where a claim's rule and workload regions may be: the report's code, the timing policy and
+/// the paper objects paper 4 measures.
+const CLAIMS: [&str; 3] = ["src/report/", "src/timing.rs", "src/mass/models.rs"];
 
 /// `git` in `root`, its trimmed output when it succeeds.
 fn git(root: &Path, args: &[&str]) -> Option<String> {

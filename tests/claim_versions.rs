@@ -184,3 +184,30 @@ fn quick_runs_judge_other_versions() {
         );
     }
 }
+
+#[test]
+fn changing_the_meshes_paper_4_measures_changes_paper_4s_versions_only() {
+    // The bunny refined to other counts than Table 1's.
+    let file = "src/mass/models.rs";
+    let text = edited(
+        file,
+        "pub const BUNNY_FACES: usize = 5110;",
+        "pub const BUNNY_FACES: usize = 3674;",
+    );
+    assert_eq!(
+        changed(&current(), &versions_with(file, &text, PAPER_TABLES_TOML)),
+        [
+            "paper4.error-bound",
+            "paper4.interactive-buoyancy",
+            "paper4.outperforms-analytic-bunny",
+            "paper4.outperforms-analytic-pipe"
+        ]
+    );
+    // A function of the file outside the objects' region (the OBJ loader's message).
+    let text = edited(
+        file,
+        "the file has no triangles",
+        "the file holds no triangle",
+    );
+    assert!(changed(&current(), &versions_with(file, &text, PAPER_TABLES_TOML)).is_empty());
+}

@@ -14,7 +14,8 @@
 //! Comment lines and white space inside a region do not count, so rewording a comment or
 //! `cargo fmt` leaves a version alone.
 //!
-//! The Rust files under `src/report/` and `src/timing.rs` are compiled into the binary
+//! The Rust files under `src/report/`, `src/timing.rs` and `src/mass/models.rs` (the paper
+//! objects paper 4 measures) are compiled into the binary
 //! (`build.rs`), so any build can say what HEAD's version of every claim is without a run
 //! ([`current`], `classic-gpgpu claims`), and `compare` can tell a kept run's claim that is
 //! still current from one whose definition changed since.
@@ -154,7 +155,7 @@ pub fn version<'s>(
             let text = sources(file).ok_or_else(|| {
                 fail(format!(
                     "{kind} part `{part}`: {file} is not a file a claim may be cut from (the Rust \
-                     files under src/report/ and src/timing.rs)"
+                     files under src/report/, src/timing.rs and src/mass/models.rs)"
                 ))
             })?;
             let lines = cut(text, name).map_err(|e| fail(format!("{file}: {e}")))?;

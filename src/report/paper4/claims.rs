@@ -6,6 +6,10 @@ use crate::report::versions::TIMING_POLICY;
 use crate::report::{published, Basis, Claim, ClaimDef, Evidence};
 use crate::timing::{self, Load, Spread, Target};
 
+/// The meshes of Table 1 the claims are measured on (the bunny and the pipe refined to the
+/// paper's counts): part of every claim's workload.
+const PAPER_OBJECTS: &str = "src/mass/models.rs#workload paper-objects";
+
 /// Every claim of the section, with what decides it.
 pub const CLAIMS: &[ClaimDef] = &[ERROR_BOUND, OUTPERFORMS_BUNNY, OUTPERFORMS_PIPE, BUOYANCY];
 
@@ -22,7 +26,10 @@ const ERROR_BOUND: ClaimDef = ClaimDef {
     id: "paper4.error-bound",
     rule: &["src/report/paper4/claims.rs#rule error-bound"],
     published: &["paper4.fig4"],
-    workload: &["src/report/paper4/bench.rs#workload resolutions"],
+    workload: &[
+        "src/report/paper4/bench.rs#workload resolutions",
+        PAPER_OBJECTS,
+    ],
     band: None,
 };
 
@@ -94,7 +101,10 @@ const OUTPERFORMS_BUNNY: ClaimDef = ClaimDef {
         TIMING_POLICY,
     ],
     published: &["paper4.fig5"],
-    workload: &["src/report/paper4/bench.rs#workload resolutions"],
+    workload: &[
+        "src/report/paper4/bench.rs#workload resolutions",
+        PAPER_OBJECTS,
+    ],
     band: Some(0.25),
 };
 
@@ -106,7 +116,10 @@ const OUTPERFORMS_PIPE: ClaimDef = ClaimDef {
         TIMING_POLICY,
     ],
     published: &["paper4.fig5"],
-    workload: &["src/report/paper4/bench.rs#workload resolutions"],
+    workload: &[
+        "src/report/paper4/bench.rs#workload resolutions",
+        PAPER_OBJECTS,
+    ],
     band: Some(0.25),
 };
 
@@ -174,7 +187,10 @@ const BUOYANCY: ClaimDef = ClaimDef {
     id: "paper4.interactive-buoyancy",
     rule: &["src/report/paper4/claims.rs#rule buoyancy", TIMING_POLICY],
     published: &["paper4.buoyancy"],
-    workload: &["src/report/paper4/bench.rs#workload buoyancy"],
+    workload: &[
+        "src/report/paper4/bench.rs#workload buoyancy",
+        PAPER_OBJECTS,
+    ],
     band: Some(0.25),
 };
 
