@@ -41,7 +41,8 @@ pub struct ClaimDef {
     /// The code that sets the sizes that measure it: regions, each `path#name`.
     pub workload: &'static [&'static str],
     /// For a claim decided by a timing: how far its figure may move, relative, between two
-    /// quiet runs before `compare --baseline` calls the change a regression (0.25: 25%).
+    /// quiet runs before `compare --baseline` calls the change a regression (0.25: 25%; wider
+    /// where one build's runs were measured to move more, said beside it).
     pub band: Option<f64>,
 }
 

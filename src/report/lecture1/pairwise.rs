@@ -384,7 +384,8 @@ pub const PAIRWISE: ClaimDef = ClaimDef {
     ],
     published: &[],
     workload: &["src/report/lecture1/pairwise.rs#workload pairwise-counts"],
-    band: Some(0.25),
+    // Twice the most it moved between three llvmpipe runs of one build, 2 cores (58%).
+    band: Some(1.2),
 };
 
 /// Paper 1 on its reference 38: pairwise GPU tests are limited to about 1K triangles, so

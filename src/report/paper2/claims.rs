@@ -283,7 +283,8 @@ const STAGE_COSTS: ClaimDef = ClaimDef {
         "src/report/paper2/bench.rs#workload counts",
         "src/report/paper2/bench.rs#workload frames",
     ],
-    band: Some(0.25),
+    // Twice the most it moved between three llvmpipe runs of one build, 2 cores (57%).
+    band: Some(1.15),
 };
 
 /// Why the crossover does or does not happen: at the largest crowd, the two-pass GPU work

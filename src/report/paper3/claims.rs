@@ -28,7 +28,8 @@ const TWENTY_FOLD: ClaimDef = ClaimDef {
         "src/report/paper3/bench.rs#workload runs",
         "src/report/paper3/bench.rs#workload cases",
     ],
-    band: Some(0.25),
+    // Twice the most it moved between three llvmpipe runs of one build, 2 cores (54%).
+    band: Some(1.1),
 };
 
 /// A software renderer runs the "GPU" passes on the CPU (the report's timing policy,

@@ -105,7 +105,8 @@ const OUTPERFORMS_BUNNY: ClaimDef = ClaimDef {
         "src/report/paper4/bench.rs#workload resolutions",
         PAPER_OBJECTS,
     ],
-    band: Some(0.25),
+    // Twice the most it moved between three llvmpipe runs of one build, 2 cores (37%).
+    band: Some(0.75),
 };
 
 /// Fig. 5: at 64x64 the GPU outperforms the analytic method, pipe.
