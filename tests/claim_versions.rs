@@ -4,6 +4,7 @@
 //! none. The versions are computed from the files as this build compiled them in, with one file
 //! replaced by an edited copy.
 
+use classic_gpgpu::report::claim_defs;
 use classic_gpgpu::report::published::PAPER_TABLES_TOML;
 use classic_gpgpu::report::versions::{self, compiled_source, ClaimDef};
 use std::collections::BTreeMap;
@@ -18,7 +19,7 @@ fn versions_with(file: &str, text: &str, tables: &str) -> BTreeMap<&'static str,
             compiled_source(path)
         }
     };
-    versions::all()
+    claim_defs::all()
         .into_iter()
         .map(|(_, def): (_, &ClaimDef)| {
             let v =
@@ -55,7 +56,7 @@ fn the_build_versions_every_claim_as_it_is() {
     let now = current();
     assert!(now.len() >= 30, "{}", now.len());
     for (id, v) in &now {
-        let def = versions::find(id).unwrap();
+        let def = claim_defs::find(id).unwrap();
         assert_eq!(&versions::current(def, false).unwrap(), v, "{id}");
     }
 }
@@ -95,7 +96,7 @@ fn the_timing_policy_is_part_of_every_timed_claims_rule() {
         "pub const LOADED_PER_CORE: f64 = 1.5;",
     );
     let moved = changed(&current(), &versions_with(file, &text, PAPER_TABLES_TOML));
-    for (_, def) in versions::all() {
+    for (_, def) in claim_defs::all() {
         assert_eq!(
             moved.contains(&def.id),
             def.rule.contains(&versions::TIMING_POLICY),
@@ -175,7 +176,7 @@ fn code_that_decides_no_claim_changes_no_version() {
 
 #[test]
 fn quick_runs_judge_other_versions() {
-    for (_, def) in versions::all() {
+    for (_, def) in claim_defs::all() {
         assert_ne!(
             versions::current(def, true).unwrap(),
             versions::current(def, false).unwrap(),

@@ -5,7 +5,7 @@
 //! kept results with every text escaped, and the regression gate (`--baseline`).
 
 use classic_gpgpu::compare::{self, headline, markdown, run};
-use classic_gpgpu::report::versions;
+use classic_gpgpu::report::{claim_defs, versions};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -880,9 +880,9 @@ fn every_claim_of_this_build_is_listed_with_its_versions() {
     assert!(out.status.success(), "{}", stderr(&out));
     let listed: Value = serde_json::from_slice(&out.stdout).unwrap();
     let listed = listed.as_array().unwrap();
-    assert_eq!(listed.len(), versions::all().len());
+    assert_eq!(listed.len(), claim_defs::all().len());
     for claim in listed {
-        let def = versions::find(claim["id"].as_str().unwrap()).unwrap();
+        let def = claim_defs::find(claim["id"].as_str().unwrap()).unwrap();
         assert_eq!(claim["version"], versions::current(def, false).unwrap());
         assert_eq!(
             claim["quick_version"],

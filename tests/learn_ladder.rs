@@ -341,7 +341,7 @@ fn lesson_8_explains_its_own_warm_numbers() {
     println!("{why}");
     let (name, full) = note("glReadPixels into client memory, whole array");
     // Warm: the median of the lesson's runs after a warm-up, never one cold sample.
-    let runs = classic_gpgpu::learn::bench::LESSON_RUNS;
+    let runs = classic_gpgpu::learn::LESSON_RUNS;
     assert!(
         name.contains(&format!("median of {runs} runs after a warm-up")),
         "{name}"

@@ -47,12 +47,13 @@ fn results_name_the_commit_the_command_and_the_load() {
     }
     assert_eq!(commit, classic_gpgpu::report::provenance::COMMIT);
     // Each claim: its id, and this build's version of it at --quick sizes.
-    use classic_gpgpu::report::versions;
+    use classic_gpgpu::report::{claim_defs, versions};
     let claims = results["sections"][0]["claims"].as_array().unwrap();
     assert!(!claims.is_empty());
     for claim in claims {
         let id = claim["id"].as_str().expect("an id");
-        let def = versions::find(id).unwrap_or_else(|| panic!("{id} is not a claim of the build"));
+        let def =
+            claim_defs::find(id).unwrap_or_else(|| panic!("{id} is not a claim of the build"));
         assert_eq!(
             claim["version"].as_str(),
             Some(versions::current(def, true).unwrap().as_str()),

@@ -6,7 +6,7 @@
 
 use anyhow::Context as _;
 use classic_gpgpu::compare::{stamp, Run};
-use classic_gpgpu::report::versions;
+use classic_gpgpu::report::claim_defs;
 use std::path::PathBuf;
 
 /// Arguments of `claims`.
@@ -59,7 +59,7 @@ pub fn run(args: &ClaimsArgs, json: bool) -> anyhow::Result<()> {
         );
         return Ok(());
     }
-    let listed = versions::listed().map_err(anyhow::Error::msg)?;
+    let listed = claim_defs::listed().map_err(anyhow::Error::msg)?;
     if json {
         println!("{}", serde_json::to_string_pretty(&listed)?);
         return Ok(());

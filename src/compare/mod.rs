@@ -190,7 +190,7 @@ fn keys_of<'a>(run: &'a Run, runs: &'a [Run]) -> Vec<(String, &'a Section, &'a C
 
 /// This build's version of claim `id` at the group's sizes (`None`: not a claim of this build).
 pub fn current_version(id: &str, quick: bool) -> Option<String> {
-    versions::find(id).and_then(|def| versions::current(def, quick).ok())
+    crate::report::claim_defs::find(id).and_then(|def| versions::current(def, quick).ok())
 }
 
 /// The words for the commit and machine of a run: "1a2b3c4 (llvmpipe, 2026-11-28)".

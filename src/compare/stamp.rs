@@ -24,7 +24,7 @@ pub fn stamp(
     except: &[String],
 ) -> anyhow::Result<(String, Vec<String>)> {
     for id in except {
-        if crate::report::versions::find(id).is_none() {
+        if crate::report::claim_defs::find(id).is_none() {
             bail!("--except {id}: not a claim of this build (`classic-gpgpu claims` lists them)");
         }
     }

@@ -13,10 +13,6 @@ use crate::gl::Context;
 use crate::timing::Runs;
 use serde::Serialize;
 
-/// How often a lesson times a path in its own run (not `--bench`), after one untimed warm-up
-/// run: its explanation quotes the median of these, never one cold sample.
-pub const LESSON_RUNS: usize = 5;
-
 /// The lessons with a bench, and what it times.
 pub const WITH_BENCH: [(&str, &str); 4] = [
     (

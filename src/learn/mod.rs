@@ -58,6 +58,10 @@ pub use feedback::{Grid, WrongTexel, FIRST_WRONG};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
+/// How often a lesson times a path in its own run (not `--bench`), after one untimed warm-up
+/// run: its explanation quotes the median of these, never one cold sample.
+pub const LESSON_RUNS: usize = 5;
+
 /// A paper step that uses the lesson's idea: where to read next.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct PaperStep {

@@ -10,10 +10,12 @@
 //! (one untimed run, then the median of [`LESSON_RUNS`]), and the explanation quotes those
 //! medians with the renderer (never a check).
 
-use super::bench::LESSON_RUNS;
 use super::histogram_pyramid::{self, Compaction, HistogramPyramid};
 use super::kit::{self, Steps, Wait};
-use super::{Exercise, Grid, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer};
+use super::{
+    Exercise, Grid, Lesson, LessonInfo, LessonOptions, LessonRun, PaperStep, PassBuffer,
+    LESSON_RUNS,
+};
 use crate::gl::{
     AtomicCounters, Buffer, BufferUsage, ComputeProgram, Context, Framebuffer, Program, Texture,
     TextureFormat,

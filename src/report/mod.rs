@@ -19,6 +19,7 @@
 
 pub mod blocks;
 pub mod checks;
+pub mod claim_defs;
 pub mod evidence;
 mod html;
 pub mod lecture1;
